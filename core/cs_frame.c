@@ -1,0 +1,201 @@
+/*
+ * cs_frame.c - per-frame preparation: scene at time t to monotone pieces.
+ *
+ * Once per frame the scene's contours are transformed to device space,
+ * converted to rational polynomial segments, and every segment is split
+ * where its y(u) = Y(u)/W(u) turns, giving y-monotone pieces. A monotone
+ * piece meets a scanline at most once, so a line needs one bracketed solve
+ * per active piece and never a search for several roots.
+ *
+ * Parity is made exact here, not in the solver: consecutive pieces of a
+ * contour share their end y values bit for bit (the end of a segment takes
+ * the start value of the next one), and a piece counts a scanline y when
+ * y_top <= y < y_bot. The chain of end values of a closed contour is closed,
+ * so every scanline meets it an even number of times with net winding zero,
+ * through vertices, tangents and cusps alike, whatever rounding the solver
+ * does in between.
+ *
+ * Pieces are then ordered by y_top so that each line can pick up the newly
+ * active ones with a moving index instead of scanning them all.
+ */
+#include "cs_internal.h"
+
+static float seg_y(const cs_segment *s, float u)
+{
+    return cs__poly_eval(s->y, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
+}
+
+/*
+ * Parameters in (0,1) where dy/du = 0: roots of Y'W - YW', whose u^(2p-1)
+ * coefficient cancels analytically and is dropped rather than left to
+ * rounding.
+ */
+static int y_turns(const cs_segment *s, float *roots)
+{
+    int p = s->degree;
+    float n[5] = {0, 0, 0, 0, 0};
+    for (int i = 0; i <= p; i++)
+        for (int j = 0; j <= p; j++) {
+            int k = i + j - 1;
+            if (i != j && k >= 0 && k <= 2 * p - 2)
+                n[k] += (float)(i - j) * s->y[i] * s->w[j];
+        }
+    return cs__poly_roots(n, 2 * p - 2, 0.0f, 1.0f, roots);
+}
+
+/* Appends the monotone pieces of segment `si`, whose end y is `y_end`. */
+static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end)
+{
+    cs_workspace *ws = r->ws;
+    const cs_segment *s = &ws->segments[si];
+    float cut[6];
+    int n = 0;
+    cut[n++] = 0.0f;
+    n += y_turns(s, &cut[1]);
+    cut[n++] = 1.0f;
+    float ya = seg_y(s, 0.0f);
+    for (int k = 0; k + 1 < n; k++) {
+        float yb = (k + 2 == n) ? y_end : seg_y(s, cut[k + 1]);
+        if (ya != yb) {
+            if (r->piece_count >= CS_CFG_MAX_PIECES)
+                return CS_ERR_CAP_PIECES;
+            cs_piece *pc = &ws->pieces[r->piece_count++];
+            pc->u0 = cut[k];
+            pc->u1 = cut[k + 1];
+            pc->dir = yb > ya ? 1 : -1;
+            pc->y_top = yb > ya ? ya : yb;
+            pc->y_bot = yb > ya ? yb : ya;
+            pc->segment = si;
+            pc->region = s->region;
+        }
+        ya = yb;
+    }
+    return CS_OK;
+}
+
+/* Stable merge sort of piece indices by y_top, using ws->scratch. */
+static void sort_by_top(cs_workspace *ws, uint32_t n)
+{
+    uint32_t *a = ws->order, *b = ws->scratch;
+    for (uint32_t i = 0; i < n; i++)
+        a[i] = i;
+    for (uint32_t width = 1; width < n; width *= 2) {
+        for (uint32_t lo = 0; lo < n; lo += 2 * width) {
+            uint32_t mid = lo + width < n ? lo + width : n;
+            uint32_t hi = lo + 2 * width < n ? lo + 2 * width : n;
+            uint32_t i = lo, j = mid, k = lo;
+            while (i < mid && j < hi)
+                b[k++] = ws->pieces[a[j]].y_top < ws->pieces[a[i]].y_top ? a[j++] : a[i++];
+            while (i < mid)
+                b[k++] = a[i++];
+            while (j < hi)
+                b[k++] = a[j++];
+        }
+        uint32_t *t = a;
+        a = b;
+        b = t;
+    }
+    if (a != ws->order)
+        for (uint32_t i = 0; i < n; i++)
+            ws->order[i] = a[i];
+}
+
+static cs_status check_opts(const cs_render_opts *o)
+{
+    if (o->width < 1 || o->width > CS_CFG_MAX_WIDTH || o->height < 1 ||
+        o->height > CS_CFG_MAX_HEIGHT)
+        return CS_ERR_SIZE;
+    if (o->aa != CS_AA_NONE && o->aa != CS_AA_SUBSCAN && o->aa != CS_AA_EXACT)
+        return CS_ERR_ARG;
+    if (o->aa == CS_AA_SUBSCAN && (o->subscanlines < 1 || o->subscanlines > CS_CFG_MAX_SUBSCANLINES))
+        return CS_ERR_ARG;
+    if (!cs__finite(o->time))
+        return CS_ERR_NONFINITE;
+    return CS_OK;
+}
+
+/* Region paint under the cel's lights: E = b p F + (1-b) m B, T = (1-b) m. */
+static void region_map(const cs_paint *p, const float *front, const float *back, float *E,
+                       float *T)
+{
+    for (int k = 0; k < 3; k++) {
+        float clear = (1.0f - p->beta) * p->medium[k];
+        E[k] = p->beta * p->pigment[k] * front[k] + clear * back[k];
+        T[k] = clear;
+    }
+}
+
+cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                         const cs_render_opts *opts, cs_error *err)
+{
+    cs__error(err, CS_OK, -1, -1, -1, -1);
+    if (!r || !ws || !scene || !opts) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    cs_status st = check_opts(opts);
+    if (st != CS_OK) {
+        cs__error(err, st, -1, -1, -1, -1);
+        return st;
+    }
+    r->scene = scene;
+    r->ws = ws;
+    r->opts = *opts;
+    r->segment_count = r->piece_count = r->active_count = r->next_order = 0;
+    r->next_line = 0;
+    cs__error(&r->sticky, CS_OK, -1, -1, -1, -1);
+    r->sx = (float)opts->width / scene->canvas_w;
+    r->sy = (float)opts->height / scene->canvas_h;
+    if (!(r->sx <= CS_CFG_COORD_LIMIT && r->sy <= CS_CFG_COORD_LIMIT)) {
+        cs__error(err, CS_ERR_RANGE, -1, -1, -1, -1);
+        return CS_ERR_RANGE;
+    }
+    /* The line code clears what it touches; start from a clean slate in case
+     * an earlier frame was abandoned part way through a line. */
+    for (int x = 0; x < opts->width + 2; x++)
+        ws->area[x] = ws->cover[x] = 0.0f;
+    for (int x = 0; x < opts->width; x++) {
+        ws->used[x] = 0.0f;
+        for (int ch = 0; ch < 3; ch++)
+            ws->cel_E[3 * x + ch] = ws->cel_A[3 * x + ch] = 0.0f;
+    }
+    for (int k = 0; k < 3; k++)
+        r->behind[k] = scene->has_background ? scene->background[k] * scene->stack_front[k]
+                                             : scene->stack_back[k];
+
+    for (uint32_t ci = 0; ci < scene->cel_count; ci++) {
+        const cs_cel *cel = &scene->cels[ci];
+        const float *front = cel->has_front ? cel->front : scene->stack_front;
+        cs_affine m = cel->transform;
+        cs_affine dev = {m.a * r->sx, m.b * r->sy, m.c * r->sx,
+                         m.d * r->sy, m.e * r->sx, m.f * r->sy};
+        for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++) {
+            const cs_region *reg = &scene->regions[ri];
+            ws->region_cel[ri] = (uint16_t)ci;
+            region_map(&reg->paint, front, cel->back, ws->region_E[ri], ws->region_T[ri]);
+            for (uint32_t k = 0; k < reg->contour_count; k++) {
+                const cs_contour *c = &scene->contours[reg->first_contour + k];
+                uint32_t first = r->segment_count, n;
+                int32_t bad;
+                st = cs__contour_segments(&scene->points[c->first_point],
+                                          &scene->intervals[c->first_point], c->point_count,
+                                          c->degree, &dev, (uint16_t)ri, &ws->segments[first],
+                                          CS_CFG_MAX_SEGMENTS - first, &n, &bad);
+                if (st == CS_OK) {
+                    r->segment_count += n;
+                    for (uint32_t i = 0; i < n && st == CS_OK; i++) {
+                        uint32_t next = first + (i + 1) % n;
+                        st = split_segment(r, first + i, seg_y(&ws->segments[next], 0.0f));
+                    }
+                }
+                if (st != CS_OK) {
+                    cs__error(err, st, (int32_t)ci, (int32_t)(ri - cel->first_region),
+                              (int32_t)k, bad);
+                    return st;
+                }
+            }
+        }
+    }
+    sort_by_top(ws, r->piece_count);
+    return CS_OK;
+}

@@ -1,0 +1,119 @@
+/*
+ * cs_nurbs.c - closed periodic NURBS to rational polynomial segments.
+ *
+ * A contour of degree p with N control points and N knot intervals is an
+ * infinite periodic knot vector with t(k+1) - t(k) = intervals[k mod N].
+ * Each non-empty knot span [t(j), t(j+1)) is one segment, a polynomial
+ * in u = (t - t(j)) / (t(j+1) - t(j)) driven by control points j-p .. j.
+ * Following Choi, Yoo and Lee ("Matrix representation for NURB curves and
+ * surfaces", CAD 1990), the basis functions restricted to the span are
+ * expanded into power-basis polynomials in u; together they form the
+ * (p+1) x (p+1) segment matrix that maps homogeneous control points
+ * (w x, w y, w) to the coefficients of X(u), Y(u), W(u). The matrix is
+ * built here by running the Cox-de Boor recursion on polynomials, which
+ * handles non-uniform and repeated knots alike (0/0 terms are zero, as in
+ * the recursion's convention).
+ *
+ * A zero interval yields no segment, and the validation in cs_scene.c
+ * guarantees at most p-1 of them in a row, so neighbouring spans still meet
+ * with at least C0 continuity and the contour stays closed.
+ */
+#include "cs_internal.h"
+
+/* p(u) *= (a + b u), in place, for a polynomial of degree < 3. */
+static void mul_linear(float *poly, float a, float b)
+{
+    for (int i = 3; i > 0; i--)
+        poly[i] = poly[i] * a + poly[i - 1] * b;
+    poly[0] *= a;
+}
+
+/*
+ * basis[k] receives the power coefficients of N(j-p+k, p) on span j, for
+ * k = 0..p. knot(m) = t(j+m) - t(j) for m in -p..p+1, stored at knots[m+p].
+ */
+static void span_basis(int degree, const float *knots, float h, float basis[4][4])
+{
+#define KNOT(m) knots[(m) + degree]
+    for (int k = 0; k < 4; k++)
+        for (int i = 0; i < 4; i++)
+            basis[k][i] = 0.0f;
+    basis[degree][0] = 1.0f; /* N(j, 0) = 1 on the span */
+    for (int level = 1; level <= degree; level++) {
+        /* At this level N(i, level) for i = j-level .. j are non-zero. */
+        for (int k = degree - level; k <= degree; k++) {
+            int m = k - degree; /* i - j */
+            float term1[4] = {0, 0, 0, 0}, term2[4] = {0, 0, 0, 0};
+            float d1 = KNOT(m + level) - KNOT(m);
+            if (d1 > 0.0f) {
+                /* (t - t_i) / d1 with t = t_j + u h */
+                for (int i = 0; i < 4; i++)
+                    term1[i] = basis[k][i];
+                mul_linear(term1, -KNOT(m) / d1, h / d1);
+            }
+            float d2 = KNOT(m + level + 1) - KNOT(m + 1);
+            if (k < degree && d2 > 0.0f) {
+                for (int i = 0; i < 4; i++)
+                    term2[i] = basis[k + 1][i];
+                mul_linear(term2, KNOT(m + level + 1) / d2, -h / d2);
+            }
+            for (int i = 0; i < 4; i++)
+                basis[k][i] = term1[i] + term2[i];
+        }
+    }
+#undef KNOT
+}
+
+cs_status cs__contour_segments(const cs_point *points, const float *intervals, int count,
+                               int degree, const cs_affine *to_device, uint16_t region,
+                               cs_segment *out, uint32_t capacity, uint32_t *written,
+                               int32_t *bad_point)
+{
+    *written = 0;
+    *bad_point = -1;
+    for (int i = 0; i < count; i++) {
+        float x = points[i].x, y = points[i].y;
+        float dx = to_device->a * x + to_device->c * y + to_device->e;
+        float dy = to_device->b * x + to_device->d * y + to_device->f;
+        if (!(cs__absf(dx) <= CS_CFG_COORD_LIMIT && cs__absf(dy) <= CS_CFG_COORD_LIMIT)) {
+            *bad_point = i;
+            return CS_ERR_RANGE;
+        }
+    }
+    uint32_t n = 0;
+    for (int j = 0; j < count; j++) {
+        float h = intervals[j];
+        if (h <= 0.0f)
+            continue;
+        if (n >= capacity)
+            return CS_ERR_CAP_SEGMENTS;
+        float knots[8];
+        knots[degree] = 0.0f;
+        for (int m = 0; m < degree + 1; m++) /* t(j+m+1) */
+            knots[degree + m + 1] = knots[degree + m] + intervals[(j + m) % count];
+        for (int m = 0; m > -degree; m--) /* t(j+m-1) */
+            knots[degree + m - 1] = knots[degree + m] - intervals[(j + m - 1 + count) % count];
+        float basis[4][4];
+        span_basis(degree, knots, h, basis);
+
+        cs_segment *s = &out[n];
+        for (int i = 0; i < 4; i++)
+            s->x[i] = s->y[i] = s->w[i] = 0.0f;
+        for (int k = 0; k <= degree; k++) {
+            const cs_point *p = &points[(j - degree + k + count) % count];
+            float dx = to_device->a * p->x + to_device->c * p->y + to_device->e;
+            float dy = to_device->b * p->x + to_device->d * p->y + to_device->f;
+            float hx = p->w * dx, hy = p->w * dy;
+            for (int i = 0; i <= degree; i++) {
+                s->x[i] += basis[k][i] * hx;
+                s->y[i] += basis[k][i] * hy;
+                s->w[i] += basis[k][i] * p->w;
+            }
+        }
+        s->degree = (uint8_t)degree;
+        s->region = region;
+        n++;
+    }
+    *written = n;
+    return CS_OK;
+}

@@ -1,0 +1,269 @@
+/*
+ * cs_scene.c - building the scene store, with complete validation.
+ *
+ * The scene store is what the renderer trusts, so everything that enters it
+ * is checked here: finite numbers, coordinates within CS_CFG_COORD_LIMIT,
+ * positive weights, legal knot intervals, paints in range, capacity. Each
+ * add call checks its whole input before it writes anything, so a rejected
+ * call leaves the store unchanged; the JSON loader and the stream decoder
+ * both build scenes through these calls and get identical results.
+ */
+#include "cs_internal.h"
+
+static bool rgb_finite(const float *v)
+{
+    return cs__finite(v[0]) && cs__finite(v[1]) && cs__finite(v[2]);
+}
+
+static bool rgb_unit(const float *v)
+{
+    for (int i = 0; i < 3; i++)
+        if (!(v[i] >= 0.0f && v[i] <= 1.0f))
+            return false;
+    return true;
+}
+
+/* Light levels are multipliers: finite and not negative, but may exceed 1. */
+static bool light_ok(const float *v)
+{
+    return rgb_finite(v) && v[0] >= 0.0f && v[1] >= 0.0f && v[2] >= 0.0f;
+}
+
+static void copy3(float *dst, const float *src)
+{
+    dst[0] = src[0];
+    dst[1] = src[1];
+    dst[2] = src[2];
+}
+
+cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
+{
+    if (!scene)
+        return CS_ERR_ARG;
+    if (!cs__finite(canvas_w) || !cs__finite(canvas_h))
+        return CS_ERR_NONFINITE;
+    if (!(canvas_w > 0.0f && canvas_h > 0.0f))
+        return CS_ERR_DEGENERATE;
+    if (canvas_w > CS_CFG_COORD_LIMIT || canvas_h > CS_CFG_COORD_LIMIT)
+        return CS_ERR_RANGE;
+    scene->canvas_w = canvas_w;
+    scene->canvas_h = canvas_h;
+    scene->has_background = false;
+    for (int i = 0; i < 3; i++) {
+        scene->background[i] = 0.0f;
+        scene->stack_front[i] = 1.0f;
+        scene->stack_back[i] = 0.0f;
+    }
+    scene->cel_count = scene->region_count = scene->contour_count = scene->point_count = 0;
+    return CS_OK;
+}
+
+cs_status cs_scene_set_background(cs_scene *scene, const float rgb_linear[3])
+{
+    if (!scene || !rgb_linear)
+        return CS_ERR_ARG;
+    if (!rgb_finite(rgb_linear))
+        return CS_ERR_NONFINITE;
+    if (!rgb_unit(rgb_linear))
+        return CS_ERR_PAINT;
+    copy3(scene->background, rgb_linear);
+    scene->has_background = true;
+    return CS_OK;
+}
+
+cs_status cs_scene_set_lights(cs_scene *scene, const float front[3], const float back[3])
+{
+    if (!scene || !front || !back)
+        return CS_ERR_ARG;
+    if (!light_ok(front) || !light_ok(back))
+        return rgb_finite(front) && rgb_finite(back) ? CS_ERR_PAINT : CS_ERR_NONFINITE;
+    copy3(scene->stack_front, front);
+    copy3(scene->stack_back, back);
+    return CS_OK;
+}
+
+cs_status cs_scene_add_cel(cs_scene *scene, const cs_affine *transform, const float front[3],
+                           const float back[3], cs_error *err)
+{
+    if (!scene || !transform) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    int32_t cel = (int32_t)scene->cel_count;
+    const float *m = &transform->a;
+    for (int i = 0; i < 6; i++) {
+        if (!cs__finite(m[i])) {
+            cs__error(err, CS_ERR_NONFINITE, cel, -1, -1, i);
+            return CS_ERR_NONFINITE;
+        }
+        if (cs__absf(m[i]) > CS_CFG_COORD_LIMIT) {
+            cs__error(err, CS_ERR_RANGE, cel, -1, -1, i);
+            return CS_ERR_RANGE;
+        }
+    }
+    if ((front && !light_ok(front)) || (back && !light_ok(back))) {
+        cs_status st = (front && !rgb_finite(front)) || (back && !rgb_finite(back))
+                           ? CS_ERR_NONFINITE
+                           : CS_ERR_PAINT;
+        cs__error(err, st, cel, -1, -1, -1);
+        return st;
+    }
+    if (scene->cel_count >= CS_CFG_MAX_CELS) {
+        cs__error(err, CS_ERR_CAP_CELS, cel, -1, -1, -1);
+        return CS_ERR_CAP_CELS;
+    }
+    cs_cel *c = &scene->cels[scene->cel_count++];
+    c->first_region = scene->region_count;
+    c->region_count = 0;
+    c->transform = *transform;
+    c->has_front = front != 0;
+    static const float black[3] = {0.0f, 0.0f, 0.0f};
+    copy3(c->front, front ? front : scene->stack_front);
+    copy3(c->back, back ? back : black);
+    return CS_OK;
+}
+
+static bool paint_ok(const cs_paint *p, cs_status *st)
+{
+    if (!rgb_finite(p->pigment) || !rgb_finite(p->medium) || !cs__finite(p->beta)) {
+        *st = CS_ERR_NONFINITE;
+        return false;
+    }
+    if (!rgb_unit(p->pigment) || !rgb_unit(p->medium) || !(p->beta >= 0.0f && p->beta <= 1.0f)) {
+        *st = CS_ERR_PAINT;
+        return false;
+    }
+    return true;
+}
+
+cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint *paint,
+                              cs_error *err)
+{
+    if (!scene || !paint) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    int32_t cel = (int32_t)scene->cel_count - 1;
+    if (scene->cel_count == 0) {
+        cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
+        return CS_ERR_STATE;
+    }
+    cs_cel *c = &scene->cels[cel];
+    int32_t region = c->region_count;
+    if (rule != CS_FILL_NONZERO && rule != CS_FILL_EVENODD) {
+        cs__error(err, CS_ERR_FILL_RULE, cel, region, -1, -1);
+        return CS_ERR_FILL_RULE;
+    }
+    cs_status st;
+    if (!paint_ok(paint, &st)) {
+        cs__error(err, st, cel, region, -1, -1);
+        return st;
+    }
+    if (scene->region_count >= CS_CFG_MAX_REGIONS || c->region_count >= UINT16_MAX) {
+        cs__error(err, CS_ERR_CAP_REGIONS, cel, region, -1, -1);
+        return CS_ERR_CAP_REGIONS;
+    }
+    cs_region *r = &scene->regions[scene->region_count++];
+    c->region_count++;
+    r->first_contour = scene->contour_count;
+    r->contour_count = 0;
+    r->fill_rule = (uint8_t)rule;
+    r->paint = *paint;
+    return CS_OK;
+}
+
+/* Validates a contour's numbers; on failure reports the offending item. */
+static cs_status check_contour(int degree, int count, const cs_point *pts, const float *intervals,
+                               int32_t *item)
+{
+    *item = -1;
+    if (degree < 1 || degree > 3)
+        return CS_ERR_DEGREE;
+    if (count < degree + 1)
+        return CS_ERR_TOO_FEW_POINTS;
+    for (int i = 0; i < count; i++) {
+        *item = i;
+        if (!cs__finite(pts[i].x) || !cs__finite(pts[i].y) || !cs__finite(pts[i].w))
+            return CS_ERR_NONFINITE;
+        if (cs__absf(pts[i].x) > CS_CFG_COORD_LIMIT || cs__absf(pts[i].y) > CS_CFG_COORD_LIMIT)
+            return CS_ERR_RANGE;
+        /* Weights far from 1 make the rational form ill-conditioned in float. */
+        if (!(pts[i].w > 0.0f) || pts[i].w > CS_CFG_COORD_LIMIT || pts[i].w < 1.0f / CS_CFG_COORD_LIMIT)
+            return CS_ERR_WEIGHT;
+    }
+    *item = -1;
+    if (!intervals)
+        return CS_OK;
+    int nonzero = 0;
+    for (int i = 0; i < count; i++) {
+        *item = i;
+        if (!cs__finite(intervals[i]))
+            return CS_ERR_NONFINITE;
+        if (intervals[i] < 0.0f || intervals[i] > CS_CFG_COORD_LIMIT)
+            return CS_ERR_INTERVAL;
+        if (intervals[i] > 0.0f)
+            nonzero++;
+    }
+    *item = -1;
+    if (nonzero == 0)
+        return CS_ERR_DEGENERATE;
+    /* Longest cyclic run of zeros; start just after a non-zero interval. */
+    int start = 0;
+    while (intervals[start] == 0.0f)
+        start++;
+    int run = 0;
+    for (int k = 1; k <= count; k++) {
+        int i = (start + k) % count;
+        if (intervals[i] == 0.0f) {
+            if (++run > degree - 1) {
+                *item = i;
+                return CS_ERR_ZERO_RUN;
+            }
+        } else {
+            run = 0;
+        }
+    }
+    return CS_OK;
+}
+
+cs_status cs_scene_add_contour(cs_scene *scene, int degree, int count, const cs_point *points,
+                               const float *intervals, cs_error *err)
+{
+    if (!scene || !points || count < 0) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    if (scene->cel_count == 0 || scene->cels[scene->cel_count - 1].region_count == 0) {
+        cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
+        return CS_ERR_STATE;
+    }
+    int32_t cel = (int32_t)scene->cel_count - 1;
+    int32_t region = scene->cels[cel].region_count - 1;
+    cs_region *r = &scene->regions[scene->region_count - 1];
+    int32_t contour = r->contour_count;
+    int32_t item;
+    cs_status st = check_contour(degree, count, points, intervals, &item);
+    if (st != CS_OK) {
+        cs__error(err, st, cel, region, contour, item);
+        return st;
+    }
+    if (scene->contour_count >= CS_CFG_MAX_CONTOURS || r->contour_count >= UINT16_MAX) {
+        cs__error(err, CS_ERR_CAP_CONTOURS, cel, region, contour, -1);
+        return CS_ERR_CAP_CONTOURS;
+    }
+    if ((uint32_t)count > CS_CFG_MAX_POINTS - scene->point_count || count > UINT16_MAX) {
+        cs__error(err, CS_ERR_CAP_POINTS, cel, region, contour, -1);
+        return CS_ERR_CAP_POINTS;
+    }
+    cs_contour *c = &scene->contours[scene->contour_count++];
+    r->contour_count++;
+    c->first_point = scene->point_count;
+    c->point_count = (uint16_t)count;
+    c->degree = (uint8_t)degree;
+    for (int i = 0; i < count; i++) {
+        scene->points[scene->point_count + (uint32_t)i] = points[i];
+        scene->intervals[scene->point_count + (uint32_t)i] = intervals ? intervals[i] : 1.0f;
+    }
+    scene->point_count += (uint32_t)count;
+    return CS_OK;
+}

@@ -1,0 +1,57 @@
+/*
+ * cs_status.c - status descriptions and the CRC-32 shared by the core.
+ *
+ * The strings are what users read in celsim's and the firmware's error
+ * messages, so they say what was expected, not just that something failed.
+ * The CRC is the one the cel stream and the frame checks use (IEEE 802.3,
+ * as zlib); a 16-entry table keeps it small enough for any MCU.
+ */
+#include "cs_internal.h"
+
+static const char *const status_text[CS_ERR_COUNT_] = {
+    [CS_OK] = "ok",
+    [CS_ERR_ARG] = "invalid argument",
+    [CS_ERR_STATE] = "call out of order",
+    [CS_ERR_NONFINITE] = "number is NaN or infinite",
+    [CS_ERR_RANGE] = "coordinate magnitude beyond the limit of 1e6",
+    [CS_ERR_DEGREE] = "degree must be 1, 2 or 3",
+    [CS_ERR_TOO_FEW_POINTS] = "a contour needs at least degree+1 control points",
+    [CS_ERR_WEIGHT] = "weight must be > 0",
+    [CS_ERR_INTERVAL] = "knot interval must be >= 0",
+    [CS_ERR_ZERO_RUN] = "at most degree-1 zero knot intervals may stand in a row",
+    [CS_ERR_DEGENERATE] = "degenerate: every knot interval is zero, or the canvas is empty",
+    [CS_ERR_FILL_RULE] = "fill rule must be nonzero or evenodd",
+    [CS_ERR_PAINT] = "paint components must lie in 0..1",
+    [CS_ERR_SIZE] = "output size is zero or beyond the configured capacity",
+    [CS_ERR_CAP_CELS] = "scene store full: too many cels",
+    [CS_ERR_CAP_REGIONS] = "scene store full: too many regions",
+    [CS_ERR_CAP_CONTOURS] = "scene store full: too many contours",
+    [CS_ERR_CAP_POINTS] = "scene store full: too many control points",
+    [CS_ERR_CAP_SEGMENTS] = "workspace full: too many segments in the frame",
+    [CS_ERR_CAP_PIECES] = "workspace full: too many monotone pieces in the frame",
+    [CS_ERR_CAP_CROSSINGS] = "workspace full: too many crossings on one scanline",
+};
+
+const char *cs_status_str(cs_status status)
+{
+    if ((unsigned)status >= (unsigned)CS_ERR_COUNT_ || !status_text[status])
+        return "unknown status";
+    return status_text[status];
+}
+
+uint32_t cs_crc32(uint32_t crc, const void *data, size_t len)
+{
+    static const uint32_t nibble[16] = {
+        0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu, 0x76DC4190u, 0x6B6B51F4u,
+        0x4DB26158u, 0x5005713Cu, 0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
+        0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu,
+    };
+    const uint8_t *p = (const uint8_t *)data;
+    crc = ~crc;
+    for (size_t i = 0; i < len; i++) {
+        crc ^= p[i];
+        crc = (crc >> 4) ^ nibble[crc & 15u];
+        crc = (crc >> 4) ^ nibble[crc & 15u];
+    }
+    return ~crc;
+}
