@@ -207,12 +207,14 @@ typedef struct cs_piece {
     float y_top, y_bot;
     uint32_t segment;
     uint16_t region;   /* copied from the segment: spares an indirection per line */
+    uint8_t operand;   /* winding counter it moves: always 0 without CSG */
     int8_t dir;        /* +1 if y grows with u, -1 if it falls */
 } cs_piece;
 
 typedef struct cs_crossing {
     float x;
-    int32_t dir;
+    int16_t dir;
+    uint16_t operand; /* which winding counter of the region it moves (CSG) */
 } cs_crossing;
 
 /* Per-render scratch memory. Contents are private to the core. */

@@ -54,6 +54,11 @@
 #define CS_CFG_MAX_SUBSCANLINES 64
 #endif
 
+/* Operands a region's inside test may combine (CSG); each keeps its own winding. */
+#ifndef CS_CFG_MAX_OPERANDS
+#define CS_CFG_MAX_OPERANDS 8
+#endif
+
 /*
  * Largest absolute coordinate accepted, in canvas units and after transforms
  * in device pixels. Beyond it single-precision polynomials lose sub-pixel

@@ -67,6 +67,7 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end)
             pc->y_bot = yb > ya ? yb : ya;
             pc->segment = si;
             pc->region = s->region;
+            pc->operand = 0;
         }
         ya = yb;
     }

@@ -81,6 +81,17 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
                                cs_segment *out, uint32_t capacity, uint32_t *written,
                                int32_t *bad_point);
 
+/*
+ * Whether a point is inside `region`, given the winding number of each of
+ * its operands (winding[0] only, unless the region combines operands). Every
+ * coverage method asks this one question, so fill rules and CSG mean the
+ * same thing in every anti-aliasing mode.
+ */
+static inline bool cs__region_inside(const cs_region *region, const int32_t *winding)
+{
+    return region->fill_rule == CS_FILL_EVENODD ? (winding[0] & 1) != 0 : winding[0] != 0;
+}
+
 /* 16-bit sRGB code of linear (i/1024)^2 (cs_srgb_table.c). */
 extern const uint16_t cs__srgb_by_sqrt[1025];
 

@@ -91,6 +91,7 @@ static int32_t crossings_at(cs_renderer *r, const uint32_t *act, uint32_t n, flo
         float x = cs__poly_eval(s->x, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
         ws->crossings[count].x = cs__clampf(x, 0.0f, width);
         ws->crossings[count].dir = pc->dir;
+        ws->crossings[count].operand = pc->operand;
         count++;
     }
     sort_crossings(ws->crossings, count);
@@ -98,14 +99,16 @@ static int32_t crossings_at(cs_renderer *r, const uint32_t *act, uint32_t n, flo
 }
 
 /* Turns sorted crossings into spans under the fill rule and accumulates. */
-static void accumulate_spans(cs_renderer *r, uint32_t count, int rule, float weight, bool centres,
-                             int32_t *lo, int32_t *hi)
+static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *region, float weight,
+                             bool centres, int32_t *lo, int32_t *hi)
 {
     cs_workspace *ws = r->ws;
-    int32_t winding = 0;
+    int32_t winding[CS_CFG_MAX_OPERANDS];
+    for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) /* a loop: `= {0}` may call memset */
+        winding[k] = 0;
     for (uint32_t i = 0; i + 1 < count; i++) {
-        winding += ws->crossings[i].dir;
-        bool inside = rule == CS_FILL_EVENODD ? (winding & 1) != 0 : winding != 0;
+        winding[ws->crossings[i].operand] += ws->crossings[i].dir;
+        bool inside = cs__region_inside(region, winding);
         float xa = ws->crossings[i].x, xb = ws->crossings[i + 1].x;
         if (!inside || !(xb > xa))
             continue;
@@ -156,7 +159,7 @@ static void render_region(cs_renderer *r, uint32_t reg, const uint32_t *act, uin
             }
             continue; /* the region is left out of this sample: visible, never unsafe */
         }
-        accumulate_spans(r, (uint32_t)count, region->fill_rule, weight, centres, &lo, &hi);
+        accumulate_spans(r, (uint32_t)count, region, weight, centres, &lo, &hi);
     }
     if (lo >= hi)
         return;
