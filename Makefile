@@ -36,7 +36,8 @@ HOST_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Wmissing-p
 CORE_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) $(WARN) $(CORE_FREESTANDING) -Icore -MMD -MP
 
 .PHONY: all deps demo demo-all test test-all check-core clean
-all: $(HOST)/celsim
+# The default goal; its prerequisites are listed after the fragments.
+all:
 
 # The entry points set up the machine first, then run in a fresh make so
 # that pkg-config sees what was just installed.
@@ -90,16 +91,105 @@ $(HOST)/obj/%.o: %.c
 	$(Q)$(CC) $(HOST_CFLAGS) $(PKG_CFLAGS) -c $< -o $@
 
 # ------------------------------------------------------- host-sim (celsim)
-# (section owned by the host-sim work)
+# celsim = host-sim/ (CLI, scene JSON loader, PNG writer, frame driver) plus
+# the hal/sim backend (in-memory display, host clock) over libcelscan.
+CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c))
+CELSIM_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELSIM_SRC))
+
+$(HOST)/celsim: $(CELSIM_OBJ) $(HOST)/libcelscan.a
+	$(Q)$(CC) -o $@ $(CELSIM_OBJ) $(HOST)/libcelscan.a $(PKG_LIBS) -lm
+
+HOST_PROGRAMS += $(HOST)/celsim
+
+# `make demo`: the demo panel at 720p, and 13 animation frames at the canvas
+# size for t = 0, 1/6, ..., 2 s (frame-NNN.png is at t = NNN/6 s).
+DEMO := $(BUILD)/demo
+DEMO_FRAMES := $(foreach n,000 001 002 003 004 005 006 007 008 009 010 011 012,$(DEMO)/frame-$(n).png)
+DEMO_TARGETS += $(DEMO)/demo.png $(DEMO_FRAMES)
+
+$(DEMO)/demo.png: scenes/demo.json $(HOST)/celsim
+	@mkdir -p $(dir $@)
+	@echo "celsim render $< -o $@ --size 1280x720"
+	$(Q)$(HOST)/celsim render $< -o $@ --size 1280x720
+
+$(DEMO)/frame-%.png: scenes/demo.json $(HOST)/celsim
+	@mkdir -p $(dir $@)
+	$(Q)t=$$(awk -v n="$*" 'BEGIN { printf "%.6f", n / 6 }') && \
+	echo "celsim render $< -o $@ --time $$t" && \
+	$(HOST)/celsim render $< -o $@ --time $$t
 
 # ----------------------------------------------------------------- tests
-# (section owned by the tests work)
+# Unit and image tests of the public API (core/celscan.h) against the
+# independent long double reference in tests/ref/, on the harness in
+# tests/testlib.h. tests/run.sh sums the results into a last line
+# "N passed, M failed".
+#   make test-unit   build the tests against build/host/libcelscan.a and run them
+#   make test-asan   rebuild the core (hosted, not freestanding) and the tests with
+#                    AddressSanitizer + UBSan (+ float-cast-overflow) into build/asan/
+#                    and run them
+TEST_SRC := $(sort $(wildcard tests/test_*.c))
+TEST_REF_SRC := $(sort $(wildcard tests/ref/*.c))
+TEST_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -MMD -MP
+# float-cast-overflow is not part of GCC's "undefined" group; a float to integer conversion out of
+# range (NaN included) is undefined behaviour that the MCU and the host may resolve differently.
+SAN_FLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all \
+        -fno-omit-frame-pointer
+ASAN_CORE_CFLAGS := -std=c11 -O1 -g $(FP_FLAGS) $(WARN) $(SAN_FLAGS) -Icore -MMD -MP
+ASAN_TEST_CFLAGS := -std=c11 -O1 -g $(FP_FLAGS) -Wall -Wextra -Wshadow $(SAN_FLAGS) -Icore -Itests \
+        -MMD -MP
+ASAN_ENV := ASAN_OPTIONS=abort_on_error=0:detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
+
+HOST_TESTS := $(patsubst tests/%.c,$(HOST)/tests/%,$(TEST_SRC))
+ASAN_TESTS := $(patsubst tests/%.c,$(ASAN)/tests/%,$(TEST_SRC))
+HOST_TEST_REF_OBJ := $(patsubst tests/%.c,$(HOST)/tests/%.o,$(TEST_REF_SRC))
+ASAN_TEST_REF_OBJ := $(patsubst tests/%.c,$(ASAN)/tests/%.o,$(TEST_REF_SRC))
+ASAN_CORE_OBJ := $(patsubst core/%.c,$(ASAN)/core/%.o,$(CORE_SRC))
+
+.PHONY: test-unit test-asan
+.SECONDARY: $(patsubst %,%.o,$(HOST_TESTS) $(ASAN_TESTS)) $(HOST_TEST_REF_OBJ) $(ASAN_TEST_REF_OBJ)
+test-unit: $(HOST_TESTS)
+	$(Q)sh tests/run.sh $(HOST_TESTS)
+
+test-asan: $(ASAN_TESTS)
+	$(Q)$(ASAN_ENV) sh tests/run.sh $(ASAN_TESTS)
+
+$(HOST)/tests/%.o: tests/%.c Makefile
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(TEST_CFLAGS) -c $< -o $@
+
+$(HOST)/tests/test_%: $(HOST)/tests/test_%.o $(HOST_TEST_REF_OBJ) $(HOST)/libcelscan.a
+	$(Q)$(CC) $(TEST_CFLAGS) $^ -lm -o $@
+
+$(ASAN)/core/%.o: core/%.c $(CORE_HDR) Makefile
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(ASAN_CORE_CFLAGS) -c $< -o $@
+
+$(ASAN)/libcelscan.a: $(ASAN_CORE_OBJ)
+	$(Q)rm -f $@ && ar rcs $@ $^
+
+$(ASAN)/tests/%.o: tests/%.c Makefile
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(ASAN_TEST_CFLAGS) -c $< -o $@
+
+$(ASAN)/tests/test_%: $(ASAN)/tests/test_%.o $(ASAN_TEST_REF_OBJ) $(ASAN)/libcelscan.a
+	$(Q)$(CC) $(ASAN_TEST_CFLAGS) $^ -lm -o $@
 
 # ------------------------------------------------------------ fragments
 # Larger parts of the project keep their rules in mk/*.mk, still one make
 # invocation. A fragment appends its test targets to TEST_TARGETS, its
 # programs to HOST_PROGRAMS and its demo steps to DEMO_TARGETS.
 include $(sort $(wildcard mk/*.mk))
+
+# Everything `make test` runs, summed by tests/run.sh into one last line
+# "N passed, M failed". Fragments add test programs (each printing
+# "<name>: N passed, M failed") to TEST_PROGS with their build prerequisites
+# in TEST_DEPS, and shell commands to TEST_CMDS.
+all: $(HOST_PROGRAMS)
+demo-all: $(DEMO_TARGETS)
+	@echo "demo: $(DEMO_TARGETS)" | fmt -w 100
+
+test-all: check-core $(HOST_PROGRAMS) $(HOST_TESTS) $(ASAN_TESTS) $(TEST_DEPS)
+	$(Q)$(ASAN_ENV) tests/run.sh $(HOST_TESTS) $(ASAN_TESTS) $(TEST_PROGS) -- $(TEST_CMDS)
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 

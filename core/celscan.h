@@ -45,12 +45,12 @@ typedef enum cs_status {
     CS_ERR_DEGREE,        /* NURBS degree not 1, 2 or 3 */
     CS_ERR_TOO_FEW_POINTS,/* contour has fewer than degree+1 control points */
     CS_ERR_WEIGHT,        /* weight not > 0 */
-    CS_ERR_INTERVAL,      /* knot interval negative */
+    CS_ERR_INTERVAL,      /* knot interval negative or not finite */
     CS_ERR_ZERO_RUN,      /* more than degree-1 zero knot intervals in a row */
-    CS_ERR_DEGENERATE,    /* all knot intervals zero, or a zero-size canvas */
+    CS_ERR_DEGENERATE,    /* every knot interval of a contour is zero */
     CS_ERR_FILL_RULE,     /* fill rule is neither nonzero nor evenodd */
     CS_ERR_PAINT,         /* paint component outside [0,1] */
-    CS_ERR_SIZE,          /* output size zero, negative or beyond capacity */
+    CS_ERR_SIZE,          /* canvas or output size not > 0, or beyond capacity */
     CS_ERR_CAP_CELS,      /* scene store full: cels */
     CS_ERR_CAP_REGIONS,   /* scene store full: regions */
     CS_ERR_CAP_CONTOURS,  /* scene store full: contours */
@@ -58,6 +58,7 @@ typedef enum cs_status {
     CS_ERR_CAP_SEGMENTS,  /* workspace full: segments of one frame */
     CS_ERR_CAP_PIECES,    /* workspace full: monotone pieces of one frame */
     CS_ERR_CAP_CROSSINGS, /* workspace full: crossings on one sub-scanline */
+    CS_ERR_IO,            /* the line sink (display) refused a line */
     CS_ERR_COUNT_
 } cs_status;
 
@@ -265,6 +266,12 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
  * region left out of that sub-scanline.
  */
 cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear);
+
+/*
+ * The first capacity error met while rendering lines of this frame (status
+ * CS_OK if none): which cel and region overflowed, with item = the line.
+ */
+cs_error cs_frame_error(const cs_renderer *r);
 
 /* Where finished lines go: the seam the display HAL plugs into. */
 typedef cs_status (*cs_line_sink)(void *user, int y, const float *rgb_linear, int width);

@@ -43,7 +43,7 @@
 #endif
 /* Crossings of one region with one sub-scanline. */
 #ifndef CS_CFG_MAX_CROSSINGS
-#define CS_CFG_MAX_CROSSINGS 512
+#define CS_CFG_MAX_CROSSINGS 4096
 #endif
 /* Widest output line, in pixels. */
 #ifndef CS_CFG_MAX_WIDTH

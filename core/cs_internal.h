@@ -14,9 +14,10 @@
 static inline float cs__absf(float v) { return v < 0.0f ? -v : v; }
 static inline float cs__minf(float a, float b) { return a < b ? a : b; }
 static inline float cs__maxf(float a, float b) { return a > b ? a : b; }
+/* Clamps v to [lo, hi]; NaN becomes lo, so no NaN reaches an integer cast. */
 static inline float cs__clampf(float v, float lo, float hi)
 {
-    return v < lo ? lo : (v > hi ? hi : v);
+    return !(v > lo) ? lo : (v > hi ? hi : v);
 }
 
 /* True for every float that is neither NaN nor infinite. */
@@ -92,7 +93,22 @@ static inline bool cs__region_inside(const cs_region *region, const int32_t *win
     return region->fill_rule == CS_FILL_EVENODD ? (winding[0] & 1) != 0 : winding[0] != 0;
 }
 
-/* 16-bit sRGB code of linear (i/1024)^2 (cs_srgb_table.c). */
-extern const uint16_t cs__srgb_by_sqrt[1025];
+/* sRGB encoding (0..1) of linear (i/1024)^2 (cs_srgb_table.c). */
+extern const float cs__srgb_by_sqrt[1025];
+
+/* sRGB encoding of linear light in 0..1 (clamped), as 0..1. */
+static inline float cs__srgb_encode(float linear)
+{
+    if (!(linear > 0.0f))
+        return 0.0f;
+    if (linear >= 1.0f)
+        return 1.0f;
+    float pos = cs__sqrtf(linear) * 1024.0f;
+    int32_t i = (int32_t)pos;
+    if (i >= 1024)
+        return 1.0f;
+    float a = cs__srgb_by_sqrt[i], b = cs__srgb_by_sqrt[i + 1];
+    return a + (b - a) * (pos - (float)i);
+}
 
 #endif /* CS_INTERNAL_H */

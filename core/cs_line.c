@@ -291,6 +291,11 @@ cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
     return CS_OK;
 }
 
+cs_error cs_frame_error(const cs_renderer *r)
+{
+    return r->sticky;
+}
+
 cs_status cs_render_frame(cs_renderer *r, float *line, cs_line_sink sink, void *user)
 {
     if (!r || !line || !sink)

@@ -3,25 +3,23 @@
  *
  * The renderer works in linear light; displays and PNGs want sRGB codes.
  * Encoding goes through a square-root-indexed table (see cs_srgb_table.c)
- * because the core has no pow(). Every conversion rounds to nearest in
- * float arithmetic that is identical on every target, so a frame's bytes
- * (and the CRC celsim --crc prints) are the same on the host and the MCU.
+ * because the core has no pow(). Each value is encoded once in float and
+ * rounded once to the output depth, in arithmetic that is identical on
+ * every target, so a frame's bytes (and the CRC celsim --crc prints) are
+ * the same on the host and the MCU. The format switch sits outside the
+ * pixel loops: conversion runs once per output pixel and must stay cheap.
  */
 #include "cs_internal.h"
 
+/* Rounds v in 0..1 to an integer code 0..max. */
+static inline uint32_t code(float v, float max)
+{
+    return (uint32_t)(v * max + 0.5f);
+}
+
 uint16_t cs_srgb_encode16(float linear)
 {
-    if (!(linear > 0.0f))
-        return 0;
-    if (linear >= 1.0f)
-        return 65535;
-    float pos = cs__sqrtf(linear) * 1024.0f;
-    int32_t i = (int32_t)pos;
-    if (i >= 1024)
-        return 65535;
-    float frac = pos - (float)i;
-    float a = (float)cs__srgb_by_sqrt[i], b = (float)cs__srgb_by_sqrt[i + 1];
-    return (uint16_t)(a + (b - a) * frac + 0.5f);
+    return (uint16_t)code(cs__srgb_encode(linear), 65535.0f);
 }
 
 size_t cs_pixfmt_bytes_per_pixel(cs_pixfmt fmt)
@@ -38,48 +36,34 @@ size_t cs_pixfmt_bytes_per_pixel(cs_pixfmt fmt)
     return 0;
 }
 
-/* Rounds a 16-bit code to `bits` bits. */
-static uint32_t narrow(uint32_t code16, uint32_t bits)
-{
-    uint32_t max = (1u << bits) - 1u;
-    return (code16 * max + 32767u) / 65535u;
-}
-
-static uint32_t linear_code(float v, float max)
-{
-    v = cs__clampf(v, 0.0f, 1.0f);
-    return (uint32_t)(v * max + 0.5f);
-}
-
 void cs_pixfmt_convert(cs_pixfmt fmt, const float *rgb, int width, uint8_t *out)
 {
-    for (int x = 0; x < width; x++) {
-        const float *px = &rgb[3 * x];
-        switch (fmt) {
-        case CS_PIX_RGB888_SRGB:
-            for (int ch = 0; ch < 3; ch++)
-                out[3 * x + ch] = (uint8_t)narrow(cs_srgb_encode16(px[ch]), 8);
-            break;
-        case CS_PIX_RGB565_SRGB: {
-            uint32_t r = narrow(cs_srgb_encode16(px[0]), 5);
-            uint32_t g = narrow(cs_srgb_encode16(px[1]), 6);
-            uint32_t b = narrow(cs_srgb_encode16(px[2]), 5);
-            uint32_t v = (r << 11) | (g << 5) | b;
+    int n = 3 * width;
+    switch (fmt) {
+    case CS_PIX_RGB888_SRGB:
+        for (int i = 0; i < n; i++)
+            out[i] = (uint8_t)code(cs__srgb_encode(rgb[i]), 255.0f);
+        break;
+    case CS_PIX_RGB565_SRGB:
+        for (int x = 0; x < width; x++) {
+            const float *px = &rgb[3 * x];
+            uint32_t v = code(cs__srgb_encode(px[0]), 31.0f) << 11 |
+                         code(cs__srgb_encode(px[1]), 63.0f) << 5 |
+                         code(cs__srgb_encode(px[2]), 31.0f);
             out[2 * x] = (uint8_t)(v & 0xFFu);
             out[2 * x + 1] = (uint8_t)(v >> 8);
-            break;
         }
-        case CS_PIX_RGB16_LINEAR:
-            for (int ch = 0; ch < 3; ch++) {
-                uint32_t v = linear_code(px[ch], 65535.0f);
-                out[6 * x + 2 * ch] = (uint8_t)(v >> 8);
-                out[6 * x + 2 * ch + 1] = (uint8_t)(v & 0xFFu);
-            }
-            break;
-        case CS_PIX_RGB888_LINEAR:
-            for (int ch = 0; ch < 3; ch++)
-                out[3 * x + ch] = (uint8_t)linear_code(px[ch], 255.0f);
-            break;
+        break;
+    case CS_PIX_RGB16_LINEAR:
+        for (int i = 0; i < n; i++) {
+            uint32_t v = code(cs__clampf(rgb[i], 0.0f, 1.0f), 65535.0f);
+            out[2 * i] = (uint8_t)(v >> 8);
+            out[2 * i + 1] = (uint8_t)(v & 0xFFu);
         }
+        break;
+    case CS_PIX_RGB888_LINEAR:
+        for (int i = 0; i < n; i++)
+            out[i] = (uint8_t)code(cs__clampf(rgb[i], 0.0f, 1.0f), 255.0f);
+        break;
     }
 }

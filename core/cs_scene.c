@@ -43,7 +43,7 @@ cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
     if (!cs__finite(canvas_w) || !cs__finite(canvas_h))
         return CS_ERR_NONFINITE;
     if (!(canvas_w > 0.0f && canvas_h > 0.0f))
-        return CS_ERR_DEGENERATE;
+        return CS_ERR_SIZE;
     if (canvas_w > CS_CFG_COORD_LIMIT || canvas_h > CS_CFG_COORD_LIMIT)
         return CS_ERR_RANGE;
     scene->canvas_w = canvas_w;
@@ -197,9 +197,7 @@ static cs_status check_contour(int degree, int count, const cs_point *pts, const
     int nonzero = 0;
     for (int i = 0; i < count; i++) {
         *item = i;
-        if (!cs__finite(intervals[i]))
-            return CS_ERR_NONFINITE;
-        if (intervals[i] < 0.0f || intervals[i] > CS_CFG_COORD_LIMIT)
+        if (!cs__finite(intervals[i]) || intervals[i] < 0.0f || intervals[i] > CS_CFG_COORD_LIMIT)
             return CS_ERR_INTERVAL;
         if (intervals[i] > 0.0f)
             nonzero++;

@@ -17,12 +17,12 @@ static const char *const status_text[CS_ERR_COUNT_] = {
     [CS_ERR_DEGREE] = "degree must be 1, 2 or 3",
     [CS_ERR_TOO_FEW_POINTS] = "a contour needs at least degree+1 control points",
     [CS_ERR_WEIGHT] = "weight must be > 0",
-    [CS_ERR_INTERVAL] = "knot interval must be >= 0",
+    [CS_ERR_INTERVAL] = "knot interval must be finite and >= 0",
     [CS_ERR_ZERO_RUN] = "at most degree-1 zero knot intervals may stand in a row",
-    [CS_ERR_DEGENERATE] = "degenerate: every knot interval is zero, or the canvas is empty",
+    [CS_ERR_DEGENERATE] = "every knot interval of the contour is zero",
     [CS_ERR_FILL_RULE] = "fill rule must be nonzero or evenodd",
     [CS_ERR_PAINT] = "paint components must lie in 0..1",
-    [CS_ERR_SIZE] = "output size is zero or beyond the configured capacity",
+    [CS_ERR_SIZE] = "size must be > 0 and within the configured capacity",
     [CS_ERR_CAP_CELS] = "scene store full: too many cels",
     [CS_ERR_CAP_REGIONS] = "scene store full: too many regions",
     [CS_ERR_CAP_CONTOURS] = "scene store full: too many contours",
@@ -30,6 +30,7 @@ static const char *const status_text[CS_ERR_COUNT_] = {
     [CS_ERR_CAP_SEGMENTS] = "workspace full: too many segments in the frame",
     [CS_ERR_CAP_PIECES] = "workspace full: too many monotone pieces in the frame",
     [CS_ERR_CAP_CROSSINGS] = "workspace full: too many crossings on one scanline",
+    [CS_ERR_IO] = "the display refused a line",
 };
 
 const char *cs_status_str(cs_status status)

@@ -1,0 +1,445 @@
+/*
+ * celsim.c - the host simulator: render a scene the way a board would.
+ *
+ *   celsim render SCENE [-o OUT.png] [--size WxH] [--time T] [--aa none|N|exact]
+ *                 [--encoding srgb|linear] [--repeat N] [--blend linear|srgb] [--crc]
+ *
+ * The scene is loaded into a cs_scene, and each frame goes through the same
+ * path as on a board: the core renders lines, frame_drive converts them to the
+ * display's pixel format and sends them to a HAL display, here the in-memory
+ * simulator (hal/sim). The PNG is written from what the simulated display
+ * received, so the picture is what the glass would show.
+ *
+ * Exit status: 0 success; 1 the scene or a file could not be read, loaded or
+ * written, or the frame could not be rendered; 2 bad command line; 3 the frame
+ * was rendered and written but the core ran out of capacity, so parts of it
+ * are missing.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "celscan.h"
+#include "clock.h"
+#include "display.h"
+#include "frame_drive.h"
+#include "png_out.h"
+#include "scene_json.h"
+#include "sim/display_sim.h"
+
+enum { EXIT_LOAD = 1, EXIT_USAGE = 2, EXIT_DEGRADED = 3 };
+
+/* Default vertical anti-aliasing until exact-area coverage is the default. */
+#define DEFAULT_SUBSCANLINES 16
+#define MAX_REPEAT 1000000
+
+static const char usage_text[] =
+    "usage: celsim render SCENE [-o OUT.png] [options]\n"
+    "\n"
+    "Renders one frame of SCENE (.json; .cels streams later) with the celscan core\n"
+    "through the simulated display, and writes it as a PNG.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output FILE       PNG to write (may be omitted with --crc or --repeat)\n"
+    "  --size WxH              output size in pixels (default: the canvas size, rounded)\n"
+    "  --time SECONDS          scene time for animation (default 0)\n"
+    "  --aa none|N|exact       vertical anti-aliasing: one sample per pixel, N\n"
+    "                          sub-scanlines (1..64), or exact area (default 16)\n"
+    "  --encoding srgb|linear  8-bit sRGB PNG (default), or 16-bit linear-light PNG\n"
+    "  --repeat N              render N times; print the median render time as\n"
+    "                          'X.XXX ms/frame' (rendering only, not loading or writing)\n"
+    "  --blend linear|srgb     compositing space (default linear; srgb not implemented yet)\n"
+    "  --crc                   print 'frame crc32 XXXXXXXX' of the frame in the panel\n"
+    "                          pixel format (RGB565, little-endian, rows top to bottom)\n"
+    "  -h, --help              show this help\n"
+    "\n"
+    "exit status: 0 ok, 1 load/render/write error, 2 usage error,\n"
+    "             3 image written but the renderer ran out of capacity\n";
+
+typedef struct options {
+    const char *scene;
+    const char *out;
+    int width, height; /* 0: canvas size */
+    float time;
+    cs_aa_mode aa;
+    int subscanlines;
+    bool linear;
+    int repeat;        /* 0: not timing */
+    bool blend_srgb;
+    bool crc;
+} options;
+
+/* ------------------------------------------------------- command line */
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static int usage_error(const char *fmt, ...)
+{
+    va_list ap;
+    fputs("celsim: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    return EXIT_USAGE;
+}
+
+/* A whole-string decimal integer in [lo, hi]. */
+static bool parse_int(const char *s, long lo, long hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno != 0 || v < lo || v > hi || s[0] == '+' ||
+        s[0] == ' ')
+        return false;
+    *out = (int)v;
+    return true;
+}
+
+static bool parse_size(const char *s, int *w, int *h)
+{
+    const char *x = strchr(s, 'x');
+    if (x == NULL || x == s || x[1] == '\0')
+        return false;
+    char wbuf[16];
+    size_t n = (size_t)(x - s);
+    if (n >= sizeof wbuf)
+        return false;
+    memcpy(wbuf, s, n);
+    wbuf[n] = '\0';
+    return parse_int(wbuf, 1, 1000000, w) && parse_int(x + 1, 1, 1000000, h);
+}
+
+/* The value of an option given as "--opt value" or "--opt=value". */
+static const char *option_value(int argc, char **argv, int *i, const char *arg, const char *name)
+{
+    size_t n = strlen(name);
+    if (arg[n] == '=')
+        return arg + n + 1;
+    if (*i + 1 >= argc)
+        return NULL;
+    return argv[++*i];
+}
+
+/* Matches "--name" and "--name=..." exactly. */
+static bool is_option(const char *arg, const char *name)
+{
+    size_t n = strlen(name);
+    return strncmp(arg, name, n) == 0 && (arg[n] == '\0' || arg[n] == '=');
+}
+
+static int parse_render_args(int argc, char **argv, options *o)
+{
+    *o = (options){.aa = CS_AA_SUBSCAN, .subscanlines = DEFAULT_SUBSCANLINES};
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v;
+        static const char *const valued[] = {"-o",     "--output", "--size",   "--time",
+                                             "--aa",   "--encoding", "--repeat", "--blend"};
+        const char *name = NULL;
+        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
+            if (is_option(a, valued[k]))
+                name = valued[k];
+        if (name != NULL) {
+            v = option_value(argc, argv, &i, a, name);
+            if (v == NULL)
+                return usage_error("%s needs a value (see celsim --help)", name);
+        } else {
+            v = NULL;
+        }
+
+        if (name && (strcmp(name, "-o") == 0 || strcmp(name, "--output") == 0)) {
+            if (v[0] == '\0')
+                return usage_error("%s expects a file name", name);
+            o->out = v;
+        } else if (name && strcmp(name, "--size") == 0) {
+            if (!parse_size(v, &o->width, &o->height))
+                return usage_error("--size expects WxH, got '%s'", v);
+            if (o->width > CS_CFG_MAX_WIDTH || o->height > CS_CFG_MAX_HEIGHT)
+                return usage_error("--size %s is beyond the configured maximum %dx%d", v,
+                                   CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+        } else if (name && strcmp(name, "--time") == 0) {
+            char *end;
+            double t = strtod(v, &end);
+            if (end == v || *end != '\0' || !isfinite(t) || fabs(t) > 1e9)
+                return usage_error("--time expects seconds (a number), got '%s'", v);
+            o->time = (float)t;
+        } else if (name && strcmp(name, "--aa") == 0) {
+            if (strcmp(v, "none") == 0) {
+                o->aa = CS_AA_NONE;
+            } else if (strcmp(v, "exact") == 0) {
+                o->aa = CS_AA_EXACT;
+            } else if (parse_int(v, 1, CS_CFG_MAX_SUBSCANLINES, &o->subscanlines)) {
+                o->aa = CS_AA_SUBSCAN;
+            } else {
+                return usage_error("--aa expects none, exact or a number of sub-scanlines "
+                                   "1..%d, got '%s'",
+                                   CS_CFG_MAX_SUBSCANLINES, v);
+            }
+        } else if (name && strcmp(name, "--encoding") == 0) {
+            if (strcmp(v, "srgb") == 0)
+                o->linear = false;
+            else if (strcmp(v, "linear") == 0)
+                o->linear = true;
+            else
+                return usage_error("--encoding expects srgb or linear, got '%s'", v);
+        } else if (name && strcmp(name, "--repeat") == 0) {
+            if (!parse_int(v, 1, MAX_REPEAT, &o->repeat))
+                return usage_error("--repeat expects a count 1..%d, got '%s'", MAX_REPEAT, v);
+        } else if (name && strcmp(name, "--blend") == 0) {
+            if (strcmp(v, "linear") == 0)
+                o->blend_srgb = false;
+            else if (strcmp(v, "srgb") == 0)
+                o->blend_srgb = true;
+            else
+                return usage_error("--blend expects linear or srgb, got '%s'", v);
+        } else if (strcmp(a, "--crc") == 0) {
+            o->crc = true;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            fputs(usage_text, stdout);
+            exit(0);
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return usage_error("unknown option '%s' (see celsim --help)", a);
+        } else if (o->scene == NULL) {
+            o->scene = a;
+        } else {
+            return usage_error("unexpected argument '%s': one SCENE per run", a);
+        }
+    }
+    if (o->scene == NULL)
+        return usage_error("render needs a SCENE file (see celsim --help)");
+    if (o->out == NULL && !o->crc && o->repeat == 0)
+        return usage_error("render needs -o OUT.png (or --crc or --repeat)");
+    return 0;
+}
+
+/* -------------------------------------------------------------- loading */
+
+typedef int (*scene_loader)(const char *path, cs_scene *out, char *errbuf, size_t errlen);
+
+static int load_cels_stream(const char *path, cs_scene *out, char *errbuf, size_t errlen)
+{
+    (void)path;
+    (void)out;
+    snprintf(errbuf, errlen, ".cels streams are not supported yet");
+    return -1;
+}
+
+/* SCENE formats by file extension; the stream decoder plugs in here. */
+static const struct {
+    const char *ext;
+    scene_loader load;
+} scene_loaders[] = {
+    {".json", scene_json_load},
+    {".cels", load_cels_stream},
+};
+
+static int load_scene(const char *path, cs_scene *scene)
+{
+    size_t n = strlen(path);
+    for (size_t k = 0; k < sizeof scene_loaders / sizeof scene_loaders[0]; k++) {
+        size_t e = strlen(scene_loaders[k].ext);
+        if (n > e && strcmp(path + n - e, scene_loaders[k].ext) == 0) {
+            char err[SCENE_JSON_ERRLEN];
+            if (scene_loaders[k].load(path, scene, err, sizeof err) != 0) {
+                fprintf(stderr, "celsim: %s\n", err);
+                return EXIT_LOAD;
+            }
+            return 0;
+        }
+    }
+    fprintf(stderr, "celsim: %s: unknown scene format (expected a .json or .cels file)\n", path);
+    return EXIT_LOAD;
+}
+
+/* ------------------------------------------------------------ rendering */
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void report_core_error(const char *what, const cs_error *e)
+{
+    char msg[512];
+    scene_json_describe_error(e, msg, sizeof msg);
+    fprintf(stderr, "celsim: %s: %s\n", what, msg);
+}
+
+typedef struct sim_state {
+    cs_scene *scene;
+    cs_workspace *ws;
+    uint8_t *image;
+    float *line;
+    uint8_t *bytes;
+    uint8_t *panel;
+    double *times;
+} sim_state;
+
+static void free_state(sim_state *s)
+{
+    free(s->scene);
+    free(s->ws);
+    free(s->image);
+    free(s->line);
+    free(s->bytes);
+    free(s->panel);
+    free(s->times);
+}
+
+static int render(const options *o, sim_state *s)
+{
+    int status = load_scene(o->scene, s->scene);
+    if (status != 0)
+        return status;
+
+    cs_render_opts ro = {
+        .width = o->width,
+        .height = o->height,
+        .aa = o->aa,
+        .subscanlines = o->aa == CS_AA_SUBSCAN ? o->subscanlines : 1,
+        .time = o->time,
+    };
+    if (ro.width == 0) {
+        /* The canvas size, rounded; at least one pixel. */
+        double w = floor((double)s->scene->canvas_w + 0.5);
+        double h = floor((double)s->scene->canvas_h + 0.5);
+        if (w > CS_CFG_MAX_WIDTH || h > CS_CFG_MAX_HEIGHT) {
+            fprintf(stderr,
+                    "celsim: %s: canvas %gx%g is beyond the configured maximum %dx%d; "
+                    "use --size\n",
+                    o->scene, w, h, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+            return EXIT_LOAD;
+        }
+        ro.width = w < 1.0 ? 1 : (int)w;
+        ro.height = h < 1.0 ? 1 : (int)h;
+    }
+
+    sim_display_config cfg = {ro.width, ro.height,
+                              o->linear ? CS_PIX_RGB16_LINEAR : CS_PIX_RGB888_SRGB};
+    sim_display_data data;
+    hal_display dev;
+    size_t image_bytes = sim_display_image_bytes(&cfg);
+    size_t line_bytes = image_bytes / (size_t)ro.height;
+    s->image = malloc(image_bytes);
+    s->line = malloc((size_t)ro.width * 3 * sizeof *s->line);
+    s->bytes = malloc(line_bytes);
+    if (o->crc)
+        s->panel = malloc((size_t)ro.width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT));
+    int runs = o->repeat > 0 ? o->repeat : 1;
+    s->times = malloc((size_t)runs * sizeof *s->times);
+    if (!s->image || !s->line || !s->bytes || (o->crc && !s->panel) || !s->times) {
+        fprintf(stderr, "celsim: out of memory for a %dx%d frame\n", ro.width, ro.height);
+        return EXIT_LOAD;
+    }
+    if (sim_display_init(&dev, &cfg, &data, s->image, image_bytes) != 0) {
+        fprintf(stderr, "celsim: cannot set up a %dx%d display\n", ro.width, ro.height);
+        return EXIT_LOAD;
+    }
+
+    if (o->blend_srgb)
+        fprintf(stderr, "celsim: warning: --blend srgb not implemented yet, using linear\n");
+
+    frame_drive d = {.dev = &dev, .line = s->line, .bytes = s->bytes, .panel = NULL};
+    cs_renderer r;
+    int rc = FRAME_DRIVE_OK;
+    uint32_t crc = 0;
+    for (int k = 0; k < runs; k++) {
+        /* Hash only the first frame: every run renders the same bytes, and the
+         * median of the timings shrugs off the one slower run. */
+        d.panel = k == 0 ? s->panel : NULL;
+        uint64_t t0 = hal_clock_now_ns();
+        rc = frame_drive_render(&d, &r, s->ws, s->scene, &ro);
+        uint64_t t1 = hal_clock_now_ns();
+        s->times[k] = (double)(t1 - t0) * 1e-6;
+        if (k == 0)
+            crc = d.crc;
+        if (rc < 0)
+            break;
+    }
+
+    if (rc == FRAME_DRIVE_CORE) {
+        report_core_error(o->scene, &d.err);
+        return EXIT_LOAD;
+    }
+    if (rc == FRAME_DRIVE_HAL) {
+        if (d.hal_y >= 0)
+            fprintf(stderr, "celsim: simulated display refused line %d: %s\n", d.hal_y,
+                    strerror(-d.hal_rc));
+        else
+            fprintf(stderr, "celsim: simulated display refused the frame: %s\n",
+                    strerror(-d.hal_rc));
+        return EXIT_LOAD;
+    }
+    if (rc == FRAME_DRIVE_DEGRADED) {
+        char what[512];
+        scene_json_describe_error(&d.err, what, sizeof what);
+        fprintf(stderr, "celsim: %s: frame degraded, parts are missing: %s\n", o->scene, what);
+        status = EXIT_DEGRADED;
+    }
+
+    if (o->crc)
+        printf("frame crc32 %08X\n", (unsigned)crc);
+    if (o->repeat > 0)
+        printf("%.3f ms/frame\n", median(s->times, runs));
+
+    if (o->out != NULL) {
+        char err[1024];
+        if (png_write_rgb(o->out, ro.width, ro.height, cfg.pixfmt, s->image, line_bytes, err,
+                          sizeof err) != 0) {
+            fprintf(stderr, "celsim: %s\n", err);
+            return EXIT_LOAD;
+        }
+    }
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fputs(usage_text, stderr);
+        return EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
+        fputs(usage_text, stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "render") != 0)
+        return usage_error("unknown command '%s' (see celsim --help)", cmd);
+
+    options o;
+    int status = parse_render_args(argc, argv, &o);
+    if (status != 0)
+        return status;
+
+    /* The scene store and workspace are megabytes: heap, not stack. */
+    sim_state s = {0};
+    s.scene = calloc(1, sizeof *s.scene);
+    s.ws = calloc(1, sizeof *s.ws);
+    if (s.scene == NULL || s.ws == NULL) {
+        fprintf(stderr, "celsim: out of memory for the scene store and workspace\n");
+        free_state(&s);
+        return EXIT_LOAD;
+    }
+    status = render(&o, &s);
+    free_state(&s);
+    if (fflush(stdout) != 0) {
+        fprintf(stderr, "celsim: cannot write to standard output: %s\n", strerror(errno));
+        return EXIT_LOAD;
+    }
+    return status;
+}

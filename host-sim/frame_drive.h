@@ -1,0 +1,52 @@
+/*
+ * frame_drive.h - rendering one frame into a display through the HAL.
+ *
+ * This is the seam DESIGN.md draws between the core and the display: the
+ * core hands finished lines of linear-light floats to a cs_line_sink, the
+ * sink converts each line to the display's pixel format and sends it with
+ * hal_display_line_out. It knows nothing of any backend, so the same driver
+ * serves the simulator and a Linux board with a real panel.
+ *
+ * The caller owns every buffer; nothing here allocates, so a render can be
+ * timed without the allocator in the measurement.
+ */
+#ifndef HOST_SIM_FRAME_DRIVE_H
+#define HOST_SIM_FRAME_DRIVE_H
+
+#include <stdint.h>
+
+#include "celscan.h"
+#include "display.h"
+
+typedef struct frame_drive {
+    /* Set by the caller. */
+    const hal_display *dev;
+    float *line;      /* 3 * width floats: the core's line buffer */
+    uint8_t *bytes;   /* geometry.line_bytes: one line in the display's format */
+    uint8_t *panel;   /* NULL, or width * bytes-per-pixel of CS_PANEL_PIXFMT to hash the frame */
+
+    /* Set by frame_drive_render. */
+    uint32_t crc;     /* CRC-32 of the frame in CS_PANEL_PIXFMT, rows top to bottom */
+    cs_error err;     /* the core's failure, or its sticky capacity error */
+    int hal_rc;       /* first HAL failure (negative errno), 0 if none */
+    int hal_y;        /* the row it happened on, -1 for begin/end frame */
+
+    /* Private: the display's geometry for this frame. */
+    hal_display_geometry geo;
+} frame_drive;
+
+enum {
+    FRAME_DRIVE_OK = 0,       /* every line rendered and shown */
+    FRAME_DRIVE_DEGRADED = 1, /* every line shown, but the core ran out of capacity (d->err) */
+    FRAME_DRIVE_CORE = -1,    /* the core could not start the frame (d->err) */
+    FRAME_DRIVE_HAL = -2      /* the display refused a call (d->hal_rc, d->hal_y) */
+};
+
+/*
+ * Renders the scene at opts->time into d->dev, whose geometry must match
+ * opts->width x opts->height. Returns one of the FRAME_DRIVE_* values.
+ */
+int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                       const cs_render_opts *opts);
+
+#endif /* HOST_SIM_FRAME_DRIVE_H */

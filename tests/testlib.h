@@ -1,0 +1,152 @@
+/*
+ * testlib.h - the in-house test harness of celscan's test programs.
+ *
+ * Deliberately tiny: one header, no registration, no fixtures. A test program
+ * calls its test functions from main() through TL_RUN, uses CHECK* for every
+ * expectation and returns tl_summary(argv[0]). Each failed expectation prints
+ *   file:line: FAIL [test] message
+ * and the program ends with the line
+ *   <binary>: N passed, M failed
+ * which tests/run.sh sums over all binaries. The exit status is non-zero if
+ * anything failed.
+ *
+ * An expectation over a whole image is one CHECK (say "worst pixel within
+ * 12/255") whose message names the worst pixel, what was expected and what
+ * came out; tl_note() adds context lines (the first few offending pixels)
+ * without counting anything.
+ *
+ * Everything is static: each test program includes this once.
+ */
+#ifndef CELSCAN_TESTLIB_H
+#define CELSCAN_TESTLIB_H
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int tl_passed, tl_failed;
+static const char *tl_current = "";
+
+#if defined(__GNUC__)
+#define TL_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#define TL_UNUSED __attribute__((unused))
+#else
+#define TL_PRINTF(a, b)
+#define TL_UNUSED
+#endif
+
+static TL_PRINTF(4, 5) TL_UNUSED int tl_check(int ok, const char *file, int line, const char *fmt,
+                                               ...)
+{
+    if (ok) {
+        tl_passed++;
+        return 1;
+    }
+    tl_failed++;
+    printf("%s:%d: FAIL [%s] ", file, line, tl_current);
+    va_list ap;
+    va_start(ap, fmt);
+    vprintf(fmt, ap);
+    va_end(ap);
+    printf("\n");
+    fflush(stdout);
+    return 0;
+}
+
+/* Context for the last failure (or any information worth a line): not counted. */
+static TL_PRINTF(1, 2) TL_UNUSED void tl_note(const char *fmt, ...)
+{
+    printf("    ");
+    va_list ap;
+    va_start(ap, fmt);
+    vprintf(fmt, ap);
+    va_end(ap);
+    printf("\n");
+}
+
+/* CHECK(cond, "format", ...): the message says what was expected and what came. */
+#define CHECK(cond, ...) tl_check(!!(cond), __FILE__, __LINE__, __VA_ARGS__)
+
+#define CHECK_EQ_INT(got, want, what)                                                             \
+    do {                                                                                          \
+        long long tl_g_ = (long long)(got), tl_w_ = (long long)(want);                            \
+        CHECK(tl_g_ == tl_w_, "%s: expected %lld, got %lld", (what), tl_w_, tl_g_);               \
+    } while (0)
+
+#define CHECK_NEAR(got, want, tol, what)                                                          \
+    do {                                                                                          \
+        double tl_g_ = (double)(got), tl_w_ = (double)(want), tl_t_ = (double)(tol);               \
+        CHECK(tl_g_ - tl_w_ <= tl_t_ && tl_w_ - tl_g_ <= tl_t_,                                   \
+              "%s: expected %.9g (+-%.3g), got %.9g (off by %.3g)", (what), tl_w_, tl_t_, tl_g_,  \
+              tl_g_ - tl_w_);                                                                     \
+    } while (0)
+
+/* Status codes print with their names so a failure reads "CS_ERR_WEIGHT". */
+#define CHECK_STATUS(got, want, what)                                                             \
+    do {                                                                                          \
+        int tl_g_ = (int)(got), tl_w_ = (int)(want);                                              \
+        CHECK(tl_g_ == tl_w_, "%s: expected status %s (%d), got %s (%d)", (what),                 \
+              tl_status_name(tl_w_), tl_w_, tl_status_name(tl_g_), tl_g_);                        \
+    } while (0)
+
+static TL_UNUSED const char *tl_status_name(int s)
+{
+    static const char *const names[] = {
+        "CS_OK",
+        "CS_ERR_ARG",
+        "CS_ERR_STATE",
+        "CS_ERR_NONFINITE",
+        "CS_ERR_RANGE",
+        "CS_ERR_DEGREE",
+        "CS_ERR_TOO_FEW_POINTS",
+        "CS_ERR_WEIGHT",
+        "CS_ERR_INTERVAL",
+        "CS_ERR_ZERO_RUN",
+        "CS_ERR_DEGENERATE",
+        "CS_ERR_FILL_RULE",
+        "CS_ERR_PAINT",
+        "CS_ERR_SIZE",
+        "CS_ERR_CAP_CELS",
+        "CS_ERR_CAP_REGIONS",
+        "CS_ERR_CAP_CONTOURS",
+        "CS_ERR_CAP_POINTS",
+        "CS_ERR_CAP_SEGMENTS",
+        "CS_ERR_CAP_PIECES",
+        "CS_ERR_CAP_CROSSINGS",
+        "CS_ERR_IO",
+    };
+    if (s >= 0 && s < (int)(sizeof names / sizeof names[0]))
+        return names[s];
+    return "(unknown status)";
+}
+
+#define TL_RUN(fn)                                                                                \
+    do {                                                                                          \
+        tl_current = #fn;                                                                         \
+        fn();                                                                                     \
+        tl_current = "";                                                                          \
+    } while (0)
+
+/* Prints the summary line and gives main()'s exit status. */
+static TL_UNUSED int tl_summary(const char *argv0)
+{
+    const char *name = strrchr(argv0, '/');
+    name = name ? name + 1 : argv0;
+    printf("%s: %d passed, %d failed\n", name, tl_passed, tl_failed);
+    fflush(stdout);
+    return tl_failed ? 1 : 0;
+}
+
+/* calloc that ends the program on failure: scene and workspace are MB-sized. */
+static TL_UNUSED void *tl_calloc(size_t n, size_t size)
+{
+    void *p = calloc(n, size);
+    if (!p) {
+        printf("out of memory allocating %zu x %zu bytes\n", n, size);
+        exit(2);
+    }
+    return p;
+}
+
+#endif /* CELSCAN_TESTLIB_H */
