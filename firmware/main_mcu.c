@@ -169,6 +169,32 @@ static void crash(const char *how)
     fw_print("crash=%s: no fault happened\n", how);
 }
 
+#ifdef BOARD_DEMO_LOOP
+/* On real glass: keep animating the first job's scene at the panel's size,
+ * with the time taken from the board clock, and report now and then. */
+static void demo_loop(void)
+{
+    fw_job job = fw_jobs[0];
+    job.width = BOARD_PANEL_WIDTH;
+    job.height = BOARD_PANEL_HEIGHT;
+    cs_render_opts opts = fw_job_opts(&job);
+    uint64_t start = board_time_us();
+    for (uint32_t frame = 0;; frame++) {
+        opts.time = (float)((board_time_us() - start) / 1000u) / 1000.0f;
+        cs_error err;
+        if (fw_scenes[job.scene].build(&scene_store, opts.time, &err) != CS_OK ||
+            cs_frame_begin(&renderer, &workspace, &scene_store, &opts, &err) != CS_OK ||
+            mcu_display_begin(&display, opts.width, opts.height) != CS_OK)
+            continue;
+        cs_status st = cs_render_frame(&renderer, line, sink, &display);
+        uint32_t crc = mcu_display_end(&display);
+        if (frame % 64u == 0)
+            fw_print("demo frame %u crc32 %08X %s\n", (unsigned)frame, (unsigned)crc,
+                     cs_status_str(st));
+    }
+}
+#endif
+
 /* Parses "WxH". */
 static int parse_size(const char *s, uint32_t *w, uint32_t *h)
 {
@@ -273,5 +299,8 @@ int main(void)
     fw_print("stack high-water %u of %u bytes\n", (unsigned)cm_stack_used(),
              (unsigned)cm_stack_size());
     fw_print("celfw: %d frames, %d failed\n", frames, failed);
+#ifdef BOARD_DEMO_LOOP
+    demo_loop();
+#endif
     return failed ? 1 : 0;
 }

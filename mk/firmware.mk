@@ -5,6 +5,7 @@
 #   make firmware-all                  every board in firmware/boards/*/board.mk
 #   make qemu-test                     boot the mps2-an386 image in QEMU, render the
 #                                      built-in scenes, compare with the host (CRC, pixels)
+#   make test-mcu-display              unit test of hal/mcu/mcu_display.c on the host
 #   make qemu-run SCENE=signage SIZE=480x272 TIME=0.75 [AA=5]
 #                                      boot and print that frame's `frame crc32` line
 #   make qemu-insn                     executed instructions per frame and per line
@@ -75,6 +76,16 @@ $(HOST)/fw_host_ref: $(HOST)/obj/tests/fw_host_ref.o $(HOST)/obj/firmware/scenes
 	$(Q)$(CC) $^ -o $@
 HOST_PROGRAMS += $(HOST)/fw_host_ref
 
+# The MCU display backend is plain C: its unit test runs on the host.
+$(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/mcu/mcu_display.o: HOST_CFLAGS += -Ihal/mcu
+$(HOST)/test_mcu_display: $(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/mcu/mcu_display.o \
+                          $(HOST)/libcelscan.a
+	$(Q)$(CC) $^ -lz -o $@
+
+.PHONY: test-mcu-display
+test-mcu-display: $(HOST)/test_mcu_display
+	$(Q)$<
+
 # A TCG plugin is a shared object QEMU loads; it uses no glib and no QEMU
 # header (Debian ships neither for plugins), see tools/qemu-insn.
 $(HOST)/libinsncount.so: tools/qemu-insn/insncount.c
@@ -98,4 +109,4 @@ qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so
 	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so \
 		$(BUILD)/$(FW_QEMU_BOARD)/insn
 
-TEST_TARGETS += qemu-test
+TEST_TARGETS += test-mcu-display qemu-test

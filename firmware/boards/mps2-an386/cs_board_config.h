@@ -1,35 +1,8 @@
 /*
- * cs_board_config.h - the core's capacities on a 64 KiB-RAM board with a
- * 480x272 panel (named by -DCS_CFG_FILE; see core/cs_config.h).
- *
- * Where the RAM goes (bytes, Cortex-M4; tools/fw_budget.sh prints the
- * measured figures on every build):
- *   line buffers   15 floats per pixel (the stack's E in the caller's
- *                  output line, T, the cel's E and 1-T, the coverage
- *                  claimed, area, cover): 28,816
- *   scene store    cs_scene with the capacities below: 16,576 (>= 16 KiB)
- *   segment arena  144 segments x 52 + 208 pieces x (24 + 3 x 2 index):
- *                  13,728
- *   per region     64 x 26 (paint maps and cel of each region): 1,664
- *   crossings      64 x 8 per region and sub-scanline: 512
- * leaving about 3 KiB for the stack (2 KiB), the panel line and the rest.
- *
- * Pieces: a segment splits into 1.0 to 1.2 monotone pieces in practice
- * (the built-in scenes: 67 pieces for 73 segments), and up to 5 for a
- * wild rational cubic; a frame that needs more reports CS_ERR_CAP_PIECES.
+ * cs_board_config.h - core capacities for this board (CS_CFG_FILE): the
+ * shared 480x272-in-64-KiB configuration.
  */
 #ifndef CS_BOARD_CONFIG_H
 #define CS_BOARD_CONFIG_H
-
-#define CS_CFG_MAX_WIDTH 480
-#define CS_CFG_MAX_HEIGHT 272
-#define CS_CFG_MAX_CELS 16
-#define CS_CFG_MAX_REGIONS 64
-#define CS_CFG_MAX_CONTOURS 128
-#define CS_CFG_MAX_POINTS 768
-#define CS_CFG_MAX_SEGMENTS 144
-#define CS_CFG_MAX_PIECES 208
-#define CS_CFG_MAX_CROSSINGS 64
-#define CS_CFG_INDEX_TYPE uint16_t
-
-#endif /* CS_BOARD_CONFIG_H */
+#include "cs_config_480x272.h"
+#endif
