@@ -197,6 +197,9 @@ typedef struct cs_segment {
     uint8_t degree;
 } cs_segment;
 
+/* Index of a segment or piece in the workspace (CS_CFG_INDEX_TYPE). */
+typedef CS_CFG_INDEX_TYPE cs_index;
+
 /*
  * A y-monotone piece of a segment, u in [u0, u1], y from y_top to y_bot
  * (y_top < y_bot). The end y values are shared exactly with the neighbouring
@@ -206,7 +209,7 @@ typedef struct cs_segment {
 typedef struct cs_piece {
     float u0, u1;
     float y_top, y_bot;
-    uint32_t segment;
+    cs_index segment;
     uint16_t region;   /* copied from the segment: spares an indirection per line */
     uint8_t operand;   /* winding counter it moves: always 0 without CSG */
     int8_t dir;        /* +1 if y grows with u, -1 if it falls */
@@ -218,13 +221,17 @@ typedef struct cs_crossing {
     uint16_t operand; /* which winding counter of the region it moves (CSG) */
 } cs_crossing;
 
-/* Per-render scratch memory. Contents are private to the core. */
+/*
+ * Per-render scratch memory. Contents are private to the core. The emitted
+ * light of the stack has no buffer here: it accumulates in the caller's
+ * output line (see cs_render_line), which saves 12 bytes per pixel.
+ */
 typedef struct cs_workspace {
     cs_segment segments[CS_CFG_MAX_SEGMENTS];
     cs_piece pieces[CS_CFG_MAX_PIECES];
-    uint32_t order[CS_CFG_MAX_PIECES];   /* pieces sorted by y_top */
-    uint32_t active[CS_CFG_MAX_PIECES];  /* active pieces of the line, in piece order */
-    uint32_t scratch[CS_CFG_MAX_PIECES]; /* sort scratch */
+    cs_index order[CS_CFG_MAX_PIECES];   /* pieces sorted by y_top */
+    cs_index active[CS_CFG_MAX_PIECES];  /* active pieces of the line, in piece order */
+    cs_index scratch[CS_CFG_MAX_PIECES]; /* sort scratch */
     cs_crossing crossings[CS_CFG_MAX_CROSSINGS];
     uint16_t region_cel[CS_CFG_MAX_REGIONS];
     float region_E[CS_CFG_MAX_REGIONS][3];
@@ -234,9 +241,12 @@ typedef struct cs_workspace {
     float used[CS_CFG_MAX_WIDTH];         /* coverage claimed in the cel so far */
     float cel_E[CS_CFG_MAX_WIDTH * 3];
     float cel_A[CS_CFG_MAX_WIDTH * 3];    /* 1 - T of the cel */
-    float stack_E[CS_CFG_MAX_WIDTH * 3];
     float stack_T[CS_CFG_MAX_WIDTH * 3];
 } cs_workspace;
+
+/* Indices must be able to count every piece and segment. */
+typedef char cs__index_fits_[(CS_CFG_MAX_PIECES <= (cs_index)-1 &&
+                              CS_CFG_MAX_SEGMENTS <= (cs_index)-1) ? 1 : -1];
 
 /* The context of one frame. Set up by cs_frame_begin; fields are private. */
 typedef struct cs_renderer {
@@ -260,6 +270,8 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
 
 /*
  * Renders line y (0 = top) into rgb_linear (3*width floats, linear light).
+ * The line doubles as the renderer's accumulator for emitted light while
+ * the line is built, so its contents on entry do not matter.
  * Lines must be requested in increasing order (the active list only moves
  * forward); skipping lines is allowed. A capacity overflow on the line is
  * recorded in r->sticky and the line is still produced, with the overflowing

@@ -41,6 +41,14 @@
 #ifndef CS_CFG_MAX_PIECES
 #define CS_CFG_MAX_PIECES (2 * CS_CFG_MAX_SEGMENTS)
 #endif
+/*
+ * Unsigned integer type of segment and piece indices in the workspace.
+ * uint16_t halves the index arrays on a microcontroller whose workspace
+ * holds well under 65536 pieces; the result of rendering is the same.
+ */
+#ifndef CS_CFG_INDEX_TYPE
+#define CS_CFG_INDEX_TYPE uint32_t
+#endif
 /* Crossings of one region with one sub-scanline. */
 #ifndef CS_CFG_MAX_CROSSINGS
 #define CS_CFG_MAX_CROSSINGS 4096

@@ -65,7 +65,7 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end)
             pc->dir = yb > ya ? 1 : -1;
             pc->y_top = yb > ya ? ya : yb;
             pc->y_bot = yb > ya ? yb : ya;
-            pc->segment = si;
+            pc->segment = (cs_index)si;
             pc->region = s->region;
             pc->operand = 0;
         }
@@ -77,9 +77,9 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end)
 /* Stable merge sort of piece indices by y_top, using ws->scratch. */
 static void sort_by_top(cs_workspace *ws, uint32_t n)
 {
-    uint32_t *a = ws->order, *b = ws->scratch;
+    cs_index *a = ws->order, *b = ws->scratch;
     for (uint32_t i = 0; i < n; i++)
-        a[i] = i;
+        a[i] = (cs_index)i;
     for (uint32_t width = 1; width < n; width *= 2) {
         for (uint32_t lo = 0; lo < n; lo += 2 * width) {
             uint32_t mid = lo + width < n ? lo + width : n;
@@ -92,7 +92,7 @@ static void sort_by_top(cs_workspace *ws, uint32_t n)
             while (j < hi)
                 b[k++] = a[j++];
         }
-        uint32_t *t = a;
+        cs_index *t = a;
         a = b;
         b = t;
     }

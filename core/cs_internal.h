@@ -9,7 +9,16 @@
 #ifndef CS_INTERNAL_H
 #define CS_INTERNAL_H
 
+#include <float.h>
+
 #include "celscan.h"
+
+/* Identical bytes on every target need every float operation rounded to
+ * float as it happens: x87 code (i386 without SSE) keeps excess precision
+ * in registers, so results would depend on register allocation. */
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD != 0 && FLT_EVAL_METHOD != -1
+#error "celscan core needs FLT_EVAL_METHOD == 0 (SSE, VFP, RISC-V F; not x87)"
+#endif
 
 static inline float cs__absf(float v) { return v < 0.0f ? -v : v; }
 static inline float cs__minf(float a, float b) { return a < b ? a : b; }

@@ -75,7 +75,7 @@ static void sort_crossings(cs_crossing *c, uint32_t n)
  * Crossings of the active pieces act[0..n) with scanline ys, sorted by x
  * and clamped to [0, width]. Returns the count, or -1 if they do not fit.
  */
-static int32_t crossings_at(cs_renderer *r, const uint32_t *act, uint32_t n, float ys)
+static int32_t crossings_at(cs_renderer *r, const cs_index *act, uint32_t n, float ys)
 {
     cs_workspace *ws = r->ws;
     float width = (float)r->opts.width;
@@ -128,7 +128,7 @@ static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *re
  * Coverage of region `reg` on line y from its active pieces, folded into the
  * cel accumulators. [*cel_lo, *cel_hi) grows to what the cel touched.
  */
-static void render_region(cs_renderer *r, uint32_t reg, const uint32_t *act, uint32_t n, int y,
+static void render_region(cs_renderer *r, uint32_t reg, const cs_index *act, uint32_t n, int y,
                           int32_t *cel_lo, int32_t *cel_hi)
 {
     cs_workspace *ws = r->ws;
@@ -194,12 +194,13 @@ static void render_region(cs_renderer *r, uint32_t reg, const uint32_t *act, uin
         *cel_hi = hi;
 }
 
-/* Composites the accumulated cel behind the stack and clears it. */
-static void composite_cel(cs_workspace *ws, int32_t lo, int32_t hi)
+/* Composites the accumulated cel behind the stack and clears it. The
+ * stack's emitted light E lives in the caller's output line. */
+static void composite_cel(cs_workspace *ws, float *stack_E, int32_t lo, int32_t hi)
 {
     for (int32_t x = lo; x < hi; x++) {
         float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
-        float *se = &ws->stack_E[3 * x], *st = &ws->stack_T[3 * x];
+        float *se = &stack_E[3 * x], *st = &ws->stack_T[3 * x];
         for (int ch = 0; ch < 3; ch++) {
             se[ch] += st[ch] * ce[ch];
             st[ch] *= 1.0f - ca[ch];
@@ -228,9 +229,9 @@ static void update_active(cs_renderer *r, int y)
     while (r->next_order < r->piece_count && ws->pieces[ws->order[r->next_order]].y_top < bottom)
         r->next_order++;
     /* Newly active pieces, in piece order, merged into the kept list. */
-    uint32_t *fresh = ws->scratch;
+    cs_index *fresh = ws->scratch;
     for (uint32_t i = first_new; i < r->next_order; i++) {
-        uint32_t p = ws->order[i];
+        cs_index p = ws->order[i];
         if (ws->pieces[p].y_bot > top) {
             uint32_t j = added++;
             while (j > 0 && fresh[j - 1] > p) {
@@ -260,8 +261,11 @@ cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
     cs_workspace *ws = r->ws;
     int width = r->opts.width;
     update_active(r, y);
+    /* The output line accumulates the stack's E; it becomes the pixel in
+     * place at the end, so the workspace needs no line of its own for it. */
+    float *stack_E = rgb_linear;
     for (int i = 0; i < 3 * width; i++) {
-        ws->stack_E[i] = 0.0f;
+        stack_E[i] = 0.0f;
         ws->stack_T[i] = 1.0f;
     }
     uint32_t i = 0;
@@ -274,7 +278,7 @@ cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
             j++;
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel && cel_lo < cel_hi) {
-            composite_cel(ws, cel_lo, cel_hi);
+            composite_cel(ws, stack_E, cel_lo, cel_hi);
             cel_lo = INT32_MAX;
             cel_hi = INT32_MIN;
         }
@@ -283,9 +287,9 @@ cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
         i = j;
     }
     if (cel_lo < cel_hi)
-        composite_cel(ws, cel_lo, cel_hi);
+        composite_cel(ws, stack_E, cel_lo, cel_hi);
     for (int x = 0; x < 3 * width; x++) {
-        float v = ws->stack_E[x] + ws->stack_T[x] * r->behind[x % 3];
+        float v = stack_E[x] + ws->stack_T[x] * r->behind[x % 3];
         rgb_linear[x] = cs__clampf(v, 0.0f, 1.0f);
     }
     return CS_OK;

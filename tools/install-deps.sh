@@ -6,7 +6,7 @@
 # it costs a fraction of a second and needs no network.
 set -eu
 PACKAGES="make gcc pkg-config python3 libcjson-dev libpng-dev libcairo2-dev libfreetype-dev
- libexpat1-dev fonts-dejavu-core gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
+ libexpat1-dev zlib1g-dev fonts-dejavu-core gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
  libgpiod-dev libusb-1.0-0-dev umockdev libumockdev-dev liblz4-dev
  librsvg2-bin adwaita-icon-theme clang libclang-rt-14-dev valgrind"
 missing=""

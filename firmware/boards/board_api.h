@@ -1,0 +1,40 @@
+/*
+ * board_api.h - what a board gives the firmware's main loop.
+ *
+ * One small interface, in the manner of TinyUSB's board_api.h: each board
+ * folder (firmware/boards/<board>/) implements it in its board.c, and the
+ * build picks the board with BOARD=<name>. The main loop and the MCU
+ * display backend know nothing else about the hardware.
+ */
+#ifndef BOARD_API_H
+#define BOARD_API_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "mcu_display.h"
+
+/* Clocks, the UART, the MPU stack guard, the panel. Called once by main. */
+void board_init(void);
+
+/* Status text for people and tests (semihosting console or a UART). */
+void board_console_write(const char *text);
+
+/* Stream ingress: one received byte into *byte and 1, or 0 if none waits.
+ * Never blocks. */
+int board_link_read(uint8_t *byte);
+
+/* Monotonic time in microseconds since board_init. */
+uint64_t board_time_us(void);
+
+/* Arguments from the host (QEMU's -append via semihosting), or "". */
+const char *board_cmdline(void);
+
+/* The panel that finished lines go to. */
+const mcu_panel *board_panel(void);
+
+/* Ends the program with an exit status: the emulator exits with it; real
+ * hardware resets. Fault handlers call it too, with a non-zero status. */
+void board_exit(int status) __attribute__((noreturn));
+
+#endif /* BOARD_API_H */

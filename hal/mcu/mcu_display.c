@@ -1,0 +1,60 @@
+/*
+ * mcu_display.c - finished lines to panel bytes, with a CRC per frame.
+ *
+ * The CRC covers exactly the bytes that go to the glass, in the panel's
+ * format, rows top to bottom, so a frame's CRC on the board equals the one
+ * `celsim --crc` prints for the same scene, time and size. A panel error
+ * does not stop the frame (the rest of the lines still go out, and the CRC
+ * still describes the frame); it is remembered and reported once.
+ */
+#include "mcu_display.h"
+
+void mcu_display_init(mcu_display *d, const mcu_panel *panel, uint8_t *pixels)
+{
+    d->panel = panel;
+    d->pixels = pixels;
+    d->width = d->height = 0;
+    d->crc = 0;
+    d->frames = 0;
+    d->panel_error = 0;
+}
+
+cs_status mcu_display_begin(mcu_display *d, int width, int height)
+{
+    if (width < 1 || height < 1)
+        return CS_ERR_SIZE;
+    d->width = width;
+    d->height = height;
+    d->crc = 0;
+    d->panel_error = 0;
+    const mcu_panel *p = d->panel;
+    if (p && p->api->begin_frame)
+        d->panel_error = p->api->begin_frame(p->ctx, d->frames, width, height);
+    return CS_OK;
+}
+
+cs_status mcu_display_line(void *user, int y, const float *rgb_linear, int width)
+{
+    mcu_display *d = user;
+    if (width != d->width || y < 0 || y >= d->height)
+        return CS_ERR_ARG;
+    size_t bytes = (size_t)width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
+    cs_pixfmt_convert(CS_PANEL_PIXFMT, rgb_linear, width, d->pixels);
+    d->crc = cs_crc32(d->crc, d->pixels, bytes);
+    const mcu_panel *p = d->panel;
+    if (p && d->panel_error == 0)
+        d->panel_error = p->api->line_out(p->ctx, y, d->pixels, bytes);
+    return CS_OK;
+}
+
+uint32_t mcu_display_end(mcu_display *d)
+{
+    const mcu_panel *p = d->panel;
+    if (p && p->api->end_frame) {
+        int e = p->api->end_frame(p->ctx);
+        if (d->panel_error == 0)
+            d->panel_error = e;
+    }
+    d->frames++;
+    return d->crc;
+}

@@ -1,0 +1,25 @@
+/*
+ * panel_semihost.h - a "panel" that writes each frame to a host file.
+ *
+ * Under QEMU the board has no glass; this panel stands in for it and dumps
+ * every frame through semihosting to <dir>/frameNN.rgb565 (panel format,
+ * rows top to bottom) so that a test can compare pixels with the host
+ * simulator. With no directory set it draws nothing.
+ */
+#ifndef PANEL_SEMIHOST_H
+#define PANEL_SEMIHOST_H
+
+#include "mcu_display.h"
+
+typedef struct panel_semihost {
+    char dir[96];     /* host directory for dumps; empty: no dumps */
+    int handle;       /* semihosting handle of the open frame, or -1 */
+    char path[128];
+} panel_semihost;
+
+extern const mcu_panel_api panel_semihost_api;
+
+/* Copies `dir` (may be NULL or empty) into the panel. */
+void panel_semihost_init(panel_semihost *p, const char *dir);
+
+#endif /* PANEL_SEMIHOST_H */

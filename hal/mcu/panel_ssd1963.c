@@ -1,0 +1,98 @@
+/*
+ * panel_ssd1963.c - SSD1963 over a memory-mapped 8080 bus (see the header).
+ *
+ * Command values and the set-up order follow the SSD1963 datasheet
+ * (Solomon Systech, rev 1.x, sections 8 and 9): PLL first (the controller
+ * runs from the crystal until the PLL is locked), then the pixel clock,
+ * the panel's timing and the 16-bit 565 pixel interface. Timings are
+ * those of the common 4.3" 480x272 modules; another glass needs its own.
+ *
+ * A frame sets the memory window once and then streams lines; the
+ * controller advances its write address by itself, so a line costs
+ * exactly `width` bus writes.
+ */
+#include "panel_ssd1963.h"
+
+#define CMD_SOFT_RESET 0x01
+#define CMD_DISPLAY_ON 0x29
+#define CMD_SET_COLUMN 0x2A
+#define CMD_SET_PAGE 0x2B
+#define CMD_WRITE_MEMORY 0x2C
+#define CMD_ADDRESS_MODE 0x36
+#define CMD_SET_LCD_MODE 0xB0
+#define CMD_SET_HORI_PERIOD 0xB4
+#define CMD_SET_VERT_PERIOD 0xB6
+#define CMD_SET_PLL 0xE0
+#define CMD_SET_PLL_MN 0xE2
+#define CMD_SET_LSHIFT_FREQ 0xE6
+#define CMD_SET_PIXEL_INTERFACE 0xF0
+
+static void command(panel_ssd1963 *p, uint8_t c, const uint8_t *args, int n)
+{
+    *p->cmd = c;
+    for (int i = 0; i < n; i++)
+        *p->data = args[i];
+}
+
+static void window(panel_ssd1963 *p, int x0, int y0, int x1, int y1)
+{
+    const uint8_t col[4] = {(uint8_t)(x0 >> 8), (uint8_t)x0, (uint8_t)(x1 >> 8), (uint8_t)x1};
+    const uint8_t page[4] = {(uint8_t)(y0 >> 8), (uint8_t)y0, (uint8_t)(y1 >> 8), (uint8_t)y1};
+    command(p, CMD_SET_COLUMN, col, 4);
+    command(p, CMD_SET_PAGE, page, 4);
+}
+
+void panel_ssd1963_init(panel_ssd1963 *p)
+{
+    int hd = p->width - 1, vd = p->height - 1;
+    command(p, CMD_SOFT_RESET, 0, 0);
+    p->delay_us(5000);
+    /* VCO = 10 MHz x (M + 1) = 300 MHz (M = 0x1D; 250..800 MHz allowed),
+     * PLL = VCO / (N + 1) = 100 MHz (N = 2); 0x04 makes M and N effective. */
+    static const uint8_t pll_mn[3] = {0x1D, 0x02, 0x04};
+    command(p, CMD_SET_PLL_MN, pll_mn, 3);
+    static const uint8_t pll_on[1] = {0x01}, pll_lock[1] = {0x03};
+    command(p, CMD_SET_PLL, pll_on, 1);
+    p->delay_us(100);
+    command(p, CMD_SET_PLL, pll_lock, 1);
+    p->delay_us(1000);
+    command(p, CMD_SOFT_RESET, 0, 0);
+    p->delay_us(5000);
+    /* Pixel clock 9 MHz: LCDC_FPR = 9 MHz * 2^20 / 100 MHz - 1 = 94371. */
+    static const uint8_t lshift[3] = {0x01, 0x70, 0xA3};
+    command(p, CMD_SET_LSHIFT_FREQ, lshift, 3);
+    const uint8_t mode[7] = {0x20, 0x00, (uint8_t)(hd >> 8), (uint8_t)hd,
+                             (uint8_t)(vd >> 8), (uint8_t)vd, 0x00};
+    command(p, CMD_SET_LCD_MODE, mode, 7);
+    /* HT 531, HPS 43, HPW 10, LPS 8; VT 288, VPS 12, VPW 10, FPS 4. */
+    static const uint8_t hori[8] = {0x02, 0x13, 0x00, 0x2B, 0x0A, 0x00, 0x08, 0x00};
+    static const uint8_t vert[7] = {0x01, 0x20, 0x00, 0x0C, 0x0A, 0x00, 0x04};
+    command(p, CMD_SET_HORI_PERIOD, hori, 8);
+    command(p, CMD_SET_VERT_PERIOD, vert, 7);
+    static const uint8_t rgb565[1] = {0x03}, normal[1] = {0x00};
+    command(p, CMD_SET_PIXEL_INTERFACE, rgb565, 1);
+    command(p, CMD_ADDRESS_MODE, normal, 1);
+    command(p, CMD_DISPLAY_ON, 0, 0);
+}
+
+static int begin_frame(void *ctx, uint32_t frame, int width, int height)
+{
+    panel_ssd1963 *p = ctx;
+    (void)frame;
+    if (width > p->width || height > p->height)
+        return -1;
+    window(p, 0, 0, width - 1, height - 1);
+    *p->cmd = CMD_WRITE_MEMORY;
+    return 0;
+}
+
+static int line_out(void *ctx, int y, const uint8_t *pixels, size_t bytes)
+{
+    panel_ssd1963 *p = ctx;
+    (void)y;
+    for (size_t i = 0; i + 1 < bytes; i += 2)
+        *p->data = (uint16_t)(pixels[i] | pixels[i + 1] << 8); /* RGB565, little-endian */
+    return 0;
+}
+
+const mcu_panel_api panel_ssd1963_api = {begin_frame, line_out, 0};

@@ -1,0 +1,30 @@
+/*
+ * panel_ssd1963.h - Solomon SSD1963 display controller on an 8080 bus.
+ *
+ * The SSD1963 holds its own frame memory, which is what lets celscan drive
+ * a 480x272 TFT with no frame buffer in the MCU: each finished line is
+ * streamed into the controller's memory as it is produced. The bus is
+ * memory-mapped (an STM32 FSMC/FMC bank, or any external-memory
+ * controller): one address with D/C low for commands, one with D/C high
+ * for data, 16 bits wide, pixels in RGB565.
+ */
+#ifndef PANEL_SSD1963_H
+#define PANEL_SSD1963_H
+
+#include "mcu_display.h"
+
+typedef struct panel_ssd1963 {
+    volatile uint16_t *cmd;   /* bus address with D/C = 0 */
+    volatile uint16_t *data;  /* bus address with D/C = 1 */
+    void (*delay_us)(uint32_t us);
+    int width, height;        /* glass geometry */
+} panel_ssd1963;
+
+extern const mcu_panel_api panel_ssd1963_api;
+
+/* Resets and configures the controller for a 4.3" 480x272 TFT (PLL from a
+ * 10 MHz crystal to 100 MHz, 9 MHz pixel clock, RGB565 on a 16-bit bus)
+ * and turns the display on. */
+void panel_ssd1963_init(panel_ssd1963 *p);
+
+#endif /* PANEL_SSD1963_H */

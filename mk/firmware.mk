@@ -1,0 +1,112 @@
+# mk/firmware.mk - bare-metal firmware images, QEMU tests and instruction counts.
+#
+#   make firmware [BOARD=mps2-an386]   build/<board>/celfw.elf (+ .map, .bin), memory
+#                                      use printed and the budgets enforced
+#   make firmware-all                  every board in firmware/boards/*/board.mk
+#   make qemu-test                     boot the mps2-an386 image in QEMU, render the
+#                                      built-in scenes, compare with the host (CRC, pixels)
+#   make test-mcu-display              unit test of hal/mcu/mcu_display.c on the host
+#   make qemu-run SCENE=signage SIZE=480x272 TIME=0.75 [AA=5]
+#                                      boot and print that frame's `frame crc32` line
+#   make qemu-insn                     executed instructions per frame and per line
+#                                      (QEMU TCG plugin, tools/qemu-insn)
+#
+# Each board folder has a board.mk that sets BOARD_CPU, BOARD_LDSCRIPT,
+# BOARD_STACK, BOARD_SRC and optionally BOARD_QEMU; the rules below are
+# generated once per board, so all boards build in one make invocation.
+# The core is compiled again per board with the board's capacities
+# (firmware/boards/<board>/cs_board_config.h, named by CS_CFG_FILE).
+
+BOARD ?= mps2-an386
+FW_BOARDS := $(patsubst firmware/boards/%/board.mk,%,$(wildcard firmware/boards/*/board.mk))
+FW_QEMU_BOARD := mps2-an386
+
+FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_print.c firmware/fw_args.c firmware/fw_mem.c \
+                 firmware/scenes/fw_scenes.c hal/mcu/mcu_display.c
+# No C library and no heap: -nostdlib, -ffreestanding; GCC may not invent
+# memcpy/memset calls (-fno-tree-loop-distribute-patterns); sqrtf is one
+# VSQRT (-fno-math-errno, in FP_FLAGS with -ffp-contract=off); libgcc gives
+# the 64-bit division helpers.
+FW_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) $(WARN) -ffreestanding -fno-builtin \
+        -fno-tree-loop-distribute-patterns -fno-stack-protector -fno-common \
+        -ffunction-sections -fdata-sections -MMD -MP
+FW_LDFLAGS := -nostdlib -Wl,--gc-sections -Llinker -Wl,--no-warn-rwx-segments
+
+define FW_BOARD_RULES
+BOARD_CPU :=
+BOARD_LDSCRIPT :=
+BOARD_STACK := 2048
+BOARD_SRC :=
+BOARD_QEMU :=
+include firmware/boards/$(1)/board.mk
+FW_CPU_$(1) := $$(BOARD_CPU)
+FW_LD_$(1) := $$(BOARD_LDSCRIPT)
+FW_STACK_$(1) := $$(BOARD_STACK)
+FW_QEMU_$(1) := $$(BOARD_QEMU)
+FW_INC_$(1) := -Icore -Ifirmware -Ifirmware/scenes -Ifirmware/boards -Ifirmware/boards/cortex-m \
+        -Ifirmware/boards/$(1) -Ihal/mcu -DCS_CFG_FILE='"cs_board_config.h"'
+FW_OBJ_$(1) := $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(CORE_SRC) $(FW_COMMON_SRC) $$(BOARD_SRC))
+
+$(BUILD)/$(1)/obj/%.o: %.c
+	@mkdir -p $$(dir $$@)
+	$(Q)$(ARM_CC) $$(FW_CPU_$(1)) $(FW_CFLAGS) $$(FW_INC_$(1)) -c $$< -o $$@
+
+$(BUILD)/$(1)/celfw.elf: $$(FW_OBJ_$(1)) $$(FW_LD_$(1)) linker/sections.ld
+	$(Q)$(ARM_CC) $$(FW_CPU_$(1)) $(FW_LDFLAGS) -T$$(FW_LD_$(1)) \
+		-Wl,--defsym=__stack_size=$$(FW_STACK_$(1)) -Wl,-Map=$(BUILD)/$(1)/celfw.map \
+		$$(FW_OBJ_$(1)) -lgcc -o $$@
+	$(Q)arm-none-eabi-objcopy -O binary $$@ $(BUILD)/$(1)/celfw.bin
+
+.PHONY: firmware-$(1)
+firmware-$(1): $(BUILD)/$(1)/celfw.elf
+	$(Q)tools/fw_budget.sh $(1) $(BUILD)/$(1)/celfw.elf $(BUILD)/$(1)/celfw.map
+endef
+$(foreach b,$(FW_BOARDS),$(eval $(call FW_BOARD_RULES,$(b))))
+
+.PHONY: firmware firmware-all qemu-test qemu-run qemu-insn
+firmware: firmware-$(BOARD)
+firmware-all: $(addprefix firmware-,$(FW_BOARDS))
+
+# ---------------------------------------------------------- host side
+# The reference renderer for the built-in scenes, and the QEMU plugin.
+$(HOST)/obj/tests/fw_host_ref.o: HOST_CFLAGS += -Ifirmware/scenes
+$(HOST)/obj/firmware/scenes/fw_scenes.o: HOST_CFLAGS += -Ifirmware/scenes
+$(HOST)/fw_host_ref: $(HOST)/obj/tests/fw_host_ref.o $(HOST)/obj/firmware/scenes/fw_scenes.o \
+                     $(HOST)/libcelscan.a
+	$(Q)$(CC) $^ -o $@
+HOST_PROGRAMS += $(HOST)/fw_host_ref
+
+# The MCU display backend is plain C: its unit test runs on the host.
+$(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/mcu/mcu_display.o: HOST_CFLAGS += -Ihal/mcu
+$(HOST)/test_mcu_display: $(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/mcu/mcu_display.o \
+                          $(HOST)/libcelscan.a
+	$(Q)$(CC) $^ -lz -o $@
+
+.PHONY: test-mcu-display
+test-mcu-display: $(HOST)/test_mcu_display
+	$(Q)$<
+
+# A TCG plugin is a shared object QEMU loads; it uses no glib and no QEMU
+# header (Debian ships neither for plugins), see tools/qemu-insn.
+$(HOST)/libinsncount.so: tools/qemu-insn/insncount.c
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) -std=c11 -O2 -Wall -Wextra -shared -fPIC -fvisibility=hidden $< -o $@
+
+# ------------------------------------------------------------ running
+FW_QEMU_ELF := $(BUILD)/$(FW_QEMU_BOARD)/celfw.elf
+
+qemu-test: firmware-$(FW_QEMU_BOARD) $(HOST)/fw_host_ref
+	$(Q)tools/fw_qemu_test.sh $(FW_QEMU_ELF) $(BUILD)/$(FW_QEMU_BOARD)/qemu-test
+
+SCENE ?= signage
+SIZE ?= 480x272
+TIME ?= 0
+AA ?= 5
+qemu-run: firmware-$(FW_QEMU_BOARD)
+	$(Q)tools/fw_qemu_run.sh $(FW_QEMU_ELF) "$(SCENE)" "$(SIZE)" "$(TIME)" "$(AA)"
+
+qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so
+	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so \
+		$(BUILD)/$(FW_QEMU_BOARD)/insn
+
+TEST_TARGETS += test-mcu-display qemu-test

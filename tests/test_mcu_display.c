@@ -1,0 +1,152 @@
+/*
+ * test_mcu_display.c - the MCU display backend, run on the host.
+ *
+ * hal/mcu/mcu_display.c turns rendered lines into panel bytes and keeps a
+ * CRC-32 per frame. Checked here against independent truth: the bytes a
+ * recording panel receives are hashed with zlib's crc32 and must equal the
+ * backend's CRC; the bytes themselves must be the RGB565 little-endian
+ * encoding of known colours (black, white, pure primaries, whose codes are
+ * exact); a failing panel is reported once while the frame and its CRC
+ * still complete; bad arguments are refused. Self-contained (it predates
+ * tests/testlib.h); it ends with `test_mcu_display: N passed, M failed`.
+ */
+#include <stdio.h>
+#include <string.h>
+#include <zlib.h>
+
+#include "celscan.h"
+#include "mcu_display.h"
+
+static int passed, failed;
+
+#define CHECK(cond, ...)                                                                           \
+    do {                                                                                           \
+        if (cond) {                                                                                \
+            passed++;                                                                              \
+        } else {                                                                                   \
+            failed++;                                                                              \
+            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
+            printf(__VA_ARGS__);                                                                   \
+            printf("\n");                                                                          \
+        }                                                                                          \
+    } while (0)
+
+#define W 8
+#define H 3
+
+typedef struct recorder {
+    uint8_t bytes[H][2 * W];
+    int lines, begins, ends;
+    int fail_at_line; /* -1: never */
+    uint32_t last_frame;
+} recorder;
+
+static int rec_begin(void *ctx, uint32_t frame, int width, int height)
+{
+    recorder *r = ctx;
+    r->begins++;
+    r->last_frame = frame;
+    return width == W && height == H ? 0 : -1;
+}
+
+static int rec_line(void *ctx, int y, const uint8_t *px, size_t bytes)
+{
+    recorder *r = ctx;
+    if (y == r->fail_at_line)
+        return -5;
+    if (y >= 0 && y < H && bytes == sizeof r->bytes[0])
+        memcpy(r->bytes[y], px, bytes);
+    r->lines++;
+    return 0;
+}
+
+static int rec_end(void *ctx)
+{
+    ((recorder *)ctx)->ends++;
+    return 0;
+}
+
+static const mcu_panel_api rec_api = {rec_begin, rec_line, rec_end};
+
+/* Line y: pixel x is black, white, red, green or blue by (x + y) % 5. */
+static void make_line(int y, float *rgb)
+{
+    static const float colour[5][3] = {{0, 0, 0}, {1, 1, 1}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int x = 0; x < W; x++)
+        memcpy(&rgb[3 * x], colour[(x + y) % 5], sizeof colour[0]);
+}
+
+static uint16_t expected_code(int x, int y)
+{
+    static const uint16_t code[5] = {0x0000, 0xFFFF, 0xF800, 0x07E0, 0x001F};
+    return code[(x + y) % 5];
+}
+
+static uint32_t draw_frame(mcu_display *d)
+{
+    float rgb[3 * W];
+    mcu_display_begin(d, W, H);
+    for (int y = 0; y < H; y++) {
+        make_line(y, rgb);
+        mcu_display_line(d, y, rgb, W);
+    }
+    return mcu_display_end(d);
+}
+
+int main(void)
+{
+    recorder rec;
+    memset(&rec, 0, sizeof rec);
+    rec.fail_at_line = -1;
+    mcu_panel panel = {"recorder", W, H, &rec_api, &rec};
+    uint8_t line_bytes[2 * W];
+    mcu_display d;
+    mcu_display_init(&d, &panel, line_bytes);
+
+    uint32_t crc = draw_frame(&d);
+    uLong ref = crc32(0L, Z_NULL, 0);
+    for (int y = 0; y < H; y++)
+        ref = crc32(ref, rec.bytes[y], sizeof rec.bytes[y]);
+    CHECK(crc == (uint32_t)ref, "frame CRC %08X, zlib over the panel's bytes %08lX", crc, ref);
+    CHECK(rec.begins == 1 && rec.lines == H && rec.ends == 1, "begin %d lines %d end %d",
+          rec.begins, rec.lines, rec.ends);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            uint16_t got = (uint16_t)(rec.bytes[y][2 * x] | rec.bytes[y][2 * x + 1] << 8);
+            CHECK(got == expected_code(x, y), "pixel %d,%d: %04X, expected %04X", x, y, got,
+                  expected_code(x, y));
+        }
+    CHECK(d.frames == 1 && d.panel_error == 0, "frames %u error %d", d.frames, d.panel_error);
+
+    /* The same frame again: same CRC, and the panel sees frame number 1. */
+    uint32_t again = draw_frame(&d);
+    CHECK(again == crc, "second frame CRC %08X differs from %08X", again, crc);
+    CHECK(rec.last_frame == 1, "panel got frame number %u", rec.last_frame);
+
+    /* A panel failing on line 1: reported, later lines not sent, the frame
+     * and its CRC still complete. */
+    rec.fail_at_line = 1;
+    rec.lines = 0;
+    uint32_t broken = draw_frame(&d);
+    CHECK(broken == crc, "CRC with a failing panel %08X, expected %08X", broken, crc);
+    CHECK(d.panel_error == -5, "panel error %d, expected -5", d.panel_error);
+    CHECK(rec.lines == 1, "%d lines reached the panel after its failure, expected 1", rec.lines);
+    rec.fail_at_line = -1;
+
+    /* Bad arguments are refused, not written. */
+    float rgb[3 * W];
+    make_line(0, rgb);
+    CHECK(mcu_display_begin(&d, 0, H) == CS_ERR_SIZE, "zero width accepted");
+    mcu_display_begin(&d, W, H);
+    CHECK(mcu_display_line(&d, H, rgb, W) == CS_ERR_ARG, "line past the bottom accepted");
+    CHECK(mcu_display_line(&d, 0, rgb, W + 1) == CS_ERR_ARG, "wrong width accepted");
+    mcu_display_end(&d);
+
+    /* No panel at all: the CRC is still kept. */
+    mcu_display bare;
+    mcu_display_init(&bare, NULL, line_bytes);
+    CHECK(draw_frame(&bare) == crc, "CRC without a panel differs");
+
+    printf("test_mcu_display: %d passed, %d failed\n", passed, failed);
+    return failed != 0;
+}
