@@ -127,7 +127,10 @@ $(DEMO)/frame-%.png: scenes/demo.json $(HOST)/celsim
 #   make test-asan   rebuild the core (hosted, not freestanding) and the tests with
 #                    AddressSanitizer + UBSan (+ float-cast-overflow) into build/asan/
 #                    and run them
-TEST_SRC := $(sort $(wildcard tests/test_*.c))
+# Tests of the parts in mk/*.mk are built by their fragments, not here.
+FRAGMENT_TESTS := tests/test_mcu_display.c tests/test_stream.c tests/test_exact.c \
+        tests/test_beta.c $(wildcard tests/test_svg*.c)
+TEST_SRC := $(filter-out $(FRAGMENT_TESTS),$(sort $(wildcard tests/test_*.c)))
 TEST_REF_SRC := $(sort $(wildcard tests/ref/*.c))
 TEST_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -MMD -MP
 # float-cast-overflow is not part of GCC's "undefined" group; a float to integer conversion out of
@@ -183,13 +186,15 @@ include $(sort $(wildcard mk/*.mk))
 # Everything `make test` runs, summed by tests/run.sh into one last line
 # "N passed, M failed". Fragments add test programs (each printing
 # "<name>: N passed, M failed") to TEST_PROGS with their build prerequisites
-# in TEST_DEPS, and shell commands to TEST_CMDS.
+# in TEST_DEPS, shell commands to TEST_CMDS, and make targets that run tests
+# (and print such a line) to TEST_TARGETS.
 all: $(HOST_PROGRAMS)
 demo-all: $(DEMO_TARGETS)
 	@echo "demo: $(DEMO_TARGETS)" | fmt -w 100
 
 test-all: check-core $(HOST_PROGRAMS) $(HOST_TESTS) $(ASAN_TESTS) $(TEST_DEPS)
-	$(Q)$(ASAN_ENV) tests/run.sh $(HOST_TESTS) $(ASAN_TESTS) $(TEST_PROGS) -- $(TEST_CMDS)
+	$(Q)$(ASAN_ENV) tests/run.sh $(HOST_TESTS) $(ASAN_TESTS) $(TEST_PROGS) -- $(TEST_CMDS) \
+		$(foreach t,$(TEST_TARGETS),"$(MAKE) --no-print-directory $(t)")
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
