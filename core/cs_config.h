@@ -59,6 +59,19 @@
 #define CS_CFG_MAX_OPERANDS 8
 #endif
 
+/* RPN tokens of one region's CSG program (the bit stack holds 32). */
+#ifndef CS_CFG_MAX_CSG
+#define CS_CFG_MAX_CSG 16
+#endif
+
+/* Functional paints (gradients, colour maps) in a scene, and stops per function. */
+#ifndef CS_CFG_MAX_FUNCS
+#define CS_CFG_MAX_FUNCS 64
+#endif
+#ifndef CS_CFG_MAX_STOPS
+#define CS_CFG_MAX_STOPS 16
+#endif
+
 /*
  * Largest absolute coordinate accepted, in canvas units and after transforms
  * in device pixels. Beyond it single-precision polynomials lose sub-pixel
