@@ -78,30 +78,40 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
         cs__line_stack(&r, y);
         if (line_first)
             line_first[y] = (uint32_t)count;
-        cs_cache_run *open = 0; /* the run that pixel x may extend */
-        for (int x = 0; x < width; x++) {
+        /* The open run is built here and stored when it closes, so that the
+         * count (and bytes_needed) is exact even when nothing fits. */
+        cs_cache_run cur;
+        bool open = false;
+        for (int x = 0; x <= width; x++) {
             const float *E = &ws->stack_E[3 * x], *T = &ws->stack_T[3 * x];
-            if (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f && T[0] == 1.0f && T[1] == 1.0f &&
-                T[2] == 1.0f) {
-                open = 0; /* clear: the gap between runs says so */
+            bool clear = x == width || (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f &&
+                                        T[0] == 1.0f && T[1] == 1.0f && T[2] == 1.0f);
+            if (open && !clear && same_map(&cur, E, T)) {
+                cur.len++;
                 continue;
             }
-            if (open && same_map(open, E, T)) {
-                open->len++;
-                continue;
-            }
-            if (count < capacity) {
-                open = &runs[count];
-                open->x = (uint16_t)x;
-                open->len = 1;
-                for (int ch = 0; ch < 3; ch++) {
-                    open->E[ch] = E[ch];
-                    open->T[ch] = T[ch];
+            if (open) {
+                if (count < capacity) {
+                    cs_cache_run *d = &runs[count];
+                    d->x = cur.x;
+                    d->len = cur.len;
+                    for (int ch = 0; ch < 3; ch++) {
+                        d->E[ch] = cur.E[ch];
+                        d->T[ch] = cur.T[ch];
+                    }
                 }
-            } else {
-                open = 0; /* out of room: keep counting what would be needed */
+                count++;
+                open = false;
             }
-            count++;
+            if (clear)
+                continue; /* the gap between runs says so */
+            open = true;
+            cur.x = (uint16_t)x;
+            cur.len = 1;
+            for (int ch = 0; ch < 3; ch++) {
+                cur.E[ch] = E[ch];
+                cur.T[ch] = T[ch];
+            }
         }
     }
     if (line_first)

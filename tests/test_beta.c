@@ -720,8 +720,12 @@ static void test_cache(void)
     size_t needed = cache.bytes_needed;
     /* Exactly the reported size fits (odd address: alignment is handled). */
     st = cs_cache_build(&cache, cache_buf + 1, needed, &g_ws, &g_scene, &o, 3, 13, &e);
-    CHECK(st == CS_OK && cache.bytes_used <= needed, "cache of the needed size: %s",
+    CHECK(st == CS_OK && cache.bytes_used == needed, "cache of the needed size: %s, %zu vs %zu",
+          cs_status_str(st), cache.bytes_used, needed);
+    st = cs_cache_build(&cache, cache_buf + 1, needed - 1, &g_ws, &g_scene, &o, 3, 13, &e);
+    CHECK(st == CS_ERR_CAP_CACHE && cache.bytes_needed == needed, "one byte short: %s",
           cs_status_str(st));
+    st = cs_cache_build(&cache, cache_buf + 1, needed, &g_ws, &g_scene, &o, 3, 13, &e);
     printf("  cache of cels 3..15 at 96x64: %u runs, %zu bytes\n", cache.run_count,
            cache.bytes_used);
     /* Cels 0-2 live in front, the cached background behind. */
