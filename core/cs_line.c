@@ -290,28 +290,56 @@ static bool region_hidden(cs_renderer *r, const uint32_t *act, uint32_t n)
 }
 
 /*
- * Composites the accumulated cel behind the stack and clears it. Only
- * pixels that still transmit are visited; a pixel whose T reaches 0 on
- * every channel joins the opaque record, and no later cel visits it.
+ * Whether the region can make a pixel of its cel opaque on its own: T = 0
+ * on every channel (or a functional medium or beta that may reach it).
+ * The cel's T at a pixel is 1 - sum c_i (1 - T_i) with sum c_i <= 1, so it
+ * can only vanish where such regions cover it. Cels without one need
+ * neither the snapping of T nor the opaque record (stacks that become
+ * opaque only through several translucent cels are simply not recorded:
+ * that forgoes a skip, never changes a pixel).
+ */
+static bool region_may_hide(const cs_renderer *r, uint32_t reg)
+{
+    const cs_region *region = &r->scene->regions[reg];
+    const float *T = r->ws->region_T[reg];
+    return (T[0] < CS__T_ZERO && T[1] < CS__T_ZERO && T[2] < CS__T_ZERO) ||
+           region->func[CS_FIELD_MEDIUM] || region->func[CS_FIELD_BETA];
+}
+
+/*
+ * Composites the accumulated cel behind the stack and clears it. Pixels in
+ * the opaque record are jumped over. If the cel may hide (`record`), T is
+ * snapped to 0 below CS__T_ZERO and pixels whose stack T reaches 0 on every
+ * channel join the record, so no later cel visits them.
  */
 static void composite_cel(cs_workspace *ws, int32_t lo, int32_t hi, bool record)
 {
     uint32_t *next = ws->opaque_next;
-    for (uint32_t x = cs__clear_from(next, (uint32_t)lo); x < (uint32_t)hi;
-         x = cs__clear_from(next, x + 1)) {
+    for (uint32_t x = (uint32_t)lo; x < (uint32_t)hi; x++) {
+        if (next[x] != x) { /* an opaque run: jump over it in one step */
+            x = cs__clear_from(next, x);
+            if (x >= (uint32_t)hi)
+                break;
+        }
         float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
         float *se = &ws->stack_E[3 * x], *st = &ws->stack_T[3 * x];
-        for (int ch = 0; ch < 3; ch++) {
-            float t = 1.0f - ca[ch];
-            if (t < CS__T_ZERO)
-                t = 0.0f;
-            se[ch] += st[ch] * ce[ch];
-            st[ch] *= t;
-            ce[ch] = 0.0f;
-            ca[ch] = 0.0f;
-        }
+        float t0 = 1.0f - ca[0], t1 = 1.0f - ca[1], t2 = 1.0f - ca[2];
+        se[0] += st[0] * ce[0];
+        se[1] += st[1] * ce[1];
+        se[2] += st[2] * ce[2];
+        ce[0] = ce[1] = ce[2] = 0.0f;
+        ca[0] = ca[1] = ca[2] = 0.0f;
         ws->used[x] = 0.0f;
-        if (record && st[0] == 0.0f && st[1] == 0.0f && st[2] == 0.0f)
+        if (!record) {
+            st[0] *= t0;
+            st[1] *= t1;
+            st[2] *= t2;
+            continue;
+        }
+        st[0] *= t0 < CS__T_ZERO ? 0.0f : t0;
+        st[1] *= t1 < CS__T_ZERO ? 0.0f : t1;
+        st[2] *= t2 < CS__T_ZERO ? 0.0f : t2;
+        if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
             next[x] = x + 1;
     }
 }
@@ -377,6 +405,7 @@ void cs__line_stack(cs_renderer *r, int y)
     uint32_t i = 0;
     int32_t cel_lo = INT32_MAX, cel_hi = INT32_MIN;
     uint32_t current_cel = UINT32_MAX;
+    bool cel_hides = false;
     while (i < r->active_count) {
         uint32_t reg = ws->pieces[ws->active[i]].region;
         uint32_t j = i + 1;
@@ -385,9 +414,10 @@ void cs__line_stack(cs_renderer *r, int y)
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel) {
             if (cel_lo < cel_hi)
-                composite_cel(ws, cel_lo, cel_hi, record);
+                composite_cel(ws, cel_lo, cel_hi, record && cel_hides);
             cel_lo = INT32_MAX;
             cel_hi = INT32_MIN;
+            cel_hides = false;
             if (cache_pending && cel >= cache_end) {
                 cs__cache_composite(r->cache, ws, y, record);
                 cache_pending = false;
@@ -406,12 +436,13 @@ void cs__line_stack(cs_renderer *r, int y)
                     cel_lo = lo;
                 if (hi > cel_hi)
                     cel_hi = hi;
+                cel_hides = cel_hides || region_may_hide(r, reg);
             }
         }
         i = j;
     }
     if (cel_lo < cel_hi)
-        composite_cel(ws, cel_lo, cel_hi, record);
+        composite_cel(ws, cel_lo, cel_hi, record && cel_hides);
     if (cache_pending)
         cs__cache_composite(r->cache, ws, y, record);
 }
@@ -422,12 +453,18 @@ cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
         return CS_ERR_ARG;
     cs_workspace *ws = r->ws;
     cs__line_stack(r, y);
-    bool srgb = r->opts.blend == CS_BLEND_SRGB;
-    for (int x = 0; x < 3 * r->opts.width; x++) {
-        float v = cs__clampf(ws->stack_E[x] + ws->stack_T[x] * r->behind[x % 3], 0.0f, 1.0f);
-        /* sRGB blending composited encoded values; hand back linear light. */
-        rgb_linear[x] = srgb ? cs_srgb_decode(v) : v;
+    float L0 = r->behind[0], L1 = r->behind[1], L2 = r->behind[2];
+    const float *E = ws->stack_E, *T = ws->stack_T;
+    int n = 3 * r->opts.width;
+    for (int i = 0; i < n; i += 3) {
+        rgb_linear[i] = cs__clampf(E[i] + T[i] * L0, 0.0f, 1.0f);
+        rgb_linear[i + 1] = cs__clampf(E[i + 1] + T[i + 1] * L1, 0.0f, 1.0f);
+        rgb_linear[i + 2] = cs__clampf(E[i + 2] + T[i + 2] * L2, 0.0f, 1.0f);
     }
+    /* sRGB blending composited encoded values; hand back linear light. */
+    if (r->opts.blend == CS_BLEND_SRGB)
+        for (int i = 0; i < n; i++)
+            rgb_linear[i] = cs_srgb_decode(rgb_linear[i]);
     return CS_OK;
 }
 
