@@ -34,3 +34,17 @@ bench-cache: $(HOST)/bench_cache_anim
 
 TEST_TARGETS += test-beta test-beta-asan
 HOST_PROGRAMS += $(HOST)/bench_cache_anim
+
+# The JSON helper for paints and CSG (host code: cJSON from Debian).
+$(HOST)/test_paint_json: tests/test_paint_json.c host-sim/paint_json.c host-sim/paint_json.h \
+		$(CORE_SRC) $(CORE_HDR)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(BETA_CFLAGS) -Ihost-sim $(shell pkg-config --cflags libcjson) \
+		tests/test_paint_json.c host-sim/paint_json.c $(CORE_SRC) \
+		$(shell pkg-config --libs libcjson) -lm -o $@
+
+.PHONY: test-paint-json
+test-paint-json: $(HOST)/test_paint_json
+	$(Q)$(HOST)/test_paint_json
+
+TEST_TARGETS += test-paint-json
