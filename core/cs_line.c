@@ -308,11 +308,13 @@ static bool region_may_hide(const cs_renderer *r, uint32_t reg)
 
 /*
  * Composites the accumulated cel behind the stack and clears it. Pixels in
- * the opaque record are jumped over. If the cel may hide (`record`), T is
- * snapped to 0 below CS__T_ZERO and pixels whose stack T reaches 0 on every
- * channel join the record, so no later cel visits them.
+ * the opaque record are jumped over. If the cel may hide (`snap`), T is
+ * snapped to 0 below CS__T_ZERO; with `record` as well, pixels whose stack
+ * T reaches 0 on every channel join the record, so no later cel visits
+ * them. Snapping depends on the cel alone, never on `record`, so turning
+ * the early-out off changes no bit of the result.
  */
-static void composite_cel(cs_workspace *ws, int32_t lo, int32_t hi, bool record)
+static void composite_cel(cs_workspace *ws, int32_t lo, int32_t hi, bool snap, bool record)
 {
     uint32_t *next = ws->opaque_next;
     for (uint32_t x = (uint32_t)lo; x < (uint32_t)hi; x++) {
@@ -330,7 +332,7 @@ static void composite_cel(cs_workspace *ws, int32_t lo, int32_t hi, bool record)
         ce[0] = ce[1] = ce[2] = 0.0f;
         ca[0] = ca[1] = ca[2] = 0.0f;
         ws->used[x] = 0.0f;
-        if (!record) {
+        if (!snap) {
             st[0] *= t0;
             st[1] *= t1;
             st[2] *= t2;
@@ -339,7 +341,7 @@ static void composite_cel(cs_workspace *ws, int32_t lo, int32_t hi, bool record)
         st[0] *= t0 < CS__T_ZERO ? 0.0f : t0;
         st[1] *= t1 < CS__T_ZERO ? 0.0f : t1;
         st[2] *= t2 < CS__T_ZERO ? 0.0f : t2;
-        if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
+        if (record && ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f)))
             next[x] = x + 1;
     }
 }
@@ -414,7 +416,7 @@ void cs__line_stack(cs_renderer *r, int y)
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel) {
             if (cel_lo < cel_hi)
-                composite_cel(ws, cel_lo, cel_hi, record && cel_hides);
+                composite_cel(ws, cel_lo, cel_hi, cel_hides, record);
             cel_lo = INT32_MAX;
             cel_hi = INT32_MIN;
             cel_hides = false;
@@ -442,7 +444,7 @@ void cs__line_stack(cs_renderer *r, int y)
         i = j;
     }
     if (cel_lo < cel_hi)
-        composite_cel(ws, cel_lo, cel_hi, record && cel_hides);
+        composite_cel(ws, cel_lo, cel_hi, cel_hides, record);
     if (cache_pending)
         cs__cache_composite(r->cache, ws, y, record);
 }

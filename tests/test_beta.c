@@ -659,6 +659,15 @@ static void build_busy_scene(cs_scene *s)
     add_rect(s, 10.3, 10.6, 70.2, 40.4);
     add_region(s, paint(0.7, 0.2, 0.2, 0, 0, 0, 1));
     add_rect(s, 0, 44, 96, 52);
+    /* Two opaque regions of one cel meeting at a slanted edge: their
+     * coverages on the seam pixels sum to 1 only up to rounding. */
+    add_cel(s, NULL, NULL, NULL);
+    add_region(s, paint(0.9, 0.3, 0.3, 0, 0, 0, 1));
+    const double left[8] = {72.1, 2.3, 80.37, 2.3, 84.71, 62.2, 72.1, 62.2};
+    add_polygon(s, left, 4);
+    add_region(s, paint(0.3, 0.3, 0.9, 0, 0, 0, 1));
+    const double right[8] = {80.37, 2.3, 95.3, 2.3, 95.3, 62.2, 84.71, 62.2};
+    add_polygon(s, right, 4);
     /* Just behind the card, poking out of it by under a pixel on each side:
      * hidden only where the card is, so its bounds must be honest. */
     add_cel(s, NULL, NULL, NULL);
@@ -678,9 +687,9 @@ static void build_busy_scene(cs_scene *s)
 static void test_early_out_exact(void)
 {
     build_busy_scene(&g_scene);
-    for (int aa = 0; aa < 3; aa++) {
-        cs_render_opts o = opts_n(96, 64, 5);
-        o.aa = aa == 0 ? CS_AA_NONE : aa == 1 ? CS_AA_SUBSCAN : CS_AA_EXACT;
+    for (int aa = 0; aa < 5; aa++) {
+        cs_render_opts o = opts_n(96, 64, aa == 3 ? 3 : aa == 4 ? 7 : 5);
+        o.aa = aa == 0 ? CS_AA_NONE : aa == 2 ? CS_AA_EXACT : CS_AA_SUBSCAN;
         CHECK(render(&g_scene, &o, NULL, img_a) == CS_OK, "render");
         o.no_early_out = true;
         CHECK(render(&g_scene, &o, NULL, img_b) == CS_OK, "render");
