@@ -59,6 +59,10 @@ typedef enum cs_status {
     CS_ERR_CAP_PIECES,    /* workspace full: monotone pieces of one frame */
     CS_ERR_CAP_CROSSINGS, /* workspace full: crossings on one sub-scanline */
     CS_ERR_IO,            /* the line sink (display) refused a line */
+    CS_ERR_CAP_FUNCS,     /* scene store full: paint functions */
+    CS_ERR_FUNC,          /* paint function malformed (stops, geometry, kind) */
+    CS_ERR_CSG,           /* CSG program malformed (operand, operator, stack) */
+    CS_ERR_CAP_CACHE,     /* cache buffer too small for the pre-combined cels */
     CS_ERR_COUNT_
 } cs_status;
 
@@ -96,18 +100,80 @@ typedef struct cs_paint {
     float beta;
 } cs_paint;
 
+/*
+ * Functional paints. Any of a paint's three fields may be a function of
+ * position instead of a constant: a linear or radial gradient, or a small
+ * bilinear colour map (the paper's "colouring mapped from a colour space").
+ * Geometry is in the cel's own canvas units, so it moves with the cel
+ * transform. Values are linear light in 0..1; a beta function uses value[0].
+ */
+typedef enum cs_paint_field {
+    CS_FIELD_PIGMENT = 0,
+    CS_FIELD_MEDIUM = 1,
+    CS_FIELD_BETA = 2
+} cs_paint_field;
+
+typedef enum cs_func_kind {
+    CS_FUNC_LINEAR = 1, /* geom: x0 y0 x1 y1; t = 0 at (x0,y0), 1 at (x1,y1) */
+    CS_FUNC_RADIAL = 2, /* geom: cx cy r fx fy; t = 0 at focal (fx,fy), 1 on the circle */
+    CS_FUNC_MAP = 3     /* geom: ox oy ux uy vx vy; grid of map_cols x rows values */
+} cs_func_kind;
+
+typedef enum cs_spread {
+    CS_SPREAD_PAD = 0,     /* t clamped to [0,1] */
+    CS_SPREAD_REFLECT = 1, /* 0..1..0..1 */
+    CS_SPREAD_REPEAT = 2   /* 0..1 0..1 */
+} cs_spread;
+
+typedef struct cs_stop {
+    float offset;   /* 0..1, non-decreasing (ignored by CS_FUNC_MAP) */
+    float value[3]; /* linear light 0..1 */
+} cs_stop;
+
+/*
+ * LINEAR and RADIAL interpolate between stops (1..CS_CFG_MAX_STOPS) at t.
+ * MAP places the unit square at origin o with edges u and v (canvas units);
+ * stops[row * map_cols + col] is the value at o + u*col/(cols-1) +
+ * v*row/(rows-1), rows = stop_count / map_cols, and between nodes values are
+ * interpolated bilinearly. Spread applies to t (MAP: to both axes).
+ */
+typedef struct cs_paint_func {
+    uint8_t kind;       /* cs_func_kind */
+    uint8_t spread;     /* cs_spread */
+    uint8_t stop_count;
+    uint8_t map_cols;   /* CS_FUNC_MAP only */
+    float geom[6];
+    cs_stop stops[CS_CFG_MAX_STOPS];
+} cs_paint_func;
+
 /* A closed periodic NURBS: points[first .. first+count) of the scene. */
 typedef struct cs_contour {
     uint32_t first_point;
     uint16_t point_count;
     uint8_t degree;
+    uint8_t operand;   /* CSG operand it belongs to (0 unless set) */
 } cs_contour;
+
+/*
+ * CSG programs are RPN: a token >= 0 pushes "inside operand n" (the region's
+ * fill rule applied to the winding of the contours of operand n), a
+ * negative token pops b then a and pushes the operator applied to a, b.
+ */
+enum {
+    CS_CSG_UNION = -1,      /* a or b */
+    CS_CSG_INTERSECT = -2,  /* a and b */
+    CS_CSG_DIFFERENCE = -3, /* a and not b */
+    CS_CSG_XOR = -4         /* a xor b */
+};
 
 typedef struct cs_region {
     uint32_t first_contour;
     uint16_t contour_count;
     uint8_t fill_rule; /* cs_fill_rule */
+    uint8_t csg_len;   /* 0: one fill over all contours; else RPN length */
     cs_paint paint;
+    uint16_t func[3];  /* per cs_paint_field: 0 constant, else 1 + index in scene funcs */
+    uint8_t csg[CS_CFG_MAX_CSG]; /* operand n as n, operator k (-k in the API) as 0x80|k */
 } cs_region;
 
 /* An affine map x' = a x + c y + e, y' = b x + d y + f (SVG order a b c d e f). */
@@ -137,12 +203,13 @@ typedef struct cs_scene {
     float background[3]; /* linear light */
     float stack_front[3];
     float stack_back[3];
-    uint32_t cel_count, region_count, contour_count, point_count;
+    uint32_t cel_count, region_count, contour_count, point_count, func_count;
     cs_cel cels[CS_CFG_MAX_CELS];
     cs_region regions[CS_CFG_MAX_REGIONS];
     cs_contour contours[CS_CFG_MAX_CONTOURS];
     cs_point points[CS_CFG_MAX_POINTS];
     float intervals[CS_CFG_MAX_POINTS]; /* knot interval k of each contour, parallel to points */
+    cs_paint_func funcs[CS_CFG_MAX_FUNCS];
 } cs_scene;
 
 /* Empties the scene and sets its canvas. Lights default to front 1, back 0. */
@@ -172,6 +239,27 @@ cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint
 cs_status cs_scene_add_contour(cs_scene *scene, int degree, int count, const cs_point *points,
                                const float *intervals, cs_error *err);
 
+/*
+ * Makes field `field` of the last region's paint the function `fn` (copied
+ * into the scene; setting a field again replaces its function). The
+ * region's constant value for that field is then unused. Rejects stops out
+ * of order or range, degenerate geometry (p0 = p1, r <= 0, focal point not
+ * strictly inside the circle, a map with parallel edges) with CS_ERR_FUNC.
+ */
+cs_status cs_scene_set_region_func(cs_scene *scene, cs_paint_field field, const cs_paint_func *fn,
+                                   cs_error *err);
+
+/*
+ * Gives the last region a CSG program of `len` (1..CS_CFG_MAX_CSG) RPN
+ * tokens: operands 0..CS_CFG_MAX_OPERANDS-1 and CS_CSG_* operators. The
+ * program must leave exactly one value on the stack. err->item names the
+ * offending token.
+ */
+cs_status cs_scene_set_region_csg(cs_scene *scene, const int *rpn, int len, cs_error *err);
+
+/* Puts the last contour into CSG operand `operand` (default 0). */
+cs_status cs_scene_set_contour_operand(cs_scene *scene, int operand, cs_error *err);
+
 /* --------------------------------------------------------------- render */
 
 typedef enum cs_aa_mode {
@@ -180,12 +268,28 @@ typedef enum cs_aa_mode {
     CS_AA_EXACT = 2    /* exact area of the pixel square */
 } cs_aa_mode;
 
+typedef enum cs_blend {
+    CS_BLEND_LINEAR = 0, /* composite in linear light (the beta model's own space) */
+    CS_BLEND_SRGB = 1    /* composite sRGB-encoded values, as SVG renderers do */
+} cs_blend;
+
 typedef struct cs_render_opts {
     int width, height;  /* output size in pixels */
     cs_aa_mode aa;
     int subscanlines;   /* for CS_AA_SUBSCAN: 1..CS_CFG_MAX_SUBSCANLINES */
     float time;         /* seconds, for animation */
+    cs_blend blend;     /* zero (linear) unless asked */
+    bool no_early_out;  /* true: composite every cel even where the stack is already
+                           opaque. Bit-identical output, only slower: for tests and
+                           for measuring what front-to-back skipping saves. */
 } cs_render_opts;
+
+/*
+ * Options with every field set: width x height, 16 sub-scanlines, time 0,
+ * linear blending, early-out on. Start from this rather than filling the
+ * struct field by field, so that fields added later get their defaults.
+ */
+cs_render_opts cs_render_defaults(int width, int height);
 
 /*
  * One rational polynomial segment in device space: for u in [0,1)
@@ -193,6 +297,7 @@ typedef struct cs_render_opts {
  */
 typedef struct cs_segment {
     float x[4], y[4], w[4];
+    float x_lo, x_hi;  /* bounds of x(u) over [0,1] (Bezier hull), set by the frame */
     uint16_t region;   /* index into scene regions */
     uint8_t degree;
 } cs_segment;
@@ -242,11 +347,41 @@ typedef struct cs_workspace {
     float cel_E[CS_CFG_MAX_WIDTH * 3];
     float cel_A[CS_CFG_MAX_WIDTH * 3];    /* 1 - T of the cel */
     float stack_T[CS_CFG_MAX_WIDTH * 3];
+#if CS_CFG_CACHE
+    float cache_E[CS_CFG_MAX_WIDTH * 3];  /* the stack's E while building a cache */
+#endif
+    /* Opaque record of the line: opaque_next[x] == x while the stack still
+     * transmits at x; once T is 0 on every channel it points further right
+     * (a union-find "next clear pixel" with path compression). */
+    uint16_t opaque_next[CS_CFG_MAX_WIDTH + 1]; /* x fits 16 bits: see below */
+    float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
 } cs_workspace;
+
+/* Pixel positions are kept in 16 bits (opaque_next). */
+typedef char cs__width_fits_[CS_CFG_MAX_WIDTH < 65535 ? 1 : -1];
 
 /* Indices must be able to count every piece and segment. */
 typedef char cs__index_fits_[(CS_CFG_MAX_PIECES <= (cs_index)-1 &&
                               CS_CFG_MAX_SEGMENTS <= (cs_index)-1) ? 1 : -1];
+/*
+ * A cel range pre-combined into run-length (E, T) maps per line (the
+ * paper's "static background rendered once"). Lives in a caller's buffer;
+ * see cs_cache_build. Fields are read-only for the caller.
+ */
+typedef struct cs_cache_run {
+    uint16_t x, len;        /* pixels [x, x+len) share the map */
+    float E[3], T[3];
+} cs_cache_run;
+
+typedef struct cs_cache {
+    cs_status status;       /* CS_OK once built and usable */
+    size_t bytes_used;      /* of the buffer */
+    size_t bytes_needed;    /* what the build needed (also when it did not fit) */
+    uint32_t cel_first, cel_count, run_count;
+    cs_render_opts opts;    /* the cache is valid for these (time aside) */
+    const uint32_t *line_first; /* height + 1 run indices */
+    const cs_cache_run *runs;
+} cs_cache;
 
 /* The context of one frame. Set up by cs_frame_begin; fields are private. */
 typedef struct cs_renderer {
@@ -258,6 +393,9 @@ typedef struct cs_renderer {
     float sx, sy;        /* canvas to device scale */
     int next_line;
     cs_error sticky;     /* first capacity error met while rendering lines */
+    uint32_t cel_begin, cel_end;  /* cels rendered live: [begin, end) minus the cache's */
+    const cs_cache *cache;        /* pre-combined cels composited in their place, or NULL */
+    float *stack_E;               /* the stack's emitted light: the line being rendered */
 } cs_renderer;
 
 /*
@@ -267,6 +405,31 @@ typedef struct cs_renderer {
  */
 cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                          const cs_render_opts *opts, cs_error *err);
+
+/*
+ * As cs_frame_begin, but cels [cache->cel_first, +cel_count) are not
+ * scan-converted: their pre-combined lines from `cache` are composited in
+ * their place in the stack. `cache` may be NULL (render every cel). A cache
+ * that was not built successfully, or for other width, height, AA or blend
+ * options, is refused with CS_ERR_STATE: the caller falls back to NULL. The
+ * cache does not know about animation: it is the caller's promise that the
+ * cached cels (and the lights they use) did not change since the build.
+ */
+cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                                const cs_render_opts *opts, const cs_cache *cache,
+                                cs_error *err);
+
+/*
+ * Renders cels [cel_first, cel_first+cel_count) of `scene` alone at `opts`
+ * and stores each line as runs of (E, T) maps in `buffer` (any alignment;
+ * `size` bytes). Uses `ws` as scratch, so not while a frame is being
+ * rendered with it. If the runs do not fit, returns CS_ERR_CAP_CACHE with
+ * cache->bytes_needed set to the size that would have fitted, and the cache
+ * is unusable (cache->status != CS_OK): render those cels directly.
+ */
+cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspace *ws,
+                         const cs_scene *scene, const cs_render_opts *opts, uint32_t cel_first,
+                         uint32_t cel_count, cs_error *err);
 
 /*
  * Renders line y (0 = top) into rgb_linear (3*width floats, linear light).
@@ -301,7 +464,9 @@ typedef enum cs_pixfmt {
     CS_PIX_RGB888_SRGB = 0,  /* 3 bytes per pixel, sRGB-encoded */
     CS_PIX_RGB565_SRGB = 1,  /* 2 bytes per pixel, little-endian, sRGB-encoded */
     CS_PIX_RGB16_LINEAR = 2, /* 6 bytes per pixel, big-endian 16-bit linear (PNG order) */
-    CS_PIX_RGB888_LINEAR = 3 /* 3 bytes per pixel, linear */
+    CS_PIX_RGB888_LINEAR = 3,/* 3 bytes per pixel, linear */
+    CS_PIX_RGB444_SRGB = 4,  /* 2 bytes per pixel, little-endian 0x0RGB, sRGB-encoded */
+    CS_PIX_RGB332_SRGB = 5   /* 1 byte per pixel, RRRGGGBB, sRGB-encoded */
 } cs_pixfmt;
 
 /* The pixel format of the firmware panels; `celsim --crc` hashes frames in it. */
@@ -312,8 +477,21 @@ size_t cs_pixfmt_bytes_per_pixel(cs_pixfmt fmt);
 /* Converts one line of linear RGB floats (clamped to 0..1) to `fmt`. */
 void cs_pixfmt_convert(cs_pixfmt fmt, const float *rgb_linear, int width, uint8_t *out);
 
+/*
+ * As cs_pixfmt_convert, with ordered dithering for line y: an 8x8 Bayer
+ * threshold by pixel position spreads the rounding of each channel so that
+ * smooth gradients do not band on low-depth panels. Deterministic (no
+ * state); a value exactly on an output level is never disturbed. For
+ * CS_PIX_RGB16_LINEAR it is the same as cs_pixfmt_convert.
+ */
+void cs_pixfmt_convert_dither(cs_pixfmt fmt, const float *rgb_linear, int width, int y,
+                              uint8_t *out);
+
 /* sRGB encoding of one linear value in 0..1, as a 16-bit code (0..65535). */
 uint16_t cs_srgb_encode16(float linear);
+
+/* Linear light of an sRGB-encoded value in 0..1 (the inverse of the above). */
+float cs_srgb_decode(float encoded);
 
 /* ----------------------------------------------------------------- misc */
 

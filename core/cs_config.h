@@ -67,6 +67,27 @@
 #define CS_CFG_MAX_OPERANDS 8
 #endif
 
+/* RPN tokens of one region's CSG program (the bit stack holds 32). */
+#ifndef CS_CFG_MAX_CSG
+#define CS_CFG_MAX_CSG 16
+#endif
+
+/* Functional paints (gradients, colour maps) in a scene, and stops per function. */
+#ifndef CS_CFG_MAX_FUNCS
+#define CS_CFG_MAX_FUNCS 64
+#endif
+#ifndef CS_CFG_MAX_STOPS
+#define CS_CFG_MAX_STOPS 16
+#endif
+
+/*
+ * Pre-combined cel caches (cs_cache_build) need one more line of (E) floats
+ * in the workspace; a small board that keeps no cache can leave them out.
+ */
+#ifndef CS_CFG_CACHE
+#define CS_CFG_CACHE 1
+#endif
+
 /*
  * Largest absolute coordinate accepted, in canvas units and after transforms
  * in device pixels. Beyond it single-precision polynomials lose sub-pixel

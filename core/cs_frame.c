@@ -17,6 +17,13 @@
  *
  * Pieces are then ordered by y_top so that each line can pick up the newly
  * active ones with a moving index instead of scanning them all.
+ *
+ * The frame also fixes what the lines need besides geometry: each region's
+ * (E, T) map under its cel's lights (or, for functional paints, each
+ * function compiled to device space), the x bounds of every segment (so a
+ * line can skip a region lying wholly where the stack is already opaque),
+ * and, for CSG regions, which operand's winding each piece moves. Cels
+ * held in a pre-combination cache are not converted at all.
  */
 #include "cs_internal.h"
 
@@ -43,8 +50,43 @@ static int y_turns(const cs_segment *s, float *roots)
     return cs__poly_roots(n, 2 * p - 2, 0.0f, 1.0f, roots);
 }
 
+/*
+ * x bounds of a segment from its Bezier form: with positive homogeneous
+ * weights the curve lies in the hull of its control points. Power to
+ * Bernstein: b_i = sum_{j<=i} C(i,j)/C(p,j) a_j.
+ */
+static void segment_xbounds(cs_segment *s, float width)
+{
+    static const float ratio[4][4][4] = {
+        /* [p][i][j] = C(i,j) / C(p,j) */
+        {{1}},
+        {{1, 0}, {1, 1}},
+        {{1, 0, 0}, {1, 0.5f, 0}, {1, 1, 1}},
+        {{1, 0, 0, 0}, {1, 1.0f / 3.0f, 0, 0}, {1, 2.0f / 3.0f, 1.0f / 3.0f, 0}, {1, 1, 1, 1}},
+    };
+    int p = s->degree;
+    float lo = width, hi = 0.0f;
+    for (int i = 0; i <= p; i++) {
+        float bx = 0.0f, bw = 0.0f;
+        for (int j = 0; j <= i; j++) {
+            bx += ratio[p][i][j] * s->x[j];
+            bw += ratio[p][i][j] * s->w[j];
+        }
+        if (!(bw > 0.0f)) { /* not expected; then claim the whole line */
+            lo = 0.0f;
+            hi = width;
+            break;
+        }
+        float x = bx / bw;
+        lo = cs__minf(lo, x);
+        hi = cs__maxf(hi, x);
+    }
+    s->x_lo = cs__clampf(lo, 0.0f, width);
+    s->x_hi = cs__clampf(hi, 0.0f, width);
+}
+
 /* Appends the monotone pieces of segment `si`, whose end y is `y_end`. */
-static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end)
+static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t operand)
 {
     cs_workspace *ws = r->ws;
     const cs_segment *s = &ws->segments[si];
@@ -67,7 +109,7 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end)
             pc->y_bot = yb > ya ? yb : ya;
             pc->segment = (cs_index)si;
             pc->region = s->region;
-            pc->operand = 0;
+            pc->operand = operand;
         }
         ya = yb;
     }
@@ -101,6 +143,19 @@ static void sort_by_top(cs_workspace *ws, uint32_t n)
             ws->order[i] = a[i];
 }
 
+cs_render_opts cs_render_defaults(int width, int height)
+{
+    cs_render_opts o;
+    o.width = width;
+    o.height = height;
+    o.aa = CS_AA_SUBSCAN;
+    o.subscanlines = 16;
+    o.time = 0.0f;
+    o.blend = CS_BLEND_LINEAR;
+    o.no_early_out = false;
+    return o;
+}
+
 static cs_status check_opts(const cs_render_opts *o)
 {
     if (o->width < 1 || o->width > CS_CFG_MAX_WIDTH || o->height < 1 ||
@@ -110,24 +165,74 @@ static cs_status check_opts(const cs_render_opts *o)
         return CS_ERR_ARG;
     if (o->aa == CS_AA_SUBSCAN && (o->subscanlines < 1 || o->subscanlines > CS_CFG_MAX_SUBSCANLINES))
         return CS_ERR_ARG;
+    if (o->blend != CS_BLEND_LINEAR && o->blend != CS_BLEND_SRGB)
+        return CS_ERR_ARG;
     if (!cs__finite(o->time))
         return CS_ERR_NONFINITE;
     return CS_OK;
 }
 
-/* Region paint under the cel's lights: E = b p F + (1-b) m B, T = (1-b) m. */
-static void region_map(const cs_paint *p, const float *front, const float *back, float *E,
-                       float *T)
+/*
+ * Region paint under the cel's lights: E = b p F + (1-b) m B, T = (1-b) m.
+ * Under sRGB blending the colours are encoded first; lights stay
+ * multipliers.
+ */
+static void region_map(const cs_paint *p, const float *front, const float *back, bool srgb,
+                       float *E, float *T)
 {
     for (int k = 0; k < 3; k++) {
-        float clear = (1.0f - p->beta) * p->medium[k];
-        E[k] = p->beta * p->pigment[k] * front[k] + clear * back[k];
+        float pig = srgb ? cs__encode(p->pigment[k]) : p->pigment[k];
+        float med = srgb ? cs__encode(p->medium[k]) : p->medium[k];
+        float clear = (1.0f - p->beta) * med;
+        E[k] = p->beta * pig * front[k] + clear * back[k];
         T[k] = clear;
     }
 }
 
+/* Inverse of an affine map; all zeros when it is singular (its cel then
+ * has no area, so no pixel ever asks for a function value). */
+static cs_affine affine_inverse(const cs_affine *m)
+{
+    cs_affine inv = {0, 0, 0, 0, 0, 0};
+    float det = m->a * m->d - m->b * m->c;
+    if (!(det != 0.0f) || !cs__finite(1.0f / det))
+        return inv;
+    float k = 1.0f / det;
+    inv.a = m->d * k;
+    inv.b = -m->b * k;
+    inv.c = -m->c * k;
+    inv.d = m->a * k;
+    inv.e = -(inv.a * m->e + inv.c * m->f);
+    inv.f = -(inv.b * m->e + inv.d * m->f);
+    return inv;
+}
+
 cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                          const cs_render_opts *opts, cs_error *err)
+{
+    return cs__frame_prepare(r, ws, scene, opts, 0, UINT32_MAX, 0, err);
+}
+
+cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                                const cs_render_opts *opts, const cs_cache *cache,
+                                cs_error *err)
+{
+    if (cache && opts) {
+        const cs_render_opts *c = &cache->opts;
+        if (cache->status != CS_OK || c->width != opts->width || c->height != opts->height ||
+            c->aa != opts->aa || c->blend != opts->blend ||
+            (opts->aa == CS_AA_SUBSCAN && c->subscanlines != opts->subscanlines) || !scene ||
+            cache->cel_first + cache->cel_count > scene->cel_count) {
+            cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
+            return CS_ERR_STATE;
+        }
+    }
+    return cs__frame_prepare(r, ws, scene, opts, 0, UINT32_MAX, cache, err);
+}
+
+cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                            const cs_render_opts *opts, uint32_t cel_begin, uint32_t cel_end,
+                            const cs_cache *cache, cs_error *err)
 {
     cs__error(err, CS_OK, -1, -1, -1, -1);
     if (!r || !ws || !scene || !opts) {
@@ -144,6 +249,9 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
     r->opts = *opts;
     r->segment_count = r->piece_count = r->active_count = r->next_order = 0;
     r->next_line = 0;
+    r->cache = cache;
+    r->cel_begin = cel_begin;
+    r->cel_end = cel_end < scene->cel_count ? cel_end : scene->cel_count;
     cs__error(&r->sticky, CS_OK, -1, -1, -1, -1);
     r->sx = (float)opts->width / scene->canvas_w;
     r->sy = (float)opts->height / scene->canvas_h;
@@ -160,20 +268,30 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
         for (int ch = 0; ch < 3; ch++)
             ws->cel_E[3 * x + ch] = ws->cel_A[3 * x + ch] = 0.0f;
     }
-    for (int k = 0; k < 3; k++)
-        r->behind[k] = scene->has_background ? scene->background[k] * scene->stack_front[k]
-                                             : scene->stack_back[k];
+    bool srgb = opts->blend == CS_BLEND_SRGB;
+    for (int k = 0; k < 3; k++) {
+        float bg = srgb ? cs__encode(scene->background[k]) : scene->background[k];
+        r->behind[k] = scene->has_background ? bg * scene->stack_front[k] : scene->stack_back[k];
+    }
 
-    for (uint32_t ci = 0; ci < scene->cel_count; ci++) {
+    float width = (float)opts->width;
+    for (uint32_t ci = r->cel_begin; ci < r->cel_end; ci++) {
+        if (cache && ci >= cache->cel_first && ci - cache->cel_first < cache->cel_count)
+            continue; /* composited from the cache's runs instead */
         const cs_cel *cel = &scene->cels[ci];
         const float *front = cel->has_front ? cel->front : scene->stack_front;
         cs_affine m = cel->transform;
         cs_affine dev = {m.a * r->sx, m.b * r->sy, m.c * r->sx,
                          m.d * r->sy, m.e * r->sx, m.f * r->sy};
+        cs_affine inv = affine_inverse(&dev);
         for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++) {
             const cs_region *reg = &scene->regions[ri];
             ws->region_cel[ri] = (uint16_t)ci;
-            region_map(&reg->paint, front, cel->back, ws->region_E[ri], ws->region_T[ri]);
+            region_map(&reg->paint, front, cel->back, srgb, ws->region_E[ri], ws->region_T[ri]);
+            for (int f = 0; f < 3; f++)
+                if (reg->func[f])
+                    cs__func_compile(&scene->funcs[reg->func[f] - 1u], &inv,
+                                     ws->func_xf[reg->func[f] - 1u]);
             for (uint32_t k = 0; k < reg->contour_count; k++) {
                 const cs_contour *c = &scene->contours[reg->first_contour + k];
                 uint32_t first = r->segment_count, n;
@@ -184,9 +302,13 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
                                           CS_CFG_MAX_SEGMENTS - first, &n, &bad);
                 if (st == CS_OK) {
                     r->segment_count += n;
+                    /* Without CSG every contour winds together in operand 0. */
+                    uint8_t operand = reg->csg_len ? c->operand : 0;
                     for (uint32_t i = 0; i < n && st == CS_OK; i++) {
                         uint32_t next = first + (i + 1) % n;
-                        st = split_segment(r, first + i, seg_y(&ws->segments[next], 0.0f));
+                        segment_xbounds(&ws->segments[first + i], width);
+                        st = split_segment(r, first + i, seg_y(&ws->segments[next], 0.0f),
+                                           operand);
                     }
                 }
                 if (st != CS_OK) {

@@ -91,15 +91,56 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
                                cs_segment *out, uint32_t capacity, uint32_t *written,
                                int32_t *bad_point);
 
+/* Capacities the storage formats rely on. */
+_Static_assert(CS_CFG_MAX_CSG >= 1 && CS_CFG_MAX_CSG <= 32, "CSG bit stack holds 32 values");
+_Static_assert(CS_CFG_MAX_OPERANDS >= 1 && CS_CFG_MAX_OPERANDS <= 127,
+               "operand tokens are stored below 0x80");
+_Static_assert(CS_CFG_MAX_STOPS >= 2 && CS_CFG_MAX_STOPS <= 255, "stop_count is a uint8_t");
+_Static_assert(CS_CFG_MAX_FUNCS <= 65535, "regions refer to functions by uint16_t");
+_Static_assert(CS_CFG_MAX_WIDTH <= 65535, "cache runs store x and length as uint16_t");
+
+/* CSG operator tokens as stored in cs_region.csg. */
+#define CS__CSG_OP 0x80u
+
+static inline bool cs__fill(uint8_t rule, int32_t winding)
+{
+    return rule == CS_FILL_EVENODD ? (winding & 1) != 0 : winding != 0;
+}
+
 /*
  * Whether a point is inside `region`, given the winding number of each of
  * its operands (winding[0] only, unless the region combines operands). Every
  * coverage method asks this one question, so fill rules and CSG mean the
  * same thing in every anti-aliasing mode.
+ *
+ * A CSG region runs its RPN program on a stack of single bits kept in one
+ * register (bit 0 is the top). cs_scene_set_region_csg proved the program
+ * well formed (depth <= 32, one result, operands in range), so no check is
+ * needed here. Every operator yields "outside" when both inputs are
+ * outside, so a CSG region is never inside where none of its contours are:
+ * its bounds are those of its contours.
  */
 static inline bool cs__region_inside(const cs_region *region, const int32_t *winding)
 {
-    return region->fill_rule == CS_FILL_EVENODD ? (winding[0] & 1) != 0 : winding[0] != 0;
+    if (region->csg_len == 0)
+        return cs__fill(region->fill_rule, winding[0]);
+    uint32_t stack = 0;
+    for (uint32_t i = 0; i < region->csg_len; i++) {
+        uint32_t t = region->csg[i];
+        if (t < CS__CSG_OP) {
+            stack = (stack << 1) | (cs__fill(region->fill_rule, winding[t]) ? 1u : 0u);
+            continue;
+        }
+        uint32_t b = stack & 1u, a = (stack >> 1) & 1u, v;
+        switch (t & 0x7Fu) {
+        case 1: v = a | b; break;          /* CS_CSG_UNION */
+        case 2: v = a & b; break;          /* CS_CSG_INTERSECT */
+        case 3: v = a & (b ^ 1u); break;   /* CS_CSG_DIFFERENCE */
+        default: v = a ^ b; break;         /* CS_CSG_XOR */
+        }
+        stack = ((stack >> 2) << 1) | v;
+    }
+    return (stack & 1u) != 0;
 }
 
 /* sRGB encoding (0..1) of linear (i/1024)^2 (cs_srgb_table.c). */
@@ -119,5 +160,60 @@ static inline float cs__srgb_encode(float linear)
     float a = cs__srgb_by_sqrt[i], b = cs__srgb_by_sqrt[i + 1];
     return a + (b - a) * (pos - (float)i);
 }
+/*
+ * Stack transmittance below this counts as zero. Summed coverages of a
+ * pixel fully inside land within a few ulps of 1, not on it; calling
+ * T < 2^-20 (1/16 of a 16-bit output step) zero lets such pixels become
+ * exactly opaque, which is what makes skipping the cels behind them exact.
+ */
+#define CS__T_ZERO (1.0f / 1048576.0f)
+
+/* First pixel at or right of x whose stack still transmits (width if none). */
+static inline uint32_t cs__clear_from(uint16_t *next, uint32_t x)
+{
+    uint32_t root = x;
+    while (next[root] != root)
+        root = next[root];
+    while (next[x] != root) { /* path compression: later queries are O(1) */
+        uint32_t n = next[x];
+        next[x] = (uint16_t)root;
+        x = n;
+    }
+    return root;
+}
+
+/* ---- functional paints (cs_paint.c) */
+
+/*
+ * Compiles `fn` for a frame: xf maps a device pixel position to function
+ * space (LINEAR: row 0 gives t; RADIAL: the unit-circle frame; MAP: the
+ * unit-square frame), given `inv`, the cel's device-to-canvas affine.
+ */
+void cs__func_compile(const cs_paint_func *fn, const cs_affine *inv, float xf[6]);
+
+/* Value of `fn` at device position (px, py); sRGB-encoded if `srgb`. */
+void cs__func_eval(const cs_paint_func *fn, const float xf[6], float px, float py, bool srgb,
+                   float out[3]);
+
+/* sRGB-encoded value of a linear one, as a float 0..1 (--blend srgb). */
+static inline float cs__encode(float linear)
+{
+    return cs__srgb_encode(linear);
+}
+
+/* ---- line pipeline (cs_line.c), shared with the cache builder */
+
+/* Composites line y of every live cel (and the cache) into r->stack_E and ws->stack_T. */
+void cs__line_stack(cs_renderer *r, int y);
+
+/* Prepares the frame for cels [cel_begin, cel_end), skipping `cache`'s range. */
+cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                            const cs_render_opts *opts, uint32_t cel_begin, uint32_t cel_end,
+                            const cs_cache *cache, cs_error *err);
+
+/* Composites the cached runs of line y into the stack (cs_cache.c). */
+void cs__cache_composite(const cs_cache *cache, cs_workspace *ws, float *stack_E, int y,
+                         bool record);
+
 
 #endif /* CS_INTERNAL_H */

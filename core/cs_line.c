@@ -21,6 +21,15 @@
  * in front of it left (`used`), so a region hidden behind another in the
  * same cel stays hidden. The cel then joins the stack front to back:
  * E += T_stack E_cel, T_stack *= T_cel, and the pixel is E + T_stack L.
+ *
+ * Front to back pays off where the stack turns opaque. Where T_stack is 0
+ * on every channel, E += 0 * E_cel and T_stack *= T_cel leave the pixel
+ * exactly as it is, so later cels may be skipped there without changing a
+ * bit. The line keeps a record of such pixels (a "next clear pixel"
+ * union-find, O(width)); compositing and paint evaluation skip them, a
+ * region whose whole x range is opaque is not intersected at all, and the
+ * line stops when every pixel is opaque. A pre-combined cel range (the
+ * cache) is composited from its runs at its place in the stack.
  */
 #include "cs_internal.h"
 
@@ -125,11 +134,12 @@ static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *re
 }
 
 /*
- * Coverage of region `reg` on line y from its active pieces, folded into the
- * cel accumulators. [*cel_lo, *cel_hi) grows to what the cel touched.
+ * Coverage of region `reg` on line y from its active pieces, left in the
+ * area/cover accumulators over [*lo, *hi). Every anti-aliasing mode fills
+ * the same accumulators, so everything after this step is mode-blind.
  */
-static void render_region(cs_renderer *r, uint32_t reg, const cs_index *act, uint32_t n, int y,
-                          int32_t *cel_lo, int32_t *cel_hi)
+static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, uint32_t n, int y,
+                            int32_t *lo_out, int32_t *hi_out)
 {
     cs_workspace *ws = r->ws;
     const cs_region *region = &r->scene->regions[reg];
@@ -161,53 +171,179 @@ static void render_region(cs_renderer *r, uint32_t reg, const cs_index *act, uin
         }
         accumulate_spans(r, (uint32_t)count, region, weight, centres, &lo, &hi);
     }
-    if (lo >= hi)
-        return;
     if (hi > r->opts.width)
         hi = r->opts.width;
+    *lo_out = lo;
+    *hi_out = hi;
+}
+
+/*
+ * A region's paint at one pixel when any of its fields is a function:
+ * the same E, T as the frame's region_map, with the fields evaluated at the
+ * pixel centre.
+ */
+static void paint_at(const cs_renderer *r, const cs_region *region, const float *front,
+                     const float *back, float px, float py, float *E, float *A)
+{
+    const cs_scene *scene = r->scene;
+    bool srgb = r->opts.blend == CS_BLEND_SRGB;
+    float pig[3], med[3], beta;
+    const cs_paint *p = &region->paint;
+    if (region->func[CS_FIELD_PIGMENT]) {
+        uint32_t f = region->func[CS_FIELD_PIGMENT] - 1u;
+        cs__func_eval(&scene->funcs[f], r->ws->func_xf[f], px, py, srgb, pig);
+    } else {
+        for (int ch = 0; ch < 3; ch++)
+            pig[ch] = srgb ? cs__encode(p->pigment[ch]) : p->pigment[ch];
+    }
+    if (region->func[CS_FIELD_MEDIUM]) {
+        uint32_t f = region->func[CS_FIELD_MEDIUM] - 1u;
+        cs__func_eval(&scene->funcs[f], r->ws->func_xf[f], px, py, srgb, med);
+    } else {
+        for (int ch = 0; ch < 3; ch++)
+            med[ch] = srgb ? cs__encode(p->medium[ch]) : p->medium[ch];
+    }
+    if (region->func[CS_FIELD_BETA]) {
+        float v[3];
+        uint32_t f = region->func[CS_FIELD_BETA] - 1u;
+        cs__func_eval(&scene->funcs[f], r->ws->func_xf[f], px, py, false, v); /* a proportion */
+        beta = v[0];
+    } else {
+        beta = p->beta;
+    }
+    for (int ch = 0; ch < 3; ch++) {
+        float clear = (1.0f - beta) * med[ch];
+        E[ch] = beta * pig[ch] * front[ch] + clear * back[ch];
+        A[ch] = 1.0f - clear;
+    }
+}
+
+/*
+ * Folds the region's coverage over [lo, hi) into the cel accumulators and
+ * clears the coverage accumulators behind it. Pixels where the stack is
+ * already opaque are cleared but not accumulated: nothing there can show.
+ */
+static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi)
+{
+    cs_workspace *ws = r->ws;
+    const cs_region *region = &r->scene->regions[reg];
+    const uint16_t *next = ws->opaque_next;
+    bool functional = (region->func[0] | region->func[1] | region->func[2]) != 0;
+    const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];
+    const float *front = cel->has_front ? cel->front : r->scene->stack_front;
     const float *E = ws->region_E[reg], *T = ws->region_T[reg];
     float A[3] = {1.0f - T[0], 1.0f - T[1], 1.0f - T[2]};
+    float fE[3], fA[3];
+    float py = (float)y + 0.5f;
     float run = 0.0f;
     for (int32_t x = lo; x < hi; x++) {
         run += ws->cover[x];
         float c = cs__clampf(ws->area[x] + run, 0.0f, 1.0f);
         ws->area[x] = 0.0f;
         ws->cover[x] = 0.0f;
+        if (next[x] != (uint32_t)x)
+            continue;
         float room = 1.0f - ws->used[x];
         if (c > room)
             c = room;
         if (!(c > 0.0f))
             continue;
         ws->used[x] += c;
+        const float *e = E, *a = A;
+        if (functional) {
+            paint_at(r, region, front, cel->back, (float)x + 0.5f, py, fE, fA);
+            e = fE;
+            a = fA;
+        }
         float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
         for (int ch = 0; ch < 3; ch++) {
-            ce[ch] += c * E[ch];
-            ca[ch] += c * A[ch];
+            ce[ch] += c * e[ch];
+            ca[ch] += c * a[ch];
         }
     }
     /* Deltas at and just past the right end may remain; they sum to zero. */
     ws->area[hi] = ws->cover[hi] = 0.0f;
     ws->area[hi + 1] = ws->cover[hi + 1] = 0.0f;
-    if (lo < *cel_lo)
-        *cel_lo = lo;
-    if (hi > *cel_hi)
-        *cel_hi = hi;
 }
 
-/* Composites the accumulated cel behind the stack and clears it. The
- * stack's emitted light E lives in the caller's output line. */
-static void composite_cel(cs_workspace *ws, float *stack_E, int32_t lo, int32_t hi)
+/*
+ * Whether every pixel the region's pieces could touch on this line is
+ * already opaque. The bounds are the segments' Bezier hulls, widened by
+ * half a pixel so that a crossing rounded just past its hull still counts:
+ * a skipped region provably changes no pixel.
+ */
+static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
 {
-    for (int32_t x = lo; x < hi; x++) {
+    cs_workspace *ws = r->ws;
+    float lo = (float)r->opts.width, hi = 0.0f;
+    for (uint32_t i = 0; i < n; i++) {
+        const cs_segment *s = &ws->segments[ws->pieces[act[i]].segment];
+        lo = cs__minf(lo, s->x_lo);
+        hi = cs__maxf(hi, s->x_hi);
+    }
+    int32_t a = cs__floori(lo - 0.5f), b = cs__floori(hi + 0.5f) + 1;
+    if (a < 0)
+        a = 0;
+    if (b > r->opts.width)
+        b = r->opts.width;
+    return a >= b || cs__clear_from(ws->opaque_next, (uint32_t)a) >= (uint32_t)b;
+}
+
+/*
+ * Whether the region can make a pixel of its cel opaque on its own: T = 0
+ * on every channel (or a functional medium or beta that may reach it).
+ * The cel's T at a pixel is 1 - sum c_i (1 - T_i) with sum c_i <= 1, so it
+ * can only vanish where such regions cover it. Cels without one need
+ * neither the snapping of T nor the opaque record (stacks that become
+ * opaque only through several translucent cels are simply not recorded:
+ * that forgoes a skip, never changes a pixel).
+ */
+static bool region_may_hide(const cs_renderer *r, uint32_t reg)
+{
+    const cs_region *region = &r->scene->regions[reg];
+    const float *T = r->ws->region_T[reg];
+    return (T[0] < CS__T_ZERO && T[1] < CS__T_ZERO && T[2] < CS__T_ZERO) ||
+           region->func[CS_FIELD_MEDIUM] || region->func[CS_FIELD_BETA];
+}
+
+/*
+ * Composites the accumulated cel behind the stack and clears it. Pixels in
+ * the opaque record are jumped over. If the cel may hide (`snap`), T is
+ * snapped to 0 below CS__T_ZERO; with `record` as well, pixels whose stack
+ * T reaches 0 on every channel join the record, so no later cel visits
+ * them. Snapping depends on the cel alone, never on `record`, so turning
+ * the early-out off changes no bit of the result.
+ */
+static void composite_cel(cs_workspace *ws, float *stack_E, int32_t lo, int32_t hi, bool snap,
+                          bool record)
+{
+    uint16_t *next = ws->opaque_next;
+    for (uint32_t x = (uint32_t)lo; x < (uint32_t)hi; x++) {
+        if (next[x] != x) { /* an opaque run: jump over it in one step */
+            x = cs__clear_from(next, x);
+            if (x >= (uint32_t)hi)
+                break;
+        }
         float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
         float *se = &stack_E[3 * x], *st = &ws->stack_T[3 * x];
-        for (int ch = 0; ch < 3; ch++) {
-            se[ch] += st[ch] * ce[ch];
-            st[ch] *= 1.0f - ca[ch];
-            ce[ch] = 0.0f;
-            ca[ch] = 0.0f;
-        }
+        float t0 = 1.0f - ca[0], t1 = 1.0f - ca[1], t2 = 1.0f - ca[2];
+        se[0] += st[0] * ce[0];
+        se[1] += st[1] * ce[1];
+        se[2] += st[2] * ce[2];
+        ce[0] = ce[1] = ce[2] = 0.0f;
+        ca[0] = ca[1] = ca[2] = 0.0f;
         ws->used[x] = 0.0f;
+        if (!snap) {
+            st[0] *= t0;
+            st[1] *= t1;
+            st[2] *= t2;
+            continue;
+        }
+        st[0] *= t0 < CS__T_ZERO ? 0.0f : t0;
+        st[1] *= t1 < CS__T_ZERO ? 0.0f : t1;
+        st[2] *= t2 < CS__T_ZERO ? 0.0f : t2;
+        if (record && ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f)))
+            next[x] = (uint16_t)(x + 1);
     }
 }
 
@@ -254,44 +390,86 @@ static void update_active(cs_renderer *r, int y)
     r->next_line = y + 1;
 }
 
-cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
+void cs__line_stack(cs_renderer *r, int y)
 {
-    if (!r || !r->ws || !rgb_linear || y < 0 || y >= r->opts.height)
-        return CS_ERR_ARG;
     cs_workspace *ws = r->ws;
     int width = r->opts.width;
     update_active(r, y);
-    /* The output line accumulates the stack's E; it becomes the pixel in
-     * place at the end, so the workspace needs no line of its own for it. */
-    float *stack_E = rgb_linear;
     for (int i = 0; i < 3 * width; i++) {
-        stack_E[i] = 0.0f;
+        r->stack_E[i] = 0.0f;
         ws->stack_T[i] = 1.0f;
     }
+    for (int x = 0; x <= width; x++)
+        ws->opaque_next[x] = (uint16_t)x;
+    /* Without the record nothing is ever opaque, so nothing is skipped. */
+    bool record = !r->opts.no_early_out;
+    uint32_t cache_end = r->cache ? r->cache->cel_first + r->cache->cel_count : 0;
+    bool cache_pending = r->cache != 0;
     uint32_t i = 0;
     int32_t cel_lo = INT32_MAX, cel_hi = INT32_MIN;
     uint32_t current_cel = UINT32_MAX;
+    bool cel_hides = false;
     while (i < r->active_count) {
         uint32_t reg = ws->pieces[ws->active[i]].region;
         uint32_t j = i + 1;
         while (j < r->active_count && ws->pieces[ws->active[j]].region == reg)
             j++;
         uint32_t cel = ws->region_cel[reg];
-        if (cel != current_cel && cel_lo < cel_hi) {
-            composite_cel(ws, stack_E, cel_lo, cel_hi);
+        if (cel != current_cel) {
+            if (cel_lo < cel_hi)
+                composite_cel(ws, r->stack_E, cel_lo, cel_hi, cel_hides, record);
             cel_lo = INT32_MAX;
             cel_hi = INT32_MIN;
+            cel_hides = false;
+            if (cache_pending && cel >= cache_end) {
+                cs__cache_composite(r->cache, ws, r->stack_E, y, record);
+                cache_pending = false;
+            }
+            current_cel = cel;
+            /* Front to back: once the whole line is opaque nothing behind shows. */
+            if (cs__clear_from(ws->opaque_next, 0) >= (uint32_t)width)
+                break;
         }
-        current_cel = cel;
-        render_region(r, reg, &ws->active[i], j - i, y, &cel_lo, &cel_hi);
+        if (!region_hidden(r, &ws->active[i], j - i)) {
+            int32_t lo, hi;
+            region_coverage(r, reg, &ws->active[i], j - i, y, &lo, &hi);
+            if (lo < hi) {
+                fold_region(r, reg, y, lo, hi);
+                if (lo < cel_lo)
+                    cel_lo = lo;
+                if (hi > cel_hi)
+                    cel_hi = hi;
+                cel_hides = cel_hides || region_may_hide(r, reg);
+            }
+        }
         i = j;
     }
     if (cel_lo < cel_hi)
-        composite_cel(ws, stack_E, cel_lo, cel_hi);
-    for (int x = 0; x < 3 * width; x++) {
-        float v = stack_E[x] + ws->stack_T[x] * r->behind[x % 3];
-        rgb_linear[x] = cs__clampf(v, 0.0f, 1.0f);
+        composite_cel(ws, r->stack_E, cel_lo, cel_hi, cel_hides, record);
+    if (cache_pending)
+        cs__cache_composite(r->cache, ws, r->stack_E, y, record);
+}
+
+cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
+{
+    if (!r || !r->ws || !rgb_linear || y < 0 || y >= r->opts.height)
+        return CS_ERR_ARG;
+    /* The stack's emitted light accumulates in the caller's line, which then
+     * becomes the pixel in place: one line buffer less in the workspace. */
+    r->stack_E = rgb_linear;
+    cs__line_stack(r, y);
+    float L0 = r->behind[0], L1 = r->behind[1], L2 = r->behind[2];
+    const float *E = rgb_linear, *T = r->ws->stack_T;
+    int n = 3 * r->opts.width;
+    for (int i = 0; i < n; i += 3) {
+        rgb_linear[i] = cs__clampf(E[i] + T[i] * L0, 0.0f, 1.0f);
+        rgb_linear[i + 1] = cs__clampf(E[i + 1] + T[i + 1] * L1, 0.0f, 1.0f);
+        rgb_linear[i + 2] = cs__clampf(E[i + 2] + T[i + 2] * L2, 0.0f, 1.0f);
     }
+    /* sRGB blending composited encoded values; hand back linear light. */
+    if (r->opts.blend == CS_BLEND_SRGB)
+        for (int i = 0; i < n; i++)
+            rgb_linear[i] = cs_srgb_decode(rgb_linear[i]);
     return CS_OK;
 }
 

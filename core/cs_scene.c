@@ -55,6 +55,7 @@ cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
         scene->stack_back[i] = 0.0f;
     }
     scene->cel_count = scene->region_count = scene->contour_count = scene->point_count = 0;
+    scene->func_count = 0;
     return CS_OK;
 }
 
@@ -169,6 +170,9 @@ cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint
     r->contour_count = 0;
     r->fill_rule = (uint8_t)rule;
     r->paint = *paint;
+    r->csg_len = 0;
+    for (int k = 0; k < 3; k++)
+        r->func[k] = 0;
     return CS_OK;
 }
 
@@ -258,10 +262,193 @@ cs_status cs_scene_add_contour(cs_scene *scene, int degree, int count, const cs_
     c->first_point = scene->point_count;
     c->point_count = (uint16_t)count;
     c->degree = (uint8_t)degree;
+    c->operand = 0;
     for (int i = 0; i < count; i++) {
         scene->points[scene->point_count + (uint32_t)i] = points[i];
         scene->intervals[scene->point_count + (uint32_t)i] = intervals ? intervals[i] : 1.0f;
     }
     scene->point_count += (uint32_t)count;
+    return CS_OK;
+}
+
+/* ------------------------------------------------------ functional paints */
+
+/* The last region, or NULL (with err set) when there is none. */
+static cs_region *last_region(cs_scene *scene, cs_error *err, int32_t *cel, int32_t *region)
+{
+    if (scene->cel_count == 0 || scene->cels[scene->cel_count - 1].region_count == 0) {
+        cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
+        return 0;
+    }
+    *cel = (int32_t)scene->cel_count - 1;
+    *region = scene->cels[*cel].region_count - 1;
+    return &scene->regions[scene->region_count - 1];
+}
+
+static bool coord_ok(float v)
+{
+    return cs__finite(v) && cs__absf(v) <= CS_CFG_COORD_LIMIT;
+}
+
+/*
+ * Checks a paint function; *item is the offending stop (or -1 for the
+ * header and geometry). Degenerate geometry is refused here so that the
+ * per-pixel evaluation never divides by zero.
+ */
+static cs_status check_func(const cs_paint_func *fn, int32_t *item)
+{
+    *item = -1;
+    if (fn->kind < CS_FUNC_LINEAR || fn->kind > CS_FUNC_MAP || fn->spread > CS_SPREAD_REPEAT)
+        return CS_ERR_FUNC;
+    if (fn->stop_count < 1 || fn->stop_count > CS_CFG_MAX_STOPS)
+        return CS_ERR_FUNC;
+    int ngeom = fn->kind == CS_FUNC_LINEAR ? 4 : fn->kind == CS_FUNC_RADIAL ? 5 : 6;
+    for (int i = 0; i < ngeom; i++)
+        if (!coord_ok(fn->geom[i]))
+            return cs__finite(fn->geom[i]) ? CS_ERR_RANGE : CS_ERR_NONFINITE;
+    const float *g = fn->geom;
+    if (fn->kind == CS_FUNC_LINEAR) {
+        float dx = g[2] - g[0], dy = g[3] - g[1];
+        if (!(dx * dx + dy * dy > 1e-12f))
+            return CS_ERR_FUNC;
+    } else if (fn->kind == CS_FUNC_RADIAL) {
+        float dx = g[3] - g[0], dy = g[4] - g[1];
+        /* The focal point must lie strictly inside: on the circle the
+         * gradient's t is unbounded (SVG importers pull it in to 0.99 r). */
+        if (!(g[2] > 1e-6f) || !(dx * dx + dy * dy < 0.9999f * g[2] * g[2]))
+            return CS_ERR_FUNC;
+    } else {
+        float det = g[2] * g[5] - g[4] * g[3];
+        if (fn->map_cols < 1 || fn->stop_count % fn->map_cols != 0 || !(cs__absf(det) > 1e-12f))
+            return CS_ERR_FUNC;
+    }
+    for (int i = 0; i < fn->stop_count; i++) {
+        const cs_stop *st = &fn->stops[i];
+        *item = i;
+        if (!cs__finite(st->offset) || !rgb_finite(st->value))
+            return CS_ERR_NONFINITE;
+        if (!rgb_unit(st->value))
+            return CS_ERR_PAINT;
+        if (fn->kind == CS_FUNC_MAP)
+            continue;
+        if (!(st->offset >= 0.0f && st->offset <= 1.0f) ||
+            (i > 0 && st->offset < fn->stops[i - 1].offset))
+            return CS_ERR_FUNC;
+    }
+    *item = -1;
+    return CS_OK;
+}
+
+cs_status cs_scene_set_region_func(cs_scene *scene, cs_paint_field field, const cs_paint_func *fn,
+                                   cs_error *err)
+{
+    if (!scene || !fn || (unsigned)field > (unsigned)CS_FIELD_BETA) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    int32_t cel, region, item;
+    cs_region *r = last_region(scene, err, &cel, &region);
+    if (!r)
+        return CS_ERR_STATE;
+    cs_status st = check_func(fn, &item);
+    if (st != CS_OK) {
+        cs__error(err, st, cel, region, -1, item);
+        return st;
+    }
+    uint32_t slot;
+    if (r->func[field] != 0) {
+        slot = r->func[field] - 1u;
+    } else {
+        if (scene->func_count >= CS_CFG_MAX_FUNCS) {
+            cs__error(err, CS_ERR_CAP_FUNCS, cel, region, -1, -1);
+            return CS_ERR_CAP_FUNCS;
+        }
+        slot = scene->func_count++;
+        r->func[field] = (uint16_t)(slot + 1u);
+    }
+    /* Field by field: a struct copy this large may become a memcpy call. */
+    cs_paint_func *d = &scene->funcs[slot];
+    d->kind = fn->kind;
+    d->spread = fn->spread;
+    d->stop_count = fn->stop_count;
+    d->map_cols = fn->kind == CS_FUNC_MAP ? fn->map_cols : 1;
+    for (int i = 0; i < 6; i++)
+        d->geom[i] = fn->geom[i];
+    if (fn->kind == CS_FUNC_LINEAR)
+        d->geom[4] = d->geom[5] = 0.0f;
+    else if (fn->kind == CS_FUNC_RADIAL)
+        d->geom[5] = 0.0f;
+    for (int i = 0; i < CS_CFG_MAX_STOPS; i++) {
+        const cs_stop *s = &fn->stops[i < fn->stop_count ? i : fn->stop_count - 1];
+        d->stops[i].offset = s->offset;
+        copy3(d->stops[i].value, s->value);
+    }
+    return CS_OK;
+}
+
+/* ------------------------------------------------------------------- CSG */
+
+cs_status cs_scene_set_region_csg(cs_scene *scene, const int *rpn, int len, cs_error *err)
+{
+    if (!scene || !rpn) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    int32_t cel, region;
+    cs_region *r = last_region(scene, err, &cel, &region);
+    if (!r)
+        return CS_ERR_STATE;
+    if (len < 1 || len > CS_CFG_MAX_CSG) {
+        cs__error(err, CS_ERR_CSG, cel, region, -1, -1);
+        return CS_ERR_CSG;
+    }
+    /* Run the program on its depth alone: every token must find its inputs,
+     * and exactly one value must remain. */
+    int depth = 0;
+    for (int i = 0; i < len; i++) {
+        int t = rpn[i];
+        bool ok;
+        if (t >= 0) {
+            ok = t < CS_CFG_MAX_OPERANDS && depth < 32;
+            depth++;
+        } else {
+            ok = t >= CS_CSG_XOR && depth >= 2;
+            depth--;
+        }
+        if (!ok) {
+            cs__error(err, CS_ERR_CSG, cel, region, -1, i);
+            return CS_ERR_CSG;
+        }
+    }
+    if (depth != 1) {
+        cs__error(err, CS_ERR_CSG, cel, region, -1, len);
+        return CS_ERR_CSG;
+    }
+    for (int i = 0; i < len; i++)
+        r->csg[i] = (uint8_t)(rpn[i] >= 0 ? (unsigned)rpn[i] : (CS__CSG_OP | (unsigned)-rpn[i]));
+    r->csg_len = (uint8_t)len;
+    return CS_OK;
+}
+
+cs_status cs_scene_set_contour_operand(cs_scene *scene, int operand, cs_error *err)
+{
+    if (!scene) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    int32_t cel, region;
+    cs_region *r = last_region(scene, err, &cel, &region);
+    if (!r)
+        return CS_ERR_STATE;
+    if (r->contour_count == 0) {
+        cs__error(err, CS_ERR_STATE, cel, region, -1, -1);
+        return CS_ERR_STATE;
+    }
+    int32_t contour = r->contour_count - 1;
+    if (operand < 0 || operand >= CS_CFG_MAX_OPERANDS) {
+        cs__error(err, CS_ERR_CSG, cel, region, contour, -1);
+        return CS_ERR_CSG;
+    }
+    scene->contours[scene->contour_count - 1].operand = (uint8_t)operand;
     return CS_OK;
 }

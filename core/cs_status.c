@@ -31,6 +31,12 @@ static const char *const status_text[CS_ERR_COUNT_] = {
     [CS_ERR_CAP_PIECES] = "workspace full: too many monotone pieces in the frame",
     [CS_ERR_CAP_CROSSINGS] = "workspace full: too many crossings on one scanline",
     [CS_ERR_IO] = "the display refused a line",
+    [CS_ERR_CAP_FUNCS] = "scene store full: too many paint functions (gradients, maps)",
+    [CS_ERR_FUNC] = "paint function malformed: kind, stops (1..max, offsets 0..1 in order) "
+                    "or degenerate geometry",
+    [CS_ERR_CSG] = "CSG program malformed: operand out of range, operator without two inputs, "
+                   "or not exactly one result",
+    [CS_ERR_CAP_CACHE] = "cache buffer too small for the pre-combined cels",
 };
 
 const char *cs_status_str(cs_status status)

@@ -52,7 +52,7 @@ static const char usage_text[] =
     "  --encoding srgb|linear  8-bit sRGB PNG (default), or 16-bit linear-light PNG\n"
     "  --repeat N              render N times; print the median render time as\n"
     "                          'X.XXX ms/frame' (rendering only, not loading or writing)\n"
-    "  --blend linear|srgb     compositing space (default linear; srgb not implemented yet)\n"
+    "  --blend linear|srgb     compositing space: linear light (default) or sRGB-encoded as SVG renderers\n"
     "  --crc                   print 'frame crc32 XXXXXXXX' of the frame in the panel\n"
     "                          pixel format (RGB565, little-endian, rows top to bottom)\n"
     "  -h, --help              show this help\n"
@@ -312,6 +312,7 @@ static int render(const options *o, sim_state *s)
         .aa = o->aa,
         .subscanlines = o->aa == CS_AA_SUBSCAN ? o->subscanlines : 1,
         .time = o->time,
+        .blend = o->blend_srgb ? CS_BLEND_SRGB : CS_BLEND_LINEAR,
     };
     if (ro.width == 0) {
         /* The canvas size, rounded; at least one pixel. */
@@ -349,9 +350,6 @@ static int render(const options *o, sim_state *s)
         fprintf(stderr, "celsim: cannot set up a %dx%d display\n", ro.width, ro.height);
         return EXIT_LOAD;
     }
-
-    if (o->blend_srgb)
-        fprintf(stderr, "celsim: warning: --blend srgb not implemented yet, using linear\n");
 
     frame_drive d = {.dev = &dev, .line = s->line, .bytes = s->bytes, .panel = NULL};
     cs_renderer r;

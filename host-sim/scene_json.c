@@ -37,6 +37,7 @@
 #include <string.h>
 
 #include "scene_json.h"
+#include "paint_json.h"
 
 /* Deep enough for cels[N].regions[N].contours[N].intervals[N] with room to spare. */
 #define PATH_CAP 256
@@ -508,25 +509,12 @@ static int load_contour(loader *L, const cJSON *c)
     return 0;
 }
 
-static int load_paint(loader *L, const cJSON *region, cs_paint *paint)
+/* Passes on a message from paint_json, which already names the JSON path. */
+static int fail_with(loader *L, const char *msg)
 {
-    const cJSON *j = member(region, "paint");
-    size_t at = push_key(L, "paint");
-    if (j == NULL)
-        return fail(L, "missing (required object {\"pigment\", \"medium\", \"beta\"})");
-    if (!cJSON_IsObject(j))
-        return fail(L, "expected an object {\"pigment\", \"medium\", \"beta\"}, got %s", kind(j));
-    *paint = (cs_paint){{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 1.0f};
-    if (member_colour(L, j, "pigment", paint->pigment) != 0 ||
-        member_colour(L, j, "medium", paint->medium) != 0 ||
-        member_float(L, j, "beta", false, &paint->beta) != 0)
-        return -1;
-    if (!(paint->beta >= 0.0f && paint->beta <= 1.0f)) {
-        push_key(L, "beta");
-        return fail(L, "beta must be in 0..1, got %g", (double)paint->beta);
-    }
-    pop(L, at);
-    return 0;
+    if (L->errlen > 0)
+        snprintf(L->err, L->errlen, "%s: %s", L->name, msg);
+    return -1;
 }
 
 static int load_region(loader *L, const cJSON *r)
@@ -548,15 +536,23 @@ static int load_region(loader *L, const cJSON *r)
                         fr->valuestring);
         pop(L, at);
     }
-    cs_paint paint;
-    if (load_paint(L, r, &paint) != 0)
-        return -1;
+    /* Paints (constants or functions of position) and CSG: paint_json.c. */
+    const cJSON *pn = member(r, "paint");
+    if (pn == NULL) {
+        push_key(L, "paint");
+        return fail(L, "missing (required object {\"pigment\", \"medium\", \"beta\"})");
+    }
+    paint_json paint;
+    paint_json_csg csg;
+    char msg[512];
+    if (paint_json_parse(pn, L->path, &paint, msg, sizeof msg) != 0 ||
+        paint_json_parse_csg(r, L->path, &csg, msg, sizeof msg) != 0)
+        return fail_with(L, msg);
     const cJSON *contours;
     if (require_array(L, r, "contours", &contours) != 0)
         return -1;
-    cs_error e;
-    if (cs_scene_add_region(L->scene, rule, &paint, &e) != CS_OK)
-        return fail(L, "%s", cs_status_str(e.status));
+    if (paint_json_add_region(L->scene, rule, &paint, &csg, L->path, msg, sizeof msg) != 0)
+        return fail_with(L, msg);
     size_t at = push_key(L, "contours");
     int i = 0;
     const cJSON *c;
@@ -566,6 +562,8 @@ static int load_region(loader *L, const cJSON *r)
         if (load_contour(L, c) != 0)
             return -1;
         pop(L, at2);
+        if (paint_json_set_operand(L->scene, &csg, i, L->path, msg, sizeof msg) != 0)
+            return fail_with(L, msg);
         i++;
     }
     pop(L, at);

@@ -94,8 +94,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "fw_host_ref: scene %s: %s\n", scene_name, cs_status_str(st));
         return 1;
     }
-    cs_render_opts o = {width, height, subscan ? CS_AA_SUBSCAN : CS_AA_NONE,
-                        subscan ? subscan : 1, t};
+    cs_render_opts o = cs_render_defaults(width, height);
+    o.aa = subscan ? CS_AA_SUBSCAN : CS_AA_NONE;
+    o.subscanlines = subscan ? subscan : 1;
+    o.time = t;
     cs_renderer r;
     st = cs_frame_begin(&r, ws, scene, &o, &err);
     if (st != CS_OK) {

@@ -33,10 +33,17 @@
 #define CS_CFG_MAX_CELS 16
 #define CS_CFG_MAX_REGIONS 64
 #define CS_CFG_MAX_CONTOURS 128
-#define CS_CFG_MAX_POINTS 768
-#define CS_CFG_MAX_SEGMENTS 144
-#define CS_CFG_MAX_PIECES 208
+#define CS_CFG_MAX_POINTS 704
+#define CS_CFG_MAX_SEGMENTS 120
+#define CS_CFG_MAX_PIECES 176
 #define CS_CFG_MAX_CROSSINGS 64
 #define CS_CFG_INDEX_TYPE uint16_t
+/* Functional paints and CSG are kept small: signage uses a few gradients. */
+#define CS_CFG_MAX_FUNCS 4
+#define CS_CFG_MAX_STOPS 8
+#define CS_CFG_MAX_CSG 8
+#define CS_CFG_MAX_OPERANDS 4
+/* No pre-combined cache: it needs more RAM than the whole board has. */
+#define CS_CFG_CACHE 0
 
 #endif /* CS_CONFIG_480X272_H */

@@ -266,9 +266,7 @@ const fw_job fw_jobs[FW_JOB_COUNT] = {
 
 cs_render_opts fw_job_opts(const fw_job *job)
 {
-    cs_render_opts o;
-    o.width = job->width;
-    o.height = job->height;
+    cs_render_opts o = cs_render_defaults(job->width, job->height);
     o.aa = job->subscan ? CS_AA_SUBSCAN : CS_AA_NONE;
     o.subscanlines = job->subscan ? job->subscan : 1;
     o.time = (float)job->time_ms / 1000.0f;

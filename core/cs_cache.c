@@ -1,0 +1,164 @@
+/*
+ * cs_cache.c - pre-combination: a cel range rendered once, reused per frame.
+ *
+ * The beta model's overlay (E1, T1) over (E2, T2) = (E1 + T1 E2, T1 T2) is
+ * associative, so a run of cels that does not change (the paper's static
+ * background) can be combined once into a single equivalent cel and put
+ * back into any stack, with new cels in front of it or behind it. The
+ * combined cel is kept in scan-converted form, before pixel conversion: per
+ * line, runs of pixels sharing one (E, T) map. Clear pixels (0, 1) are not
+ * stored, and neighbours with bit-identical maps share a run, so flat
+ * artwork costs a few runs per line and only gradients and edges cost a run
+ * per pixel. Nothing is quantised: a frame from the cache differs from the
+ * direct render only by the rounding of the regrouped products (~1e-7).
+ *
+ * The runs live in a buffer the caller owns, of any size. The build always
+ * completes its count, so when the runs do not fit it can say how many
+ * bytes would have (bytes_needed), and the cache is marked unusable; the
+ * caller then renders those cels directly (cs_frame_begin_cached refuses
+ * an unusable cache, so the fallback cannot be silent).
+ *
+ * Layout in the buffer (aligned up to 4 bytes):
+ *   uint32_t line_first[height + 1]   index of each line's first run
+ *   cs_cache_run runs[]               in line order, x increasing
+ */
+#include "cs_internal.h"
+
+static bool same_map(const cs_cache_run *run, const float *E, const float *T)
+{
+    for (int ch = 0; ch < 3; ch++)
+        if (run->E[ch] != E[ch] || run->T[ch] != T[ch])
+            return false;
+    return true;
+}
+
+cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspace *ws,
+                         const cs_scene *scene, const cs_render_opts *opts, uint32_t cel_first,
+                         uint32_t cel_count, cs_error *err)
+{
+    cs__error(err, CS_OK, -1, -1, -1, -1);
+    if (!cache) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    cache->status = CS_ERR_STATE;
+    cache->bytes_used = cache->bytes_needed = 0;
+    cache->run_count = 0;
+    cache->cel_first = cel_first;
+    cache->cel_count = cel_count;
+    cache->line_first = 0;
+    cache->runs = 0;
+    if (!ws || !scene || !opts || (!buffer && size > 0) || cel_count == 0 ||
+        cel_first >= scene->cel_count || cel_count > scene->cel_count - cel_first) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    cache->opts = *opts;
+#if !CS_CFG_CACHE
+    (void)buffer;
+    (void)size;
+    cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
+    return CS_ERR_STATE; /* built without CS_CFG_CACHE */
+#else
+    cs_renderer r;
+    cs_status st = cs__frame_prepare(&r, ws, scene, opts, cel_first, cel_first + cel_count, 0, err);
+    if (st != CS_OK)
+        return st;
+    r.stack_E = ws->cache_E; /* cs_render_line would use the caller's line */
+
+    /* Carve the buffer: the line index first, then the runs. */
+    uintptr_t base = (uintptr_t)buffer;
+    size_t pad = (size_t)((4u - (base & 3u)) & 3u);
+    size_t header = pad + ((size_t)opts->height + 1u) * sizeof(uint32_t);
+    uint32_t *line_first = 0;
+    cs_cache_run *runs = 0;
+    size_t capacity = 0;
+    if (size >= header) {
+        line_first = (uint32_t *)(base + pad);
+        runs = (cs_cache_run *)(base + header);
+        capacity = (size - header) / sizeof(cs_cache_run);
+    }
+
+    int width = opts->width;
+    size_t count = 0;
+    for (int y = 0; y < opts->height; y++) {
+        cs__line_stack(&r, y);
+        if (line_first)
+            line_first[y] = (uint32_t)count;
+        /* The open run is built here and stored when it closes, so that the
+         * count (and bytes_needed) is exact even when nothing fits. */
+        cs_cache_run cur;
+        bool open = false;
+        for (int x = 0; x <= width; x++) {
+            const float *E = &ws->cache_E[3 * x], *T = &ws->stack_T[3 * x];
+            bool clear = x == width || (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f &&
+                                        T[0] == 1.0f && T[1] == 1.0f && T[2] == 1.0f);
+            if (open && !clear && same_map(&cur, E, T)) {
+                cur.len++;
+                continue;
+            }
+            if (open) {
+                if (count < capacity) {
+                    cs_cache_run *d = &runs[count];
+                    d->x = cur.x;
+                    d->len = cur.len;
+                    for (int ch = 0; ch < 3; ch++) {
+                        d->E[ch] = cur.E[ch];
+                        d->T[ch] = cur.T[ch];
+                    }
+                }
+                count++;
+                open = false;
+            }
+            if (clear)
+                continue; /* the gap between runs says so */
+            open = true;
+            cur.x = (uint16_t)x;
+            cur.len = 1;
+            for (int ch = 0; ch < 3; ch++) {
+                cur.E[ch] = E[ch];
+                cur.T[ch] = T[ch];
+            }
+        }
+    }
+    if (line_first)
+        line_first[opts->height] = (uint32_t)count;
+    cache->bytes_needed = header + count * sizeof(cs_cache_run);
+    if (count > capacity || !line_first || count > UINT32_MAX) {
+        cs__error(err, CS_ERR_CAP_CACHE, (int32_t)cel_first, -1, -1, -1);
+        return CS_ERR_CAP_CACHE;
+    }
+    cache->bytes_used = cache->bytes_needed;
+    cache->run_count = (uint32_t)count;
+    cache->line_first = line_first;
+    cache->runs = runs;
+    cache->status = CS_OK;
+    /* A capacity error met while rendering the range degrades the cached
+     * picture just as it would the direct one; report it, keep the cache. */
+    if (r.sticky.status != CS_OK) {
+        if (err)
+            *err = r.sticky;
+        return r.sticky.status;
+    }
+    return CS_OK;
+#endif
+}
+
+void cs__cache_composite(const cs_cache *cache, cs_workspace *ws, float *stack_E, int y,
+                         bool record)
+{
+    uint16_t *next = ws->opaque_next;
+    for (uint32_t k = cache->line_first[y]; k < cache->line_first[y + 1]; k++) {
+        const cs_cache_run *run = &cache->runs[k];
+        uint32_t end = (uint32_t)run->x + run->len;
+        for (uint32_t x = cs__clear_from(next, run->x); x < end; x = cs__clear_from(next, x + 1)) {
+            float *se = &stack_E[3 * x], *st = &ws->stack_T[3 * x];
+            for (int ch = 0; ch < 3; ch++) {
+                se[ch] += st[ch] * run->E[ch];
+                st[ch] *= run->T[ch];
+            }
+            if (record && st[0] == 0.0f && st[1] == 0.0f && st[2] == 0.0f)
+                next[x] = (uint16_t)(x + 1);
+        }
+    }
+}
