@@ -7,7 +7,7 @@
 # The tests link the core sources directly (not the freestanding library
 # objects) so that the sanitizer build instruments the core too.
 
-BETA_CFLAGS := -std=c11 -O2 -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -D_POSIX_C_SOURCE=200809L -MMD -MP
+BETA_CFLAGS := -std=c11 -O2 -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -D_POSIX_C_SOURCE=200809L -MMD -MP
 BETA_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 $(HOST)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR)

@@ -77,7 +77,7 @@ $(HOST)/fw_host_ref: $(HOST)/obj/tests/fw_host_ref.o $(HOST)/obj/firmware/scenes
 HOST_PROGRAMS += $(HOST)/fw_host_ref
 
 # The MCU display backend is plain C: its unit test runs on the host.
-$(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/mcu/mcu_display.o: HOST_CFLAGS += -Ihal/mcu
+$(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/mcu/mcu_display.o: HOST_CFLAGS += -Ihal/mcu -Itests
 $(HOST)/test_mcu_display: $(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/mcu/mcu_display.o \
                           $(HOST)/libcelscan.a
 	$(Q)$(CC) $^ -lz -o $@

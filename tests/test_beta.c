@@ -14,7 +14,7 @@
  * boolean combination of exact circles and polygons: exact horizontal
  * intervals on 512 rows per pixel, in long double.
  *
- * Own tiny harness; the last line is `test_beta: N passed, M failed`.
+ * On tests/testlib.h; the last line is `test_beta: N passed, M failed`.
  */
 #include <math.h>
 #include <stdio.h>
@@ -24,19 +24,7 @@
 
 #include "celscan.h"
 
-static int passed, failed;
-
-#define CHECK(cond, ...)                                                                   \
-    do {                                                                                   \
-        if (cond) {                                                                        \
-            passed++;                                                                      \
-        } else {                                                                           \
-            failed++;                                                                      \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                    \
-            printf(__VA_ARGS__);                                                           \
-            printf("\n");                                                                  \
-        }                                                                                  \
-    } while (0)
+#include "testlib.h"
 
 static cs_scene g_scene;
 static cs_workspace g_ws;
@@ -1326,6 +1314,5 @@ int main(void)
     test_func_validation();
     test_dither();
     test_srgb_blend();
-    printf("test_beta: %d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return tl_summary("test_beta");
 }

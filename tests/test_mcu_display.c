@@ -7,8 +7,8 @@
  * backend's CRC; the bytes themselves must be the RGB565 little-endian
  * encoding of known colours (black, white, pure primaries, whose codes are
  * exact); a failing panel is reported once while the frame and its CRC
- * still complete; bad arguments are refused. Self-contained (it predates
- * tests/testlib.h); it ends with `test_mcu_display: N passed, M failed`.
+ * still complete; bad arguments are refused. On tests/testlib.h; it ends
+ * with `test_mcu_display: N passed, M failed`.
  */
 #include <stdio.h>
 #include <string.h>
@@ -17,19 +17,7 @@
 #include "celscan.h"
 #include "mcu_display.h"
 
-static int passed, failed;
-
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (cond) {                                                                                \
-            passed++;                                                                              \
-        } else {                                                                                   \
-            failed++;                                                                              \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-        }                                                                                          \
-    } while (0)
+#include "testlib.h"
 
 #define W 8
 #define H 3
@@ -147,6 +135,5 @@ int main(void)
     mcu_display_init(&bare, NULL, line_bytes);
     CHECK(draw_frame(&bare) == crc, "CRC without a panel differs");
 
-    printf("test_mcu_display: %d passed, %d failed\n", passed, failed);
-    return failed != 0;
+    return tl_summary("test_mcu_display");
 }

@@ -13,18 +13,7 @@
 
 #include "paint_json.h"
 
-static int passed, failed;
-#define CHECK(cond, ...)                                                                   \
-    do {                                                                                   \
-        if (cond) {                                                                        \
-            passed++;                                                                      \
-        } else {                                                                           \
-            failed++;                                                                      \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                    \
-            printf(__VA_ARGS__);                                                           \
-            printf("\n");                                                                  \
-        }                                                                                  \
-    } while (0)
+#include "testlib.h"
 
 static cs_scene scene;
 
@@ -157,6 +146,5 @@ int main(void)
     expect_error("{\"paint\": {}, \"csg\": [0], \"contours\": [{},{},{},{},{},{},{},{},{}]}",
                  "group them");
     expect_error("{}", "r.paint: expected an object");
-    printf("test_paint_json: %d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return tl_summary("test_paint_json");
 }
