@@ -11,6 +11,7 @@
 #define CELFW_SCENES_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "celscan.h"
 
@@ -31,5 +32,8 @@ const char *celfw_scene_names(void);
  */
 #define CELFW_ANIM_R 6.0f
 void celfw_anim_disc(float t, float *x, float *y);
+
+/* Loads a scene JSON file (see celfw_scene_json.c). false with a message on failure. */
+bool celfw_scene_json(const char *path, cs_scene *scene, char *err, size_t errlen);
 
 #endif /* CELFW_SCENES_H */
