@@ -23,14 +23,24 @@ LX_ALL_OBJ := $(LX_HAL_OBJ) $(LX_FW_OBJ) $(HOST)/obj/firmware/linux/celfw.o $(LX
         $(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS))
 $(LX_ALL_OBJ): HOST_CFLAGS += -D_DEFAULT_SOURCE $(LX_INC) $(LX_PKG_CFLAGS) $(LX_UMOCKDEV_CFLAGS)
 
-$(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(HOST)/libcelscan.a
+# `make CELFW_JSON=1` links host-sim's scene JSON loader into celfw (--scene
+# FILE.json), once host-sim/scene_json.c is in the tree. After switching,
+# `rm build/host/obj/firmware/linux/celfw_scene_json.o` so it is rebuilt.
+ifeq ($(CELFW_JSON),1)
+LX_JSON_OBJ := $(HOST)/obj/host-sim/scene_json.o
+LX_JSON_LIBS = $(PKG_LIBS)
+$(HOST)/obj/firmware/linux/celfw_scene_json.o: HOST_CFLAGS += -DCELFW_HAVE_SCENE_JSON
+endif
+
+$(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(LX_JSON_OBJ) \
+        $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) -lm
+	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) -lm
 
 $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(LX_FW_OBJ) \
-        $(LX_HAL_OBJ) $(HOST)/libcelscan.a
+        $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_UMOCKDEV_LIBS) -lm -lpthread
+	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) -lm -lpthread
 
 # The tests run the real libgpiod and libusb against emulated device nodes:
 # libumockdev-preload redirects /dev and /sys into the test's own testbed.

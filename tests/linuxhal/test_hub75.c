@@ -9,7 +9,12 @@
  * in order), quantised to the panel's bit depth.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <gpiod.h>
+#include <linux/gpio.h>
+#include <sys/ioctl.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -259,6 +264,40 @@ static void test_errors(UMockdevTestbed *tb)
     CHECK(hub75_config_check(&c, err, sizeof err) == LX_ERR_CONFIG, "13 planes: '%s'", err);
 }
 
+/*
+ * The cheapest a character-device write can be on this host: an ioctl the
+ * kernel turns down at once (GPIOHANDLE_SET_LINE_VALUES on /dev/null). A real
+ * GPIO write adds gpiolib and the pin controller on top. syscall(2) goes
+ * around umockdev's ioctl wrapper, which would otherwise dominate.
+ */
+static double syscall_floor_ns(void)
+{
+    int fd = open("/dev/null", O_RDONLY);
+    struct gpiohandle_data hd;
+    memset(&hd, 0, sizeof hd);
+    const int n = 200000;
+    lx_clock clk = lx_clock_monotonic;
+    uint64_t t0 = lx_now(&clk);
+    for (int i = 0; i < n; i++)
+        (void)syscall(SYS_ioctl, fd, GPIOHANDLE_SET_LINE_VALUES_IOCTL, &hd);
+    uint64_t t1 = lx_now(&clk);
+    close(fd);
+    return (double)(t1 - t0) / n;
+}
+
+static void estimate(const char *what, int pw, int ph, int chain, int planes, double wns)
+{
+    hub75_config c;
+    hub75_config_default(&c);
+    c.panel_w = pw;
+    c.panel_h = ph;
+    c.chain = chain;
+    c.planes = planes;
+    printf("hub75 estimate: %-9s %3dx%-2d chain %d, %2d planes, lsb %u ns: %7llu writes/frame -> %7.1f Hz\n",
+           what, pw, ph, chain, planes, c.lsb_ns, (unsigned long long)hub75_writes_per_frame(&c),
+           hub75_refresh_estimate(&c, wns));
+}
+
 /* Write throughput through the emulated chip, and what it would mean. */
 static void report_throughput(UMockdevTestbed *tb)
 {
@@ -275,6 +314,17 @@ static void report_throughput(UMockdevTestbed *tb)
         d->ops->close(d);
     }
     fake_gpiochip_free(chip);
+    /* what the drive sequence allows at a given cost per write */
+    double floor = syscall_floor_ns();
+    printf("hub75: syscall floor on this host (ioctl turned down by the kernel): %.0f ns\n", floor);
+    const double per_write[3] = {floor, 1000.0, 2000.0};
+    const char *label[3] = {"floor", "1us/wr", "2us/wr"};
+    for (int i = 0; i < 3; i++) {
+        estimate(label[i], 64, 32, 1, 8, per_write[i]);
+        estimate(label[i], 64, 32, 1, 11, per_write[i]);
+        estimate(label[i], 64, 64, 1, 8, per_write[i]);
+        estimate(label[i], 64, 32, 2, 8, per_write[i]);
+    }
 }
 
 int main(void)
