@@ -253,6 +253,8 @@ static void wait_and_serve(celfw *fw, uint64_t until)
     static const celfw_input_sink sink_proto = {NULL, on_bytes, on_reset, on_note};
     celfw_input_sink sink = sink_proto;
     sink.user = fw;
+    if (fw->in)
+        celfw_input_tick(fw->in, &sink);
     do {
         struct pollfd pfd[2];
         int n = fw->in ? celfw_input_pollfds(fw->in, pfd, 2) : 0;

@@ -17,6 +17,7 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <termios.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "celfw_input.h"
@@ -30,6 +31,8 @@ struct celfw_input {
     char desc[300];
     char peer[80];
     uint64_t session_bytes;
+    char spec[256];          /* tty: reopened from this after the port goes away */
+    time_t next_reopen;
     uint8_t buf[65536]; /* one read's worth: bounds the time a read takes from a frame */
 };
 
@@ -122,6 +125,7 @@ static int open_tty(celfw_input *in, const char *spec, char *err, size_t errlen)
         }
         *colon = 0;
     }
+    snprintf(in->spec, sizeof in->spec, "%s", spec);
     int fd = open(dev, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
         snprintf(err, errlen, "input tty:%s: cannot open %s: %s", spec, dev, strerror(errno));
@@ -258,6 +262,24 @@ void celfw_input_service(celfw_input *in, const struct pollfd *pfd, int n, const
             snprintf(why, sizeof why, "read failed: %s", strerror(errno));
             end_session(in, sink, why);
         }
+    }
+}
+
+void celfw_input_tick(celfw_input *in, const celfw_input_sink *sink)
+{
+    /* a USB serial adapter that was pulled out may come back: try once a second */
+    if (in->k != IN_TTY || in->fd >= 0)
+        return;
+    time_t now = time(NULL);
+    if (now < in->next_reopen)
+        return;
+    in->next_reopen = now + 1;
+    char err[300], spec[256];
+    snprintf(spec, sizeof spec, "%s", in->spec);
+    if (open_tty(in, spec, err, sizeof err) == 0 && sink->note) {
+        char what[400];
+        snprintf(what, sizeof what, "input %s reopened", in->desc);
+        sink->note(sink->user, what);
     }
 }
 

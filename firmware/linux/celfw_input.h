@@ -30,6 +30,8 @@ int celfw_input_open(celfw_input **in, const char *spec, char *err, size_t errle
 int celfw_input_pollfds(celfw_input *in, struct pollfd *pfd, int max);
 /* Handles what poll reported for those descriptors. */
 void celfw_input_service(celfw_input *in, const struct pollfd *pfd, int n, const celfw_input_sink *sink);
+/* Called once per frame: reopens a tty that went away. */
+void celfw_input_tick(celfw_input *in, const celfw_input_sink *sink);
 /* What the input is, resolved (e.g. "tcp:127.0.0.1:40123" for port 0). */
 const char *celfw_input_describe(const celfw_input *in);
 void celfw_input_close(celfw_input *in);
