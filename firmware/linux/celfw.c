@@ -308,11 +308,15 @@ static const char *run(celfw *fw)
             say("error", "%s", fw->disp->err);
             return "error";
         } else {
+            /* at panel rates a persistent fault would flood the log: say it
+             * the first few times, then every thousandth */
             fw->failures++;
+            bool tell = fw->failures <= 3 || fw->failures % 1000 == 0;
             if (s == LX_ERR_RENDER && render_errors++ < 3)
                 say("event", "render failed: %s (%s)", cs_status_str(fw->src.err.status), fw->disp->err);
-            else if (s != LX_ERR_RENDER)
-                say("event", "frame failed: %s: %s", lx_status_str(s), fw->disp->err);
+            else if (s != LX_ERR_RENDER && tell)
+                say("event", "frame failed (%llu so far): %s: %s", (unsigned long long)fw->failures,
+                    lx_status_str(s), fw->disp->err);
         }
         uint64_t now = lx_now(&lx_clock_monotonic);
         if (log_every && now - fw->last_log >= log_every)

@@ -80,7 +80,7 @@ void gud_config_default(gud_config *c)
     c->timeout_ms = 1000;
     c->retries = 2;
     c->reconnect_ms = 500;
-    c->max_band_bytes = 256u * 1024u;
+    c->max_band_bytes = 64u * 1024u; /* a transfer buffer, not a frame: 800x480 RGB565 takes 12 */
 }
 
 static lx_status from_libusb(int r)

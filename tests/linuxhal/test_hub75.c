@@ -205,6 +205,14 @@ static void test_bulk_pitfall(UMockdevTestbed *tb)
     CHECK(gpiod_line_set_value_bulk(&bulk, v) == 0, "set_value_bulk");
     w = fake_gpiochip_wires(chip);
     CHECK(((w >> 5) & 1u) == 0 && ((w >> 6) & 1u) == 1, "set_value_bulk drives line 6");
+    int got[3] = {-1, -1, -1};
+    CHECK(gpiod_line_get_value_bulk(&bulk, got) == 0 && got[0] == 0 && got[1] == 0 && got[2] == 1,
+          "get_value_bulk reads back 0 0 1 (got %d %d %d)", got[0], got[1], got[2]);
+    struct gpiod_line *l6 = gpiod_chip_get_line(gc, 6);
+    CHECK(gpiod_line_update(l6) == 0 && gpiod_line_is_used(l6) &&
+              gpiod_line_direction(l6) == GPIOD_LINE_DIRECTION_OUTPUT &&
+              strcmp(gpiod_line_consumer(l6), "pitfall") == 0,
+          "line info: used, output, consumer 'pitfall'");
     /* kernel semantics: a second request of a taken line is EBUSY */
     struct gpiod_line *l13 = gpiod_chip_get_line(gc, 13);
     errno = 0;
