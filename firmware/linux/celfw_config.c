@@ -96,6 +96,7 @@ static bool p_size(celfw_config *c, const char *v, char *err, size_t n)
 
 static bool p_fps(celfw_config *c, const char *v, char *err, size_t n)
 {
+    c->fps_set = true;
     return parse_num(v, 0.0, 10000.0, &c->fps, err, n);
 }
 
@@ -320,7 +321,7 @@ static bool p_bench(celfw_config *c, const char *v, char *err, size_t n)
 static const setting settings[] = {
     {"backend", "gpio|usb|null", p_backend, "display backend (default null)"},
     {"size", "WxH", p_size, "render size (null: required; usb: default the device's mode)"},
-    {"fps", "N", p_fps, "frames per second to aim for; 0 = as fast as the display takes them"},
+    {"fps", "N", p_fps, "frames per second (default 30); 0 = unpaced. HUB75 is always unpaced"},
     {"aa", "none|N", p_aa, "anti-aliasing: pixel centres, or N sub-scanlines (default 4)"},
     {"input", "SPEC", p_input, "cel stream: none, stdin, file:PATH, tcp:[HOST:]PORT, tty:DEV[:BAUD]"},
     {"scene", "SPEC", p_scene, "scene until the stream commits one: builtin:demo|anim|bars, FILE.json, none"},
@@ -507,7 +508,7 @@ int celfw_config_parse(celfw_config *c, int argc, char **argv, char *err, size_t
     return 0;
 }
 
-bool celfw_config_check(const celfw_config *c, char *err, size_t errlen)
+bool celfw_config_check(celfw_config *c, char *err, size_t errlen)
 {
     char why[256];
     switch (c->backend) {
@@ -518,6 +519,11 @@ bool celfw_config_check(const celfw_config *c, char *err, size_t errlen)
         }
         break;
     case CELFW_GPIO:
+        if (c->fps_set && c->fps > 0) {
+            snprintf(err, errlen, "fps %g: a HUB75 panel shows nothing between scans, so celfw rescans it "
+                     "continuously (each scan is a frame); leave fps out", c->fps);
+            return false;
+        }
         if (hub75_config_check(&c->hub75, why, sizeof why) != LX_OK) {
             snprintf(err, errlen, "%s", why);
             return false;
@@ -536,6 +542,8 @@ bool celfw_config_check(const celfw_config *c, char *err, size_t errlen)
         }
         break;
     }
+    if (c->backend == CELFW_GPIO)
+        c->fps = 0.0;
     if (c->bench_gpio && c->backend != CELFW_GPIO) {
         snprintf(err, errlen, "bench-gpio needs backend gpio");
         return false;

@@ -24,6 +24,7 @@ typedef struct celfw_config {
     celfw_backend backend;
     int width, height;     /* null: required; usb: 0 = the device's mode; gpio: derived */
     double fps;            /* frame pacing; 0 = as fast as the display takes frames */
+    bool fps_set;          /* fps was given (HUB75 is rescanned unpaced, so it may not be) */
     cs_aa_mode aa;
     int subscanlines;
     char input[256];       /* none | stdin | file:PATH | tcp:[HOST:]PORT | tty:DEVICE[:BAUD] */
@@ -47,8 +48,9 @@ void celfw_config_default(celfw_config *c);
  */
 int celfw_config_parse(celfw_config *c, int argc, char **argv, char *err, size_t errlen);
 
-/* Cross-checks settings after parsing (backend needs, sizes, pins). */
-bool celfw_config_check(const celfw_config *c, char *err, size_t errlen);
+/* Cross-checks settings after parsing (backend needs, sizes, pins) and
+ * settles what depends on the backend (HUB75: unpaced). */
+bool celfw_config_check(celfw_config *c, char *err, size_t errlen);
 
 void celfw_usage(FILE *out);
 

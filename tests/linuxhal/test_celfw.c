@@ -166,6 +166,8 @@ static void test_config_errors(void)
 {
     expect_failure("bad number", (const char *[]){"--backend", "gpio", "--planes", "99", NULL}, 2,
                    "celfw: error --planes: '99' is not an integer in 1..12");
+    expect_failure("paced HUB75", (const char *[]){"--backend", "gpio", "--fps", "60", NULL}, 2,
+                   "rescans it continuously");
     expect_failure("unknown option", (const char *[]){"--plains", "8", NULL}, 2, "unknown option '--plains'");
     expect_failure("null without size", (const char *[]){"--backend", "null", NULL}, 2, "needs --size");
     expect_failure("bad backend", (const char *[]){"--backend", "hdmi", NULL}, 2,
