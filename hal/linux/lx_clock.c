@@ -1,0 +1,50 @@
+/*
+ * lx_clock.c - the monotonic clock behind celfw's drivers, and status strings.
+ *
+ * nanosleep() on a loaded board overshoots by tens of microseconds, far more
+ * than the shortest HUB75 bit plane, so the wait sleeps only while the target
+ * is comfortably far away and spins on clock_gettime() for the rest.
+ */
+#include <time.h>
+
+#include "lx_display.h"
+
+/* Below this the scheduler's wake-up latency would overshoot the target. */
+#define LX_SPIN_NS 80000u
+
+static uint64_t mono_now(void *user)
+{
+    (void)user;
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
+
+static void mono_wait_until(void *user, uint64_t t)
+{
+    uint64_t now = mono_now(user);
+    if (t > now + LX_SPIN_NS) {
+        uint64_t d = t - now - LX_SPIN_NS;
+        struct timespec ts = {(time_t)(d / 1000000000u), (long)(d % 1000000000u)};
+        nanosleep(&ts, NULL);
+    }
+    while (mono_now(user) < t) {
+    }
+}
+
+const lx_clock lx_clock_monotonic = {NULL, mono_now, mono_wait_until};
+
+const char *lx_status_str(lx_status st)
+{
+    switch (st) {
+    case LX_OK: return "ok";
+    case LX_ERR_CONFIG: return "bad configuration";
+    case LX_ERR_NO_DEVICE: return "device absent";
+    case LX_ERR_IO: return "I/O error";
+    case LX_ERR_TIMEOUT: return "timed out";
+    case LX_ERR_PROTOCOL: return "protocol error";
+    case LX_ERR_RENDER: return "render error";
+    case LX_ERR_NOMEM: return "out of memory";
+    }
+    return "unknown status";
+}

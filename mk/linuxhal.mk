@@ -1,0 +1,54 @@
+# linuxhal.mk - celfw (firmware for Linux boards), its GPIO (HUB75 through
+# libgpiod) and USB (GUD through libusb) backends, and their tests against
+# emulated kernel devices (umockdev, in process).
+#
+#   make build/host/celfw     the board program
+#   make test-linuxhal        the emulated-device tests (also part of make test)
+
+LX_PKGS := libgpiod libusb-1.0 liblz4
+LX_PKG_CFLAGS = $(shell pkg-config --cflags $(LX_PKGS) 2>/dev/null)
+LX_PKG_LIBS = $(shell pkg-config --libs $(LX_PKGS) 2>/dev/null)
+LX_UMOCKDEV_CFLAGS = $(shell pkg-config --cflags umockdev-1.0 2>/dev/null)
+LX_UMOCKDEV_LIBS = $(shell pkg-config --libs umockdev-1.0 2>/dev/null)
+LX_INC := -Ihal/linux -Ihal/gpio -Ihal/usb -Ifirmware/linux
+
+LX_HAL_SRC := $(wildcard hal/linux/*.c hal/gpio/*.c hal/usb/*.c)
+LX_FW_SRC := $(filter-out firmware/linux/celfw.c,$(wildcard firmware/linux/*.c))
+LX_HAL_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(LX_HAL_SRC))
+LX_FW_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(LX_FW_SRC))
+LX_TEST_SUPPORT := $(patsubst %.c,$(HOST)/obj/%.o,$(filter-out tests/linuxhal/test_%.c,$(wildcard tests/linuxhal/*.c)))
+LX_TESTS := $(patsubst tests/linuxhal/%.c,$(HOST)/tests/%,$(wildcard tests/linuxhal/test_*.c))
+
+LX_ALL_OBJ := $(LX_HAL_OBJ) $(LX_FW_OBJ) $(HOST)/obj/firmware/linux/celfw.o $(LX_TEST_SUPPORT) \
+        $(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS))
+$(LX_ALL_OBJ): HOST_CFLAGS += -D_DEFAULT_SOURCE $(LX_INC) $(LX_PKG_CFLAGS) $(LX_UMOCKDEV_CFLAGS)
+
+# `make CELFW_JSON=1` links host-sim's scene JSON loader into celfw (--scene
+# FILE.json), once host-sim/scene_json.c is in the tree. After switching,
+# `rm build/host/obj/firmware/linux/celfw_scene_json.o` so it is rebuilt.
+ifeq ($(CELFW_JSON),1)
+LX_JSON_OBJ := $(HOST)/obj/host-sim/scene_json.o
+LX_JSON_LIBS = $(PKG_LIBS)
+$(HOST)/obj/firmware/linux/celfw_scene_json.o: HOST_CFLAGS += -DCELFW_HAVE_SCENE_JSON
+endif
+
+$(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(LX_JSON_OBJ) \
+        $(HOST)/libcelscan.a
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) -lm
+
+$(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(LX_FW_OBJ) \
+        $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/libcelscan.a
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) -lm -lpthread
+
+# The tests run the real libgpiod and libusb against emulated device nodes:
+# libumockdev-preload redirects /dev and /sys into the test's own testbed.
+LX_PRELOAD := umockdev-wrapper
+.PHONY: test-linuxhal
+test-linuxhal: $(LX_TESTS) $(HOST)/celfw
+	$(Q)set -e; for t in $(LX_TESTS); do CELFW=$(HOST)/celfw $(LX_PRELOAD) $$t; done
+
+all: $(HOST)/celfw
+HOST_PROGRAMS += $(HOST)/celfw
+TEST_TARGETS += test-linuxhal

@@ -1,0 +1,432 @@
+/*
+ * test_celfw.c - celfw as a program: configuration errors, inputs, the USB
+ * display over its whole life (stream over TCP, unplug, replug), SIGTERM.
+ *
+ * celfw runs as a child process under the same umockdev preload, so its
+ * libusb finds the emulated GUD display that this process serves; the panel
+ * memory is compared with the core's rendering of the frame celfw reports
+ * last (--time-step makes the animation time exact and repeatable).
+ */
+#include <arpa/inet.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "celfw_scenes.h"
+#include "fake_gud.h"
+#include "gud_wire.h"
+#include "lx_test.h"
+
+static const char *celfw_path;
+static cs_scene scene;
+static cs_workspace ws;
+
+typedef struct child {
+    pid_t pid;
+    int err_fd, in_fd;
+    char log[65536];
+    size_t len, seen;
+} child;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec / 1e9;
+}
+
+/* Starts celfw with args (NULL-terminated); stdin is a pipe if want_stdin. */
+static bool spawn(child *c, const char *const *args, bool want_stdin)
+{
+    int ep[2], ip[2] = {-1, -1};
+    memset(c, 0, sizeof *c);
+    if (pipe(ep) != 0 || (want_stdin && pipe(ip) != 0))
+        return false;
+    const char *argv[40];
+    int n = 0;
+    argv[n++] = celfw_path;
+    for (int i = 0; args[i] && n < 39; i++)
+        argv[n++] = args[i];
+    argv[n] = NULL;
+    c->pid = fork();
+    if (c->pid == 0) {
+        dup2(ep[1], 2);
+        if (want_stdin)
+            dup2(ip[0], 0);
+        else
+            close(0);
+        close(ep[0]);
+        if (want_stdin)
+            close(ip[1]);
+        execv(celfw_path, (char *const *)argv);
+        _exit(127);
+    }
+    close(ep[1]);
+    c->err_fd = ep[0];
+    fcntl(c->err_fd, F_SETFL, O_NONBLOCK);
+    if (want_stdin) {
+        close(ip[0]);
+        c->in_fd = ip[1];
+    } else {
+        c->in_fd = -1;
+    }
+    return c->pid > 0;
+}
+
+static void drain(child *c)
+{
+    for (;;) {
+        if (c->len + 1 >= sizeof c->log)
+            return;
+        ssize_t r = read(c->err_fd, c->log + c->len, sizeof c->log - 1 - c->len);
+        if (r <= 0)
+            return;
+        c->len += (size_t)r;
+        c->log[c->len] = 0;
+    }
+}
+
+/* Waits for a log line containing needle (after the last one found); copies it out. */
+static bool wait_line(child *c, const char *needle, double timeout, char *out, size_t outlen)
+{
+    double end = now_s() + timeout;
+    do {
+        drain(c);
+        char *hit = strstr(c->log + c->seen, needle);
+        if (hit) {
+            char *bol = hit;
+            while (bol > c->log && bol[-1] != '\n')
+                bol--;
+            char *eol = strchr(hit, '\n');
+            if (!eol)
+                goto again; /* line not complete yet */
+            if (out)
+                snprintf(out, outlen, "%.*s", (int)(eol - bol), bol);
+            c->seen = (size_t)(eol - c->log);
+            return true;
+        }
+    again:
+        g_usleep(5000);
+    } while (now_s() < end);
+    return false;
+}
+
+/* Waits for exit; kills after the timeout. Returns the exit status, or -1. */
+static int wait_exit(child *c, double timeout)
+{
+    double end = now_s() + timeout;
+    int st;
+    for (;;) {
+        drain(c);
+        pid_t r = waitpid(c->pid, &st, WNOHANG);
+        if (r == c->pid)
+            break;
+        if (now_s() > end) {
+            kill(c->pid, SIGKILL);
+            waitpid(c->pid, &st, 0);
+            drain(c);
+            fprintf(stderr, "  celfw did not exit; its log:\n%s\n", c->log);
+            return -1;
+        }
+        g_usleep(5000);
+    }
+    drain(c);
+    close(c->err_fd);
+    if (c->in_fd >= 0)
+        close(c->in_fd);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+static unsigned long long field(const char *line, const char *key)
+{
+    char k[64];
+    snprintf(k, sizeof k, " %s=", key);
+    const char *p = strstr(line, k);
+    return p ? strtoull(p + strlen(k), NULL, 10) : ~0ull;
+}
+
+/* Runs celfw to completion; checks its exit status and that stderr says `needle`. */
+static void expect_failure(const char *what, const char *const *args, int code, const char *needle)
+{
+    child c;
+    CHECK(spawn(&c, args, false), "%s: spawn", what);
+    int rc = wait_exit(&c, 10.0);
+    CHECK(rc == code && strstr(c.log, needle), "%s: exit %d (want %d), stderr: %s", what, rc, code, c.log);
+}
+
+static void test_config_errors(void)
+{
+    expect_failure("bad number", (const char *[]){"--backend", "gpio", "--planes", "99", NULL}, 2,
+                   "celfw: error --planes: '99' is not an integer in 1..12");
+    expect_failure("paced HUB75", (const char *[]){"--backend", "gpio", "--fps", "60", NULL}, 2,
+                   "rescans it continuously");
+    expect_failure("unknown option", (const char *[]){"--plains", "8", NULL}, 2, "unknown option '--plains'");
+    expect_failure("null without size", (const char *[]){"--backend", "null", NULL}, 2, "needs --size");
+    expect_failure("bad backend", (const char *[]){"--backend", "hdmi", NULL}, 2,
+                   "'hdmi' is not a backend (gpio, usb or null)");
+    expect_failure("1/32 scan without E",
+                   (const char *[]){"--backend", "gpio", "--panel", "64x64", "--pins", "e=none", NULL}, 2,
+                   "needs address line E");
+    expect_failure("unknown pin preset", (const char *[]){"--backend", "gpio", "--pins", "bonnet9", NULL}, 2,
+                   "'bonnet9' is not a pin preset (adafruit-hat adafruit-hat-pwm regular)");
+    expect_failure("missing chip", (const char *[]){"--backend", "gpio", "--gpio-chip", "/dev/gpiochip5", NULL},
+                   4, "cannot open GPIO chip /dev/gpiochip5: No such file or directory");
+    expect_failure("missing usb display", (const char *[]){"--backend", "usb", "--usb-device", "1234:5678", NULL},
+                   4, "celfw: error usb: no USB device 1234:5678");
+    expect_failure("bad input", (const char *[]){"--backend", "null", "--size", "8x8", "--input", "file:/nonexistent/x", NULL},
+                   3, "input file:/nonexistent/x: No such file or directory");
+    expect_failure("bad scene", (const char *[]){"--backend", "null", "--size", "8x8", "--scene", "builtin:nope", NULL},
+                   2, "no such built-in scene");
+
+    char path[] = "/tmp/celfw-test-XXXXXX";
+    int fd = mkstemp(path);
+    const char *conf = "# celfw test\nbackend = gpio\npanel = 64x32\nchain = two\n";
+    CHECK(write(fd, conf, strlen(conf)) == (ssize_t)strlen(conf), "write config");
+    close(fd);
+    char needle[200];
+    snprintf(needle, sizeof needle, "config %s:4: chain: 'two' is not an integer in 1..64", path);
+    expect_failure("config file value", (const char *[]){"--config", path, NULL}, 2, needle);
+    fd = open(path, O_WRONLY | O_TRUNC);
+    const char *conf2 = "backend = null\nsize = 32x16\nfps = 200\nframes = 5\nlog-interval = 0\n";
+    CHECK(write(fd, conf2, strlen(conf2)) == (ssize_t)strlen(conf2), "write config");
+    close(fd);
+    child c;
+    spawn(&c, (const char *[]){"--config", path, "--frames", "3", NULL}, false);
+    int rc = wait_exit(&c, 10.0);
+    CHECK(rc == 0 && strstr(c.log, "reason=frames") && strstr(c.log, " frames=3 "),
+          "config file read, command line wins: %s", c.log);
+    unlink(path);
+}
+
+/* The truth for the panel: the frame at time t, rendered by the core, as RGB565. */
+static int compare_panel(fake_gud *dev, const char *name, float t, int w, int h)
+{
+    celfw_scene_build(name, &scene, t);
+    cs_render_opts o = {w, h, CS_AA_SUBSCAN, 4, t};
+    cs_renderer r;
+    cs_error e;
+    uint8_t *want = malloc((size_t)w * (size_t)h * 2u), *got = malloc((size_t)w * (size_t)h * 2u);
+    float *line = malloc((size_t)w * 3u * sizeof(float));
+    cs_frame_begin(&r, &ws, &scene, &o, &e);
+    for (int y = 0; y < h; y++) {
+        cs_render_line(&r, y, line);
+        cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, want + (size_t)y * (size_t)w * 2u);
+    }
+    fake_gud_framebuffer(dev, got, (size_t)w * (size_t)h * 2u);
+    int bad = 0;
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        bad += memcmp(got + 2 * i, want + 2 * i, 2) != 0;
+    free(want);
+    free(got);
+    free(line);
+    return bad;
+}
+
+static int tcp_connect(int port)
+{
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    struct sockaddr_in a = {0};
+    a.sin_family = AF_INET;
+    a.sin_port = htons((uint16_t)port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (connect(fd, (struct sockaddr *)&a, sizeof a) != 0) {
+        close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+static void test_usb_tcp(UMockdevTestbed *tb)
+{
+    fake_gud_opts o;
+    fake_gud_opts_default(&o);
+    o.pid = 0x7101;
+    fake_gud *dev = fake_gud_add(tb, 3, 2, &o);
+    child c;
+    spawn(&c,
+          (const char *[]){"--backend", "usb", "--usb-device", "1d50:7101", "--scene", "builtin:anim",
+                           "--time-step", "0.04", "--fps", "60", "--input", "tcp:127.0.0.1:0", "--frames", "40",
+                           "--log-interval", "0.2", NULL},
+          false);
+    char line[1024] = "";
+    bool started = wait_line(&c, "celfw: start", 10.0, line, sizeof line);
+    CHECK(started && strstr(line, "backend=usb display=320x180") && strstr(line, "display_state=up"),
+          "start line: %s", line);
+    const char *tcp = strstr(line, "input=tcp:127.0.0.1:");
+    int port = tcp ? atoi(tcp + strlen("input=tcp:127.0.0.1:")) : 0;
+    CHECK(port > 0, "listening port in '%s'", line);
+    int fd = port > 0 ? tcp_connect(port) : -1;
+    CHECK(fd >= 0, "connect to celfw");
+    uint8_t junk[12345];
+    for (size_t i = 0; i < sizeof junk; i++)
+        junk[i] = (uint8_t)(i * 7u);
+    CHECK(fd >= 0 && write(fd, junk, sizeof junk) == (ssize_t)sizeof junk, "send the stream");
+    if (fd >= 0)
+        close(fd);
+    CHECK(wait_line(&c, "closed after 12345 bytes", 10.0, line, sizeof line), "client session logged");
+    int rc = wait_exit(&c, 20.0);
+    if (getenv("LX_TEST_VERBOSE"))
+        fprintf(stderr, "%s", c.log);
+    const char *ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex, "celfw exits 0 after --frames (rc %d)", rc);
+    if (ex) {
+        CHECK(field(ex, "frames") == 40 && field(ex, "stream_bytes") == sizeof junk && field(ex, "dropped") == 0,
+              "exit line: %s", ex);
+        /* damage: the first frame sends 180 lines, the others only the disc's */
+        unsigned long long sent = field(ex, "lines_sent");
+        CHECK(sent >= 180 && sent < 180 + 39 * 16, "lines sent over 40 frames: %llu", sent);
+        const char *at = strstr(ex, "anim_t=");
+        float t = at ? strtof(at + 7, NULL) : -1.0f;
+        CHECK(fabsf(t - 39 * 0.04f) < 1e-4f, "last frame at t=%g", (double)t);
+        int bad = compare_panel(dev, "anim", t, 320, 180);
+        CHECK(bad == 0, "the panel shows celfw's last frame (%d pixels differ)", bad);
+    }
+    CHECK(strstr(c.log, "celfw: status ") != NULL, "periodic status lines");
+    fake_gud_stats ds;
+    fake_gud_get_stats(dev, &ds);
+    CHECK(!ds.display_on && !ds.controller_on, "display disabled at exit");
+    fake_gud_unplug(dev);
+    fake_gud_free(dev);
+}
+
+static void test_usb_unplug(UMockdevTestbed *tb)
+{
+    fake_gud_opts o;
+    fake_gud_opts_default(&o);
+    o.pid = 0x7102;
+    fake_gud *dev = fake_gud_add(tb, 4, 2, &o);
+    child c;
+    spawn(&c,
+          (const char *[]){"--backend", "usb", "--usb-device", "1d50:7102", "--scene", "builtin:anim",
+                           "--time-step", "0.02", "--fps", "50", "--frames", "60", "--usb-reconnect-ms", "50",
+                           "--log-interval", "0.1", NULL},
+          false);
+    char line[1024];
+    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line), "started");
+    bool ran = false;
+    for (int i = 0; i < 100 && !ran; i++)
+        ran = wait_line(&c, "celfw: status", 5.0, line, sizeof line) && field(line, "frames") >= 8;
+    CHECK(ran, "frames before the unplug");
+    fake_gud_unplug(dev);
+    CHECK(wait_line(&c, "display lost", 10.0, line, sizeof line), "celfw notices the unplug");
+    g_usleep(300000);
+    CHECK(kill(c.pid, 0) == 0, "celfw still running while the display is away");
+    fake_gud_replug(dev, 9);
+    CHECK(wait_line(&c, "display connected", 10.0, line, sizeof line) && strstr(line, "address 9"),
+          "celfw reconnects: %s", line);
+    int rc = wait_exit(&c, 20.0);
+    if (getenv("LX_TEST_VERBOSE"))
+        fprintf(stderr, "%s", c.log);
+    const char *ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && field(ex, "frames") == 60 && field(ex, "dropped") > 0 && field(ex, "dropped") != ~0ull,
+          "exit after replug: rc %d, %s", rc, ex ? ex : c.log);
+    if (ex) {
+        const char *at = strstr(ex, "anim_t=");
+        float t = at ? strtof(at + 7, NULL) : -1.0f;
+        int bad = compare_panel(dev, "anim", t, 320, 180);
+        CHECK(bad == 0, "after replug the panel shows the last frame (%d pixels differ)", bad);
+    }
+    fake_gud_unplug(dev);
+    fake_gud_free(dev);
+}
+
+static void test_sigterm_stdin(void)
+{
+    child c;
+    spawn(&c, (const char *[]){"--backend", "null", "--size", "160x90", "--fps", "30", "--input", "stdin",
+                               "--scene", "builtin:anim", "--log-interval", "0", NULL},
+          true);
+    char line[1024];
+    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line) && strstr(line, "input=stdin"), "started");
+    uint8_t bytes[3000] = {0};
+    CHECK(write(c.in_fd, bytes, sizeof bytes) == (ssize_t)sizeof bytes, "feed stdin");
+    g_usleep(300000);
+    double t0 = now_s();
+    kill(c.pid, SIGTERM);
+    int rc = wait_exit(&c, 5.0);
+    const char *ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && strstr(ex, "reason=signal") && field(ex, "stream_bytes") == sizeof bytes,
+          "SIGTERM: rc %d in %.2f s: %s", rc, now_s() - t0, ex ? ex : c.log);
+    CHECK(now_s() - t0 < 2.0, "clean shutdown is quick (%.2f s)", now_s() - t0);
+}
+
+static void test_file_and_tty(UMockdevTestbed *tb)
+{
+    char path[] = "/tmp/celfw-stream-XXXXXX";
+    int fd = mkstemp(path);
+    static uint8_t data[200000];
+    for (size_t i = 0; i < sizeof data; i++)
+        data[i] = (uint8_t)i;
+    CHECK(write(fd, data, sizeof data) == (ssize_t)sizeof data, "write stream file");
+    close(fd);
+    char spec[300];
+    snprintf(spec, sizeof spec, "file:%s", path);
+    child c;
+    spawn(&c, (const char *[]){"--backend", "null", "--size", "64x32", "--fps", "100", "--frames", "20",
+                               "--input", spec, "--log-interval", "0", NULL},
+          false);
+    int rc = wait_exit(&c, 10.0);
+    const char *ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && field(ex, "stream_bytes") == sizeof data && strstr(c.log, "ended after 200000 bytes"),
+          "file input read whole: %s", c.log);
+    unlink(path);
+
+    /* a serial port: umockdev backs SUBSYSTEM=tty nodes with a pty */
+    GError *e = NULL;
+    CHECK(umockdev_testbed_add_from_string(tb,
+                                           "P: /devices/pnp0/00:04/tty/ttyS7\nN: ttyS7\nE: SUBSYSTEM=tty\n"
+                                           "E: DEVNAME=/dev/ttyS7\nA: dev=4:71\n\n",
+                                           &e),
+          "add tty");
+    int master = umockdev_testbed_get_dev_fd(tb, "/dev/ttyS7");
+    CHECK(master >= 0, "pty master");
+    spawn(&c, (const char *[]){"--backend", "null", "--size", "64x32", "--fps", "50", "--input",
+                               "tty:/dev/ttyS7:115200", "--log-interval", "0", NULL},
+          false);
+    char line[1024];
+    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line) && strstr(line, "input=tty:/dev/ttyS7:115200"),
+          "tty input opened: %s", c.log);
+    uint8_t msg[777];
+    memset(msg, 0x55, sizeof msg);
+    CHECK(master >= 0 && write(master, msg, sizeof msg) == (ssize_t)sizeof msg, "write to the pty");
+    g_usleep(400000);
+    kill(c.pid, SIGTERM);
+    rc = wait_exit(&c, 5.0);
+    ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && field(ex, "stream_bytes") == sizeof msg, "tty bytes counted: %s", ex ? ex : c.log);
+}
+
+int main(void)
+{
+    UMockdevTestbed *tb = umockdev_testbed_new();
+    if (!umockdev_in_mock_environment()) {
+        fprintf(stderr, "test_celfw: run under umockdev-wrapper (LD_PRELOAD=libumockdev-preload.so)\n");
+        return 2;
+    }
+    celfw_path = getenv("CELFW") ? getenv("CELFW") : "build/host/celfw";
+    if (access(celfw_path, X_OK) != 0) {
+        fprintf(stderr, "test_celfw: %s not built (set CELFW)\n", celfw_path);
+        return 2;
+    }
+    char *root = umockdev_testbed_get_root_dir(tb);
+    char path[600];
+    snprintf(path, sizeof path, "%s/dev/bus/usb", root);
+    g_mkdir_with_parents(path, 0755);
+    g_free(root);
+
+    test_config_errors();
+    test_usb_tcp(tb);
+    test_usb_unplug(tb);
+    test_sigterm_stdin();
+    test_file_and_tty(tb);
+    g_object_unref(tb);
+    return lx_test_report("test_celfw");
+}

@@ -1,0 +1,542 @@
+/*
+ * test_gud.c - the USB (GUD) backend against an emulated USB display.
+ *
+ * Runs under umockdev: the real libusb enumerates the emulated device through
+ * sysfs/udev and talks usbdevfs to fake_gud, which reassembles the
+ * rectangles (LZ4-decoding them) into its panel memory. That memory must
+ * equal the scene rendered directly with the core in this test and converted
+ * to the negotiated format. Also: damage (only changed lines travel), stalls,
+ * timeouts, refusals, unplug/replug, odd formats and missing devices.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "celfw_scenes.h"
+#include "fake_gud.h"
+#include "gud_host.h"
+#include "gud_wire.h"
+#include "lx_scene_source.h"
+#include "lx_test.h"
+
+static cs_scene scene;
+static cs_workspace ws;
+static int next_pid = 0x7000;
+
+static void logger(void *user, const char *fmt, ...)
+{
+    (void)user;
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "  [log] ");
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+/* The truth: the scene rendered in one pass with the core, in the device's format. */
+static uint8_t *expected(const cs_scene *s, int w, int h, uint8_t format)
+{
+    unsigned bpp = gud_format_bpp(format);
+    cs_render_opts o = {w, h, CS_AA_SUBSCAN, 4, 0.0f};
+    cs_renderer r;
+    cs_error e;
+    uint8_t *img = calloc((size_t)w * (size_t)h, bpp);
+    float *line = calloc((size_t)w * 3u, sizeof *line);
+    uint8_t *rgb = calloc((size_t)w, 3);
+    if (cs_frame_begin(&r, &ws, s, &o, &e) != CS_OK)
+        abort();
+    for (int y = 0; y < h; y++) {
+        cs_render_line(&r, y, line);
+        uint8_t *row = img + (size_t)y * (size_t)w * bpp;
+        if (format == GUD_FORMAT_RGB565) {
+            cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, row);
+        } else {
+            cs_pixfmt_convert(CS_PIX_RGB888_SRGB, line, w, rgb);
+            for (int x = 0; x < w; x++) {
+                uint32_t v = (uint32_t)rgb[3 * x] << 16 | (uint32_t)rgb[3 * x + 1] << 8 | rgb[3 * x + 2];
+                gud_put32(row + 4 * x, v);
+            }
+        }
+    }
+    free(line);
+    free(rgb);
+    return img;
+}
+
+typedef struct rig {
+    fake_gud_opts o;
+    fake_gud *dev;
+    gud_config cfg;
+    lx_display *d;
+    lx_scene_source src;
+    int devnum;
+} rig;
+
+static int bus_no = 1;
+
+static lx_status rig_open(rig *r, UMockdevTestbed *tb, char *err, size_t errlen)
+{
+    r->o.pid = (uint16_t)next_pid++;
+    r->devnum = 2;
+    r->dev = fake_gud_add(tb, bus_no++, r->devnum, &r->o);
+    r->cfg.vid = r->o.vid;
+    r->cfg.pid = r->o.pid;
+    err[0] = 0;
+    lx_status s = gud_open(&r->d, &r->cfg, &lx_clock_monotonic, logger, NULL, err, errlen);
+    if (s == LX_OK && lx_scene_source_init(&r->src, r->d->width, r->d->height, CS_AA_SUBSCAN, 4) != LX_OK)
+        s = LX_ERR_NOMEM;
+    return s;
+}
+
+static void rig_close(rig *r, bool opened)
+{
+    if (opened) {
+        r->d->ops->close(r->d);
+        lx_scene_source_free(&r->src);
+    }
+    fake_gud_unplug(r->dev);
+    fake_gud_free(r->dev);
+}
+
+/* Presents the scene; returns the status and fills st. */
+static lx_status show(rig *r, const cs_scene *s, lx_frame_stats *st)
+{
+    memset(st, 0, sizeof *st);
+    lx_scene_source_set(&r->src, s, 0.0f);
+    return r->d->ops->present(r->d, &r->src.src, st);
+}
+
+/* Compares the device's panel with the core's rendering. Returns mismatching pixels. */
+static int compare(rig *r, const cs_scene *s)
+{
+    gud_info info;
+    gud_get_info(r->d, &info);
+    unsigned bpp = gud_format_bpp(info.format);
+    size_t n = (size_t)info.width * (size_t)info.height * bpp;
+    uint8_t *got = malloc(n), *want = expected(s, info.width, info.height, info.format);
+    fake_gud_framebuffer(r->dev, got, n);
+    int bad = 0;
+    for (size_t i = 0; i < n; i += bpp)
+        if (memcmp(got + i, want + i, bpp) != 0 && bad++ == 0)
+            fprintf(stderr, "  first mismatch at pixel (%zu,%zu)\n", (i / bpp) % (size_t)info.width,
+                    (i / bpp) / (size_t)info.width);
+    free(got);
+    free(want);
+    return bad;
+}
+
+static void test_basic(UMockdevTestbed *tb)
+{
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    gud_config_default(&r.cfg);
+    char err[300];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "open: %s", err);
+    if (s != LX_OK)
+        return rig_close(&r, false);
+    gud_info info;
+    gud_get_info(r.d, &info);
+    CHECK(info.connected && info.format == GUD_FORMAT_RGB565 && info.lz4 && info.width == 320 &&
+              info.height == 180,
+          "negotiated %dx%d format 0x%02x lz4 %d", info.width, info.height, info.format, info.lz4);
+    fake_gud_stats ds;
+    fake_gud_get_stats(r.dev, &ds);
+    CHECK(ds.committed && ds.controller_on && ds.display_on && ds.format == GUD_FORMAT_RGB565,
+          "device state set: committed %d controller %d display %d", ds.committed, ds.controller_on,
+          ds.display_on);
+
+    celfw_scene_build("demo", &scene, 0.0f);
+    lx_frame_stats st;
+    s = show(&r, &scene, &st);
+    CHECK(s == LX_OK, "present: %s", r.d->err);
+    CHECK(compare(&r, &scene) == 0, "demo frame on the panel equals the renderer's");
+    CHECK(st.lines_sent == 180 && st.bytes_raw == 180u * 320u * 2u, "first frame sends every line (%llu)",
+          (unsigned long long)st.lines_sent);
+    CHECK(st.bytes_wire < st.bytes_raw / 2, "LZ4 halves the demo at least (%llu of %llu)",
+          (unsigned long long)st.bytes_wire, (unsigned long long)st.bytes_raw);
+    fake_gud_get_stats(r.dev, &ds);
+    CHECK(ds.protocol_errors == 0 && ds.bulk_bytes == st.bytes_wire && ds.raw_bytes == st.bytes_raw,
+          "device saw %llu bulk bytes, %u protocol errors", (unsigned long long)ds.bulk_bytes,
+          ds.protocol_errors);
+
+    fake_gud_clear_log(r.dev);
+    s = show(&r, &scene, &st);
+    CHECK(s == LX_OK && st.rects == 0 && st.lines_sent == 0 && fake_gud_rects(r.dev, NULL, 0) == 0,
+          "an unchanged frame sends nothing (%llu rects)", (unsigned long long)st.rects);
+    rig_close(&r, true);
+}
+
+static void test_xrgb_uncompressed(UMockdevTestbed *tb)
+{
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    r.o.formats[0] = GUD_FORMAT_XRGB8888;
+    r.o.nformats = 1;
+    r.o.compression = 0;
+    r.o.width = 200;
+    r.o.height = 120;
+    gud_config_default(&r.cfg);
+    char err[300];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "open: %s", err);
+    if (s != LX_OK)
+        return rig_close(&r, false);
+    gud_info info;
+    gud_get_info(r.d, &info);
+    CHECK(info.format == GUD_FORMAT_XRGB8888 && !info.lz4, "XRGB8888 without compression");
+    celfw_scene_build("bars", &scene, 0.0f);
+    lx_frame_stats st;
+    CHECK(show(&r, &scene, &st) == LX_OK, "present: %s", r.d->err);
+    CHECK(compare(&r, &scene) == 0, "XRGB8888 frame equals the renderer's");
+    CHECK(st.bytes_wire == st.bytes_raw && st.bytes_raw == 200u * 120u * 4u, "raw bytes on the wire");
+    rig_close(&r, true);
+}
+
+/* Damage: an animation where one small disc moves sends only the lines it touches. */
+static void test_damage(UMockdevTestbed *tb)
+{
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    r.o.width = 480;
+    r.o.height = 270;
+    gud_config_default(&r.cfg);
+    char err[300];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "open: %s", err);
+    if (s != LX_OK)
+        return rig_close(&r, false);
+    lx_frame_stats st;
+    float sy = 270.0f / 180.0f;
+    uint64_t lines = 0, raw = 0, wire = 0;
+    int frames = 0;
+    for (int f = 0; f < 6; f++) {
+        float t = 0.40f + 0.04f * (float)f; /* 10.4 canvas units (15.6 px) per frame */
+        celfw_scene_build("anim", &scene, t);
+        fake_gud_clear_log(r.dev);
+        s = show(&r, &scene, &st);
+        CHECK(s == LX_OK, "anim frame %d: %s", f, r.d->err);
+        CHECK(compare(&r, &scene) == 0, "anim frame %d on the panel equals the renderer's", f);
+        if (f == 0)
+            continue;
+        /* the disc of this and the previous frame covers rows [y0, y1) */
+        float dx, dy;
+        celfw_anim_disc(t, &dx, &dy);
+        int y0 = (int)floorf((dy - CELFW_ANIM_R) * sy), y1 = (int)ceilf((dy + CELFW_ANIM_R) * sy);
+        fake_gud_rect rects[64];
+        size_t n = fake_gud_rects(r.dev, rects, 64);
+        int outside = 0;
+        for (size_t i = 0; i < n && i < 64; i++)
+            if ((int)rects[i].y < y0 || (int)(rects[i].y + rects[i].h) > y1)
+                outside++;
+        CHECK(n > 0 && outside == 0, "frame %d: %zu rects, %d reach beyond the disc's rows %d..%d", f, n,
+              outside, y0, y1 - 1);
+        CHECK(st.lines_sent <= (uint64_t)(y1 - y0), "frame %d: %llu lines sent for a %d-row disc", f,
+              (unsigned long long)st.lines_sent, y1 - y0);
+        lines += st.lines_sent;
+        raw += st.bytes_raw;
+        wire += st.bytes_wire;
+        frames++;
+    }
+    printf("gud damage: anim 480x270 RGB565: %.1f of 270 lines/frame, %.0f bytes raw, %.0f bytes LZ4 per frame\n",
+           (double)lines / frames, (double)raw / frames, (double)wire / frames);
+    rig_close(&r, true);
+}
+
+/* Bands never exceed the device's buffer. */
+static void test_small_buffer(UMockdevTestbed *tb)
+{
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    r.o.max_buffer_size = 320u * 2u * 7u + 100u; /* seven lines */
+    gud_config_default(&r.cfg);
+    char err[300];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "open: %s", err);
+    if (s != LX_OK)
+        return rig_close(&r, false);
+    celfw_scene_build("demo", &scene, 0.0f);
+    lx_frame_stats st;
+    CHECK(show(&r, &scene, &st) == LX_OK, "present: %s", r.d->err);
+    fake_gud_rect rects[64];
+    size_t n = fake_gud_rects(r.dev, rects, 64);
+    int big = 0;
+    for (size_t i = 0; i < n && i < 64; i++)
+        big += rects[i].length > r.o.max_buffer_size;
+    CHECK(n == 26 && big == 0, "%zu rects of at most 7 lines (%d too big)", n, big);
+    CHECK(compare(&r, &scene) == 0, "banded frame equals the renderer's");
+    rig_close(&r, true);
+}
+
+static void test_faults(UMockdevTestbed *tb)
+{
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    gud_config_default(&r.cfg);
+    r.cfg.timeout_ms = 150;
+    char err[300];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "open: %s", err);
+    if (s != LX_OK)
+        return rig_close(&r, false);
+    lx_frame_stats st;
+    fake_gud_stats ds;
+
+    /* a stalled bulk endpoint: clear the halt, send again */
+    celfw_scene_build("anim", &scene, 0.0f);
+    fake_gud_stall_bulk(r.dev, 1);
+    s = show(&r, &scene, &st);
+    fake_gud_get_stats(r.dev, &ds);
+    CHECK(s == LX_OK && st.retries >= 1 && st.errors == 0 && ds.stalls == 1 && ds.clear_halts >= 1,
+          "stall: status %d, %llu retries, %u clear-halts", s, (unsigned long long)st.retries,
+          ds.clear_halts);
+    CHECK(compare(&r, &scene) == 0, "frame after a stall equals the renderer's");
+
+    /* a refused SET_BUFFER: the status explains, the retry goes through */
+    celfw_scene_build("anim", &scene, 0.5f);
+    fake_gud_refuse(r.dev, GUD_REQ_SET_BUFFER, GUD_STATUS_BUSY, 1);
+    s = show(&r, &scene, &st);
+    CHECK(s == LX_OK && st.retries >= 1 && st.errors == 0, "refused SET_BUFFER retried");
+    CHECK(compare(&r, &scene) == 0, "frame after a refusal equals the renderer's");
+
+    /* a hung endpoint: libusb times out and discards, the retry goes through */
+    celfw_scene_build("anim", &scene, 1.0f);
+    fake_gud_hang_bulk(r.dev, 1);
+    s = show(&r, &scene, &st);
+    fake_gud_get_stats(r.dev, &ds);
+    CHECK(s == LX_OK && st.retries >= 1 && st.errors == 0 && ds.discards >= 1,
+          "timeout: %llu retries, %u discards", (unsigned long long)st.retries, ds.discards);
+    CHECK(compare(&r, &scene) == 0, "frame after a timeout equals the renderer's");
+
+    /* stalls beyond the retries: the frame goes on, the lines travel next time */
+    celfw_scene_build("anim", &scene, 1.5f);
+    fake_gud_stall_bulk(r.dev, 1 + r.cfg.retries);
+    s = show(&r, &scene, &st);
+    CHECK(s == LX_OK && st.errors >= 1, "persistent stall: frame finished with %llu failed bands",
+          (unsigned long long)st.errors);
+    CHECK(compare(&r, &scene) != 0, "the failed band is missing from the panel");
+    s = show(&r, &scene, &st);
+    CHECK(s == LX_OK && st.errors == 0 && st.lines_sent > 0, "the failed lines are sent again");
+    CHECK(compare(&r, &scene) == 0, "and then the panel equals the renderer's");
+    rig_close(&r, true);
+}
+
+static void test_unplug(UMockdevTestbed *tb)
+{
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    gud_config_default(&r.cfg);
+    r.cfg.reconnect_ms = 30;
+    char err[300];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "open: %s", err);
+    if (s != LX_OK)
+        return rig_close(&r, false);
+    lx_frame_stats st;
+    celfw_scene_build("anim", &scene, 0.2f);
+    CHECK(show(&r, &scene, &st) == LX_OK, "present before unplug");
+
+    fake_gud_unplug(r.dev);
+    celfw_scene_build("anim", &scene, 0.7f);
+    s = show(&r, &scene, &st);
+    CHECK(s == LX_ERR_NO_DEVICE && !r.d->ops->connected(r.d), "unplugged: present says %s (%s)",
+          lx_status_str(s), r.d->err);
+    for (int i = 0; i < 5; i++)
+        s = show(&r, &scene, &st);
+    CHECK(s == LX_ERR_NO_DEVICE, "still away: %s", lx_status_str(s));
+
+    fake_gud_replug(r.dev, 5);
+    for (int i = 0; i < 100; i++) {
+        g_usleep(10000);
+        s = show(&r, &scene, &st);
+        if (s == LX_OK)
+            break;
+    }
+    gud_info info;
+    gud_get_info(r.d, &info);
+    CHECK(s == LX_OK && info.connects == 2 && info.address == 5, "reconnected at address %d (%s)",
+          info.address, r.d->err);
+    CHECK(st.lines_sent == 180, "the whole frame is resent after a reconnect (%llu lines)",
+          (unsigned long long)st.lines_sent);
+    CHECK(compare(&r, &scene) == 0, "frame after replug equals the renderer's");
+    rig_close(&r, true);
+}
+
+static void expect_open_error(UMockdevTestbed *tb, const char *what, fake_gud_opts *o, const char *needle)
+{
+    rig r = {0};
+    r.o = *o;
+    gud_config_default(&r.cfg);
+    char err[300];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s != LX_OK && strstr(err, needle), "%s: status %s, message '%s'", what, lx_status_str(s), err);
+    rig_close(&r, s == LX_OK);
+}
+
+static void test_odd_devices(UMockdevTestbed *tb)
+{
+    fake_gud_opts o;
+    fake_gud_opts_default(&o);
+    uint8_t odd[3] = {GUD_FORMAT_R1, GUD_FORMAT_RGB332, 0x7f};
+    memcpy(o.formats, odd, 3);
+    o.nformats = 3;
+    expect_open_error(tb, "formats R1 RGB332 0x7f", &o, "RGB332(0x30)");
+
+    fake_gud_opts_default(&o);
+    o.nformats = 0;
+    expect_open_error(tb, "no formats", &o, "offers: nothing");
+
+    fake_gud_opts_default(&o);
+    o.magic = 0x12345678;
+    expect_open_error(tb, "wrong magic", &o, "not a GUD display");
+
+    fake_gud_opts_default(&o);
+    o.version = 2;
+    expect_open_error(tb, "version 2", &o, "version 2");
+
+    /* unknown and duplicate codes around a usable one: take it, ignore the rest */
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    uint8_t mix[5] = {0x7f, GUD_FORMAT_R8, GUD_FORMAT_XRGB8888, GUD_FORMAT_XRGB8888, GUD_FORMAT_ARGB8888};
+    memcpy(r.o.formats, mix, 5);
+    r.o.nformats = 5;
+    r.o.width = 160;
+    r.o.height = 90;
+    gud_config_default(&r.cfg);
+    char err[300];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "mixed formats: %s", err);
+    if (s == LX_OK) {
+        lx_frame_stats st;
+        celfw_scene_build("demo", &scene, 0.0f);
+        CHECK(show(&r, &scene, &st) == LX_OK && compare(&r, &scene) == 0, "mixed formats: XRGB8888 frame matches");
+    }
+    rig_close(&r, s == LX_OK);
+
+    /* an EDID-only device: no mode list, the configured size is used */
+    rig q = {0};
+    fake_gud_opts_default(&q.o);
+    q.o.no_modes = true;
+    q.o.width = 128;
+    q.o.height = 64;
+    gud_config_default(&q.cfg);
+    q.cfg.width = 128;
+    q.cfg.height = 64;
+    s = rig_open(&q, tb, err, sizeof err);
+    CHECK(s == LX_OK, "no modes, size given: %s", err);
+    if (s == LX_OK) {
+        lx_frame_stats st;
+        celfw_scene_build("bars", &scene, 0.0f);
+        CHECK(show(&q, &scene, &st) == LX_OK && compare(&q, &scene) == 0, "no-modes device frame matches");
+    }
+    rig_close(&q, s == LX_OK);
+
+    /* FULL_UPDATE: whole frames, SET_BUFFER only before the first */
+    rig f = {0};
+    fake_gud_opts_default(&f.o);
+    f.o.flags = GUD_FLAG_FULL_UPDATE;
+    f.o.compression = 0;
+    f.o.width = 96;
+    f.o.height = 48;
+    gud_config_default(&f.cfg);
+    s = rig_open(&f, tb, err, sizeof err);
+    CHECK(s == LX_OK, "full-update device: %s", err);
+    if (s == LX_OK) {
+        lx_frame_stats st;
+        celfw_scene_build("demo", &scene, 0.0f);
+        show(&f, &scene, &st);
+        show(&f, &scene, &st);
+        fake_gud_stats ds;
+        fake_gud_get_stats(f.dev, &ds);
+        CHECK(ds.rects == 2 && ds.set_buffers == 1 && st.lines_sent == 48 && compare(&f, &scene) == 0,
+              "full update: %u rects, %u SET_BUFFERs", ds.rects, ds.set_buffers);
+    }
+    rig_close(&f, s == LX_OK);
+}
+
+static void test_missing(void)
+{
+    gud_config c;
+    gud_config_default(&c);
+    c.vid = 0x1234;
+    c.pid = 0x5678;
+    lx_display *d = NULL;
+    char err[300] = "";
+    lx_status s = gud_open(&d, &c, &lx_clock_monotonic, NULL, NULL, err, sizeof err);
+    CHECK(s == LX_ERR_NO_DEVICE && strstr(err, "no USB device 1234:5678"), "missing: '%s'", err);
+
+    c.wait = true;
+    s = gud_open(&d, &c, &lx_clock_monotonic, NULL, NULL, err, sizeof err);
+    CHECK(s == LX_ERR_CONFIG && strstr(err, "size"), "wait without size: '%s'", err);
+    c.width = 64;
+    c.height = 32;
+    c.reconnect_ms = 10;
+    s = gud_open(&d, &c, &lx_clock_monotonic, NULL, NULL, err, sizeof err);
+    CHECK(s == LX_OK && !d->ops->connected(d), "wait: opens without the device");
+    if (s == LX_OK) {
+        lx_scene_source src;
+        lx_scene_source_init(&src, 64, 32, CS_AA_SUBSCAN, 4);
+        celfw_scene_build("demo", &scene, 0.0f);
+        lx_scene_source_set(&src, &scene, 0.0f);
+        lx_frame_stats st = {0};
+        CHECK(d->ops->present(d, &src.src, &st) == LX_ERR_NO_DEVICE && st.lines_rendered == 0,
+              "absent display: nothing rendered");
+        d->ops->close(d);
+        lx_scene_source_free(&src);
+    }
+}
+
+/* Bytes per frame of the demo scene over USB, for the report. */
+static void measure(UMockdevTestbed *tb, int w, int h, uint8_t format)
+{
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    r.o.width = w;
+    r.o.height = h;
+    r.o.formats[0] = format;
+    r.o.nformats = 1;
+    gud_config_default(&r.cfg);
+    char err[300];
+    if (rig_open(&r, tb, err, sizeof err) != LX_OK) {
+        CHECK(0, "measure open: %s", err);
+        return rig_close(&r, false);
+    }
+    lx_frame_stats st;
+    celfw_scene_build("demo", &scene, 0.0f);
+    show(&r, &scene, &st);
+    CHECK(compare(&r, &scene) == 0, "demo %dx%d %s matches", w, h, gud_format_name(format));
+    printf("gud bytes/frame: demo %dx%d %s full frame: %llu raw, %llu LZ4 (%.1f%%) in %llu rects\n", w, h,
+           gud_format_name(format), (unsigned long long)st.bytes_raw, (unsigned long long)st.bytes_wire,
+           100.0 * (double)st.bytes_wire / (double)st.bytes_raw, (unsigned long long)st.rects);
+    rig_close(&r, true);
+}
+
+int main(void)
+{
+    UMockdevTestbed *tb = umockdev_testbed_new();
+    if (!umockdev_in_mock_environment()) {
+        fprintf(stderr, "test_gud: run under umockdev-wrapper (LD_PRELOAD=libumockdev-preload.so)\n");
+        return 2;
+    }
+    /* libusb wants /dev/bus/usb to exist before any device does */
+    char *root = umockdev_testbed_get_root_dir(tb);
+    char path[600];
+    snprintf(path, sizeof path, "%s/dev/bus/usb", root);
+    g_mkdir_with_parents(path, 0755);
+    g_free(root);
+
+    test_missing();
+    test_basic(tb);
+    test_xrgb_uncompressed(tb);
+    test_damage(tb);
+    test_small_buffer(tb);
+    test_faults(tb);
+    test_unplug(tb);
+    test_odd_devices(tb);
+    measure(tb, 480, 272, GUD_FORMAT_RGB565);
+    measure(tb, 800, 480, GUD_FORMAT_RGB565);
+    measure(tb, 800, 480, GUD_FORMAT_XRGB8888);
+    g_object_unref(tb);
+    return lx_test_report("test_gud");
+}
