@@ -23,14 +23,10 @@ LX_ALL_OBJ := $(LX_HAL_OBJ) $(LX_FW_OBJ) $(HOST)/obj/firmware/linux/celfw.o $(LX
         $(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS))
 $(LX_ALL_OBJ): HOST_CFLAGS += -D_DEFAULT_SOURCE $(LX_INC) $(LX_PKG_CFLAGS) $(LX_UMOCKDEV_CFLAGS)
 
-# `make CELFW_JSON=1` links host-sim's scene JSON loader into celfw (--scene
-# FILE.json), once host-sim/scene_json.c is in the tree. After switching,
-# `rm build/host/obj/firmware/linux/celfw_scene_json.o` so it is rebuilt.
-ifeq ($(CELFW_JSON),1)
-LX_JSON_OBJ := $(HOST)/obj/host-sim/scene_json.o
+# celfw shows scene JSON files (--scene FILE.json) with celsim's loader.
+LX_JSON_OBJ := $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o
 LX_JSON_LIBS = $(PKG_LIBS)
-$(HOST)/obj/firmware/linux/celfw_scene_json.o: HOST_CFLAGS += -DCELFW_HAVE_SCENE_JSON
-endif
+$(HOST)/obj/firmware/linux/celfw_scene_json.o: HOST_CFLAGS += -Ihost-sim
 
 $(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(LX_JSON_OBJ) \
         $(HOST)/libcelscan.a
@@ -47,7 +43,7 @@ $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(L
 LX_PRELOAD := umockdev-wrapper
 .PHONY: test-linuxhal
 test-linuxhal: $(LX_TESTS) $(HOST)/celfw
-	$(Q)set -e; for t in $(LX_TESTS); do CELFW=$(HOST)/celfw $(LX_PRELOAD) $$t; done
+	$(Q)CELFW=$(HOST)/celfw tests/run.sh -- $(foreach t,$(LX_TESTS),"$(LX_PRELOAD) $(t)")
 
 all: $(HOST)/celfw
 HOST_PROGRAMS += $(HOST)/celfw
