@@ -130,6 +130,11 @@ cs_status cs_scene_set_lights(cs_scene *scene, const float front[3], const float
         return st;
     copy3(scene->stack_front, front);
     copy3(scene->stack_back, back);
+    /* A cel without its own front light stores the stack's: keep it current,
+     * so the store does not depend on whether lights or cels came first. */
+    for (uint32_t i = 0; i < scene->cel_count; i++)
+        if (!scene->cels[i].has_front)
+            copy3(scene->cels[i].front, front);
     return CS_OK;
 }
 

@@ -417,6 +417,26 @@ static void test_roundtrip(void)
     free(s);
 }
 
+static void test_crc_and_lights_order(void)
+{
+    CHECK(cs_crc32(0, "123456789", 9) == 0xCBF43926u, "CRC-32 check value");
+    /* Lights set before or after the cels give the same store. */
+    cs_scene *a = new_scene(), *b = new_scene();
+    cs_error e;
+    const float f[3] = {0.5f, 0.6f, 0.7f}, k[3] = {0.1f, 0, 0};
+    cs_affine id = {1, 0, 0, 1, 0, 0};
+    cs_scene_init(a, 10, 10);
+    cs_scene_set_lights(a, f, k);
+    cs_scene_add_cel(a, &id, NULL, NULL, &e);
+    cs_scene_init(b, 10, 10);
+    cs_scene_add_cel(b, &id, NULL, NULL, &e);
+    cs_scene_set_lights(b, f, k);
+    char why[128] = "";
+    CHECK(scene_equal(a, b, why, sizeof why), "lights before or after cels: %s", why);
+    free(a);
+    free(b);
+}
+
 static void test_copy(void)
 {
     cs_scene *s = new_scene(), *c = new_scene();
@@ -1514,8 +1534,9 @@ static void test_sampling(void)
     free(s);
 }
 
-/* Writes small seed streams for the fuzzer: a whole scene, a scene then a
- * patch, a two-transaction stream with unknown records. */
+/* Writes small seeds for the fuzz target (a mode byte, then a stream): a
+ * whole scene, a simple scene, a scene then a patch with a points track and
+ * an unknown record, a scene then an added, moved and removed cel. */
 static int write_seeds(const char *dir)
 {
     cs_scene *s = new_scene();
@@ -1524,11 +1545,11 @@ static int write_seeds(const char *dir)
         const char *name;
         cels_buf b;
     } seeds[4];
-    seeds[0].name = "demo.cels";
+    seeds[0].name = "demo.fuzz";
     encode(s, &seeds[0].b, true);
-    seeds[1].name = "square.cels";
+    seeds[1].name = "square.fuzz";
     one_txn(&seeds[1].b, good_body);
-    seeds[2].name = "patch.cels";
+    seeds[2].name = "patch.fuzz";
     one_txn(&seeds[2].b, good_body);
     cels_txn_begin(&seeds[2].b);
     cels_rec_begin(&seeds[2].b, CS_REC_CEL_TRANSFORM);
@@ -1550,7 +1571,7 @@ static int write_seeds(const char *dir)
     cels_rec_end(&seeds[2].b);
     cels_rec_commit(&seeds[2].b);
     cels_txn_end(&seeds[2].b);
-    seeds[3].name = "edit.cels";
+    seeds[3].name = "edit.fuzz";
     one_txn(&seeds[3].b, good_body);
     cels_txn_begin(&seeds[3].b);
     rec_cel_region(&seeds[3].b);
@@ -1569,7 +1590,10 @@ static int write_seeds(const char *dir)
         char path[512];
         snprintf(path, sizeof path, "%s/%s", dir, seeds[i].name);
         FILE *f = fopen(path, "wb");
-        if (!f || fwrite(seeds[i].b.data, 1, seeds[i].b.len, f) != seeds[i].b.len) {
+        /* The fuzz target's first byte: chunking, built-in scene, CRC re-sealing. */
+        static const uint8_t mode[4] = {0x40, 0x01, 0xC2, 0x83};
+        if (!f || fwrite(&mode[i], 1, 1, f) != 1 ||
+            fwrite(seeds[i].b.data, 1, seeds[i].b.len, f) != seeds[i].b.len) {
             fprintf(stderr, "test_stream: cannot write %s\n", path);
             rc = 1;
         }
@@ -1593,6 +1617,7 @@ int main(int argc, char **argv)
     printf("test_stream: sizeof(cs_stream) = %zu bytes (decoder state, apart from the two "
            "scene stores of %zu bytes each)\n",
            sizeof(cs_stream), sizeof(cs_scene));
+    test_crc_and_lights_order();
     test_copy();
     test_roundtrip();
     test_truncation();
