@@ -12,9 +12,11 @@
  *
  * The core is freestanding: no libc, no libm, no allocation, no mutable
  * globals. The caller owns all memory:
- *   - cs_scene      the scene store (what a commit makes visible),
+ *   - cs_scene      the scene store (what a commit makes visible), with its
+ *                   keyframe tracks; a board keeps two for the stream,
  *   - cs_workspace  per-render scratch (segment arena, line buffers),
- *   - cs_renderer   the small context tying them together for one frame.
+ *   - cs_renderer   the small context tying them together for one frame,
+ *   - cs_stream     the cel stream decoder's state (docs/STREAM.md).
  * Capacities are compile-time configuration (cs_config.h).
  *
  * Every function that can fail returns a cs_status; CS_OK is zero. Where the

@@ -77,7 +77,7 @@ const cs_track *cs__track_find(const cs_scene *scene, int kind, uint32_t target)
  */
 void cs__track_locate(const cs_scene *scene, const cs_track *tr, float t, uint32_t *i0,
                       uint32_t *i1, float *s);
-/* (1-s) a + s b: exact at s = 0 and s = 1, and between a and b otherwise. */
+/* (1-s) a + s b: exactly a at s = 0 and b at s = 1, between them (to rounding) otherwise. */
 static inline float cs__lerp(float a, float b, float s) { return (1.0f - s) * a + s * b; }
 
 /* Polynomials of degree <= 4 in power basis, c[0] + c[1] u + ... */

@@ -6,7 +6,8 @@
 #   make fuzz-smoke         a short fuzz run (FUZZ_SMOKE_TIME, default 45 s), part of `make test`
 #   make stream-seeds       regenerate tests/fuzz-corpus/ from the test program
 
-STREAM_TEST_OBJ := $(HOST)/obj/tests/test_stream.o $(HOST)/obj/tools/cels_write.o
+STREAM_TEST_OBJ := $(HOST)/obj/tests/test_stream.o $(HOST)/obj/tools/cels_write.o \
+        $(HOST)/obj/tools/cels_read.o
 $(STREAM_TEST_OBJ): HOST_CFLAGS += -Itools
 
 $(HOST)/test_stream: $(STREAM_TEST_OBJ) $(HOST)/libcelscan.a
@@ -22,7 +23,7 @@ $(STREAM_ASAN)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) -Itools $(STREAM_SAN) -c $< -o $@
 $(STREAM_ASAN)/test_stream: $(STREAM_ASAN)/obj/tests/test_stream.o \
-        $(STREAM_ASAN)/obj/tools/cels_write.o $(patsubst core/%.c,$(STREAM_ASAN)/core/%.o,$(CORE_SRC))
+        $(STREAM_ASAN)/obj/tools/cels_write.o $(STREAM_ASAN)/obj/tools/cels_read.o $(patsubst core/%.c,$(STREAM_ASAN)/core/%.o,$(CORE_SRC))
 	$(Q)$(CC) $(STREAM_SAN) $^ -o $@ -lm
 
 .PHONY: stream-test stream-test-asan fuzz fuzz-smoke stream-seeds

@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cels_read.h"
 #include "cels_write.h"
 #include "celscan.h"
 #include "cs_wire.h"
@@ -1150,6 +1151,54 @@ static void test_valid_then_damaged(void)
     free(other);
 }
 
+/* The host reader: a file with a good scene and a damaged patch. */
+static void test_reader(void)
+{
+    cs_scene *s = new_scene(), *a = new_scene(), *b = new_scene();
+    build_demo(s);
+    cels_buf buf;
+    encode(s, &buf, true);
+    size_t second = buf.len;
+    cels_txn_begin(&buf);
+    cels_rec_begin(&buf, CS_REC_CEL_TRANSFORM);
+    cels_put_u32(&buf, 0);
+    cels_put_f32s(&buf, (float[6]){1, 0, 0, 1, NAN, 0}, 6);
+    cels_rec_end(&buf);
+    cels_rec_commit(&buf);
+    cels_txn_end(&buf);
+    char path[] = "/tmp/test_stream_XXXXXX";
+    int fd = mkstemp(path);
+    FILE *f = fd >= 0 ? fdopen(fd, "wb") : NULL;
+    CHECK(f && fwrite(buf.data, 1, buf.len, f) == buf.len, "temporary file written");
+    if (f)
+        fclose(f);
+    char *log = NULL;
+    size_t loglen = 0;
+    FILE *errf = open_memstream(&log, &loglen);
+    cels_read_stats stats;
+    const cs_scene *got = cels_read_file(path, a, b, errf, &stats);
+    fclose(errf);
+    char why[128] = "", want[256];
+    snprintf(want, sizeof want,
+             "%s: byte %zu: number is NaN or infinite (cel 0, item 4) (transaction at byte %zu "
+             "dropped)\n",
+             path, second + 16, second);
+    CHECK(got && scene_equal(s, got, why, sizeof why) && stats.commits == 1 && stats.errors == 1,
+          "reader keeps the good scene: %s, %u commits, %u errors", why, stats.commits,
+          stats.errors);
+    CHECK(log && strcmp(log, want) == 0, "reader message:\n  got  %s  want %s", log ? log : "",
+          want);
+    free(log);
+    remove(path);
+    CHECK(cels_read_file(path, a, b, NULL, &stats) == NULL, "missing file gives no scene");
+    CHECK(cels_decode_buffer(buf.data, 20, "x", a, b, NULL, &stats) == NULL && stats.errors == 1,
+          "truncated buffer gives no scene, one error");
+    cels_buf_free(&buf);
+    free(s);
+    free(a);
+    free(b);
+}
+
 /* Patches: the stream's edits equal the same scene calls made directly. */
 static void test_patches(void)
 {
@@ -1626,6 +1675,7 @@ int main(int argc, char **argv)
     test_random_and_resync();
     test_valid_then_damaged();
     test_patches();
+    test_reader();
     test_edit_ops();
     test_track_validation();
     test_sampling();
