@@ -193,6 +193,8 @@ static int ring_header(const cs_stream *s, uint8_t *hdr)
     return kind;
 }
 
+static void end_body(cs_stream *s, uint64_t at);
+
 static void start_txn(cs_stream *s, const uint8_t *hdr, uint64_t at)
 {
     uint32_t len = rd_u32(hdr + 8);
@@ -223,6 +225,8 @@ static void start_txn(cs_stream *s, const uint8_t *hdr, uint64_t at)
     s->seen_commit = s->txn_failed = false;
     s->rec_offset = at + CS_WIRE_HEADER_SIZE;
     s->state = ST_BODY;
+    if (len == 0) /* no body: straight to the trailer (and "no COMMIT") */
+        end_body(s, at + CS_WIRE_HEADER_SIZE);
 }
 
 /* --------------------------------------------------------------- records */

@@ -228,6 +228,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             ev = cs_stream_finish(&st);
         }
         REQUIRE(used == 0 || phase == 0);
+        /* White box: inside a body the position never passes the length. */
+        REQUIRE(st.body_pos <= st.body_len);
         if (cs_stream_scene(&st))
             REQUIRE(scene_crc(cs_stream_scene(&st)) == front_crc);
         if (ev == CS_STREAM_COMMIT) {

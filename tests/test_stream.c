@@ -944,10 +944,26 @@ static void test_crafted(void)
     expect_error("track on a missing region", f_bad_target, CS_ERR_INDEX);
     expect_error("fill rule 9", f_bad_rule, CS_ERR_FILL_RULE);
 
-    /* The fault offset of a validation error is its record's. */
+    /* An empty transaction has no COMMIT; the next one is not swallowed. */
     cels_buf b;
-    one_txn(&b, f_nan_point);
+    cels_buf_init(&b);
+    cels_txn_begin(&b);
+    cels_txn_end(&b);
+    size_t next = b.len;
+    cels_buf g0;
+    one_txn(&g0, good_body);
+    cels_put_bytes(&b, g0.data, g0.len);
     result r;
+    decode(b.data, b.len, 1, NULL, &r);
+    CHECK(r.commits == 1 && r.errors == 1 && r.err[0].status == CS_ERR_STREAM_RECORD &&
+              r.err[0].offset == 0 && r.err[0].at == 16 && next == 20,
+          "empty transaction: %d commits %d errors (%s at %llu)", r.commits, r.errors,
+          r.errors ? r.err[0].what : "-", r.errors ? (unsigned long long)r.err[0].at : 0ull);
+    cels_buf_free(&b);
+    cels_buf_free(&g0);
+
+    /* The fault offset of a validation error is its record's. */
+    one_txn(&b, f_nan_point);
     decode(b.data, b.len, 1, NULL, &r);
     size_t contour_rec = 16 + (6 + 8) + (6 + 52) + (6 + 32);
     CHECK(r.errors == 1 && r.err[0].at == contour_rec && r.err[0].where.cel == 0 &&
