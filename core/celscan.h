@@ -12,9 +12,11 @@
  *
  * The core is freestanding: no libc, no libm, no allocation, no mutable
  * globals. The caller owns all memory:
- *   - cs_scene      the scene store (what a commit makes visible),
+ *   - cs_scene      the scene store (what a commit makes visible), with its
+ *                   keyframe tracks; a board keeps two for the stream,
  *   - cs_workspace  per-render scratch (segment arena, line buffers),
- *   - cs_renderer   the small context tying them together for one frame.
+ *   - cs_renderer   the small context tying them together for one frame,
+ *   - cs_stream     the cel stream decoder's state (docs/STREAM.md).
  * Capacities are compile-time configuration (cs_config.h).
  *
  * Every function that can fail returns a cs_status; CS_OK is zero. Where the
@@ -63,6 +65,21 @@ typedef enum cs_status {
     CS_ERR_FUNC,          /* paint function malformed (stops, geometry, kind) */
     CS_ERR_CSG,           /* CSG program malformed (operand, operator, stack) */
     CS_ERR_CAP_CACHE,     /* cache buffer too small for the pre-combined cels */
+    /* scene editing and animation */
+    CS_ERR_INDEX,         /* no such cel, region or contour */
+    CS_ERR_COUNT,         /* point count differs from the contour's */
+    CS_ERR_TRACK,         /* unknown track kind or ease */
+    CS_ERR_KEY_ORDER,     /* key times not strictly increasing */
+    CS_ERR_CAP_TRACKS,    /* scene store full: tracks */
+    CS_ERR_CAP_KEYS,      /* scene store full: keys or key values */
+    CS_ERR_CAP_ANIM,      /* animated contour has more points than CS_CFG_MAX_ANIM_POINTS */
+    /* cel stream (cs_stream.c) */
+    CS_ERR_STREAM_SYNC,   /* bytes outside any transaction were skipped */
+    CS_ERR_STREAM_VERSION,/* unsupported format version */
+    CS_ERR_STREAM_CRC,    /* transaction CRC mismatch: the data is damaged */
+    CS_ERR_STREAM_TRUNCATED, /* transaction cut short */
+    CS_ERR_STREAM_TOO_BIG,/* transaction longer than CS_CFG_STREAM_MAX_TXN */
+    CS_ERR_STREAM_RECORD, /* malformed record: length, class, order or layout */
     CS_ERR_COUNT_
 } cs_status;
 
@@ -191,11 +208,54 @@ typedef struct cs_cel {
 } cs_cel;
 
 /*
+ * What a keyframe track animates, and the floats of one key (its width):
+ *   CS_TRACK_TRANSFORM     a cel's transform          a b c d e f         6
+ *   CS_TRACK_CEL_LIGHTS    a cel's lights             front[3] back[3]    6
+ *   CS_TRACK_PAINT         a region's paint           pigment[3] medium[3] beta  7
+ *   CS_TRACK_POINTS        a contour's control points x y w per point     3 * points
+ *   CS_TRACK_STACK_LIGHTS  the stack's lights         front[3] back[3]    6
+ *   CS_TRACK_BACKGROUND    the background card        rgb[3] (linear)     3
+ * The target is the cel, region or contour index in the store (regions and
+ * contours counted over the whole scene), or 0 for the stack-wide kinds. An
+ * animated cel front light replaces the stack default, as a static one does.
+ */
+typedef enum cs_track_kind {
+    CS_TRACK_TRANSFORM = 0,
+    CS_TRACK_CEL_LIGHTS = 1,
+    CS_TRACK_PAINT = 2,
+    CS_TRACK_POINTS = 3,
+    CS_TRACK_STACK_LIGHTS = 4,
+    CS_TRACK_BACKGROUND = 5,
+    CS_TRACK_KIND_COUNT_
+} cs_track_kind;
+
+/*
+ * Interpolation between two keys, with s = (t - t0) / (t1 - t0) in [0,1]:
+ * linear uses s, smooth uses smoothstep 3s^2 - 2s^3 (zero velocity at the
+ * keys). Before the first key and after the last the value holds.
+ */
+typedef enum cs_ease { CS_EASE_LINEAR = 0, CS_EASE_SMOOTH = 1, CS_EASE_COUNT_ } cs_ease;
+
+/* A track's keys: times key_times[first_key ..], values key_values[first_value ..]. */
+typedef struct cs_track {
+    uint32_t target;
+    uint32_t first_key;
+    uint32_t first_value;
+    uint32_t width;      /* floats per key */
+    uint16_t key_count;
+    uint8_t kind;        /* cs_track_kind */
+    uint8_t ease;        /* cs_ease */
+} cs_track;
+
+/*
  * The scene store. Cels, regions, contours and points are in front-to-back
  * order: cel 0 is front-most, and within a cel region 0 is front-most.
  * Build it with cs_scene_init and the cs_scene_add_* calls; each call
  * validates its input completely before it changes the store, so a rejected
  * call leaves the scene exactly as it was.
+ *
+ * Tracks are kept sorted by (kind, target), at most one per pair, so the
+ * renderer finds a cel's or contour's track by binary search.
  */
 typedef struct cs_scene {
     float canvas_w, canvas_h;
@@ -204,12 +264,17 @@ typedef struct cs_scene {
     float stack_front[3];
     float stack_back[3];
     uint32_t cel_count, region_count, contour_count, point_count, func_count;
+    uint32_t track_count, key_count, value_count;
+    uint32_t open_track; /* the track cs_scene_add_key appends to; UINT32_MAX: none */
     cs_cel cels[CS_CFG_MAX_CELS];
     cs_region regions[CS_CFG_MAX_REGIONS];
     cs_contour contours[CS_CFG_MAX_CONTOURS];
     cs_point points[CS_CFG_MAX_POINTS];
     float intervals[CS_CFG_MAX_POINTS]; /* knot interval k of each contour, parallel to points */
     cs_paint_func funcs[CS_CFG_MAX_FUNCS];
+    cs_track tracks[CS_CFG_MAX_TRACKS];
+    float key_times[CS_CFG_MAX_KEYS];
+    float key_values[CS_CFG_MAX_KEY_VALUES];
 } cs_scene;
 
 /* Empties the scene and sets its canvas. Lights default to front 1, back 0. */
@@ -259,6 +324,65 @@ cs_status cs_scene_set_region_csg(cs_scene *scene, const int *rpn, int len, cs_e
 
 /* Puts the last contour into CSG operand `operand` (default 0). */
 cs_status cs_scene_set_contour_operand(cs_scene *scene, int operand, cs_error *err);
+/* ------------------------------------------------------------ animation */
+
+/*
+ * Adds a keyframe track for `target` (see cs_track_kind) with no keys yet;
+ * cs_scene_add_key then appends its keys. A track of the same kind and
+ * target already present is replaced. The target must exist; a points track
+ * needs a contour of at most CS_CFG_MAX_ANIM_POINTS points. Errors name the
+ * target (cel, region, contour) in `err`.
+ */
+cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t target, cs_ease ease,
+                             cs_error *err);
+
+/*
+ * Appends a key to the track added last. `values` holds the track's width
+ * in floats (cs_scene_track_width), checked as the static value would be:
+ * finite transforms within the coordinate limit, lights >= 0, paints in
+ * 0..1, points as for cs_scene_add_contour. Times are finite and strictly
+ * increasing; `err->item` is the key's index on failure.
+ */
+cs_status cs_scene_add_key(cs_scene *scene, float time, const float *values, cs_error *err);
+
+/* Floats per key of a track of `kind` on `target`, or 0 if there cannot be one. */
+uint32_t cs_scene_track_width(const cs_scene *scene, cs_track_kind kind, uint32_t target);
+
+/* Removes the track of `kind` on `target`, if there is one (no track is not an error). */
+cs_status cs_scene_remove_track(cs_scene *scene, cs_track_kind kind, uint32_t target,
+                                cs_error *err);
+
+/* ------------------------------------------------------------- editing */
+/*
+ * Changes to a built scene, what the cel stream's patch records do. Each
+ * validates like the builder calls and leaves the store unchanged on error.
+ * Regions and contours are indexed over the whole scene.
+ */
+cs_status cs_scene_set_canvas(cs_scene *scene, float canvas_w, float canvas_h);
+cs_status cs_scene_clear_background(cs_scene *scene);
+cs_status cs_scene_set_transform(cs_scene *scene, uint32_t cel, const cs_affine *transform,
+                                 cs_error *err);
+/* `front` NULL: the cel follows the stack front light; `back` NULL: black. */
+cs_status cs_scene_set_cel_lights(cs_scene *scene, uint32_t cel, const float front[3],
+                                  const float back[3], cs_error *err);
+cs_status cs_scene_set_paint(cs_scene *scene, uint32_t region, cs_fill_rule rule,
+                             const cs_paint *paint, cs_error *err);
+/*
+ * New control points for a contour of the same point count; `intervals`
+ * NULL keeps its knot intervals. `points`/`intervals` may be the store's own
+ * arrays for that contour (checked in place).
+ */
+cs_status cs_scene_set_points(cs_scene *scene, uint32_t contour, int count,
+                              const cs_point *points, const float *intervals, cs_error *err);
+/*
+ * Removes a cel with its regions, contours, points and every track on them;
+ * later cels, regions and contours move down one index.
+ */
+cs_status cs_scene_remove_cel(cs_scene *scene, uint32_t cel, cs_error *err);
+/* Moves cel `from` to stack position `to` (0 = front-most); others keep their order. */
+cs_status cs_scene_move_cel(cs_scene *scene, uint32_t from, uint32_t to, cs_error *err);
+/* Copies the used part of `src` into `dst` (no library calls; O(scene size)). */
+void cs_scene_copy(cs_scene *dst, const cs_scene *src);
 
 /* --------------------------------------------------------------- render */
 
@@ -355,6 +479,7 @@ typedef struct cs_workspace {
      * (a union-find "next clear pixel" with path compression). */
     uint16_t opaque_next[CS_CFG_MAX_WIDTH + 1]; /* x fits 16 bits: see below */
     float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
+    cs_point anim_points[CS_CFG_MAX_ANIM_POINTS]; /* one animated contour at frame time */
 } cs_workspace;
 
 /* Pixel positions are kept in 16 bits (opaque_next). */
@@ -399,7 +524,8 @@ typedef struct cs_renderer {
 } cs_renderer;
 
 /*
- * Prepares a frame: evaluates the scene at opts->time, transforms control
+ * Prepares a frame: evaluates the scene at opts->time (every track sampled,
+ * see cs_track_kind and cs_ease), transforms control
  * points to device space, converts every contour to segments and splits them
  * into y-monotone pieces. On failure `err` says which contour.
  */
@@ -492,6 +618,85 @@ uint16_t cs_srgb_encode16(float linear);
 
 /* Linear light of an sRGB-encoded value in 0..1 (the inverse of the above). */
 float cs_srgb_decode(float encoded);
+/* ------------------------------------------------------------ cel stream */
+/*
+ * The streaming decoder of the cel stream (docs/STREAM.md). It takes bytes
+ * in any chunking, with fixed memory (this struct and two scene stores), and
+ * builds the next scene in the back store while the front store stays on
+ * display. A transaction that decodes, validates and passes its CRC ends in
+ * CS_STREAM_COMMIT; the caller then calls cs_stream_swap between frames.
+ * A damaged, truncated, oversized or invalid transaction is dropped whole
+ * and reported (CS_STREAM_ERROR, cs_stream_last_error); the front scene is
+ * untouched and the decoder resynchronises on the next transaction header.
+ *
+ * The fields are private; the struct is public so the caller can place it.
+ */
+typedef struct cs_stream_error {
+    cs_status status;    /* CS_ERR_STREAM_* or the scene validation status */
+    uint64_t offset;     /* stream offset of the dropped transaction (or skipped bytes) */
+    uint64_t at;         /* stream offset of the fault: record, CRC field, cut */
+    cs_error where;      /* scene location for validation failures, else -1s */
+    const char *what;    /* a short English explanation; never NULL */
+} cs_stream_error;
+
+typedef enum cs_stream_event {
+    CS_STREAM_MORE = 0,   /* every byte given was consumed; feed more */
+    CS_STREAM_COMMIT = 1, /* a new scene is ready: cs_stream_swap between frames */
+    CS_STREAM_ERROR = 2   /* something was dropped: see cs_stream_last_error */
+} cs_stream_event;
+
+typedef struct cs_stream {
+    cs_scene *front, *back;
+    uint64_t offset;            /* stream offset of the next byte */
+    uint64_t txn_offset;        /* start of the current transaction */
+    uint64_t rec_offset;        /* start of the current record */
+    uint64_t garbage_offset;    /* start of the current run of skipped bytes */
+    uint64_t skipped;           /* bytes outside transactions, in total */
+    uint64_t skip_left;         /* bytes left of a transaction being skipped */
+    uint32_t commits, dropped;  /* transactions committed and dropped, in total */
+    uint32_t body_len, body_pos, crc, trailer;
+    uint32_t rec_len, rec_pos, fixed_len, fill, word;
+    uint32_t float_count, float_index, base, count, width, slot;
+    float key_time;
+    uint16_t rec_type;
+    uint8_t state, parse, mode, rec_flags;
+    uint8_t win_pos, win_count, queued;
+    bool has_scene, commit_ready, in_garbage, seen_commit, txn_failed;
+    uint8_t win[16];            /* the last 16 bytes: header detection */
+    uint8_t buf[52];            /* a record header or a record's fixed part */
+    cs_stream_error txn_err;    /* first failure inside the current transaction */
+    cs_stream_error queue[2];   /* errors not yet returned */
+    cs_stream_error last;       /* the error of the last CS_STREAM_ERROR */
+} cs_stream;
+
+/*
+ * Starts a decoder on two scene stores. If `front_valid`, `front` holds a
+ * scene already on display (e.g. one built into the firmware) that patch
+ * transactions may change; otherwise the first transaction must define a
+ * whole scene. `back` is scratch until a commit. CS_ERR_ARG if a pointer is
+ * NULL or the two stores are one.
+ */
+cs_status cs_stream_init(cs_stream *s, cs_scene *front, bool front_valid, cs_scene *back);
+
+/*
+ * Consumes bytes until they run out or something happens; *used says how
+ * many were consumed. After CS_STREAM_COMMIT no byte is consumed until
+ * cs_stream_swap; after CS_STREAM_ERROR feeding may go on at once (call
+ * again with the rest, even if that is nothing: a second error may wait).
+ */
+cs_stream_event cs_stream_feed(cs_stream *s, const uint8_t *data, size_t len, size_t *used);
+
+/* End of input: reports a transaction cut short or trailing bytes, then resets to hunting. */
+cs_stream_event cs_stream_finish(cs_stream *s);
+
+/* Makes the ready commit the front scene (between frames). CS_ERR_STATE if none is ready. */
+cs_status cs_stream_swap(cs_stream *s);
+
+/* The scene on display: the last swapped-in commit, or NULL if there is none. */
+const cs_scene *cs_stream_scene(const cs_stream *s);
+
+/* The error behind the last CS_STREAM_ERROR. */
+const cs_stream_error *cs_stream_last_error(const cs_stream *s);
 
 /* ----------------------------------------------------------------- misc */
 

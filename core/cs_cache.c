@@ -24,6 +24,7 @@
  */
 #include "cs_internal.h"
 
+#if CS_CFG_CACHE
 static bool same_map(const cs_cache_run *run, const float *E, const float *T)
 {
     for (int ch = 0; ch < 3; ch++)
@@ -31,6 +32,7 @@ static bool same_map(const cs_cache_run *run, const float *E, const float *T)
             return false;
     return true;
 }
+#endif
 
 cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspace *ws,
                          const cs_scene *scene, const cs_render_opts *opts, uint32_t cel_first,

@@ -32,6 +32,35 @@
 #define CS_CFG_MAX_POINTS 16384
 #endif
 
+/*
+ * Animation: keyframe tracks, their keys (one time each) and the floats of
+ * all keys together (a transform key takes 6, a paint 7, a control-point key
+ * 3 per point).
+ */
+#ifndef CS_CFG_MAX_TRACKS
+#define CS_CFG_MAX_TRACKS 256
+#endif
+#ifndef CS_CFG_MAX_KEYS
+#define CS_CFG_MAX_KEYS 4096
+#endif
+#ifndef CS_CFG_MAX_KEY_VALUES
+#define CS_CFG_MAX_KEY_VALUES 32768
+#endif
+/* Most control points of one animated contour: the workspace holds one such
+ * contour evaluated at frame time. */
+#ifndef CS_CFG_MAX_ANIM_POINTS
+#define CS_CFG_MAX_ANIM_POINTS 1024
+#endif
+
+/*
+ * Cel stream: the longest transaction body the decoder accepts, in bytes.
+ * Nothing is buffered (records stream into the scene store), so this only
+ * bounds how long a header can claim the input.
+ */
+#ifndef CS_CFG_STREAM_MAX_TXN
+#define CS_CFG_STREAM_MAX_TXN (16u * 1024u * 1024u)
+#endif
+
 /* Workspace: per-frame segment arena and per-line buffers. */
 /* Rational polynomial segments of one frame (at most one per control point). */
 #ifndef CS_CFG_MAX_SEGMENTS

@@ -24,6 +24,11 @@
  * line can skip a region lying wholly where the stack is already opaque),
  * and, for CSG regions, which operand's winding each piece moves. Cels
  * held in a pre-combination cache are not converted at all.
+ * Animation is evaluated here too, at opts->time, and nowhere else: each
+ * cel, region and contour looks up its track (cs_anim.c) and uses the
+ * sampled value in place of the stored one. An animated contour's points
+ * are sampled into ws->anim_points, one contour at a time, so the workspace
+ * grows by one contour, not by a copy of the scene.
  */
 #include "cs_internal.h"
 
@@ -207,6 +212,42 @@ static cs_affine affine_inverse(const cs_affine *m)
     return inv;
 }
 
+/* Samples track `tr` at time t into out[0 .. width). */
+static void sample(const cs_scene *scene, const cs_track *tr, float t, float *out)
+{
+    uint32_t i0, i1;
+    float s;
+    cs__track_locate(scene, tr, t, &i0, &i1, &s);
+    const float *a = &scene->key_values[tr->first_value + i0 * tr->width];
+    const float *b = &scene->key_values[tr->first_value + i1 * tr->width];
+    for (uint32_t k = 0; k < tr->width; k++)
+        out[k] = i0 == i1 ? a[k] : cs__lerp(a[k], b[k], s);
+}
+
+/* Samples a points track into the workspace's contour buffer. */
+static const cs_point *sample_points(const cs_scene *scene, const cs_track *tr, float t,
+                                     cs_point *out)
+{
+    uint32_t i0, i1;
+    float s;
+    cs__track_locate(scene, tr, t, &i0, &i1, &s);
+    const float *a = &scene->key_values[tr->first_value + i0 * tr->width];
+    const float *b = &scene->key_values[tr->first_value + i1 * tr->width];
+    for (uint32_t k = 0; k < tr->width / 3; k++) {
+        out[k].x = i0 == i1 ? a[3 * k] : cs__lerp(a[3 * k], b[3 * k], s);
+        out[k].y = i0 == i1 ? a[3 * k + 1] : cs__lerp(a[3 * k + 1], b[3 * k + 1], s);
+        out[k].w = i0 == i1 ? a[3 * k + 2] : cs__lerp(a[3 * k + 2], b[3 * k + 2], s);
+    }
+    return out;
+}
+
+static void copy3(float *dst, const float *src)
+{
+    dst[0] = src[0];
+    dst[1] = src[1];
+    dst[2] = src[2];
+}
+
 cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                          const cs_render_opts *opts, cs_error *err)
 {
@@ -268,10 +309,21 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         for (int ch = 0; ch < 3; ch++)
             ws->cel_E[3 * x + ch] = ws->cel_A[3 * x + ch] = 0.0f;
     }
+    const float t = opts->time;
+    float stack[6], bg[3];
+    copy3(stack, scene->stack_front);
+    copy3(stack + 3, scene->stack_back);
+    copy3(bg, scene->background);
+    const cs_track *tr = cs__track_find(scene, CS_TRACK_STACK_LIGHTS, 0);
+    if (tr && tr->key_count)
+        sample(scene, tr, t, stack);
+    tr = cs__track_find(scene, CS_TRACK_BACKGROUND, 0);
+    if (tr && tr->key_count)
+        sample(scene, tr, t, bg);
     bool srgb = opts->blend == CS_BLEND_SRGB;
     for (int k = 0; k < 3; k++) {
-        float bg = srgb ? cs__encode(scene->background[k]) : scene->background[k];
-        r->behind[k] = scene->has_background ? bg * scene->stack_front[k] : scene->stack_back[k];
+        float card = srgb ? cs__encode(bg[k]) : bg[k];
+        r->behind[k] = scene->has_background ? card * stack[k] : stack[3 + k];
     }
 
     float width = (float)opts->width;
@@ -279,24 +331,48 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         if (cache && ci >= cache->cel_first && ci - cache->cel_first < cache->cel_count)
             continue; /* composited from the cache's runs instead */
         const cs_cel *cel = &scene->cels[ci];
-        const float *front = cel->has_front ? cel->front : scene->stack_front;
-        cs_affine m = cel->transform;
-        cs_affine dev = {m.a * r->sx, m.b * r->sy, m.c * r->sx,
-                         m.d * r->sy, m.e * r->sx, m.f * r->sy};
+        float m[6] = {cel->transform.a, cel->transform.b, cel->transform.c,
+                      cel->transform.d, cel->transform.e, cel->transform.f};
+        float lights[6];
+        copy3(lights, cel->has_front ? cel->front : stack);
+        copy3(lights + 3, cel->back);
+        if ((tr = cs__track_find(scene, CS_TRACK_TRANSFORM, ci)) != 0 && tr->key_count)
+            sample(scene, tr, t, m);
+        if ((tr = cs__track_find(scene, CS_TRACK_CEL_LIGHTS, ci)) != 0 && tr->key_count)
+            sample(scene, tr, t, lights);
+        cs_affine dev = {m[0] * r->sx, m[1] * r->sy, m[2] * r->sx,
+                         m[3] * r->sy, m[4] * r->sx, m[5] * r->sy};
         cs_affine inv = affine_inverse(&dev);
         for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++) {
             const cs_region *reg = &scene->regions[ri];
             ws->region_cel[ri] = (uint16_t)ci;
-            region_map(&reg->paint, front, cel->back, srgb, ws->region_E[ri], ws->region_T[ri]);
+            const cs_paint *paint = &reg->paint;
+            cs_paint animated;
+            if ((tr = cs__track_find(scene, CS_TRACK_PAINT, ri)) != 0 && tr->key_count) {
+                float v[7];
+                sample(scene, tr, t, v);
+                for (int k = 0; k < 3; k++) {
+                    animated.pigment[k] = cs__clampf(v[k], 0.0f, 1.0f);
+                    animated.medium[k] = cs__clampf(v[3 + k], 0.0f, 1.0f);
+                }
+                animated.beta = cs__clampf(v[6], 0.0f, 1.0f);
+                paint = &animated;
+            }
+            region_map(paint, lights, lights + 3, srgb, ws->region_E[ri], ws->region_T[ri]);
             for (int f = 0; f < 3; f++)
                 if (reg->func[f])
                     cs__func_compile(&scene->funcs[reg->func[f] - 1u], &inv,
                                      ws->func_xf[reg->func[f] - 1u]);
             for (uint32_t k = 0; k < reg->contour_count; k++) {
-                const cs_contour *c = &scene->contours[reg->first_contour + k];
+                uint32_t ki = reg->first_contour + k;
+                const cs_contour *c = &scene->contours[ki];
+                const cs_point *pts = &scene->points[c->first_point];
+                if ((tr = cs__track_find(scene, CS_TRACK_POINTS, ki)) != 0 && tr->key_count &&
+                    tr->width == 3u * c->point_count && c->point_count <= CS_CFG_MAX_ANIM_POINTS)
+                    pts = sample_points(scene, tr, t, ws->anim_points);
                 uint32_t first = r->segment_count, n;
                 int32_t bad;
-                st = cs__contour_segments(&scene->points[c->first_point],
+                st = cs__contour_segments(pts,
                                           &scene->intervals[c->first_point], c->point_count,
                                           c->degree, &dev, (uint16_t)ri, &ws->segments[first],
                                           CS_CFG_MAX_SEGMENTS - first, &n, &bad);

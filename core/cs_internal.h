@@ -58,6 +58,38 @@ static inline void cs__error(cs_error *err, cs_status st, int32_t cel, int32_t r
     }
 }
 
+/* Validation shared by the builder (cs_scene.c), editing (cs_edit.c) and
+ * animation keys (cs_anim.c), so every path into the store checks alike. */
+cs_status cs__check_canvas(float canvas_w, float canvas_h);
+cs_status cs__check_lights(const float *front, const float *back); /* either may be NULL */
+cs_status cs__check_colour(const float *rgb);                    /* finite, in 0..1 */
+cs_status cs__check_affine(const cs_affine *m, int32_t *item);
+cs_status cs__check_paint(const cs_paint *p);
+cs_status cs__check_point(const cs_point *p);
+cs_status cs__check_contour(int degree, int count, const cs_point *pts, const float *intervals,
+                            int32_t *item);
+void cs__copy_paint(cs_paint *dst, const cs_paint *src);
+
+/* Removes the tracks whose target of `kind`'s family lies in [first, first+count)
+ * and renumbers the later targets down by `count` (cs_anim.c). */
+void cs__tracks_remove_range(cs_scene *scene, int family, uint32_t first, uint32_t count);
+/* Track families: what a target index counts. */
+enum { CS__FAM_CEL = 0, CS__FAM_REGION = 1, CS__FAM_CONTOUR = 2, CS__FAM_STACK = 3 };
+int cs__track_family(int kind);
+/* Re-sorts the tracks by (kind, target) after targets were renumbered. */
+void cs__tracks_sort(cs_scene *scene);
+
+/* The track of (kind, target), or NULL (binary search; the tracks are sorted). */
+const cs_track *cs__track_find(const cs_scene *scene, int kind, uint32_t target);
+/*
+ * Where time t falls among a track's keys: the value is
+ * (1-s) * key[i0] + s * key[i1], with i0 == i1 (and s = 0) outside the keys.
+ */
+void cs__track_locate(const cs_scene *scene, const cs_track *tr, float t, uint32_t *i0,
+                      uint32_t *i1, float *s);
+/* (1-s) a + s b: exactly a at s = 0 and b at s = 1, between them (to rounding) otherwise. */
+static inline float cs__lerp(float a, float b, float s) { return (1.0f - s) * a + s * b; }
+
 /* Polynomials of degree <= 4 in power basis, c[0] + c[1] u + ... */
 float cs__poly_eval(const float *c, int degree, float u);
 

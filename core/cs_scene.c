@@ -29,6 +29,47 @@ static bool light_ok(const float *v)
     return rgb_finite(v) && v[0] >= 0.0f && v[1] >= 0.0f && v[2] >= 0.0f;
 }
 
+cs_status cs__check_lights(const float *front, const float *back)
+{
+    if ((front && !light_ok(front)) || (back && !light_ok(back)))
+        return (front && !rgb_finite(front)) || (back && !rgb_finite(back)) ? CS_ERR_NONFINITE
+                                                                            : CS_ERR_PAINT;
+    return CS_OK;
+}
+
+cs_status cs__check_colour(const float *rgb)
+{
+    if (!rgb_finite(rgb))
+        return CS_ERR_NONFINITE;
+    return rgb_unit(rgb) ? CS_OK : CS_ERR_PAINT;
+}
+
+cs_status cs__check_affine(const cs_affine *m, int32_t *item)
+{
+    const float *v = &m->a;
+    for (int i = 0; i < 6; i++) {
+        *item = i;
+        if (!cs__finite(v[i]))
+            return CS_ERR_NONFINITE;
+        if (cs__absf(v[i]) > CS_CFG_COORD_LIMIT)
+            return CS_ERR_RANGE;
+    }
+    *item = -1;
+    return CS_OK;
+}
+
+cs_status cs__check_point(const cs_point *p)
+{
+    if (!cs__finite(p->x) || !cs__finite(p->y) || !cs__finite(p->w))
+        return CS_ERR_NONFINITE;
+    if (cs__absf(p->x) > CS_CFG_COORD_LIMIT || cs__absf(p->y) > CS_CFG_COORD_LIMIT)
+        return CS_ERR_RANGE;
+    /* Weights far from 1 make the rational form ill-conditioned in float. */
+    if (!(p->w > 0.0f) || p->w > CS_CFG_COORD_LIMIT || p->w < 1.0f / CS_CFG_COORD_LIMIT)
+        return CS_ERR_WEIGHT;
+    return CS_OK;
+}
+
 static void copy3(float *dst, const float *src)
 {
     dst[0] = src[0];
@@ -36,16 +77,24 @@ static void copy3(float *dst, const float *src)
     dst[2] = src[2];
 }
 
-cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
+cs_status cs__check_canvas(float canvas_w, float canvas_h)
 {
-    if (!scene)
-        return CS_ERR_ARG;
     if (!cs__finite(canvas_w) || !cs__finite(canvas_h))
         return CS_ERR_NONFINITE;
     if (!(canvas_w > 0.0f && canvas_h > 0.0f))
         return CS_ERR_SIZE;
     if (canvas_w > CS_CFG_COORD_LIMIT || canvas_h > CS_CFG_COORD_LIMIT)
         return CS_ERR_RANGE;
+    return CS_OK;
+}
+
+cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
+{
+    if (!scene)
+        return CS_ERR_ARG;
+    cs_status st = cs__check_canvas(canvas_w, canvas_h);
+    if (st != CS_OK)
+        return st;
     scene->canvas_w = canvas_w;
     scene->canvas_h = canvas_h;
     scene->has_background = false;
@@ -56,6 +105,8 @@ cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
     }
     scene->cel_count = scene->region_count = scene->contour_count = scene->point_count = 0;
     scene->func_count = 0;
+    scene->track_count = scene->key_count = scene->value_count = 0;
+    scene->open_track = UINT32_MAX;
     return CS_OK;
 }
 
@@ -63,10 +114,9 @@ cs_status cs_scene_set_background(cs_scene *scene, const float rgb_linear[3])
 {
     if (!scene || !rgb_linear)
         return CS_ERR_ARG;
-    if (!rgb_finite(rgb_linear))
-        return CS_ERR_NONFINITE;
-    if (!rgb_unit(rgb_linear))
-        return CS_ERR_PAINT;
+    cs_status st = cs__check_colour(rgb_linear);
+    if (st != CS_OK)
+        return st;
     copy3(scene->background, rgb_linear);
     scene->has_background = true;
     return CS_OK;
@@ -76,10 +126,16 @@ cs_status cs_scene_set_lights(cs_scene *scene, const float front[3], const float
 {
     if (!scene || !front || !back)
         return CS_ERR_ARG;
-    if (!light_ok(front) || !light_ok(back))
-        return rgb_finite(front) && rgb_finite(back) ? CS_ERR_PAINT : CS_ERR_NONFINITE;
+    cs_status st = cs__check_lights(front, back);
+    if (st != CS_OK)
+        return st;
     copy3(scene->stack_front, front);
     copy3(scene->stack_back, back);
+    /* A cel without its own front light stores the stack's: keep it current,
+     * so the store does not depend on whether lights or cels came first. */
+    for (uint32_t i = 0; i < scene->cel_count; i++)
+        if (!scene->cels[i].has_front)
+            copy3(scene->cels[i].front, front);
     return CS_OK;
 }
 
@@ -90,22 +146,14 @@ cs_status cs_scene_add_cel(cs_scene *scene, const cs_affine *transform, const fl
         cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
         return CS_ERR_ARG;
     }
-    int32_t cel = (int32_t)scene->cel_count;
-    const float *m = &transform->a;
-    for (int i = 0; i < 6; i++) {
-        if (!cs__finite(m[i])) {
-            cs__error(err, CS_ERR_NONFINITE, cel, -1, -1, i);
-            return CS_ERR_NONFINITE;
-        }
-        if (cs__absf(m[i]) > CS_CFG_COORD_LIMIT) {
-            cs__error(err, CS_ERR_RANGE, cel, -1, -1, i);
-            return CS_ERR_RANGE;
-        }
+    int32_t cel = (int32_t)scene->cel_count, item;
+    cs_status st = cs__check_affine(transform, &item);
+    if (st != CS_OK) {
+        cs__error(err, st, cel, -1, -1, item);
+        return st;
     }
-    if ((front && !light_ok(front)) || (back && !light_ok(back))) {
-        cs_status st = (front && !rgb_finite(front)) || (back && !rgb_finite(back))
-                           ? CS_ERR_NONFINITE
-                           : CS_ERR_PAINT;
+    st = cs__check_lights(front, back);
+    if (st != CS_OK) {
         cs__error(err, st, cel, -1, -1, -1);
         return st;
     }
@@ -116,7 +164,12 @@ cs_status cs_scene_add_cel(cs_scene *scene, const cs_affine *transform, const fl
     cs_cel *c = &scene->cels[scene->cel_count++];
     c->first_region = scene->region_count;
     c->region_count = 0;
-    c->transform = *transform;
+    c->transform.a = transform->a;
+    c->transform.b = transform->b;
+    c->transform.c = transform->c;
+    c->transform.d = transform->d;
+    c->transform.e = transform->e;
+    c->transform.f = transform->f;
     c->has_front = front != 0;
     static const float black[3] = {0.0f, 0.0f, 0.0f};
     copy3(c->front, front ? front : scene->stack_front);
@@ -124,17 +177,20 @@ cs_status cs_scene_add_cel(cs_scene *scene, const cs_affine *transform, const fl
     return CS_OK;
 }
 
-static bool paint_ok(const cs_paint *p, cs_status *st)
+cs_status cs__check_paint(const cs_paint *p)
 {
-    if (!rgb_finite(p->pigment) || !rgb_finite(p->medium) || !cs__finite(p->beta)) {
-        *st = CS_ERR_NONFINITE;
-        return false;
-    }
-    if (!rgb_unit(p->pigment) || !rgb_unit(p->medium) || !(p->beta >= 0.0f && p->beta <= 1.0f)) {
-        *st = CS_ERR_PAINT;
-        return false;
-    }
-    return true;
+    if (!rgb_finite(p->pigment) || !rgb_finite(p->medium) || !cs__finite(p->beta))
+        return CS_ERR_NONFINITE;
+    if (!rgb_unit(p->pigment) || !rgb_unit(p->medium) || !(p->beta >= 0.0f && p->beta <= 1.0f))
+        return CS_ERR_PAINT;
+    return CS_OK;
+}
+
+void cs__copy_paint(cs_paint *dst, const cs_paint *src)
+{
+    copy3(dst->pigment, src->pigment);
+    copy3(dst->medium, src->medium);
+    dst->beta = src->beta;
 }
 
 cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint *paint,
@@ -151,12 +207,18 @@ cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint
     }
     cs_cel *c = &scene->cels[cel];
     int32_t region = c->region_count;
+    /* Regions of a cel are contiguous: only a cel owning the end of the
+     * region array can grow (after cs_scene_move_cel it may not). */
+    if (c->first_region + c->region_count != scene->region_count) {
+        cs__error(err, CS_ERR_STATE, cel, region, -1, -1);
+        return CS_ERR_STATE;
+    }
     if (rule != CS_FILL_NONZERO && rule != CS_FILL_EVENODD) {
         cs__error(err, CS_ERR_FILL_RULE, cel, region, -1, -1);
         return CS_ERR_FILL_RULE;
     }
-    cs_status st;
-    if (!paint_ok(paint, &st)) {
+    cs_status st = cs__check_paint(paint);
+    if (st != CS_OK) {
         cs__error(err, st, cel, region, -1, -1);
         return st;
     }
@@ -169,7 +231,7 @@ cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint
     r->first_contour = scene->contour_count;
     r->contour_count = 0;
     r->fill_rule = (uint8_t)rule;
-    r->paint = *paint;
+    cs__copy_paint(&r->paint, paint);
     r->csg_len = 0;
     for (int k = 0; k < 3; k++)
         r->func[k] = 0;
@@ -177,7 +239,7 @@ cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint
 }
 
 /* Validates a contour's numbers; on failure reports the offending item. */
-static cs_status check_contour(int degree, int count, const cs_point *pts, const float *intervals,
+cs_status cs__check_contour(int degree, int count, const cs_point *pts, const float *intervals,
                                int32_t *item)
 {
     *item = -1;
@@ -187,13 +249,9 @@ static cs_status check_contour(int degree, int count, const cs_point *pts, const
         return CS_ERR_TOO_FEW_POINTS;
     for (int i = 0; i < count; i++) {
         *item = i;
-        if (!cs__finite(pts[i].x) || !cs__finite(pts[i].y) || !cs__finite(pts[i].w))
-            return CS_ERR_NONFINITE;
-        if (cs__absf(pts[i].x) > CS_CFG_COORD_LIMIT || cs__absf(pts[i].y) > CS_CFG_COORD_LIMIT)
-            return CS_ERR_RANGE;
-        /* Weights far from 1 make the rational form ill-conditioned in float. */
-        if (!(pts[i].w > 0.0f) || pts[i].w > CS_CFG_COORD_LIMIT || pts[i].w < 1.0f / CS_CFG_COORD_LIMIT)
-            return CS_ERR_WEIGHT;
+        cs_status st = cs__check_point(&pts[i]);
+        if (st != CS_OK)
+            return st;
     }
     *item = -1;
     if (!intervals)
@@ -239,12 +297,21 @@ cs_status cs_scene_add_contour(cs_scene *scene, int degree, int count, const cs_
         cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
         return CS_ERR_STATE;
     }
+    const cs_cel *last = &scene->cels[scene->cel_count - 1];
+    if (last->first_region + last->region_count != scene->region_count) {
+        cs__error(err, CS_ERR_STATE, (int32_t)scene->cel_count - 1, -1, -1, -1);
+        return CS_ERR_STATE;
+    }
     int32_t cel = (int32_t)scene->cel_count - 1;
     int32_t region = scene->cels[cel].region_count - 1;
     cs_region *r = &scene->regions[scene->region_count - 1];
     int32_t contour = r->contour_count;
+    if (r->first_contour + r->contour_count != scene->contour_count) {
+        cs__error(err, CS_ERR_STATE, cel, region, contour, -1);
+        return CS_ERR_STATE;
+    }
     int32_t item;
-    cs_status st = check_contour(degree, count, points, intervals, &item);
+    cs_status st = cs__check_contour(degree, count, points, intervals, &item);
     if (st != CS_OK) {
         cs__error(err, st, cel, region, contour, item);
         return st;

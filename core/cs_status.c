@@ -37,6 +37,19 @@ static const char *const status_text[CS_ERR_COUNT_] = {
     [CS_ERR_CSG] = "CSG program malformed: operand out of range, operator without two inputs, "
                    "or not exactly one result",
     [CS_ERR_CAP_CACHE] = "cache buffer too small for the pre-combined cels",
+    [CS_ERR_INDEX] = "no such cel, region or contour",
+    [CS_ERR_COUNT] = "point count differs from the contour's",
+    [CS_ERR_TRACK] = "track kind must be 0..5 and ease linear (0) or smooth (1)",
+    [CS_ERR_KEY_ORDER] = "key times must be strictly increasing",
+    [CS_ERR_CAP_TRACKS] = "scene store full: too many tracks",
+    [CS_ERR_CAP_KEYS] = "scene store full: too many keys or key values",
+    [CS_ERR_CAP_ANIM] = "animated contour has more points than the workspace holds",
+    [CS_ERR_STREAM_SYNC] = "bytes outside any transaction were skipped",
+    [CS_ERR_STREAM_VERSION] = "unsupported cel stream major version",
+    [CS_ERR_STREAM_CRC] = "transaction CRC mismatch: data damaged",
+    [CS_ERR_STREAM_TRUNCATED] = "transaction cut short",
+    [CS_ERR_STREAM_TOO_BIG] = "transaction longer than the decoder accepts",
+    [CS_ERR_STREAM_RECORD] = "malformed record: length, class, order or layout",
 };
 
 const char *cs_status_str(cs_status status)

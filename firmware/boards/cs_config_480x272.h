@@ -33,7 +33,7 @@
 #define CS_CFG_MAX_CELS 16
 #define CS_CFG_MAX_REGIONS 64
 #define CS_CFG_MAX_CONTOURS 128
-#define CS_CFG_MAX_POINTS 704
+#define CS_CFG_MAX_POINTS 520
 #define CS_CFG_MAX_SEGMENTS 120
 #define CS_CFG_MAX_PIECES 176
 #define CS_CFG_MAX_CROSSINGS 64
@@ -43,6 +43,12 @@
 #define CS_CFG_MAX_STOPS 8
 #define CS_CFG_MAX_CSG 8
 #define CS_CFG_MAX_OPERANDS 4
+/* Animation: a few tracks, keys and one animated contour of up to 32 points. */
+#define CS_CFG_MAX_TRACKS 16
+#define CS_CFG_MAX_KEYS 64
+#define CS_CFG_MAX_KEY_VALUES 384
+#define CS_CFG_MAX_ANIM_POINTS 32
+#define CS_CFG_STREAM_MAX_TXN (16u * 1024u)
 /* No pre-combined cache: it needs more RAM than the whole board has. */
 #define CS_CFG_CACHE 0
 

@@ -1,0 +1,377 @@
+/*
+ * cs_edit.c - changing a built scene store: what cel stream patches do.
+ *
+ * The store keeps each cel's regions, each region's contours and each
+ * contour's points contiguous, in creation order, and the builder only ever
+ * appends. Editing keeps those invariants:
+ *   - setters overwrite values in place (transform, lights, paint, points of
+ *     the same count) after checking them exactly as the builder does;
+ *   - removing a cel closes the gaps its regions, contours and points leave,
+ *     renumbers what follows, and drops the tracks that animated them;
+ *   - moving a cel permutes only the cels array (a cel finds its regions
+ *     through first_region), so regions need not follow stack order;
+ *     cel-targeted tracks are renumbered and re-sorted.
+ * All of it is loops over the used part of the store, with no scratch
+ * memory, so the stream decoder can apply a patch to its back store.
+ */
+#include "cs_internal.h"
+
+static void copy3(float *dst, const float *src)
+{
+    dst[0] = src[0];
+    dst[1] = src[1];
+    dst[2] = src[2];
+}
+
+static void copy_affine(cs_affine *dst, const cs_affine *src)
+{
+    dst->a = src->a;
+    dst->b = src->b;
+    dst->c = src->c;
+    dst->d = src->d;
+    dst->e = src->e;
+    dst->f = src->f;
+}
+
+static void copy_cel(cs_cel *dst, const cs_cel *src)
+{
+    dst->first_region = src->first_region;
+    dst->region_count = src->region_count;
+    dst->has_front = src->has_front;
+    copy_affine(&dst->transform, &src->transform);
+    copy3(dst->front, src->front);
+    copy3(dst->back, src->back);
+}
+
+static void copy_region(cs_region *dst, const cs_region *src)
+{
+    dst->first_contour = src->first_contour;
+    dst->contour_count = src->contour_count;
+    dst->fill_rule = src->fill_rule;
+    cs__copy_paint(&dst->paint, &src->paint);
+    for (int k = 0; k < 3; k++)
+        dst->func[k] = src->func[k];
+    dst->csg_len = src->csg_len;
+    for (int k = 0; k < CS_CFG_MAX_CSG; k++)
+        dst->csg[k] = src->csg[k];
+}
+
+static void copy_func(cs_paint_func *dst, const cs_paint_func *src)
+{
+    dst->kind = src->kind;
+    dst->spread = src->spread;
+    dst->stop_count = src->stop_count;
+    dst->map_cols = src->map_cols;
+    for (int k = 0; k < 6; k++)
+        dst->geom[k] = src->geom[k];
+    for (int i = 0; i < CS_CFG_MAX_STOPS; i++) {
+        dst->stops[i].offset = src->stops[i].offset;
+        for (int k = 0; k < 3; k++)
+            dst->stops[i].value[k] = src->stops[i].value[k];
+    }
+}
+
+static void copy_contour(cs_contour *dst, const cs_contour *src)
+{
+    dst->first_point = src->first_point;
+    dst->point_count = src->point_count;
+    dst->degree = src->degree;
+    dst->operand = src->operand;
+}
+
+static void copy_point(cs_point *dst, const cs_point *src)
+{
+    dst->x = src->x;
+    dst->y = src->y;
+    dst->w = src->w;
+}
+
+cs_status cs_scene_set_canvas(cs_scene *scene, float canvas_w, float canvas_h)
+{
+    if (!scene)
+        return CS_ERR_ARG;
+    cs_status st = cs__check_canvas(canvas_w, canvas_h);
+    if (st != CS_OK)
+        return st;
+    scene->canvas_w = canvas_w;
+    scene->canvas_h = canvas_h;
+    return CS_OK;
+}
+
+cs_status cs_scene_clear_background(cs_scene *scene)
+{
+    if (!scene)
+        return CS_ERR_ARG;
+    scene->has_background = false;
+    scene->background[0] = scene->background[1] = scene->background[2] = 0.0f;
+    return CS_OK;
+}
+
+cs_status cs_scene_set_transform(cs_scene *scene, uint32_t cel, const cs_affine *transform,
+                                 cs_error *err)
+{
+    if (!scene || !transform) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    if (cel >= scene->cel_count) {
+        cs__error(err, CS_ERR_INDEX, -1, -1, -1, -1);
+        return CS_ERR_INDEX;
+    }
+    int32_t item;
+    cs_status st = cs__check_affine(transform, &item);
+    cs__error(err, st, st == CS_OK ? -1 : (int32_t)cel, -1, -1, item);
+    if (st == CS_OK)
+        copy_affine(&scene->cels[cel].transform, transform);
+    return st;
+}
+
+cs_status cs_scene_set_cel_lights(cs_scene *scene, uint32_t cel, const float front[3],
+                                  const float back[3], cs_error *err)
+{
+    if (!scene) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    if (cel >= scene->cel_count) {
+        cs__error(err, CS_ERR_INDEX, -1, -1, -1, -1);
+        return CS_ERR_INDEX;
+    }
+    cs_status st = cs__check_lights(front, back);
+    cs__error(err, st, st == CS_OK ? -1 : (int32_t)cel, -1, -1, -1);
+    if (st != CS_OK)
+        return st;
+    static const float black[3] = {0.0f, 0.0f, 0.0f};
+    cs_cel *c = &scene->cels[cel];
+    c->has_front = front != 0;
+    copy3(c->front, front ? front : scene->stack_front);
+    copy3(c->back, back ? back : black);
+    return CS_OK;
+}
+
+/* The cel and in-cel index of a region, for error locations. */
+static void region_owner(const cs_scene *scene, uint32_t region, int32_t *cel, int32_t *rin)
+{
+    *cel = *rin = -1;
+    for (uint32_t c = 0; c < scene->cel_count; c++)
+        if (region >= scene->cels[c].first_region &&
+            region - scene->cels[c].first_region < scene->cels[c].region_count) {
+            *cel = (int32_t)c;
+            *rin = (int32_t)(region - scene->cels[c].first_region);
+        }
+}
+
+cs_status cs_scene_set_paint(cs_scene *scene, uint32_t region, cs_fill_rule rule,
+                             const cs_paint *paint, cs_error *err)
+{
+    if (!scene || !paint) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    if (region >= scene->region_count) {
+        cs__error(err, CS_ERR_INDEX, -1, -1, -1, -1);
+        return CS_ERR_INDEX;
+    }
+    cs_status st = (rule != CS_FILL_NONZERO && rule != CS_FILL_EVENODD) ? CS_ERR_FILL_RULE
+                                                                       : cs__check_paint(paint);
+    if (st != CS_OK) {
+        int32_t cel, rin;
+        region_owner(scene, region, &cel, &rin);
+        cs__error(err, st, cel, rin, -1, -1);
+        return st;
+    }
+    cs_region *r = &scene->regions[region];
+    r->fill_rule = (uint8_t)rule;
+    cs__copy_paint(&r->paint, paint);
+    cs__error(err, CS_OK, -1, -1, -1, -1);
+    return CS_OK;
+}
+
+cs_status cs_scene_set_points(cs_scene *scene, uint32_t contour, int count,
+                              const cs_point *points, const float *intervals, cs_error *err)
+{
+    if (!scene || !points) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    if (contour >= scene->contour_count) {
+        cs__error(err, CS_ERR_INDEX, -1, -1, -1, -1);
+        return CS_ERR_INDEX;
+    }
+    cs_contour *c = &scene->contours[contour];
+    int32_t item = -1;
+    cs_status st = CS_OK;
+    if (count != (int)c->point_count)
+        st = CS_ERR_COUNT;
+    else
+        st = cs__check_contour(c->degree, count, points,
+                               intervals ? intervals : &scene->intervals[c->first_point], &item);
+    if (st != CS_OK) {
+        int32_t cel = -1, rin = -1, cin = -1;
+        for (uint32_t r = 0; r < scene->region_count; r++)
+            if (contour >= scene->regions[r].first_contour &&
+                contour - scene->regions[r].first_contour < scene->regions[r].contour_count) {
+                region_owner(scene, r, &cel, &rin);
+                cin = (int32_t)(contour - scene->regions[r].first_contour);
+            }
+        cs__error(err, st, cel, rin, cin, item);
+        return st;
+    }
+    /* In place when the caller passed the store's own arrays: same index. */
+    for (int i = 0; i < count; i++) {
+        copy_point(&scene->points[c->first_point + (uint32_t)i], &points[i]);
+        if (intervals)
+            scene->intervals[c->first_point + (uint32_t)i] = intervals[i];
+    }
+    cs__error(err, CS_OK, -1, -1, -1, -1);
+    return CS_OK;
+}
+
+/*
+ * Start indices of the items after a removed run [first, first+n) move down
+ * by n; an empty owner whose start lies inside the run (possible only for
+ * owners with no items) moves to `first`.
+ */
+static uint32_t shift_start(uint32_t start, uint32_t first, uint32_t n)
+{
+    if (start >= first + n)
+        return start - n;
+    return start > first ? first : start;
+}
+
+cs_status cs_scene_remove_cel(cs_scene *scene, uint32_t cel, cs_error *err)
+{
+    if (!scene) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    if (cel >= scene->cel_count) {
+        cs__error(err, CS_ERR_INDEX, -1, -1, -1, -1);
+        return CS_ERR_INDEX;
+    }
+    const cs_cel *victim = &scene->cels[cel];
+    uint32_t fr = victim->first_region, nr = victim->region_count;
+    uint32_t fc = 0, nc = 0, fp = 0, np = 0;
+    if (nr > 0) {
+        fc = scene->regions[fr].first_contour;
+        for (uint32_t r = fr; r < fr + nr; r++)
+            nc += scene->regions[r].contour_count;
+    }
+    if (nc > 0) {
+        fp = scene->contours[fc].first_point;
+        for (uint32_t k = fc; k < fc + nc; k++)
+            np += scene->contours[k].point_count;
+    }
+    /* Tracks first, while their targets still mean the old indices. */
+    cs__tracks_remove_range(scene, CS__FAM_CEL, cel, 1);
+    cs__tracks_remove_range(scene, CS__FAM_REGION, fr, nr);
+    cs__tracks_remove_range(scene, CS__FAM_CONTOUR, fc, nc);
+
+    for (uint32_t i = cel; i + 1 < scene->cel_count; i++)
+        copy_cel(&scene->cels[i], &scene->cels[i + 1]);
+    scene->cel_count--;
+    for (uint32_t i = fr; i + nr < scene->region_count; i++)
+        copy_region(&scene->regions[i], &scene->regions[i + nr]);
+    scene->region_count -= nr;
+    for (uint32_t i = fc; i + nc < scene->contour_count; i++)
+        copy_contour(&scene->contours[i], &scene->contours[i + nc]);
+    scene->contour_count -= nc;
+    for (uint32_t i = fp; i + np < scene->point_count; i++) {
+        copy_point(&scene->points[i], &scene->points[i + np]);
+        scene->intervals[i] = scene->intervals[i + np];
+    }
+    scene->point_count -= np;
+
+    for (uint32_t i = 0; i < scene->cel_count; i++)
+        scene->cels[i].first_region = shift_start(scene->cels[i].first_region, fr, nr);
+    for (uint32_t i = 0; i < scene->region_count; i++)
+        scene->regions[i].first_contour = shift_start(scene->regions[i].first_contour, fc, nc);
+    for (uint32_t i = 0; i < scene->contour_count; i++)
+        scene->contours[i].first_point = shift_start(scene->contours[i].first_point, fp, np);
+    scene->open_track = UINT32_MAX;
+    cs__error(err, CS_OK, -1, -1, -1, -1);
+    return CS_OK;
+}
+
+cs_status cs_scene_move_cel(cs_scene *scene, uint32_t from, uint32_t to, cs_error *err)
+{
+    if (!scene) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    if (from >= scene->cel_count || to >= scene->cel_count) {
+        cs__error(err, CS_ERR_INDEX, -1, -1, -1, -1);
+        return CS_ERR_INDEX;
+    }
+    cs_cel moving;
+    copy_cel(&moving, &scene->cels[from]);
+    if (from < to)
+        for (uint32_t i = from; i < to; i++)
+            copy_cel(&scene->cels[i], &scene->cels[i + 1]);
+    else
+        for (uint32_t i = from; i > to; i--)
+            copy_cel(&scene->cels[i], &scene->cels[i - 1]);
+    copy_cel(&scene->cels[to], &moving);
+    for (uint32_t i = 0; i < scene->track_count; i++) {
+        cs_track *t = &scene->tracks[i];
+        if (cs__track_family(t->kind) != CS__FAM_CEL)
+            continue;
+        if (t->target == from)
+            t->target = to;
+        else if (from < to && t->target > from && t->target <= to)
+            t->target--;
+        else if (from > to && t->target >= to && t->target < from)
+            t->target++;
+    }
+    cs__tracks_sort(scene);
+    cs__error(err, CS_OK, -1, -1, -1, -1);
+    return CS_OK;
+}
+
+void cs_scene_copy(cs_scene *dst, const cs_scene *src)
+{
+    if (!dst || !src || dst == src)
+        return;
+    dst->canvas_w = src->canvas_w;
+    dst->canvas_h = src->canvas_h;
+    dst->has_background = src->has_background;
+    copy3(dst->background, src->background);
+    copy3(dst->stack_front, src->stack_front);
+    copy3(dst->stack_back, src->stack_back);
+    dst->cel_count = src->cel_count;
+    dst->region_count = src->region_count;
+    dst->contour_count = src->contour_count;
+    dst->point_count = src->point_count;
+    dst->func_count = src->func_count;
+    for (uint32_t i = 0; i < src->func_count; i++)
+        copy_func(&dst->funcs[i], &src->funcs[i]);
+    dst->track_count = src->track_count;
+    dst->key_count = src->key_count;
+    dst->value_count = src->value_count;
+    dst->open_track = src->open_track;
+    for (uint32_t i = 0; i < src->cel_count; i++)
+        copy_cel(&dst->cels[i], &src->cels[i]);
+    for (uint32_t i = 0; i < src->region_count; i++)
+        copy_region(&dst->regions[i], &src->regions[i]);
+    for (uint32_t i = 0; i < src->contour_count; i++)
+        copy_contour(&dst->contours[i], &src->contours[i]);
+    for (uint32_t i = 0; i < src->point_count; i++) {
+        copy_point(&dst->points[i], &src->points[i]);
+        dst->intervals[i] = src->intervals[i];
+    }
+    for (uint32_t i = 0; i < src->track_count; i++) {
+        cs_track *t = &dst->tracks[i];
+        const cs_track *u = &src->tracks[i];
+        t->target = u->target;
+        t->first_key = u->first_key;
+        t->first_value = u->first_value;
+        t->width = u->width;
+        t->key_count = u->key_count;
+        t->kind = u->kind;
+        t->ease = u->ease;
+    }
+    for (uint32_t i = 0; i < src->key_count; i++)
+        dst->key_times[i] = src->key_times[i];
+    for (uint32_t i = 0; i < src->value_count; i++)
+        dst->key_values[i] = src->key_values[i];
+}

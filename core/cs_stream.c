@@ -1,0 +1,773 @@
+/*
+ * cs_stream.c - the cel stream decoder: bytes in, whole scenes out.
+ *
+ * The board's front door, so it assumes every byte may be hostile. The
+ * format is in docs/STREAM.md; in short: 16-byte headers that carry their
+ * own CRC, transactions of length-prefixed records, a CRC-32 trailer over
+ * each transaction, a COMMIT record last.
+ *
+ * How it stays safe with fixed memory and any chunking:
+ *   - One byte at a time through a state machine (this struct is all of its
+ *     state; there is no recursion and no buffer that input can size).
+ *   - The last 16 bytes always sit in a small ring. A header is recognised
+ *     where the ring holds a magic and the CRC of the 12 bytes before its
+ *     CRC field matches, in any state: that is how the decoder finds the
+ *     first transaction, resynchronises after garbage, and notices that a
+ *     transaction was cut short because a sender restarted (a new header
+ *     inside a body drops the old transaction instead of eating the new
+ *     one). A header's length field is trusted only once its CRC matched.
+ *   - Records are applied to the back scene store as they stream in, through
+ *     the same cs_scene_* calls the JSON loader uses, so a stream and its
+ *     JSON give identical stores. Bulk data (control points, keys) is read
+ *     straight into the free end of the store's arrays, or in place for a
+ *     same-size point update, and then checked and adopted by those calls,
+ *     so no record size needs a buffer. A patch transaction first copies the
+ *     front scene into the back store.
+ *   - Nothing of a transaction becomes visible until its CRC trailer has
+ *     matched and every record was accepted; then feeding pauses with
+ *     CS_STREAM_COMMIT and the caller swaps the two stores between frames.
+ *     Otherwise the back store is scratch and the transaction is reported
+ *     once, with its start offset and the offset of the fault. A record
+ *     error inside a transaction whose CRC then fails is reported as the
+ *     CRC error: the bytes were damaged, not badly encoded.
+ */
+#include "cs_internal.h"
+#include "cs_wire.h"
+
+enum { ST_HUNT, ST_BODY, ST_TRAILER, ST_SKIP };
+enum { P_HDR, P_FIXED, P_FLOATS, P_SKIP, P_DEAD };
+enum { M_NONE, M_FULL, M_PATCH };
+enum { H_NONE, H_STREAM, H_TXN };
+
+static uint32_t rd_u32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static float rd_f32(const uint8_t *p)
+{
+    union {
+        uint32_t u;
+        float f;
+    } v;
+    v.u = rd_u32(p);
+    return v.f;
+}
+
+static void rd_f32s(const uint8_t *p, float *out, int n)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = rd_f32(p + 4 * i);
+}
+
+/* Bytes of a record's fixed part, or -1 for a type this version does not know. */
+static int fixed_size(uint32_t type)
+{
+    switch (type) {
+    case CS_REC_COMMIT:
+    case CS_REC_NO_BACKGROUND:
+        return 0;
+    case CS_REC_CEL_REMOVE:
+        return 4;
+    case CS_REC_SCENE:
+    case CS_REC_CANVAS:
+    case CS_REC_CEL_MOVE:
+    case CS_REC_TRACK_REMOVE:
+        return 8;
+    case CS_REC_BACKGROUND:
+    case CS_REC_CONTOUR:
+    case CS_REC_CONTOUR_POINTS:
+        return 12;
+    case CS_REC_TRACK:
+        return 16;
+    case CS_REC_LIGHTS:
+        return 24;
+    case CS_REC_CEL_TRANSFORM:
+        return 28;
+    case CS_REC_REGION:
+    case CS_REC_CEL_LIGHTS:
+        return 32;
+    case CS_REC_REGION_PAINT:
+        return 36;
+    case CS_REC_CEL:
+        return 52;
+    default:
+        return -1;
+    }
+}
+
+_Static_assert(sizeof(((cs_stream *)0)->buf) >= 52, "buf holds the largest fixed part");
+
+static void set_error(cs_stream_error *e, cs_status st, uint64_t offset, uint64_t at,
+                      const char *what, const cs_error *where)
+{
+    e->status = st;
+    e->offset = offset;
+    e->at = at;
+    e->what = what;
+    if (where) {
+        e->where.status = where->status;
+        e->where.cel = where->cel;
+        e->where.region = where->region;
+        e->where.contour = where->contour;
+        e->where.item = where->item;
+    } else {
+        cs__error(&e->where, st, -1, -1, -1, -1);
+    }
+}
+
+static void copy_error(cs_stream_error *dst, const cs_stream_error *src)
+{
+    set_error(dst, src->status, src->offset, src->at, src->what, &src->where);
+}
+
+/* Queues an error for the caller. At most two arise from one byte. */
+static void emit(cs_stream *s, cs_status st, uint64_t offset, uint64_t at, const char *what,
+                 const cs_error *where)
+{
+    uint8_t slot = s->queued < 2 ? s->queued++ : 1;
+    set_error(&s->queue[slot], st, offset, at, what, where);
+}
+
+/* Marks the current transaction as failed (the first failure is kept). */
+static void fail(cs_stream *s, cs_status st, const char *what, const cs_error *where)
+{
+    if (!s->txn_failed) {
+        s->txn_failed = true;
+        set_error(&s->txn_err, st, s->txn_offset, s->rec_offset, what, where);
+    }
+    s->parse = P_DEAD;
+}
+
+cs_status cs_stream_init(cs_stream *s, cs_scene *front, bool front_valid, cs_scene *back)
+{
+    if (!s || !front || !back || front == back)
+        return CS_ERR_ARG;
+    s->front = front;
+    s->back = back;
+    s->has_scene = front_valid;
+    s->offset = s->txn_offset = s->rec_offset = s->garbage_offset = s->skipped = 0;
+    s->skip_left = 0;
+    s->commits = s->dropped = 0;
+    s->body_len = s->body_pos = s->crc = s->trailer = 0;
+    s->rec_len = s->rec_pos = s->fixed_len = s->fill = s->word = 0;
+    s->float_count = s->float_index = s->base = s->count = s->width = s->slot = 0;
+    s->key_time = 0.0f;
+    s->rec_type = 0;
+    s->state = ST_HUNT;
+    s->parse = P_HDR;
+    s->mode = M_NONE;
+    s->rec_flags = 0;
+    s->win_pos = s->win_count = s->queued = 0;
+    s->commit_ready = s->in_garbage = s->seen_commit = s->txn_failed = false;
+    for (int i = 0; i < 16; i++)
+        s->win[i] = 0;
+    set_error(&s->last, CS_OK, 0, 0, "ok", 0);
+    set_error(&s->txn_err, CS_OK, 0, 0, "ok", 0);
+    return CS_OK;
+}
+
+static void to_hunt(cs_stream *s)
+{
+    s->state = ST_HUNT;
+    s->win_count = 0;
+    s->in_garbage = false;
+}
+
+/* Stream or transaction header in the ring? Copies it out in order. */
+static int ring_header(const cs_stream *s, uint8_t *hdr)
+{
+    if (s->win_count < CS_WIRE_HEADER_SIZE || s->win[s->win_pos] != 'C')
+        return H_NONE;
+    for (int i = 0; i < CS_WIRE_HEADER_SIZE; i++)
+        hdr[i] = s->win[(s->win_pos + i) & 15];
+    int kind = H_NONE;
+    if (hdr[1] == CS_WIRE_TXN_MAGIC[1] && hdr[2] == CS_WIRE_TXN_MAGIC[2] &&
+        hdr[3] == CS_WIRE_TXN_MAGIC[3])
+        kind = H_TXN;
+    else if (hdr[1] == CS_WIRE_STREAM_MAGIC[1] && hdr[2] == CS_WIRE_STREAM_MAGIC[2] &&
+             hdr[3] == CS_WIRE_STREAM_MAGIC[3])
+        kind = H_STREAM;
+    if (kind == H_NONE || cs_crc32(0, hdr, 12) != rd_u32(hdr + 12))
+        return H_NONE;
+    return kind;
+}
+
+static void end_body(cs_stream *s, uint64_t at);
+
+static void start_txn(cs_stream *s, const uint8_t *hdr, uint64_t at)
+{
+    uint32_t len = rd_u32(hdr + 8);
+    s->txn_offset = at;
+    s->win_count = 0;
+    s->in_garbage = false;
+    if (hdr[4] != CS_WIRE_MAJOR || len > CS_CFG_STREAM_MAX_TXN) {
+        bool version = hdr[4] != CS_WIRE_MAJOR;
+        emit(s, version ? CS_ERR_STREAM_VERSION : CS_ERR_STREAM_TOO_BIG, at, at + (version ? 4 : 8),
+             version ? "transaction of an unsupported major version: skipped"
+                     : "transaction longer than this decoder accepts: skipped",
+             0);
+        s->dropped++;
+        /* The header's CRC matched, so its length can be skipped over; a
+         * header met on the way still starts a new transaction. */
+        s->skip_left = (uint64_t)len + CS_WIRE_TRAILER_SIZE;
+        s->state = ST_SKIP;
+        return;
+    }
+    s->crc = cs_crc32(0, hdr, CS_WIRE_HEADER_SIZE);
+    s->body_len = len;
+    s->body_pos = 0;
+    s->trailer = 0;
+    s->fill = 0;
+    s->word = 0;
+    s->parse = P_HDR;
+    s->mode = M_NONE;
+    s->seen_commit = s->txn_failed = false;
+    s->rec_offset = at + CS_WIRE_HEADER_SIZE;
+    s->state = ST_BODY;
+    if (len == 0) /* no body: straight to the trailer (and "no COMMIT") */
+        end_body(s, at + CS_WIRE_HEADER_SIZE);
+}
+
+/* --------------------------------------------------------------- records */
+
+/* Prepares the back store for the first record that changes it. */
+static bool prepare(cs_stream *s, uint32_t type)
+{
+    if (type == CS_REC_SCENE) {
+        if (s->mode != M_NONE) {
+            fail(s, CS_ERR_STREAM_RECORD, "SCENE must be the first record of its transaction", 0);
+            return false;
+        }
+        s->mode = M_FULL; /* cs_scene_init runs when its fields are in */
+        return true;
+    }
+    if (s->mode == M_NONE) {
+        if (!s->has_scene) {
+            fail(s, CS_ERR_STATE, "a patch needs a committed scene; the stream must start with SCENE",
+                 0);
+            return false;
+        }
+        cs_scene_copy(s->back, s->front);
+        s->mode = M_PATCH;
+    }
+    return true;
+}
+
+/* Fill rule from the wire: anything but 0 or 1 becomes an invalid value the
+ * scene call rejects with its location. */
+static cs_fill_rule wire_rule(uint32_t v)
+{
+    return v <= 1 ? (cs_fill_rule)v : (cs_fill_rule)2;
+}
+
+static void wire_paint(const uint8_t *p, cs_paint *paint)
+{
+    rd_f32s(p, paint->pigment, 3);
+    rd_f32s(p + 12, paint->medium, 3);
+    paint->beta = rd_f32(p + 24);
+}
+
+static void wire_affine(const uint8_t *p, cs_affine *m)
+{
+    m->a = rd_f32(p);
+    m->b = rd_f32(p + 4);
+    m->c = rd_f32(p + 8);
+    m->d = rd_f32(p + 12);
+    m->e = rd_f32(p + 16);
+    m->f = rd_f32(p + 20);
+}
+
+/* Applies a record whose fields are all in (fixed part and floats). */
+static void finish_record(cs_stream *s)
+{
+    cs_scene *sc = s->back;
+    const uint8_t *b = s->buf;
+    cs_error where;
+    cs__error(&where, CS_OK, -1, -1, -1, -1);
+    cs_status st = CS_OK;
+    float f[6];
+    cs_affine m;
+    cs_paint paint;
+    switch (s->rec_type) {
+    case CS_REC_COMMIT:
+        s->seen_commit = true;
+        break;
+    case CS_REC_SCENE:
+        st = cs_scene_init(sc, rd_f32(b), rd_f32(b + 4));
+        break;
+    case CS_REC_CANVAS:
+        st = cs_scene_set_canvas(sc, rd_f32(b), rd_f32(b + 4));
+        break;
+    case CS_REC_LIGHTS:
+        rd_f32s(b, f, 6);
+        st = cs_scene_set_lights(sc, f, f + 3);
+        break;
+    case CS_REC_BACKGROUND:
+        rd_f32s(b, f, 3);
+        st = cs_scene_set_background(sc, f);
+        break;
+    case CS_REC_NO_BACKGROUND:
+        st = cs_scene_clear_background(sc);
+        break;
+    case CS_REC_CEL:
+        wire_affine(b + 4, &m);
+        rd_f32s(b + 28, f, 6);
+        st = cs_scene_add_cel(sc, &m, (s->rec_flags & CS_WIRE_CEL_HAS_FRONT) ? f : 0, f + 3,
+                              &where);
+        break;
+    case CS_REC_REGION:
+        wire_paint(b + 4, &paint);
+        st = cs_scene_add_region(sc, wire_rule(rd_u32(b)), &paint, &where);
+        break;
+    case CS_REC_CONTOUR: {
+        uint32_t degree = rd_u32(b);
+        st = cs_scene_add_contour(sc, degree > 3 ? 4 : (int)degree, (int)s->count,
+                                  &sc->points[s->base],
+                                  (s->rec_flags & CS_WIRE_CONTOUR_INTERVALS) ? &sc->intervals[s->base]
+                                                                           : 0,
+                                  &where);
+        break;
+    }
+    case CS_REC_CEL_REMOVE:
+        st = cs_scene_remove_cel(sc, rd_u32(b), &where);
+        break;
+    case CS_REC_CEL_MOVE:
+        st = cs_scene_move_cel(sc, rd_u32(b), rd_u32(b + 4), &where);
+        break;
+    case CS_REC_CEL_TRANSFORM:
+        wire_affine(b + 4, &m);
+        st = cs_scene_set_transform(sc, rd_u32(b), &m, &where);
+        break;
+    case CS_REC_CEL_LIGHTS:
+        rd_f32s(b + 8, f, 6);
+        st = cs_scene_set_cel_lights(sc, rd_u32(b), (s->rec_flags & CS_WIRE_CEL_HAS_FRONT) ? f : 0,
+                                     f + 3, &where);
+        break;
+    case CS_REC_REGION_PAINT:
+        wire_paint(b + 8, &paint);
+        st = cs_scene_set_paint(sc, rd_u32(b), wire_rule(rd_u32(b + 4)), &paint, &where);
+        break;
+    case CS_REC_CONTOUR_POINTS:
+        st = cs_scene_set_points(sc, rd_u32(b), (int)s->count, &sc->points[s->base],
+                                 (s->rec_flags & CS_WIRE_CONTOUR_INTERVALS) ? &sc->intervals[s->base]
+                                                                          : 0,
+                                 &where);
+        break;
+    case CS_REC_TRACK:
+        break; /* every key was added as it arrived */
+    case CS_REC_TRACK_REMOVE: {
+        uint32_t kind = rd_u32(b);
+        st = cs_scene_remove_track(
+            sc, kind < CS_TRACK_KIND_COUNT_ ? (cs_track_kind)kind : CS_TRACK_KIND_COUNT_,
+            rd_u32(b + 4), &where);
+        break;
+    }
+    default:
+        break;
+    }
+    if (st != CS_OK) {
+        where.status = st;
+        fail(s, st, cs_status_str(st), &where);
+        return;
+    }
+    s->parse = P_HDR;
+    s->fill = 0;
+}
+
+/*
+ * The fixed part is in: checks it, works out how many floats follow and
+ * where they go, and checks the record length against that.
+ */
+static void begin_floats(cs_stream *s)
+{
+    cs_scene *sc = s->back;
+    const uint8_t *b = s->buf;
+    uint64_t floats = 0;
+    s->rec_flags = 0;
+    switch (s->rec_type) {
+    case CS_REC_CEL:
+    case CS_REC_CEL_LIGHTS: {
+        uint32_t flags = rd_u32(s->rec_type == CS_REC_CEL ? b : b + 4);
+        if (flags & ~CS_WIRE_CEL_HAS_FRONT) {
+            fail(s, CS_ERR_STREAM_RECORD, "reserved flag bits set", 0);
+            return;
+        }
+        s->rec_flags = (uint8_t)flags;
+        break;
+    }
+    case CS_REC_CONTOUR:
+    case CS_REC_CONTOUR_POINTS: {
+        uint32_t count = rd_u32(b + 4), flags = rd_u32(b + 8);
+        if (flags & ~CS_WIRE_CONTOUR_INTERVALS) {
+            fail(s, CS_ERR_STREAM_RECORD, "reserved flag bits set", 0);
+            return;
+        }
+        s->rec_flags = (uint8_t)flags;
+        if (s->rec_type == CS_REC_CONTOUR) {
+            /* Points are read into the free end of the store. */
+            if (count > UINT16_MAX || count > CS_CFG_MAX_POINTS - sc->point_count) {
+                cs_error where;
+                cs__error(&where, CS_ERR_CAP_POINTS, (int32_t)sc->cel_count - 1, -1, -1, -1);
+                fail(s, CS_ERR_CAP_POINTS, cs_status_str(CS_ERR_CAP_POINTS), &where);
+                return;
+            }
+            s->base = sc->point_count;
+        } else {
+            /* Points are read in place: the count must be the contour's. */
+            uint32_t contour = rd_u32(b);
+            if (contour >= sc->contour_count) {
+                fail(s, CS_ERR_INDEX, "no such contour", 0);
+                return;
+            }
+            if (count != sc->contours[contour].point_count) {
+                fail(s, CS_ERR_COUNT, cs_status_str(CS_ERR_COUNT), 0);
+                return;
+            }
+            s->base = sc->contours[contour].first_point;
+        }
+        s->count = count;
+        floats = (uint64_t)count * ((flags & CS_WIRE_CONTOUR_INTERVALS) ? 4u : 3u);
+        break;
+    }
+    case CS_REC_TRACK: {
+        uint32_t kind = rd_u32(b), target = rd_u32(b + 4), ease = rd_u32(b + 8);
+        uint32_t keys = rd_u32(b + 12);
+        if (kind >= CS_TRACK_KIND_COUNT_ || ease >= CS_EASE_COUNT_) {
+            fail(s, CS_ERR_TRACK, cs_status_str(CS_ERR_TRACK), 0);
+            return;
+        }
+        if (keys == 0) {
+            fail(s, CS_ERR_STREAM_RECORD, "a track needs at least one key", 0);
+            return;
+        }
+        cs_error where;
+        cs_status st = cs_scene_add_track(sc, (cs_track_kind)kind, target, (cs_ease)ease, &where);
+        if (st != CS_OK) {
+            fail(s, st, cs_status_str(st), &where);
+            return;
+        }
+        s->width = sc->tracks[sc->open_track].width;
+        /* Key values are read into the free end of the pool, one key at a time. */
+        if (keys > CS_CFG_MAX_KEYS - sc->key_count ||
+            (uint64_t)keys * s->width > CS_CFG_MAX_KEY_VALUES - sc->value_count) {
+            fail(s, CS_ERR_CAP_KEYS, cs_status_str(CS_ERR_CAP_KEYS), 0);
+            return;
+        }
+        s->slot = 0;
+        floats = (uint64_t)keys * (1u + s->width);
+        break;
+    }
+    default:
+        break;
+    }
+    if ((uint64_t)s->fixed_len + 4u * floats != s->rec_len) {
+        fail(s, CS_ERR_STREAM_RECORD, "record length does not match its fields and counts", 0);
+        return;
+    }
+    s->float_count = (uint32_t)floats;
+    s->float_index = 0;
+    s->fill = 0;
+    if (floats == 0)
+        finish_record(s);
+    else
+        s->parse = P_FLOATS;
+}
+
+/* Stores the next float of a record where it belongs. */
+static void put_float(cs_stream *s, float v)
+{
+    cs_scene *sc = s->back;
+    uint32_t i = s->float_index;
+    switch (s->rec_type) {
+    case CS_REC_CONTOUR:
+    case CS_REC_CONTOUR_POINTS:
+        if (i < 3u * s->count) {
+            cs_point *p = &sc->points[s->base + i / 3u];
+            if (i % 3u == 0)
+                p->x = v;
+            else if (i % 3u == 1)
+                p->y = v;
+            else
+                p->w = v;
+        } else {
+            sc->intervals[s->base + (i - 3u * s->count)] = v;
+        }
+        break;
+    case CS_REC_TRACK:
+        if (s->slot == 0) {
+            s->key_time = v;
+        } else {
+            sc->key_values[sc->value_count + s->slot - 1u] = v;
+        }
+        if (s->slot++ == s->width) {
+            cs_error where;
+            s->slot = 0;
+            cs_status st = cs_scene_add_key(sc, s->key_time, &sc->key_values[sc->value_count],
+                                            &where);
+            if (st != CS_OK)
+                fail(s, st, cs_status_str(st), &where);
+        }
+        break;
+    default:
+        break;
+    }
+}
+
+/* A record header is in: decide how its payload is read. */
+static void begin_record(cs_stream *s)
+{
+    uint32_t type = (uint32_t)s->buf[0] | (uint32_t)s->buf[1] << 8;
+    uint32_t len = rd_u32(s->buf + 2);
+    s->rec_type = (uint16_t)type;
+    s->rec_len = len;
+    s->rec_pos = 0;
+    s->fill = 0;
+    if (s->seen_commit) {
+        fail(s, CS_ERR_STREAM_RECORD, "a record follows the COMMIT record", 0);
+        return;
+    }
+    if (len > s->body_len - s->body_pos) {
+        fail(s, CS_ERR_STREAM_RECORD, "record longer than the rest of its transaction", 0);
+        return;
+    }
+    if ((type >> 8) >= CS_WIRE_CLASS_COUNT) {
+        fail(s, CS_ERR_STREAM_RECORD, "record of an unknown class", 0);
+        return;
+    }
+    int fixed = fixed_size(type);
+    if (fixed < 0 || type == CS_REC_PAD) {
+        /* A newer type of a known class: skippable by definition. */
+        s->parse = len ? P_SKIP : P_HDR;
+        return;
+    }
+    if (!prepare(s, type))
+        return;
+    if ((uint32_t)fixed > len) {
+        fail(s, CS_ERR_STREAM_RECORD, "record shorter than its fields", 0);
+        return;
+    }
+    s->fixed_len = (uint32_t)fixed;
+    if (fixed == 0)
+        begin_floats(s);
+    else
+        s->parse = P_FIXED;
+}
+
+static void parse_byte(cs_stream *s, uint8_t b, uint64_t at)
+{
+    switch (s->parse) {
+    case P_HDR:
+        if (s->fill == 0)
+            s->rec_offset = at;
+        s->buf[s->fill++] = b;
+        if (s->fill == CS_WIRE_RECORD_HEADER_SIZE)
+            begin_record(s);
+        break;
+    case P_FIXED:
+        s->buf[s->fill++] = b;
+        if (s->fill == s->fixed_len)
+            begin_floats(s);
+        break;
+    case P_FLOATS:
+        s->word |= (uint32_t)b << (8u * s->fill);
+        if (++s->fill == 4) {
+            union {
+                uint32_t u;
+                float f;
+            } v;
+            v.u = s->word;
+            s->word = 0;
+            s->fill = 0;
+            put_float(s, v.f);
+            if (s->parse == P_FLOATS && ++s->float_index == s->float_count)
+                finish_record(s);
+        }
+        break;
+    case P_SKIP:
+        if (++s->rec_pos == s->rec_len) {
+            s->parse = P_HDR;
+            s->fill = 0;
+        }
+        break;
+    default:
+        break;
+    }
+}
+
+/* ------------------------------------------------------------ transactions */
+
+static void end_body(cs_stream *s, uint64_t at)
+{
+    if (s->parse != P_DEAD) {
+        if (s->parse != P_HDR || s->fill != 0) {
+            fail(s, CS_ERR_STREAM_RECORD, "transaction ends inside a record", 0);
+        } else if (!s->seen_commit) {
+            s->rec_offset = at;
+            fail(s, CS_ERR_STREAM_RECORD, "transaction has no COMMIT record", 0);
+        }
+    }
+    s->state = ST_TRAILER;
+    s->fill = 0;
+    s->trailer = 0;
+}
+
+static void end_txn(cs_stream *s, uint64_t trailer_at)
+{
+    if (s->trailer != s->crc) {
+        emit(s, CS_ERR_STREAM_CRC, s->txn_offset, trailer_at,
+             "CRC mismatch: transaction damaged, dropped", 0);
+        s->dropped++;
+    } else if (s->txn_failed) {
+        emit(s, s->txn_err.status, s->txn_err.offset, s->txn_err.at, s->txn_err.what,
+             &s->txn_err.where);
+        s->dropped++;
+    } else {
+        s->commit_ready = true;
+        s->commits++;
+    }
+    to_hunt(s);
+}
+
+static void step(cs_stream *s, uint8_t b)
+{
+    uint64_t at = s->offset++;
+    s->win[s->win_pos] = b;
+    s->win_pos = (uint8_t)((s->win_pos + 1) & 15);
+    if (s->win_count < CS_WIRE_HEADER_SIZE)
+        s->win_count++;
+    uint8_t hdr[CS_WIRE_HEADER_SIZE];
+    int h = ring_header(s, hdr);
+    uint64_t hdr_at = at + 1 - CS_WIRE_HEADER_SIZE;
+    if (h == H_TXN) {
+        if (s->state == ST_BODY || s->state == ST_TRAILER) {
+            emit(s, CS_ERR_STREAM_TRUNCATED, s->txn_offset, hdr_at,
+                 "transaction cut short by the next transaction header", 0);
+            s->dropped++;
+        }
+        start_txn(s, hdr, hdr_at);
+        return;
+    }
+    if (h == H_STREAM && s->state == ST_HUNT) {
+        if (hdr[4] != CS_WIRE_MAJOR)
+            emit(s, CS_ERR_STREAM_VERSION, hdr_at, hdr_at + 4,
+                 "stream of an unsupported major version", 0);
+        to_hunt(s);
+        return;
+    }
+    switch (s->state) {
+    case ST_HUNT:
+        /* The oldest byte of a full ring can no longer start a header. */
+        if (s->win_count == CS_WIRE_HEADER_SIZE) {
+            if (!s->in_garbage) {
+                s->in_garbage = true;
+                s->garbage_offset = hdr_at;
+                emit(s, CS_ERR_STREAM_SYNC, hdr_at, hdr_at,
+                     "bytes outside any transaction: skipping to the next header", 0);
+            }
+            s->skipped++;
+        }
+        break;
+    case ST_BODY:
+        s->crc = cs_crc32(s->crc, &b, 1);
+        s->body_pos++;
+        parse_byte(s, b, at);
+        if (s->body_pos == s->body_len)
+            end_body(s, at + 1);
+        break;
+    case ST_TRAILER:
+        s->trailer |= (uint32_t)b << (8u * s->fill);
+        if (++s->fill == CS_WIRE_TRAILER_SIZE)
+            end_txn(s, at + 1 - CS_WIRE_TRAILER_SIZE);
+        break;
+    default: /* ST_SKIP */
+        if (--s->skip_left == 0)
+            to_hunt(s);
+        break;
+    }
+}
+
+static cs_stream_event pop(cs_stream *s)
+{
+    copy_error(&s->last, &s->queue[0]);
+    if (s->queued > 1)
+        copy_error(&s->queue[0], &s->queue[1]);
+    s->queued--;
+    return CS_STREAM_ERROR;
+}
+
+cs_stream_event cs_stream_feed(cs_stream *s, const uint8_t *data, size_t len, size_t *used)
+{
+    size_t i = 0;
+    cs_stream_event ev = CS_STREAM_MORE;
+    if (!s) {
+        if (used)
+            *used = 0;
+        return CS_STREAM_MORE;
+    }
+    if (!data)
+        len = 0;
+    if (s->queued) {
+        ev = pop(s);
+    } else if (s->commit_ready) {
+        ev = CS_STREAM_COMMIT;
+    } else {
+        while (i < len) {
+            step(s, data[i++]);
+            if (s->queued) {
+                ev = pop(s);
+                break;
+            }
+            if (s->commit_ready) {
+                ev = CS_STREAM_COMMIT;
+                break;
+            }
+        }
+    }
+    if (used)
+        *used = i;
+    return ev;
+}
+
+cs_stream_event cs_stream_finish(cs_stream *s)
+{
+    if (!s)
+        return CS_STREAM_MORE;
+    if (!s->queued && !s->commit_ready) {
+        if (s->state == ST_BODY || s->state == ST_TRAILER) {
+            emit(s, CS_ERR_STREAM_TRUNCATED, s->txn_offset, s->offset,
+                 "input ended inside a transaction", 0);
+            s->dropped++;
+        } else if (s->state == ST_HUNT && s->win_count > 0) {
+            s->skipped += s->win_count;
+            if (!s->in_garbage)
+                emit(s, CS_ERR_STREAM_SYNC, s->offset - s->win_count, s->offset - s->win_count,
+                     "input ended with bytes that are no transaction", 0);
+        }
+        to_hunt(s);
+    }
+    size_t used;
+    return cs_stream_feed(s, 0, 0, &used);
+}
+
+cs_status cs_stream_swap(cs_stream *s)
+{
+    if (!s || !s->commit_ready)
+        return CS_ERR_STATE;
+    cs_scene *t = s->front;
+    s->front = s->back;
+    s->back = t;
+    s->has_scene = true;
+    s->commit_ready = false;
+    return CS_OK;
+}
+
+const cs_scene *cs_stream_scene(const cs_stream *s)
+{
+    return s && s->has_scene ? s->front : 0;
+}
+
+const cs_stream_error *cs_stream_last_error(const cs_stream *s)
+{
+    return s ? &s->last : 0;
+}

@@ -1,0 +1,54 @@
+/*
+ * cs_wire.h - constants of the cel stream wire format (docs/STREAM.md).
+ *
+ * Shared by the core's decoder (cs_stream.c) and host encoders
+ * (tools/cels_write.c), so the two can only disagree about what a record
+ * means, never about its number. Everything on the wire is little-endian;
+ * floats are IEEE-754 binary32.
+ */
+#ifndef CS_WIRE_H
+#define CS_WIRE_H
+
+/* Format version written by this code; decoders accept any minor of their major. */
+#define CS_WIRE_MAJOR 1
+#define CS_WIRE_MINOR 0
+
+/* 16-byte headers: magic(4) major(1) minor(1) flags(2) word(4) crc32(4). */
+#define CS_WIRE_HEADER_SIZE 16
+#define CS_WIRE_STREAM_MAGIC "CELS" /* word: reserved, 0 */
+#define CS_WIRE_TXN_MAGIC "CSTX"    /* word: body length in bytes */
+#define CS_WIRE_TRAILER_SIZE 4      /* CRC-32 of header and body */
+
+/* Record header: type u16 (class << 8 | subtype), payload length u32. */
+#define CS_WIRE_RECORD_HEADER_SIZE 6
+#define CS_WIRE_CLASS_COUNT 5 /* classes 0..4 known to version 1.0 */
+
+/* Class 0: control */
+#define CS_REC_PAD 0x0000u    /* any payload, ignored */
+#define CS_REC_COMMIT 0x0001u /* empty; the last record of every transaction */
+/* Class 1: scene-wide values */
+#define CS_REC_SCENE 0x0100u         /* f32 canvas w, h: start a new scene (first record) */
+#define CS_REC_CANVAS 0x0101u        /* f32 canvas w, h */
+#define CS_REC_LIGHTS 0x0102u        /* f32 front[3], back[3]: stack lights */
+#define CS_REC_BACKGROUND 0x0103u    /* f32 rgb[3], linear */
+#define CS_REC_NO_BACKGROUND 0x0104u /* empty */
+/* Class 2: structure */
+#define CS_REC_CEL 0x0200u        /* u32 flags, f32 transform[6], front[3], back[3] */
+#define CS_REC_REGION 0x0201u     /* u32 fill rule, f32 pigment[3], medium[3], beta */
+#define CS_REC_CONTOUR 0x0202u    /* u32 degree, count, flags; f32 (x,y,w)*count [, interval*count] */
+#define CS_REC_CEL_REMOVE 0x0203u /* u32 cel */
+#define CS_REC_CEL_MOVE 0x0204u   /* u32 from, to */
+/* Class 3: values of existing items */
+#define CS_REC_CEL_TRANSFORM 0x0300u  /* u32 cel, f32 transform[6] */
+#define CS_REC_CEL_LIGHTS 0x0301u     /* u32 cel, flags, f32 front[3], back[3] */
+#define CS_REC_REGION_PAINT 0x0302u   /* u32 region, fill rule, f32 pigment[3], medium[3], beta */
+#define CS_REC_CONTOUR_POINTS 0x0303u /* u32 contour, count, flags; floats as CONTOUR */
+/* Class 4: animation */
+#define CS_REC_TRACK 0x0400u        /* u32 kind, target, ease, keys; f32 (time, value*width)*keys */
+#define CS_REC_TRACK_REMOVE 0x0401u /* u32 kind, target */
+
+/* Flag bits; every other bit is reserved and must be 0. */
+#define CS_WIRE_CEL_HAS_FRONT 1u       /* CEL, CEL_LIGHTS: front light given (else the stack's) */
+#define CS_WIRE_CONTOUR_INTERVALS 1u   /* CONTOUR, CONTOUR_POINTS: knot intervals follow */
+
+#endif /* CS_WIRE_H */
