@@ -41,9 +41,15 @@
 #ifndef CS_CFG_MAX_PIECES
 #define CS_CFG_MAX_PIECES (2 * CS_CFG_MAX_SEGMENTS)
 #endif
-/* Crossings of one region with one sub-scanline. */
+/* Crossings of one region with one sub-scanline; for --aa exact, pieces of
+ * one region active on one pixel row. */
 #ifndef CS_CFG_MAX_CROSSINGS
 #define CS_CFG_MAX_CROSSINGS 512
+#endif
+/* --aa exact: bands one region's pixel row may be cut into where its curves
+ * cross or crowd each other (about one per crossing, a few per vertex). */
+#ifndef CS_CFG_EXACT_MAX_BANDS
+#define CS_CFG_EXACT_MAX_BANDS 4096
 #endif
 /* Widest output line, in pixels. */
 #ifndef CS_CFG_MAX_WIDTH

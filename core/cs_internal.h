@@ -92,6 +92,18 @@ static inline bool cs__region_inside(const cs_region *region, const int32_t *win
     return region->fill_rule == CS_FILL_EVENODD ? (winding[0] & 1) != 0 : winding[0] != 0;
 }
 
+/*
+ * Exact-area coverage of `region` on pixel row y (cs_exact.c), from its
+ * active pieces act[0..n): adds to ws->area / ws->cover what the
+ * sub-scanline code adds for its spans, so render_region folds both alike.
+ * [*lo, *hi) grows to every accumulator entry written. Returns
+ * CS_ERR_CAP_CROSSINGS, adding nothing, if n exceeds CS_CFG_MAX_CROSSINGS,
+ * or, with the row still added, if it needed more than
+ * CS_CFG_EXACT_MAX_BANDS bands to separate crossing curves.
+ */
+cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const uint32_t *act,
+                           uint32_t n, int y, int32_t *lo, int32_t *hi);
+
 /* 16-bit sRGB code of linear (i/1024)^2 (cs_srgb_table.c). */
 extern const uint16_t cs__srgb_by_sqrt[1025];
 
