@@ -380,11 +380,14 @@ static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, float u
 {
     float width = (float)cx->width;
     float ulo = cs__minf(u0, u1), uhi = cs__maxf(u0, u1);
+    /* A straight piece needs no solve: y is linear in x along it. */
+    bool line = s->degree == 1;
+    float ys = y0, dydx = line && x1 != x0 ? (y1 - y0) / (x1 - x0) : 0.0f, xs = x0;
     if (x1 > x0) {
         float k = (float)(cs__floori(x0) + 1);
         for (k = cs__maxf(k, 0.0f); k < x1 && k <= width; k += 1.0f) {
-            float uk = cs__solve_level(s->x, s->w, s->degree, k, ulo, uhi);
-            float yk = cs__clampf(seg_y(s, uk), y0, y1);
+            float uk = line ? 0.0f : cs__solve_level(s->x, s->w, s->degree, k, ulo, uhi);
+            float yk = cs__clampf(line ? ys + (k - xs) * dydx : seg_y(s, uk), y0, y1);
             add_cell(cx, s, sign, cs__floori(x0), u0, x0, y0, uk, k, yk);
             u0 = uk;
             x0 = k;
@@ -393,8 +396,8 @@ static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, float u
     } else if (x1 < x0) {
         float k = (float)(-cs__floori(-x0) - 1);
         for (k = cs__minf(k, width); k > x1 && k >= 0.0f; k -= 1.0f) {
-            float uk = cs__solve_level(s->x, s->w, s->degree, k, ulo, uhi);
-            float yk = cs__clampf(seg_y(s, uk), y0, y1);
+            float uk = line ? 0.0f : cs__solve_level(s->x, s->w, s->degree, k, ulo, uhi);
+            float yk = cs__clampf(line ? ys + (k - xs) * dydx : seg_y(s, uk), y0, y1);
             add_cell(cx, s, sign, cs__floori(k), u0, x0, y0, uk, k, yk);
             u0 = uk;
             x0 = k;
