@@ -57,7 +57,8 @@ typedef enum cs_status {
     CS_ERR_CAP_POINTS,    /* scene store full: control points */
     CS_ERR_CAP_SEGMENTS,  /* workspace full: segments of one frame */
     CS_ERR_CAP_PIECES,    /* workspace full: monotone pieces of one frame */
-    CS_ERR_CAP_CROSSINGS, /* workspace full: crossings on one sub-scanline */
+    CS_ERR_CAP_CROSSINGS, /* workspace full: crossings on one sub-scanline (--aa exact:
+                             pieces or bands of one region on one pixel row) */
     CS_ERR_COUNT_
 } cs_status;
 

@@ -49,8 +49,13 @@
  *    (integrand of degree <= 5); rational ones use 5 nodes per panel, with
  *    panels cut until W varies little enough on each that the error is
  *    about 1e-6 of the value (see arc_moment). Straight pieces use the
- *    exact trapezoid. The common case, an arc whose control
- *    polygon stays in one column, takes no solve at all.
+ *    exact trapezoid and find their integer-x cuts by interpolation. The
+ *    common case, an arc whose control polygon stays in one column, needs
+ *    no solve beyond the two that place it in its band.
+ *
+ *    As in the sub-scanline code the region is outside far to the left;
+ *    an edge left of the screen adds its height to every pixel, and one
+ *    right of it adds nothing.
  *
  * The result lands in the same area/cover accumulators the sub-scanline
  * code uses, so render_region's fold, the within-cel coverage budget and
