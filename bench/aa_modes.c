@@ -12,6 +12,9 @@
  *
  *   build/host/bench/aa_modes [runs]
  */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
+#endif
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
