@@ -59,7 +59,8 @@ typedef enum cs_status {
     CS_ERR_CAP_POINTS,    /* scene store full: control points */
     CS_ERR_CAP_SEGMENTS,  /* workspace full: segments of one frame */
     CS_ERR_CAP_PIECES,    /* workspace full: monotone pieces of one frame */
-    CS_ERR_CAP_CROSSINGS, /* workspace full: crossings on one sub-scanline */
+    CS_ERR_CAP_CROSSINGS, /* workspace full: crossings on one sub-scanline (--aa exact:
+                             pieces or bands of one region on one pixel row) */
     CS_ERR_IO,            /* the line sink (display) refused a line */
     CS_ERR_CAP_FUNCS,     /* scene store full: paint functions */
     CS_ERR_FUNC,          /* paint function malformed (stops, geometry, kind) */
@@ -450,6 +451,18 @@ typedef struct cs_crossing {
     uint16_t operand; /* which winding counter of the region it moves (CSG) */
 } cs_crossing;
 
+/* Where one active piece is within the current band of a pixel row, for
+ * exact-area coverage (cs_exact.c). */
+typedef struct cs_exact_piece {
+    float u_top, x_top;   /* parameter and x at the band's top */
+    float u_bot, x_bot;   /* and at its bottom */
+    float dmin, dmax;     /* the arc lies within [dmin, dmax] of its chord, horizontally */
+    float xmin, xmax;     /* x range of the arc's control polygon */
+    float key;            /* x order within the band: x_top + x_bot */
+    uint32_t piece;
+    bool monotone;        /* control polygon x-monotone, so the arc is */
+} cs_exact_piece;
+
 /*
  * Per-render scratch memory. Contents are private to the core. The emitted
  * light of the stack has no buffer here: it accumulates in the caller's
@@ -462,6 +475,10 @@ typedef struct cs_workspace {
     cs_index active[CS_CFG_MAX_PIECES];  /* active pieces of the line, in piece order */
     cs_index scratch[CS_CFG_MAX_PIECES]; /* sort scratch */
     cs_crossing crossings[CS_CFG_MAX_CROSSINGS];
+#if CS_CFG_EXACT
+    cs_exact_piece exact[CS_CFG_MAX_CROSSINGS]; /* a region's pieces on one row (exact AA) */
+    uint32_t exact_order[CS_CFG_MAX_CROSSINGS];  /* those in the band, in x order */
+#endif
     uint16_t region_cel[CS_CFG_MAX_REGIONS];
     float region_E[CS_CFG_MAX_REGIONS][3];
     float region_T[CS_CFG_MAX_REGIONS][3];

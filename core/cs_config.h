@@ -78,9 +78,23 @@
 #ifndef CS_CFG_INDEX_TYPE
 #define CS_CFG_INDEX_TYPE uint32_t
 #endif
-/* Crossings of one region with one sub-scanline. */
+/* Crossings of one region with one sub-scanline; for --aa exact, pieces of
+ * one region active on one pixel row. */
 #ifndef CS_CFG_MAX_CROSSINGS
 #define CS_CFG_MAX_CROSSINGS 4096
+#endif
+/*
+ * Exact-area anti-aliasing (--aa exact) keeps per-piece band state in the
+ * workspace; a board that renders with sub-scanlines only can leave it out,
+ * and then CS_AA_EXACT is refused by cs_frame_begin with CS_ERR_ARG.
+ */
+#ifndef CS_CFG_EXACT
+#define CS_CFG_EXACT 1
+#endif
+/* --aa exact: bands one region's pixel row may be cut into where its curves
+ * cross or crowd each other (about one per crossing, a few per vertex). */
+#ifndef CS_CFG_EXACT_MAX_BANDS
+#define CS_CFG_EXACT_MAX_BANDS 4096
 #endif
 /* Widest output line, in pixels. */
 #ifndef CS_CFG_MAX_WIDTH

@@ -166,7 +166,7 @@ static cs_status check_opts(const cs_render_opts *o)
     if (o->width < 1 || o->width > CS_CFG_MAX_WIDTH || o->height < 1 ||
         o->height > CS_CFG_MAX_HEIGHT)
         return CS_ERR_SIZE;
-    if (o->aa != CS_AA_NONE && o->aa != CS_AA_SUBSCAN && o->aa != CS_AA_EXACT)
+    if (o->aa != CS_AA_NONE && o->aa != CS_AA_SUBSCAN && (o->aa != CS_AA_EXACT || !CS_CFG_EXACT))
         return CS_ERR_ARG;
     if (o->aa == CS_AA_SUBSCAN && (o->subscanlines < 1 || o->subscanlines > CS_CFG_MAX_SUBSCANLINES))
         return CS_ERR_ARG;

@@ -248,4 +248,17 @@ void cs__cache_composite(const cs_cache *cache, cs_workspace *ws, float *stack_E
                          bool record);
 
 
+/*
+ * Exact-area coverage of `region` on pixel row y (cs_exact.c), from its
+ * active pieces act[0..n): adds to ws->area / ws->cover what the
+ * sub-scanline code adds for its spans, so render_region folds both alike.
+ * [*lo, *hi) grows to every accumulator entry written. Returns
+ * CS_ERR_CAP_CROSSINGS, adding nothing, if n exceeds CS_CFG_MAX_CROSSINGS,
+ * or, with the row still added, if it needed more than
+ * CS_CFG_EXACT_MAX_BANDS bands to separate crossing curves.
+ */
+cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_index *act,
+                           uint32_t n, int y, int32_t *lo, int32_t *hi);
+
+
 #endif /* CS_INTERNAL_H */

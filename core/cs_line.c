@@ -153,11 +153,21 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
         samples = r->opts.subscanlines;
         break;
     case CS_AA_EXACT:
-        samples = CS_CFG_MAX_SUBSCANLINES; /* until exact area lands */
+        samples = 0; /* no samples: cs_exact.c finds the area itself */
         break;
     }
-    float weight = 1.0f / (float)samples;
+    float weight = samples > 0 ? 1.0f / (float)samples : 0.0f;
     int32_t lo = INT32_MAX, hi = INT32_MIN;
+#if CS_CFG_EXACT
+    if (r->opts.aa == CS_AA_EXACT) {
+        cs_status st = cs__exact_region(r, region, act, n, y, &lo, &hi);
+        if (st != CS_OK && r->sticky.status == CS_OK) {
+            const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];
+            cs__error(&r->sticky, st, ws->region_cel[reg],
+                      (int32_t)(reg - cel->first_region), -1, y);
+        }
+    }
+#endif
     for (int k = 0; k < samples; k++) {
         float ys = (float)y + ((float)k + 0.5f) * weight;
         int32_t count = crossings_at(r, act, n, ys);

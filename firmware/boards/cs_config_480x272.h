@@ -49,6 +49,8 @@
 #define CS_CFG_MAX_KEY_VALUES 384
 #define CS_CFG_MAX_ANIM_POINTS 32
 #define CS_CFG_STREAM_MAX_TXN (16u * 1024u)
+/* Sub-scanline anti-aliasing only: no exact-area band state. */
+#define CS_CFG_EXACT 0
 /* No pre-combined cache: it needs more RAM than the whole board has. */
 #define CS_CFG_CACHE 0
 
