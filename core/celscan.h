@@ -617,11 +617,16 @@ typedef enum cs_pixfmt {
 
 size_t cs_pixfmt_bytes_per_pixel(cs_pixfmt fmt);
 
-/* Converts one line of linear RGB floats (clamped to 0..1) to `fmt`. */
+/*
+ * Converts one line of linear RGB floats (clamped to 0..1) to `fmt`. `out`
+ * may be the memory of `rgb_linear` itself (every format is smaller than
+ * the floats, and each pixel is read before its bytes are written), so a
+ * board can convert in place and keep no separate line of panel pixels.
+ */
 void cs_pixfmt_convert(cs_pixfmt fmt, const float *rgb_linear, int width, uint8_t *out);
 
 /*
- * As cs_pixfmt_convert, with ordered dithering for line y: an 8x8 Bayer
+ * As cs_pixfmt_convert (in place too), with ordered dithering for line y: an 8x8 Bayer
  * threshold by pixel position spreads the rounding of each channel so that
  * smooth gradients do not band on low-depth panels. Deterministic (no
  * state); a value exactly on an output level is never disturbed. For
@@ -708,6 +713,17 @@ cs_stream_event cs_stream_finish(cs_stream *s);
 
 /* Makes the ready commit the front scene (between frames). CS_ERR_STATE if none is ready. */
 cs_status cs_stream_swap(cs_stream *s);
+
+/*
+ * Whether the back store is in use: a transaction is being decoded into it,
+ * or a commit in it waits for cs_stream_swap. Between transactions the
+ * back store holds nothing the decoder needs (every transaction starts it
+ * afresh, from SCENE or from a copy of the front), so a board short of RAM
+ * may lend it out while this is false, e.g. let it share memory with the
+ * render workspace and render only while the decoder is not busy. The
+ * decoder writes to the back store only inside cs_stream_feed.
+ */
+bool cs_stream_busy(const cs_stream *s);
 
 /* The scene on display: the last swapped-in commit, or NULL if there is none. */
 const cs_scene *cs_stream_scene(const cs_stream *s);

@@ -762,6 +762,11 @@ cs_status cs_stream_swap(cs_stream *s)
     return CS_OK;
 }
 
+bool cs_stream_busy(const cs_stream *s)
+{
+    return s && (s->state == ST_BODY || s->state == ST_TRAILER || s->commit_ready);
+}
+
 const cs_scene *cs_stream_scene(const cs_stream *s)
 {
     return s && s->has_scene ? s->front : 0;

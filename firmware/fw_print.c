@@ -15,6 +15,8 @@
 typedef struct out {
     char buf[129];
     size_t n;
+    char *dst;     /* fw_format: the caller's buffer instead of the console */
+    size_t cap, dn;
 } out;
 
 static void flush(out *o)
@@ -28,6 +30,11 @@ static void flush(out *o)
 
 static void put(out *o, char c)
 {
+    if (o->dst) {
+        if (o->dn + 1 < o->cap)
+            o->dst[o->dn++] = c;
+        return;
+    }
     if (o->n == sizeof o->buf - 1)
         flush(o);
     o->buf[o->n++] = c;
@@ -55,13 +62,11 @@ static void put_number(out *o, uint64_t v, unsigned base, bool upper, bool negat
         put(o, tmp[--n]);
 }
 
-void fw_vprint(const char *fmt, va_list ap)
+static void format(out *o, const char *fmt, va_list ap)
 {
-    out o;
-    o.n = 0;
     for (const char *p = fmt; *p; p++) {
         if (*p != '%') {
-            put(&o, *p);
+            put(o, *p);
             continue;
         }
         p++;
@@ -84,19 +89,19 @@ void fw_vprint(const char *fmt, va_list ap)
             while (s[len])
                 len++;
             for (int i = len; i < width; i++)
-                put(&o, ' ');
+                put(o, ' ');
             while (*s)
-                put(&o, *s++);
+                put(o, *s++);
             break;
         }
         case 'c':
-            put(&o, (char)va_arg(ap, int));
+            put(o, (char)va_arg(ap, int));
             break;
         case 'd': {
             int64_t v = longs >= 2 ? va_arg(ap, long long)
                                    : longs ? va_arg(ap, long) : va_arg(ap, int);
             uint64_t mag = v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
-            put_number(&o, mag, 10, false, v < 0, width, pad);
+            put_number(o, mag, 10, false, v < 0, width, pad);
             break;
         }
         case 'u':
@@ -104,22 +109,45 @@ void fw_vprint(const char *fmt, va_list ap)
         case 'X': {
             uint64_t v = longs >= 2 ? va_arg(ap, unsigned long long)
                                     : longs ? va_arg(ap, unsigned long) : va_arg(ap, unsigned);
-            put_number(&o, v, *p == 'u' ? 10u : 16u, *p == 'X', false, width, pad);
+            put_number(o, v, *p == 'u' ? 10u : 16u, *p == 'X', false, width, pad);
             break;
         }
         case '%':
-            put(&o, '%');
+            put(o, '%');
             break;
         case 0:
             p--; /* a lone % at the end */
             break;
         default:
-            put(&o, '%');
-            put(&o, *p);
+            put(o, '%');
+            put(o, *p);
             break;
         }
     }
+}
+
+void fw_vprint(const char *fmt, va_list ap)
+{
+    out o;
+    o.n = 0;
+    o.dst = 0;
+    format(&o, fmt, ap);
     flush(&o);
+}
+
+void fw_format(char *buf, size_t len, const char *fmt, ...)
+{
+    out o;
+    o.n = 0;
+    o.dst = buf;
+    o.cap = len;
+    o.dn = 0;
+    va_list ap;
+    va_start(ap, fmt);
+    format(&o, fmt, ap);
+    va_end(ap);
+    if (len)
+        buf[o.dn] = 0;
 }
 
 void fw_print(const char *fmt, ...)

@@ -15,4 +15,7 @@
 void fw_print(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void fw_vprint(const char *fmt, va_list ap);
 
+/* The same formatting into buf (always NUL-terminated when len > 0; cut to fit). */
+void fw_format(char *buf, size_t len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
 #endif /* FW_PRINT_H */

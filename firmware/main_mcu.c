@@ -1,29 +1,30 @@
 /*
  * main_mcu.c - the firmware's main loop on microcontroller boards.
  *
- * All memory is static and sized by the board's core configuration
- * (CS_CFG_FILE): the scene store, the core's workspace, one line of
- * linear-light floats and one line of panel pixels. Nothing is allocated;
- * the image links no C library at all.
- *
- * Until the cel stream decoder feeds scenes over the UART, the firmware
- * renders its built-in scenes (firmware/scenes) as a list of jobs, prints
- * each frame's CRC-32 in the `celsim --crc` line format, and, on QEMU,
- * dumps the frames for a pixel comparison (tools/fw_qemu_test.sh). The
- * stream ingress is exercised already: `uart=N` reads N bytes from the
- * link and prints their CRC.
+ * Scenes arrive over the link as a cel stream (fw_stream.c: decoder,
+ * commits, errors) and are rendered by fw_render.c; the firmware also
+ * carries a few built-in scenes (firmware/scenes) for the host-identity
+ * check of the renderer alone. Nothing is allocated; the image links no C
+ * library at all. Every frame prints its CRC-32 in the `celsim --crc` line
+ * format and, on QEMU, can be dumped for a pixel comparison
+ * (tools/fw_qemu_test.sh).
  *
  * Command-line words (QEMU -append), all optional:
- *   jobs=all|I,J,..  which built-in jobs to render (default all)
- *   scene=NAME size=WxH time_ms=T aa=N   one frame of your choosing
+ *   stream=N         read N bytes of cel stream from the link (UART), and
+ *                    after every commit or error render frames= from the
+ *                    scene on display
+ *   frames=WxH@T[:A],...  the frames to render: size, time in seconds
+ *                    (decimal), sub-scanlines or "none" (default 16, as
+ *                    celsim); default: the panel at t=0
+ *   render=each|end  frames after every stream event (default), or once at
+ *                    the end of the stream
+ *   idle_ms=N        give up on the link after N ms without a byte (5000)
+ *   jobs=all|I,J,..  which built-in jobs to render (default all, none with stream=)
+ *   scene=NAME size=WxH time_ms=T aa=N   one built-in frame of your choosing
  *   dump=DIR         frame dumps to the host (board's panel)
  *   fcrc=1           also print a CRC-32 of each frame's linear-light floats
- *   uart=N           read N bytes of link input first and report them
+ *   uart=N           read N bytes of link input first and report their CRC
  *   crash=stack|udf|div0   fault on purpose (tests the fault path)
- *
- * The fw_mark_* functions do nothing; a QEMU instruction-count plugin
- * (tools/qemu-insn) watches their addresses to split the count into frame
- * preparation, line rendering and line output.
  */
 #include "board.h"
 #include "board_api.h"
@@ -31,97 +32,31 @@
 #include "cm_startup.h"
 #include "fw_args.h"
 #include "fw_print.h"
+#include "fw_render.h"
 #include "fw_scenes.h"
-#include "mcu_display.h"
+#include "fw_stream.h"
 
-#define PANEL_BPP 2 /* CS_PANEL_PIXFMT is RGB565 */
-typedef char panel_bpp_check_[CS_PANEL_PIXFMT == CS_PIX_RGB565_SRGB ? 1 : -1];
-
-/* The scene store is built by cs_scene_init before every use, so reset
- * need not clear it: .noinit. */
+/* The scene on display: built by cs_scene_init (built-in scenes) or copied
+ * whole from a commit before every use, so reset need not clear it. */
 static cs_scene scene_store __attribute__((section(".noinit.scene_store")));
-static cs_workspace workspace;
-static cs_renderer renderer;
-static float line[3 * CS_CFG_MAX_WIDTH];
-static uint8_t panel_line[PANEL_BPP * CS_CFG_MAX_WIDTH];
-static mcu_display display;
 
-/* Markers for the instruction-count plugin: distinct, never inlined or
- * merged (noipa), and kept though they do nothing. */
-#define FW_MARK(name)                                                                              \
-    __attribute__((noipa, used)) void name(void);                                                  \
-    __attribute__((noipa, used)) void name(void) { __asm volatile(""); }
-FW_MARK(fw_mark_frame_begin)
-FW_MARK(fw_mark_frame_ready)
-FW_MARK(fw_mark_line_rendered)
-FW_MARK(fw_mark_line_out)
-FW_MARK(fw_mark_frame_end)
-
-/* With fcrc=1, a CRC-32 of the linear-light floats themselves (as bytes,
- * little-endian like the host): it shows bit-identical arithmetic, which
- * the panel's 5/6-bit CRC alone could not (tiny differences round away). */
-static bool float_crc_on;
-static uint32_t float_crc;
-
-static cs_status sink(void *user, int y, const float *rgb_linear, int width)
-{
-    if (float_crc_on)
-        float_crc = cs_crc32(float_crc, rgb_linear, (size_t)width * 3u * sizeof(float));
-    fw_mark_line_rendered();
-    cs_status st = mcu_display_line(user, y, rgb_linear, width);
-    fw_mark_line_out();
-    return st;
-}
-
-static void report_error(int index, const char *what, cs_status st, const cs_error *err)
-{
-    fw_print("job %d error: %s: %s", index, what, cs_status_str(st));
-    if (err && (err->cel >= 0 || err->region >= 0 || err->contour >= 0))
-        fw_print(" (cel %d region %d contour %d item %d)", (int)err->cel, (int)err->region,
-                 (int)err->contour, (int)err->item);
-    fw_print("\n");
-}
-
-/* Renders one job; returns 0 if the frame was produced without error. */
+/* Renders one built-in job; returns 0 if the frame was produced without error. */
 static int render_job(int index, const fw_job *job)
 {
     const fw_scene_info *info = &fw_scenes[job->scene];
     cs_render_opts opts = fw_job_opts(job);
+    char label[16];
+    fw_format(label, sizeof label, "job %d", index);
     fw_print("job %d scene %s time_ms %u size %ux%u aa %u\n", index, info->name,
              (unsigned)job->time_ms, (unsigned)job->width, (unsigned)job->height,
              (unsigned)job->subscan);
     cs_error err;
     cs_status st = info->build(&scene_store, opts.time, &err);
     if (st != CS_OK) {
-        report_error(index, "scene", st, &err);
+        fw_report_error(label, "scene", st, &err);
         return 1;
     }
-    uint64_t t0 = board_time_us();
-    fw_mark_frame_begin();
-    st = cs_frame_begin(&renderer, &workspace, &scene_store, &opts, &err);
-    fw_mark_frame_ready();
-    if (st != CS_OK) {
-        report_error(index, "frame", st, &err);
-        return 1;
-    }
-    float_crc = 0;
-    st = mcu_display_begin(&display, opts.width, opts.height);
-    if (st == CS_OK)
-        st = cs_render_frame(&renderer, line, sink, &display);
-    uint32_t crc = mcu_display_end(&display);
-    fw_mark_frame_end();
-    uint64_t t1 = board_time_us();
-    if (st != CS_OK) {
-        report_error(index, "render", st, &renderer.sticky);
-        return 1;
-    }
-    fw_print("frame crc32 %08X\n", (unsigned)crc);
-    if (float_crc_on)
-        fw_print("float crc32 %08X\n", (unsigned)float_crc);
-    fw_print("job %d segments %u pieces %u render_us %llu%s\n", index,
-             (unsigned)renderer.segment_count, (unsigned)renderer.piece_count,
-             (unsigned long long)(t1 - t0), display.panel_error ? " panel-error" : "");
-    return display.panel_error ? 1 : 0;
+    return fw_render(&scene_store, &opts, label, false);
 }
 
 /* Reads `expect` bytes from the link and reports their count and CRC-32;
@@ -170,27 +105,44 @@ static void crash(const char *how)
 }
 
 #ifdef BOARD_DEMO_LOOP
-/* On real glass: keep animating the first job's scene at the panel's size,
- * with the time taken from the board clock, and report now and then. */
+/*
+ * On real glass: show the scene on display, animated by the board clock,
+ * and take stream bytes between frames. Until the first commit that is the
+ * built-in demo (rebuilt at each frame's time: it animates itself); after
+ * it, the committed scene, whose tracks the core samples at the frame's
+ * time. While a transaction streams in, the loop only reads the link (the
+ * workspace holds the transaction) and the panel keeps the last frame; a
+ * sender silent for a second in mid-transaction counts as gone, which
+ * drops the transaction.
+ */
 static void demo_loop(void)
 {
     fw_job job = fw_jobs[0];
     job.width = BOARD_PANEL_WIDTH;
     job.height = BOARD_PANEL_HEIGHT;
     cs_render_opts opts = fw_job_opts(&job);
-    uint64_t start = board_time_us();
-    for (uint32_t frame = 0;; frame++) {
-        opts.time = (float)((board_time_us() - start) / 1000u) / 1000.0f;
-        cs_error err;
-        if (fw_scenes[job.scene].build(&scene_store, opts.time, &err) != CS_OK ||
-            cs_frame_begin(&renderer, &workspace, &scene_store, &opts, &err) != CS_OK ||
-            mcu_display_begin(&display, opts.width, opts.height) != CS_OK)
+    cs_error err;
+    if (fw_scenes[job.scene].build(&scene_store, 0.0f, &err) != CS_OK)
+        return;
+    fw_stream_start(&scene_store, true);
+    uint64_t start = board_time_us(), last_byte = start;
+    for (uint32_t frame = 0;;) {
+        uint8_t b;
+        while (board_link_read(&b)) {
+            fw_stream_byte(b);
+            last_byte = board_time_us();
+        }
+        if (fw_stream_busy()) {
+            if (board_time_us() - last_byte > 1000000u)
+                fw_stream_finish();
             continue;
-        cs_status st = cs_render_frame(&renderer, line, sink, &display);
-        uint32_t crc = mcu_display_end(&display);
-        if (frame % 64u == 0)
-            fw_print("demo frame %u crc32 %08X %s\n", (unsigned)frame, (unsigned)crc,
-                     cs_status_str(st));
+        }
+        opts.time = (float)((board_time_us() - start) / 1000u) / 1000.0f;
+        if (fw_stream_commits() == 0 &&
+            fw_scenes[job.scene].build(&scene_store, opts.time, &err) != CS_OK)
+            continue;
+        fw_render(&scene_store, &opts, "demo", frame % 64u != 0);
+        frame++;
     }
 }
 #endif
@@ -267,38 +219,59 @@ int main(void)
 {
     board_init();
     const char *cmd = board_cmdline();
-    fw_print("celfw %s: panel %dx%d RGB565, scene store %u B, workspace %u B, stack guard %08x\n",
+    char arg[192];
+    fw_render_init(fw_arg(cmd, "fcrc", arg, sizeof arg) && arg[0] == '1');
+    fw_print("celfw %s: panel %dx%d RGB565, scene store %u B, workspace and staging store %u B, "
+             "stack guard %08x\n",
              BOARD_NAME, BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, (unsigned)sizeof scene_store,
-             (unsigned)sizeof workspace, (unsigned)cm_stack_guard());
-    mcu_display_init(&display, board_panel(), panel_line);
-
-    char arg[64];
-    float_crc_on = fw_arg(cmd, "fcrc", arg, sizeof arg) && arg[0] == '1';
+             (unsigned)fw_render_work_bytes(), (unsigned)cm_stack_guard());
     if (fw_arg(cmd, "crash", arg, sizeof arg))
         crash(arg);
-    int failed = 0, frames = 0;
+    int failed = 0;
     uint32_t n;
     if (fw_arg(cmd, "uart", arg, sizeof arg) && fw_parse_u32(arg, &n))
         failed += link_check(n);
 
+    /* Built-in jobs: all by default, none if a stream is given instead. */
+    bool stream = fw_arg(cmd, "stream", arg, sizeof arg);
+    uint32_t expect = 0;
+    if (stream && !fw_parse_u32(arg, &expect)) {
+        fw_print("stream= wants the number of bytes to read\n");
+        failed++;
+        stream = false;
+    }
     fw_job custom;
     int c = custom_job(cmd, &custom);
     if (c < 0) {
         failed++;
     } else if (c > 0) {
         failed += render_job(0, &custom);
-        frames++;
-    } else {
-        fw_arg(cmd, "jobs", arg, sizeof arg);
+    } else if (fw_arg(cmd, "jobs", arg, sizeof arg) || !stream) {
         for (int i = 0; i < FW_JOB_COUNT; i++)
-            if (job_selected(arg, i)) {
+            if (job_selected(arg, i))
                 failed += render_job(i, &fw_jobs[i]);
-                frames++;
-            }
+    }
+
+    if (stream) {
+        fw_frame_req reqs[FW_MAX_FRAME_REQS] = {
+            {BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, 16, 0.0f, "0"}};
+        int count = 1;
+        uint32_t idle_ms = 5000;
+        bool each = !(fw_arg(cmd, "render", arg, sizeof arg) && arg[0] == 'e' && arg[1] == 'n');
+        if (fw_arg(cmd, "frames", arg, sizeof arg))
+            count = fw_frames_parse(arg, reqs, FW_MAX_FRAME_REQS);
+        if (fw_arg(cmd, "idle_ms", arg, sizeof arg) && !fw_parse_u32(arg, &idle_ms))
+            count = -1;
+        if (count < 0) {
+            failed++;
+        } else {
+            fw_stream_start(&scene_store, false);
+            failed += fw_stream_run(expect, idle_ms, reqs, count, each);
+        }
     }
     fw_print("stack high-water %u of %u bytes\n", (unsigned)cm_stack_used(),
              (unsigned)cm_stack_size());
-    fw_print("celfw: %d frames, %d failed\n", frames, failed);
+    fw_print("celfw: %u frames, %d failed\n", (unsigned)fw_render_frames(), failed);
 #ifdef BOARD_DEMO_LOOP
     demo_loop();
 #endif

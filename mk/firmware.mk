@@ -4,10 +4,16 @@
 #                                      use printed and the budgets enforced
 #   make firmware-all                  every board in firmware/boards/*/board.mk
 #   make qemu-test                     boot the mps2-an386 image in QEMU, render the
-#                                      built-in scenes, compare with the host (CRC, pixels)
+#                                      built-in scenes and streamed ones (sent over the
+#                                      UART), compare with celsim and the host (CRC,
+#                                      floats, pixels); damaged streams; faults
 #   make test-mcu-display              unit test of hal/mcu/mcu_display.c on the host
-#   make qemu-run SCENE=signage SIZE=480x272 TIME=0.75 [AA=5]
-#                                      boot and print that frame's `frame crc32` line
+#   make qemu-run STREAM=F SIZE=480x272 TIME=0.5 [AA=16]
+#                                      boot, stream F (.cels, or .json compiled first)
+#                                      over the UART, print the frame's `frame crc32`
+#                                      line, as `celsim render F --size --time --crc`
+#   make qemu-run SCENE=signage SIZE=480x272 TIME=0.75 [AA=16]
+#                                      the same for a built-in scene
 #   make qemu-insn                     executed instructions per frame and per line
 #                                      (QEMU TCG plugin, tools/qemu-insn)
 #
@@ -21,7 +27,8 @@ BOARD ?= mps2-an386
 FW_BOARDS := $(patsubst firmware/boards/%/board.mk,%,$(wildcard firmware/boards/*/board.mk))
 FW_QEMU_BOARD := mps2-an386
 
-FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_print.c firmware/fw_args.c firmware/fw_mem.c \
+FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c firmware/fw_print.c \
+                 firmware/fw_args.c firmware/fw_mem.c \
                  firmware/scenes/fw_scenes.c hal/mcu/mcu_display.c
 # No C library and no heap: -nostdlib, -ffreestanding; GCC may not invent
 # memcpy/memset calls (-fno-tree-loop-distribute-patterns); sqrtf is one
@@ -69,12 +76,20 @@ firmware-all: $(addprefix firmware-,$(FW_BOARDS))
 
 # ---------------------------------------------------------- host side
 # The reference renderer for the built-in scenes, and the QEMU plugin.
-$(HOST)/obj/tests/fw_host_ref.o: HOST_CFLAGS += -Ifirmware/scenes
+# fw_host_ref renders built-in scenes, the animated C scene and decoded
+# streams; fw_cels_gen writes the streams the qemu test sends (JSON through
+# celsim's loader, then the host encoder) until celc lands.
+$(HOST)/obj/tests/fw_host_ref.o $(HOST)/obj/tests/fw_cels_gen.o: HOST_CFLAGS += -Ifirmware/scenes -Itools
 $(HOST)/obj/firmware/scenes/fw_scenes.o: HOST_CFLAGS += -Ifirmware/scenes
 $(HOST)/fw_host_ref: $(HOST)/obj/tests/fw_host_ref.o $(HOST)/obj/firmware/scenes/fw_scenes.o \
+                     $(HOST)/obj/tests/fw_tracks_scene.o $(HOST)/obj/tools/cels_read.o \
                      $(HOST)/libcelscan.a
 	$(Q)$(CC) $^ -o $@
-HOST_PROGRAMS += $(HOST)/fw_host_ref
+$(HOST)/fw_cels_gen: $(HOST)/obj/tests/fw_cels_gen.o $(HOST)/obj/tests/fw_tracks_scene.o \
+                     $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o \
+                     $(HOST)/obj/tools/cels_write.o $(HOST)/libcelscan.a
+	$(Q)$(CC) $^ $(PKG_LIBS) -lm -o $@
+HOST_PROGRAMS += $(HOST)/fw_host_ref $(HOST)/fw_cels_gen
 
 # The MCU display backend is plain C: its unit test runs on the host.
 $(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/mcu/mcu_display.o: HOST_CFLAGS += -Ihal/mcu -Itests
@@ -95,18 +110,29 @@ $(HOST)/libinsncount.so: tools/qemu-insn/insncount.c
 # ------------------------------------------------------------ running
 FW_QEMU_ELF := $(BUILD)/$(FW_QEMU_BOARD)/celfw.elf
 
-qemu-test: firmware-$(FW_QEMU_BOARD) $(HOST)/fw_host_ref
+qemu-test: firmware-$(FW_QEMU_BOARD) $(HOST)/fw_host_ref $(HOST)/fw_cels_gen $(HOST)/celsim
 	$(Q)tools/fw_qemu_test.sh $(FW_QEMU_ELF) $(BUILD)/$(FW_QEMU_BOARD)/qemu-test
 
+STREAM ?=
 SCENE ?= signage
 SIZE ?= 480x272
 TIME ?= 0
-AA ?= 5
-qemu-run: firmware-$(FW_QEMU_BOARD)
-	$(Q)tools/fw_qemu_run.sh $(FW_QEMU_ELF) "$(SCENE)" "$(SIZE)" "$(TIME)" "$(AA)"
+AA ?= 16
+qemu-run: firmware-$(FW_QEMU_BOARD) $(if $(STREAM),$(HOST)/fw_cels_gen)
+	$(Q)tools/fw_qemu_run.sh $(FW_QEMU_ELF) $(if $(STREAM),--stream "$(STREAM)",--scene "$(SCENE)") \
+		"$(SIZE)" "$(TIME)" "$(AA)"
 
-qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so
-	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so \
-		$(BUILD)/$(FW_QEMU_BOARD)/insn
+# The board demo, the animated scene and the beta stack, streamed, at 480x272
+# with 5 and 16 sub-scanlines; then the built-in jobs.
+FW_INSN := $(BUILD)/$(FW_QEMU_BOARD)/insn
+qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen
+	@mkdir -p $(FW_INSN)/streams
+	$(Q)$(HOST)/fw_cels_gen scenes/demo-board.json $(FW_INSN)/streams/demo-board.cels
+	$(Q)$(HOST)/fw_cels_gen --tracks $(FW_INSN)/streams/tracks.cels
+	$(Q)$(HOST)/fw_cels_gen scenes/beta-stack.json $(FW_INSN)/streams/beta-stack.cels
+	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/stream \
+		"frames=480x272@0:5,480x272@0:16" $(FW_INSN)/streams/demo-board.cels \
+		$(FW_INSN)/streams/tracks.cels $(FW_INSN)/streams/beta-stack.cels
+	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/builtin
 
 TEST_TARGETS += test-mcu-display qemu-test

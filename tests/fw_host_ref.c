@@ -14,27 +14,38 @@
  * floats of every line (their bytes, little-endian), which the firmware
  * prints with fcrc=1: equal values mean bit-identical arithmetic, not just
  * equal pixels. --dump FILE also writes the raw frame (the same bytes the firmware dumps
- * over semihosting) for a pixel comparison. Once celsim renders the stream
- * these scenes come from, tools/fw_qemu_test.sh can call celsim instead;
- * this program stays as the reference for the built-in scenes.
+ * over semihosting) for a pixel comparison.
+ *
+ * Besides the built-in scenes it renders
+ *   --scene tracks   the animated stream test scene, built directly in C
+ *                    (tests/fw_tracks_scene.c; the firmware gets it streamed)
+ *   --cels FILE      the last scene a cel stream commits, decoded on the host
+ *                    by tools/cels_read.c; each dropped transaction or skipped
+ *                    run is printed as `stream error: byte N: ...`, the line
+ *                    the firmware prints for the same bytes
+ * so that streamed frames get the float CRC and byte comparison too (celsim
+ * gives their `frame crc32` from the JSON, which is the contract).
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cels_read.h"
 #include "celscan.h"
 #include "fw_scenes.h"
+#include "fw_tracks_scene.h"
 
 static int usage(void)
 {
-    fprintf(stderr, "usage: fw_host_ref --scene NAME [--size WxH] [--time T] [--aa none|N] "
-                    "[--crc] [--float-crc] [--dump FILE]\n       fw_host_ref --list\n");
+    fprintf(stderr, "usage: fw_host_ref --scene NAME|--cels FILE [--size WxH] [--time T] "
+                    "[--aa none|N] [--crc] [--float-crc] [--dump FILE]\n"
+                    "       fw_host_ref --list\n");
     return 2;
 }
 
 int main(int argc, char **argv)
 {
-    const char *scene_name = NULL, *dump = NULL;
+    const char *scene_name = NULL, *dump = NULL, *cels = NULL;
     int width = 480, height = 272, subscan = 5, want_crc = 0, want_float_crc = 0;
     float t = 0.0f;
     for (int i = 1; i < argc; i++) {
@@ -43,6 +54,7 @@ int main(int argc, char **argv)
         if (!strcmp(a, "--list")) {
             for (int k = 0; k < FW_SCENE_COUNT; k++)
                 printf("%s\n", fw_scenes[k].name);
+            printf("tracks\n");
             return 0;
         } else if (!strcmp(a, "--crc")) {
             want_crc = 1;
@@ -52,6 +64,9 @@ int main(int argc, char **argv)
             return usage();
         } else if (!strcmp(a, "--scene")) {
             scene_name = v;
+            i++;
+        } else if (!strcmp(a, "--cels")) {
+            cels = v;
             i++;
         } else if (!strcmp(a, "--size")) {
             if (sscanf(v, "%dx%d", &width, &height) != 2)
@@ -74,22 +89,44 @@ int main(int argc, char **argv)
         }
     }
     int si = scene_name ? fw_scene_find(scene_name) : -1;
-    if (si < 0) {
+    bool tracks = scene_name && !strcmp(scene_name, "tracks");
+    if (!cels && si < 0 && !tracks) {
         fprintf(stderr, "fw_host_ref: unknown scene '%s' (try --list)\n",
                 scene_name ? scene_name : "");
         return 2;
     }
 
-    cs_scene *scene = calloc(1, sizeof *scene);
+    cs_scene *scene = calloc(1, sizeof *scene), *other = calloc(1, sizeof *other);
     cs_workspace *ws = calloc(1, sizeof *ws);
     float *line = calloc((size_t)width * 3, sizeof *line);
     uint8_t *px = calloc((size_t)width, 2);
-    if (!scene || !ws || !line || !px) {
+    if (!scene || !other || !ws || !line || !px) {
         fprintf(stderr, "fw_host_ref: out of memory\n");
         return 1;
     }
     cs_error err;
-    cs_status st = fw_scenes[si].build(scene, t, &err);
+    cs_status st = CS_OK;
+    const cs_scene *shown = scene;
+    if (cels) {
+        /* The name prefixes each message: the firmware's line format. */
+        FILE *f = fopen(cels, "rb");
+        static uint8_t data[1 << 20];
+        size_t len = f ? fread(data, 1, sizeof data, f) : 0;
+        if (!f || len == sizeof data) {
+            fprintf(stderr, "fw_host_ref: %s: unreadable or larger than 1 MiB\n", cels);
+            return 1;
+        }
+        fclose(f);
+        shown = cels_decode_buffer(data, len, "stream error", scene, other, stdout, NULL);
+        if (!shown) {
+            fprintf(stderr, "fw_host_ref: %s: nothing committed\n", cels);
+            return 1;
+        }
+    } else if (tracks) {
+        st = fw_tracks_scene(scene, &err);
+    } else {
+        st = fw_scenes[si].build(scene, t, &err);
+    }
     if (st != CS_OK) {
         fprintf(stderr, "fw_host_ref: scene %s: %s\n", scene_name, cs_status_str(st));
         return 1;
@@ -99,7 +136,7 @@ int main(int argc, char **argv)
     o.subscanlines = subscan ? subscan : 1;
     o.time = t;
     cs_renderer r;
-    st = cs_frame_begin(&r, ws, scene, &o, &err);
+    st = cs_frame_begin(&r, ws, shown, &o, &err);
     if (st != CS_OK) {
         fprintf(stderr, "fw_host_ref: frame: %s (cel %d region %d contour %d)\n",
                 cs_status_str(st), err.cel, err.region, err.contour);
@@ -140,6 +177,7 @@ int main(int argc, char **argv)
     free(px);
     free(line);
     free(ws);
+    free(other);
     free(scene);
     return 0;
 }

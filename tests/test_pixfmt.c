@@ -171,6 +171,36 @@ static void test_packed_formats(void)
     free(out);
 }
 
+/* In place: `out` may be the float line itself (the MCU firmware converts
+ * into the line it rendered, saving a panel line of RAM). Every format, both
+ * the plain and the dithered conversion, must give the bytes a separate
+ * buffer gets. */
+static void test_in_place(void)
+{
+    static const cs_pixfmt all[] = {CS_PIX_RGB888_SRGB, CS_PIX_RGB565_SRGB, CS_PIX_RGB16_LINEAR,
+                                    CS_PIX_RGB888_LINEAR, CS_PIX_RGB444_SRGB, CS_PIX_RGB332_SRGB};
+    enum { W = 97 };
+    float src[3 * W], line[3 * W];
+    uint8_t want[6 * W];
+    tc_seed(21);
+    for (int i = 0; i < 3 * W; i++)
+        src[i] = (float)(tc_rand() * 1.2 - 0.1);
+    for (size_t f = 0; f < sizeof all / sizeof all[0]; f++)
+        for (int dither = 0; dither < 2; dither++) {
+            size_t n = cs_pixfmt_bytes_per_pixel(all[f]) * W;
+            memcpy(line, src, sizeof line);
+            if (dither) {
+                cs_pixfmt_convert_dither(all[f], src, W, 5, want);
+                cs_pixfmt_convert_dither(all[f], line, W, 5, (uint8_t *)line);
+            } else {
+                cs_pixfmt_convert(all[f], src, W, want);
+                cs_pixfmt_convert(all[f], line, W, (uint8_t *)line);
+            }
+            CHECK(memcmp(want, line, n) == 0, "format %d%s: in-place conversion differs",
+                  (int)all[f], dither ? " dithered" : "");
+        }
+}
+
 static uint32_t crc_bitwise(uint32_t crc, const uint8_t *p, size_t n)
 {
     crc = ~crc;
@@ -209,6 +239,7 @@ int main(int argc, char **argv)
     (void)argc;
     TL_RUN(test_srgb_encode16);
     TL_RUN(test_packed_formats);
+    TL_RUN(test_in_place);
     TL_RUN(test_crc32);
     return tl_summary(argv[0]);
 }

@@ -1167,6 +1167,80 @@ static void test_valid_then_damaged(void)
     free(other);
 }
 
+/*
+ * cs_stream_busy: false exactly between transactions, and then the back
+ * store really is scratch. The test scribbles over the back store at every
+ * byte where the decoder is not busy (as the MCU firmware does when it
+ * renders with the same RAM) and still gets the right scenes: a whole
+ * scene, a patch (which copies the front), and a damaged patch dropped.
+ */
+static void test_busy(void)
+{
+    cs_scene *s = new_scene(), *other = new_scene();
+    build_demo(s);
+    cs_scene_copy(other, s);
+    cs_error e;
+    cs_affine m = {1, 0, 0, 1, 5, 5};
+    cs_scene_set_transform(other, 1, &m, &e);
+    cels_buf b;
+    encode(s, &b, true);
+    size_t first = b.len;
+    /* a patch: the transform of cel 1 */
+    cels_txn_begin(&b);
+    cels_rec_begin(&b, CS_REC_CEL_TRANSFORM);
+    cels_put_u32(&b, 1);
+    cels_put_f32s(&b, &m.a, 6);
+    cels_rec_end(&b);
+    cels_rec_commit(&b);
+    cels_txn_end(&b);
+    size_t second = b.len;
+    /* the same patch, damaged */
+    cels_put_bytes(&b, b.data + first, second - first);
+    b.data[second + 30] ^= 0x01;
+    cs_stream_init(&st, store_a, false, store_b);
+    int commits = 0, errors = 0, busy_wrong = 0, scribbles = 0;
+    bool shown_ok[2] = {false, false};
+    for (size_t i = 0; i < b.len; i++) {
+        if (!cs_stream_busy(&st)) {
+            memset(st.back, 0xA5, sizeof *st.back); /* lent out and used */
+            scribbles++;
+        }
+        size_t used;
+        cs_stream_event ev = cs_stream_feed(&st, b.data + i, 1, &used);
+        bool in_txn = (i >= 16 && i + 1 < first) || (i >= first && i + 1 < second) ||
+                      (i >= second && i + 1 < b.len);
+        if (ev == CS_STREAM_COMMIT) {
+            if (!cs_stream_busy(&st))
+                busy_wrong++; /* the commit waits in the back store */
+            cs_stream_swap(&st);
+            char why[128] = "";
+            const cs_scene *want = commits == 0 ? s : other;
+            if (commits < 2)
+                shown_ok[commits] = scene_equal(want, cs_stream_scene(&st), why, sizeof why);
+            commits++;
+        } else if (ev == CS_STREAM_ERROR) {
+            errors++;
+        }
+        /* busy from the first byte after a transaction header to its commit */
+        bool hdr_done = i >= 31 && (i < first || i >= first + 15) && (i < second || i >= second + 15);
+        if (ev == CS_STREAM_MORE && cs_stream_busy(&st) != (in_txn && hdr_done))
+            busy_wrong++;
+    }
+    CHECK(commits == 2 && errors == 1, "scribbled back store: %d commits, %d errors", commits,
+          errors);
+    CHECK(shown_ok[0] && shown_ok[1], "scribbled back store: whole scene %d, patch %d",
+          shown_ok[0], shown_ok[1]);
+    CHECK(busy_wrong == 0 && scribbles > 32, "cs_stream_busy wrong at %d bytes (%d scribbles)",
+          busy_wrong, scribbles);
+    char why[128] = "";
+    CHECK(scene_equal(other, cs_stream_scene(&st), why, sizeof why),
+          "the damaged patch left the patched scene on display: %s", why);
+    CHECK(!cs_stream_busy(&st) && !cs_stream_busy(NULL), "idle at the end; NULL is not busy");
+    cels_buf_free(&b);
+    free(s);
+    free(other);
+}
+
 /* The host reader: a file with a good scene and a damaged patch. */
 static void test_reader(void)
 {
@@ -1690,6 +1764,7 @@ int main(int argc, char **argv)
     test_crafted();
     test_random_and_resync();
     test_valid_then_damaged();
+    test_busy();
     test_patches();
     test_reader();
     test_edit_ops();

@@ -6,6 +6,10 @@
 #          initialisers)                                  <= FW_FLASH_MAX (64 KiB)
 #   RAM    (stack with its guard + .data + .bss + .noinit) <= FW_RAM_MAX   (64 KiB)
 #   scene store (the symbol scene_store)                  >= FW_SCENE_MIN (16 KiB)
+#   the stream decoder's staging store, a second cs_scene that shares RAM
+#   with the render workspace (the union `work`, see firmware/fw_render.c):
+#   the union must be at least a scene store large, so that the staging
+#   store has the front store's full capacity
 #   no heap: no allocator symbol in the image and no C library in the link
 #
 # Figures come from arm-none-eabi-size -A (section sizes) and nm (symbols);
@@ -26,6 +30,8 @@ flash=$((vectors + text + extab + exidx + data))
 ram=$((stack + data + bss + noinit))
 scene=$(arm-none-eabi-nm -S "$elf" | awk "$HEX"' $4 == "scene_store" {print hex($2)}')
 scene=${scene:-0}
+work=$(arm-none-eabi-nm -S "$elf" | awk "$HEX"' $4 == "work" {print hex($2)}')
+work=${work:-0}
 # Read-only data alone, for the report: the .rodata input sections the map
 # file lists as placed (GNU ld puts the size on the next line after a long
 # section name).
@@ -37,12 +43,14 @@ rodata=$(awk "$HEX"'
     END {print s + 0}' "$map")
 
 pct() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.1f%%", 100 * a / b}'; }
-echo "celfw $board memory use (budgets: flash $FLASH_MAX B, RAM $RAM_MAX B, scene store >= $SCENE_MIN B):"
+echo "celfw $board memory use (budgets: flash $FLASH_MAX B, RAM $RAM_MAX B, two scene stores >= $SCENE_MIN B each):"
 printf "  flash %6d B %7s  (vectors %d, code+rodata %d of which rodata %d, unwind %d, .data init %d)\n" \
     "$flash" "$(pct "$flash" "$FLASH_MAX")" "$vectors" "$text" "$rodata" $((extab + exidx)) "$data"
 printf "  RAM   %6d B %7s  (stack %d incl. 32 B guard, .data %d, .bss %d, .noinit %d)\n" \
     "$ram" "$(pct "$ram" "$RAM_MAX")" "$stack" "$data" "$bss" "$noinit"
-printf "  scene store %d B; largest RAM objects:\n" "$scene"
+printf "  scene stores: front %d B (scene_store), staging %d B sharing the %d B render workspace (work)\n" \
+    "$scene" "$scene" "$work"
+printf "  largest RAM objects:\n"
 arm-none-eabi-nm -S --size-sort "$elf" | awk '$3 ~ /^[bBdD]$/ {print}' | tail -5 |
     awk "$HEX"' {printf "    %-16s %6d B\n", $4, hex($2)}'
 
@@ -55,6 +63,10 @@ if [ "$ram" -gt "$RAM_MAX" ]; then
 fi
 if [ "$scene" -lt "$SCENE_MIN" ]; then
     echo "fw_budget: $board: scene store $scene B is below $SCENE_MIN B" >&2; status=1
+fi
+if [ "$work" -lt "$scene" ]; then
+    echo "fw_budget: $board: the workspace/staging union ($work B) is smaller than a scene store ($scene B)" >&2
+    status=1
 fi
 heap=$(arm-none-eabi-nm "$elf" | awk '{print $NF}' |
     grep -E '^_?(malloc|calloc|realloc|free|sbrk|_sbrk|_malloc_r|_free_r|__malloc_.*|end|_end|__heap_.*)$' || true)

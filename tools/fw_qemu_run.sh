@@ -1,18 +1,54 @@
 #!/bin/sh
-# fw_qemu_run.sh ELF SCENE SIZE TIME [AA] - boots the firmware under QEMU,
-# renders one built-in scene at SIZE (WxH) and TIME (seconds, at most three
-# decimals: the firmware takes whole milliseconds) with AA sub-scanlines,
-# and prints the firmware's console, including the contract line
+# fw_qemu_run.sh ELF --stream FILE SIZE TIME [AA]
+# fw_qemu_run.sh ELF --scene NAME SIZE TIME [AA]
+#
+# Boots the firmware under QEMU and prints its console, which includes the
+# contract line
 #   frame crc32 XXXXXXXX
-# Used by `make qemu-run SCENE=signage SIZE=480x272 TIME=0.75`. When the
-# stream decoder lands, STREAM=F will be fed to the UART instead of naming
-# a built-in scene.
+# for one frame at SIZE (WxH), TIME (seconds) and AA sub-scanlines ("none"
+# for one sample per pixel; default 16, celsim's default), so that
+#   make qemu-run STREAM=F SIZE=WxH TIME=T
+# prints what `celsim render F --size WxH --time T --crc` prints.
+#
+# --stream: FILE (a .cels stream; a .json scene is first compiled with
+# FW_CELC, default build/host/fw_cels_gen, until celc lands) is sent over
+# the UART; the frame is rendered from the last committed scene once the
+# stream has ended (errors are printed as they happen).
+# --scene: one of the firmware's built-in scenes; TIME must then be whole
+# milliseconds.
 set -eu
-elf=$1 scene=$2 size=$3 time=$4 aa=${5:-5}
-ms=$(awk -v t="$time" 'BEGIN {
-    ms = t * 1000; r = int(ms + 0.5)
-    if (t !~ /^[0-9]*\.?[0-9]*$/ || (ms - r) > 1e-6 || (r - ms) > 1e-6) exit 1
-    print r }') || { echo "qemu-run: TIME must be seconds with at most 3 decimals: $time" >&2; exit 2; }
-exec timeout "${FW_QEMU_TIMEOUT:-120}" qemu-system-arm -M mps2-an386 -display none -monitor none \
-    -semihosting-config enable=on,target=native -serial null -kernel "$elf" \
-    -append "scene=$scene size=$size time_ms=$ms aa=$aa" 2>&1
+elf=$1 mode=$2 what=$3 size=$4 time=$5 aa=${6:-16}
+qemu="qemu-system-arm -M mps2-an386 -display none -monitor none
+      -semihosting-config enable=on,target=native -kernel $elf"
+case $mode in
+--stream)
+    file=$what
+    case $file in
+    *.json)
+        tmp=$(mktemp -d)
+        trap 'rm -rf "$tmp"' EXIT
+        default_celc="build/host/fw_cels_gen {json} {out}"
+        cmd=$(echo "${FW_CELC:-$default_celc}" | sed -e "s|{json}|$file|g" -e "s|{out}|$tmp/s.cels|g")
+        $cmd
+        file=$tmp/s.cels ;;
+    esac
+    [ -r "$file" ] || { echo "qemu-run: cannot read $file" >&2; exit 2; }
+    n=$(wc -c <"$file")
+    # shellcheck disable=SC2086
+    timeout "${FW_QEMU_TIMEOUT:-120}" $qemu -serial stdio \
+        -append "stream=$n frames=$size@$time:$aa render=end" <"$file" 2>&1
+    ;;
+--scene)
+    ms=$(awk -v t="$time" 'BEGIN {
+        ms = t * 1000; r = int(ms + 0.5)
+        if (t !~ /^[0-9]*\.?[0-9]*$/ || (ms - r) > 1e-6 || (r - ms) > 1e-6) exit 1
+        print r }') || { echo "qemu-run: TIME must be seconds with at most 3 decimals: $time" >&2; exit 2; }
+    [ "$aa" = none ] && aa=0
+    # shellcheck disable=SC2086
+    exec timeout "${FW_QEMU_TIMEOUT:-120}" $qemu -serial null \
+        -append "scene=$what size=$size time_ms=$ms aa=$aa" 2>&1
+    ;;
+*)
+    echo "usage: fw_qemu_run.sh ELF --stream FILE|--scene NAME SIZE TIME [AA]" >&2
+    exit 2 ;;
+esac

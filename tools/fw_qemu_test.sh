@@ -1,35 +1,48 @@
 #!/bin/sh
 # fw_qemu_test.sh ELF OUTDIR - boots the firmware under QEMU and checks that
-# every frame it renders is bit-identical to the host renderer's.
+# every frame it renders is bit-identical to the host's.
 #
-# The firmware (mps2-an386 image) renders its built-in jobs, prints for each
-#   job I scene NAME time_ms T size WxH aa N
-#   frame crc32 XXXXXXXX
-# and dumps the frame over semihosting to OUTDIR/frames/frameII.rgb565. For
-# each job this script asks the host reference for the same frame and
-# compares the CRC line and, when the reference can dump, every byte.
+# 1. Built-in scenes. The firmware renders its built-in jobs, prints for each
+#      job I scene NAME time_ms T size WxH aa N
+#      frame crc32 XXXXXXXX / float crc32 XXXXXXXX
+#    and dumps the frame over semihosting to OUTDIR/builtin/frames/. The host
+#    build of the core renders the same scenes (FW_REF, default
+#    build/host/fw_host_ref): the frame CRC, the CRC of the linear-light
+#    floats and every byte of the frame must be equal. The same boot checks
+#    that the UART delivers a known byte sequence intact.
 #
-# The reference command is a template (FW_REF), with {scene} {size} {time}
-# {aa} and {dump} replaced; the default is the host build of the core
-# rendering the same built-in scene:
-#   build/host/fw_host_ref --scene {scene} --size {size} --time {time} --aa {aa} \
-#       --crc --float-crc --dump {dump}
-# Once scenes arrive as streams, point it at celsim, e.g.
-#   FW_REF='build/host/celsim render scenes/{scene}.cels --size {size} --time {time} --aa {aa} --crc'
-# (without {dump} only the CRCs are compared). When the reference also
-# prints `float crc32`, the CRC of the linear-light floats before pixel
-# conversion, that is compared too: it shows bit-identical arithmetic,
-# which the 5/6-bit panel format alone could hide.
+# 2. Streamed scenes. Test scenes are compiled to cel streams on the host
+#    (FW_CELC, default build/host/fw_cels_gen; `celc compile` once it lands)
+#    and sent over the UART in one stream:
+#      the board demo (scenes/demo-board.json), the animated scene with
+#      keyframe tracks (tests/fw_tracks_scene.c), the beta-model stack
+#      (scenes/beta-stack.json), then the demo again with one byte damaged
+#      (a CRC error), the tracks scene cut short, the demo whole again, and
+#      a patch transaction that moves a cel and brings it to the front.
+#    After every commit and error the firmware renders the frame list FRAMES
+#    from the scene on display. Every frame's CRC must equal celsim's for
+#    the scene's JSON (`celsim render SCENE.json --size --time --aa --crc`,
+#    the contract); the animated scene, which has no JSON yet, is compared
+#    with the host core rendering the same C scene directly. Every frame's
+#    floats and bytes must also equal the host's (fw_host_ref on the same
+#    stream). The errors must be reported with the host reader's words and
+#    byte offsets, and the frames after the damaged transaction must be
+#    those before it: the picture stays, the firmware keeps running.
 #
-# Also checked: the UART ingress delivers a known byte sequence intact, the
-# run exits 0 within its timeout, the stack stays within its size, and a
-# deliberate crash (stack overflow into the MPU guard, undefined
-# instruction, division by zero) ends QEMU with a non-zero status instead
-# of hanging. Prints `qemu-test: N passed, M failed` like the other tests.
+# 3. Faults. The stack stays within its size, and a deliberate crash (stack
+#    overflow into the MPU guard, undefined instruction, division by zero)
+#    ends QEMU with a non-zero status instead of hanging.
+#
+# Prints `qemu-test: N passed, M failed` like the other tests.
 set -u
 elf=$1 out=$2
-default_ref='build/host/fw_host_ref --scene {scene} --size {size} --time {time} --aa {aa} --crc --float-crc --dump {dump}'
+host=build/host
+default_ref="$host/fw_host_ref --scene {scene} --size {size} --time {time} --aa {aa} --crc --float-crc --dump {dump}"
 ref=${FW_REF:-$default_ref}
+default_celc="$host/fw_cels_gen {json} {out}"
+celc=${FW_CELC:-$default_celc}
+celsim=${FW_CELSIM:-$host/celsim}
+FRAMES=${FW_FRAMES:-480x272@0:5,480x272@0.5:5,480x272@1.25:5,240x136@0.75:none}
 tmo=${FW_QEMU_TIMEOUT:-120}
 qemu="qemu-system-arm -M mps2-an386 -display none -monitor none
       -semihosting-config enable=on,target=native -kernel $elf"
@@ -44,73 +57,62 @@ if ! command -v qemu-system-arm >/dev/null; then
     exit 1
 fi
 rm -rf "$out"
-mkdir -p "$out/frames" "$out/ref"
+mkdir -p "$out/builtin/frames" "$out/builtin/ref" "$out/stream/frames" "$out/stream/ref"
 
-# Link input: every byte value, and more than any FIFO would hold.
-python3 -c '
-import sys
-data = bytes((i * 7 + 3) & 255 for i in range(3000)) + bytes(range(256))
-sys.stdout.buffer.write(data)' >"$out/link.bin"
-link_len=$(wc -c <"$out/link.bin")
-link_crc=$(python3 -c 'import sys, zlib; print("%08X" % zlib.crc32(open(sys.argv[1], "rb").read()))' "$out/link.bin")
+crc_of() { python3 -c 'import sys, zlib; print("%08X" % zlib.crc32(open(sys.argv[1], "rb").read()))' "$1"; }
 
-echo "qemu-test: booting $elf"
-# shellcheck disable=SC2086
-timeout "$tmo" $qemu -serial stdio -append "dump=$out/frames uart=$link_len fcrc=1" \
-    <"$out/link.bin" >"$out/uart.log" 2>"$out/console.log"
-status=$?
-if [ $status -eq 0 ]; then ok "firmware ran and exited 0"
-elif [ $status -eq 124 ]; then bad "firmware did not finish within ${tmo}s"
-else bad "firmware exited with status $status"; fi
-grep -E '^(FAULT|job .* error)' "$out/console.log" | sed 's/^/       /'
-
-if grep -q "^link rx $link_len bytes crc32 $link_crc\$" "$out/console.log"; then
-    ok "UART ingress: $link_len bytes, crc32 $link_crc"
-else
-    bad "UART ingress: expected $link_len bytes crc32 $link_crc, got: $(grep '^link rx' "$out/console.log")"
-fi
-
-# Pair each job line with the frame and float CRC lines that follow it.
-awk '/^job [0-9]+ scene / {job = $0; crc = ""; next}
-     /^frame crc32 / && job != "" {crc = $3; next}
-     /^float crc32 / && job != "" && crc != "" {print job " crc " crc " fcrc " $3; job = ""}' \
-    "$out/console.log" >"$out/jobs.txt"
-jobs=$(wc -l <"$out/jobs.txt")
-[ "$jobs" -ge 1 ] && ok "$jobs frames rendered" || bad "no frames rendered"
-
-while read -r _ idx _ scene _ ms _ size _ aa _ crc _ fcrc; do
-    time=$(awk -v ms="$ms" 'BEGIN {printf "%g", ms / 1000}')
-    frame=$(printf '%s/frames/frame%02d.rgb565' "$out" "$idx")
-    dump="$out/ref/frame$idx.rgb565"
-    cmd=$(echo "$ref" | sed -e "s|{scene}|$scene|g" -e "s|{size}|$size|g" -e "s|{time}|$time|g" \
-        -e "s|{aa}|$aa|g" -e "s|{dump}|$dump|g")
-    $cmd >"$out/ref/out$idx.log" 2>"$out/ref/err$idx.log"
-    host=$(awk '/^frame crc32 / {print toupper($3)}' "$out/ref/out$idx.log")
-    host_f=$(awk '/^float crc32 / {print toupper($3)}' "$out/ref/out$idx.log")
-    what="job $idx: $scene t=$time ${size} aa $aa"
-    if [ -z "$host" ]; then
-        bad "$what: the reference printed no CRC ($cmd)"
-        continue
-    fi
-    if [ "$host" = "$(echo "$crc" | tr a-f A-F)" ]; then
-        ok "$what: crc32 $crc equals the host's"
+# boot LOG ARGS < INPUT: runs the firmware; console to LOG, status in $status.
+boot() {
+    log=$1
+    shift
+    # shellcheck disable=SC2086
+    timeout "$tmo" $qemu -serial stdio -append "$*" >"${log%.log}.uart" 2>"$log"
+    status=$?
+    name=$(basename "$(dirname "$log")")
+    if [ $status -eq 0 ]; then ok "$name: firmware ran and exited 0"
+    elif [ $status -eq 124 ]; then bad "$name: firmware did not finish within ${tmo}s"
+    else bad "$name: firmware exited with status $status"; fi
+    grep -E '^(FAULT|job .* error|frame .* error|stream: link idle)' "$log" | sed 's/^/       /'
+    used=$(awk '/^stack high-water/ {print $3, $5}' "$log")
+    if [ -n "$used" ] && [ "${used% *}" -lt "${used#* }" ]; then
+        ok "$name: stack high-water ${used% *} of ${used#* } bytes"
     else
-        bad "$what: crc32 $crc on the target, $host on the host"
+        bad "$name: stack high-water not reported or stack exhausted ($used)"
+    fi
+}
+
+# compare_frame WHAT FRAME_FILE CRC FCRC REF_CMD [DUMP]: runs the reference
+# and compares its CRC lines (and the dump, if the command makes one).
+# (Its variables are c_*: sh has no locals.)
+compare_frame() {
+    c_what=$1 c_frame=$2 c_crc=$3 c_fcrc=$4 c_cmd=$5 c_dump=${6:-}
+    rlog=${c_dump:-$out/ref-last}.log
+    $c_cmd >"$rlog" 2>"$rlog.err"
+    host_c=$(awk '/^frame crc32 / {print toupper($3)}' "$rlog")
+    host_f=$(awk '/^float crc32 / {print toupper($3)}' "$rlog")
+    if [ -z "$host_c" ]; then
+        bad "$c_what: the reference printed no CRC ($c_cmd: $(head -c 200 "$rlog.err"))"
+        return
+    fi
+    if [ "$host_c" = "$c_crc" ]; then
+        ok "$c_what: crc32 $c_crc equals $(echo "$c_cmd" | awk '{sub(".*/", "", $1); print $1}')'s"
+    else
+        bad "$c_what: crc32 $c_crc on the target, $host_c from: $c_cmd"
     fi
     if [ -n "$host_f" ]; then
-        if [ "$host_f" = "$fcrc" ]; then
-            ok "$what: linear floats bit-identical (crc32 $fcrc)"
+        if [ "$host_f" = "$c_fcrc" ]; then
+            ok "$c_what: linear floats bit-identical (crc32 $c_fcrc)"
         else
-            bad "$what: linear floats differ: crc32 $fcrc on the target, $host_f on the host"
+            bad "$c_what: linear floats differ: crc32 $c_fcrc on the target, $host_f on the host"
         fi
     fi
-    case "$ref" in *{dump}*)
-        if cmp -s "$frame" "$dump"; then
-            ok "$what: all $(wc -c <"$dump") bytes of the frame equal"
+    if [ -n "$c_dump" ]; then
+        if cmp -s "$c_frame" "$c_dump"; then
+            ok "$c_what: all $(wc -c <"$c_dump") bytes of the frame equal"
         else
-            bad "$what: frame bytes differ: $(python3 - "$frame" "$dump" <<'EOF'
-import sys
-a, b = (open(p, "rb").read() if p else b"" for p in sys.argv[1:3])
+            bad "$c_what: frame bytes differ: $(python3 - "$c_frame" "$c_dump" <<'EOF'
+import sys, os
+a, b = (open(p, "rb").read() if os.path.exists(p) else b"" for p in sys.argv[1:3])
 if len(a) != len(b):
     print("sizes %d and %d" % (len(a), len(b)))
 else:
@@ -118,17 +120,182 @@ else:
     print("%d pixels, first at index %d" % (len(px), px[0]) if px else "none?")
 EOF
 )"
-        fi ;;
-    esac
-done <"$out/jobs.txt"
+        fi
+    fi
+}
 
-used=$(awk '/^stack high-water/ {print $3, $5}' "$out/console.log")
-if [ -n "$used" ] && [ "${used% *}" -lt "${used#* }" ]; then
-    ok "stack high-water ${used% *} of ${used#* } bytes"
+# --------------------------------------------------- 1. built-in scenes
+echo "qemu-test: built-in scenes ($elf)"
+# Link input: every byte value, and more than any FIFO would hold.
+python3 -c '
+import sys
+data = bytes((i * 7 + 3) & 255 for i in range(3000)) + bytes(range(256))
+sys.stdout.buffer.write(data)' >"$out/builtin/link.bin"
+link_len=$(wc -c <"$out/builtin/link.bin")
+link_crc=$(crc_of "$out/builtin/link.bin")
+boot "$out/builtin/console.log" "dump=$out/builtin/frames uart=$link_len fcrc=1" <"$out/builtin/link.bin"
+if grep -q "^link rx $link_len bytes crc32 $link_crc\$" "$out/builtin/console.log"; then
+    ok "UART ingress: $link_len bytes, crc32 $link_crc"
 else
-    bad "stack high-water not reported or stack exhausted ($used)"
+    bad "UART ingress: expected $link_len bytes crc32 $link_crc, got: $(grep '^link rx' "$out/builtin/console.log")"
+fi
+# Pair each job line with the frame and float CRC lines that follow it.
+awk '/^job [0-9]+ scene / {job = $0; crc = ""; next}
+     /^frame crc32 / && job != "" {crc = $3; next}
+     /^float crc32 / && job != "" && crc != "" {print job " crc " crc " fcrc " $3; job = ""}' \
+    "$out/builtin/console.log" >"$out/builtin/jobs.txt"
+jobs=$(wc -l <"$out/builtin/jobs.txt")
+[ "$jobs" -ge 1 ] && ok "$jobs built-in frames rendered" || bad "no built-in frames rendered"
+while read -r _ idx _ scene _ ms _ size _ aa _ crc _ fcrc; do
+    time=$(awk -v ms="$ms" 'BEGIN {printf "%g", ms / 1000}')
+    frame=$(printf '%s/builtin/frames/frame%02d.rgb565' "$out" "$idx")
+    dump="$out/builtin/ref/frame$idx.rgb565"
+    cmd=$(echo "$ref" | sed -e "s|{scene}|$scene|g" -e "s|{size}|$size|g" -e "s|{time}|$time|g" \
+        -e "s|{aa}|$aa|g" -e "s|{dump}|$dump|g")
+    case "$ref" in *{dump}*) ;; *) dump= ;; esac
+    compare_frame "job $idx: $scene t=$time $size aa $aa" "$frame" "$crc" "$fcrc" "$cmd" "$dump"
+done <"$out/builtin/jobs.txt"
+
+# --------------------------------------------------- 2. streamed scenes
+echo "qemu-test: streamed scenes"
+s=$out/stream
+gen() { # gen JSON OUT
+    cmd=$(echo "$celc" | sed -e "s|{json}|$1|g" -e "s|{out}|$2|g")
+    $cmd || bad "could not compile $1 to a cel stream ($cmd)"
+}
+gen scenes/demo-board.json "$s/demo.cels"
+gen scenes/beta-stack.json "$s/beta.cels"
+$host/fw_cels_gen --tracks "$s/tracks.cels" || bad "could not write the tracks scene stream"
+# The stream: pieces in order, with their offsets for the expected errors.
+# The last piece is a patch transaction written here, record by record: it
+# moves the demo's blob (cel 6) and brings it to the front; demo-patched.json
+# is the same edit made to the JSON, for celsim.
+python3 - "$s" scenes/demo-board.json <<'EOF' >"$s/pieces.txt"
+import json, struct, sys, zlib
+d, demo_json = sys.argv[1], sys.argv[2]
+demo, tracks, beta = (open("%s/%s.cels" % (d, n), "rb").read() for n in ("demo", "tracks", "beta"))
+damaged = bytearray(demo)
+damaged[16 + 16 + 10] ^= 0x04       # a byte of the first record's payload: CRC mismatch
+cut = tracks[:16 + 16 + 60]         # stream header, transaction header, part of the body
+def rec(kind, payload):
+    return struct.pack("<HI", kind, len(payload)) + payload
+moved = [1.03366, -0.37622, 0.37622, 1.03366, 190, 200]
+body = rec(0x0300, struct.pack("<I6f", 6, *moved)) + rec(0x0204, struct.pack("<II", 6, 0)) + \
+    rec(0x0001, b"")
+head = b"CSTX" + bytes([1, 0, 0, 0]) + struct.pack("<I", len(body))
+head += struct.pack("<I", zlib.crc32(head))
+patch = head + body + struct.pack("<I", zlib.crc32(head + body))
+scene = json.load(open(demo_json))
+blob = scene["cels"].pop(6)
+assert blob["name"] == "blob"
+blob["transform"] = moved
+scene["cels"].insert(0, blob)
+json.dump(scene, open(d + "/demo-patched.json", "w"), indent=1)
+open(d + "/patched.cels", "wb").write(demo + patch)
+pieces = [("demo", demo), ("tracks", tracks), ("beta", beta), ("damaged", bytes(damaged)),
+          ("cut", cut), ("demo", demo), ("patch", patch)]
+out, at = b"", []
+for name, p in pieces:
+    at.append((name, len(out)))
+    out += p
+open(d + "/all.cels", "wb").write(out)
+for name, off in at:
+    print(name, off)
+EOF
+stream_len=$(wc -c <"$s/all.cels")
+off_damaged=$(awk '$1 == "damaged" {print $2}' "$s/pieces.txt")
+off_cut=$(awk '$1 == "cut" {print $2}' "$s/pieces.txt")
+boot "$s/console.log" "dump=$s/frames fcrc=1 stream=$stream_len frames=$FRAMES" <"$s/all.cels"
+# Commit K shows: 1 demo, 2 tracks, 3 beta, 4 demo, 5 the patched demo (the
+# damaged and cut transactions never commit).
+scene_of() {
+    case $1 in 1|4) echo demo ;; 2) echo tracks ;; 3) echo beta ;; 5) echo patched ;; *) echo none ;; esac
+}
+
+if grep -q "^stream: $stream_len bytes, 5 commits, 2 errors\$" "$s/console.log"; then
+    ok "stream of $stream_len bytes: 5 commits, 2 errors"
+else
+    bad "stream: expected $stream_len bytes, 5 commits, 2 errors; got: $(grep '^stream: ' "$s/console.log")"
+fi
+# The errors, as the host reader words them for the same bytes.
+grep '^stream error: ' "$s/console.log" >"$s/errors.fw"
+$host/fw_host_ref --cels "$s/all.cels" --crc | grep '^stream error: ' >"$s/errors.host"
+if [ -s "$s/errors.fw" ] && cmp -s "$s/errors.fw" "$s/errors.host"; then
+    ok "stream errors reported as the host reader reports them:"
+    sed 's/^/       /' "$s/errors.fw"
+else
+    bad "stream errors differ from the host reader's:"
+    diff "$s/errors.fw" "$s/errors.host" | sed 's/^/       /'
+fi
+if sed -n 1p "$s/errors.fw" | grep -q "CRC mismatch.*(transaction at byte $((off_damaged + 16)) dropped)\$"; then
+    ok "damaged transaction at byte $((off_damaged + 16)): CRC mismatch, dropped"
+else
+    bad "damaged transaction at byte $((off_damaged + 16)) not reported as a CRC mismatch"
+fi
+if sed -n 2p "$s/errors.fw" | grep -q "cut short.*(transaction at byte $((off_cut + 16)) dropped)\$"; then
+    ok "transaction at byte $((off_cut + 16)) cut short by the next one: dropped"
+else
+    bad "cut transaction at byte $((off_cut + 16)) not reported as cut short"
 fi
 
+# Frames with the event before them: "F WxH T A K EVENT CRC FCRC".
+awk '/^stream commit / {ev = "commit" $3; next}
+     /^stream error: / {ev = "error" (++e); next}
+     /^frame [0-9]+ size / {f = $2; size = $4; t = $6; aa = $8; k = $10; crc = ""; next}
+     /^frame crc32 / && f != "" {crc = $3; next}
+     /^float crc32 / && f != "" && crc != "" {print f, size, t, aa, k, ev, crc, $3; f = ""}' \
+    "$s/console.log" >"$s/frames.txt"
+nframes=$(wc -l <"$s/frames.txt")
+nreq=$(echo "$FRAMES" | tr ',' '\n' | wc -l)
+# After commits 1, 2, 3, error 1 (the damaged transaction), commits 4 and 5;
+# error 2 arrives with the next transaction already open, so its frames wait
+# for commit 4.
+if [ "$nframes" -eq $((6 * nreq)) ]; then
+    ok "$nframes streamed frames rendered ($nreq after each of 6 events)"
+else
+    bad "$nframes streamed frames rendered, expected $((6 * nreq))"
+fi
+while read -r f size t aa k ev crc fcrc; do
+    scene=$(scene_of "$k")
+    frame=$(printf '%s/frames/frame%02d.rgb565' "$s" "$f")
+    what="frame $f ($scene after $ev, t=$t $size aa $aa)"
+    if [ "$scene" = tracks ]; then
+        compare_frame "$what" "$frame" "$crc" "$fcrc" \
+            "$host/fw_host_ref --scene tracks --size $size --time $t --aa $aa --crc --float-crc --dump $s/ref/frame$f.rgb565" \
+            "$s/ref/frame$f.rgb565"
+    else
+        case $scene in
+        demo) json=scenes/demo-board.json cels=$s/demo.cels ;;
+        beta) json=scenes/beta-stack.json cels=$s/beta.cels ;;
+        *) json=$s/demo-patched.json cels=$s/patched.cels ;;
+        esac
+        compare_frame "$what" "$frame" "$crc" "" "$celsim render $json --size $size --time $t --aa $aa --crc"
+        compare_frame "$what" "$frame" "$crc" "$fcrc" \
+            "$host/fw_host_ref --cels $cels --size $size --time $t --aa $aa --crc --float-crc --dump $s/ref/frame$f.rgb565" \
+            "$s/ref/frame$f.rgb565"
+    fi
+done <"$s/frames.txt"
+# The damaged transaction left the picture as it was.
+awk '$6 == "commit3" {print $2, $3, $4, $7}' "$s/frames.txt" >"$s/before.txt"
+awk '$6 == "error1" {print $2, $3, $4, $7}' "$s/frames.txt" >"$s/after.txt"
+if [ -s "$s/after.txt" ] && cmp -s "$s/before.txt" "$s/after.txt"; then
+    ok "after the damaged transaction every frame CRC is unchanged: the picture stays"
+else
+    bad "frames after the damaged transaction differ from those before it"
+fi
+
+# The contract itself: `make qemu-run STREAM=F SIZE=WxH TIME=T` prints the
+# line `celsim render F --size WxH --time T --crc` prints (celsim's default
+# anti-aliasing; the JSON compiled to a stream on the way).
+run_line=$(tools/fw_qemu_run.sh "$elf" --stream scenes/beta-stack.json 320x180 0.25 | grep '^frame crc32 ')
+sim_line=$($celsim render scenes/beta-stack.json --size 320x180 --time 0.25 --crc)
+if [ -n "$run_line" ] && [ "$run_line" = "$sim_line" ]; then
+    ok "qemu-run STREAM=scenes/beta-stack.json SIZE=320x180 TIME=0.25 prints celsim's line: $run_line"
+else
+    bad "qemu-run printed '$run_line', celsim '$sim_line'"
+fi
+
+# ------------------------------------------------------------ 3. faults
 # A crash must end the run with 128 + the exception number, not hang it.
 for c in stack:132:MemManage udf:134:UsageFault div0:134:UsageFault; do
     how=${c%%:*} rest=${c#*:}

@@ -5,20 +5,20 @@
  *
  * Where the RAM goes (bytes, Cortex-M4; tools/fw_budget.sh prints the
  * measured figures on every build):
- *   line buffers   15 floats per pixel (the stack's E in the caller's
- *                  output line, T, the cel's E and 1-T, the coverage
- *                  claimed, area, cover): 28,816
- *   scene store    cs_scene with the capacities below: 16,576 (>= 16 KiB)
- *   segment arena  144 segments x 52 + 208 pieces x (24 + 3 x 2 index):
- *                  13,728
- *   per region     64 x 26 (paint maps and cel of each region): 1,664
- *   crossings      64 x 8 per region and sub-scanline: 512
- * which is 61,296 of 65,536, leaving 4,240 for the stack (2,048 + 32 guard;
- * 868 measured), the RGB565 panel line (960), the semihosting command line
- * (256) and board state; about 550 bytes stay free on mps2-an386.
- *
- * The stream decoder's second (staging) store cannot be another cs_scene
- * of this size next to these line buffers; see firmware/README.md.
+ *   workspace      39,156: line buffers, 12 floats per pixel (area,
+ *                  cover, claimed coverage, the cel's E and 1-T, the
+ *                  stack's T) and the 16-bit opaque record: 24,018;
+ *                  segment arena 120 segments x 60 + 176 pieces x (24 +
+ *                  3 x 2 index): 12,480; per region 64 x 26 (paint maps,
+ *                  cel): 1,664; crossings 64 x 8: 512; paint function
+ *                  maps and one animated contour: 480
+ *   staging store  the decoder's back store shares the workspace's RAM
+ *                  (firmware/fw_render.c: a union), so it costs nothing
+ *   scene store    cs_scene with the capacities below: 16,388 (>= 16 KiB)
+ *   float line     the stack's E, then the pixels: 5,760
+ * which is 61,304 of 65,536, leaving 4,232 for the stack (2,048 + 32 guard;
+ * 1,500 measured), the decoder (408), the semihosting command line (256)
+ * and board state; 1,040 bytes stay free on mps2-an386.
  *
  * Pieces: about one y-monotone piece per segment in practice (the built-in
  * scenes: 67 pieces for 73 segments; a horizontal edge gives none, a

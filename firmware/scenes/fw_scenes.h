@@ -1,17 +1,17 @@
 /*
  * fw_scenes.h - test scenes built into the firmware image.
  *
- * Until the cel stream decoder feeds scenes over the UART, the firmware
- * carries a few scenes of its own, built with the core's cs_scene_add_*
- * calls. The same file is compiled for the host (tests/fw_host_ref.c) so
+ * Besides the scenes it receives as a cel stream, the firmware carries a
+ * few scenes of its own, built with the core's cs_scene_add_* calls: the
+ * renderer's host-identity check without the decoder in between, and the
+ * picture on real glass before the first commit. The same file is compiled for the host (tests/fw_host_ref.c) so
  * that the host build of the core renders the very same scene and the two
  * frame CRCs can be compared bit for bit. Everything here is freestanding
  * (no libc) and uses only IEEE-754 single-precision arithmetic, so the scene
  * itself is identical on both sides.
  *
  * A scene may depend on time: the builder evaluates its own little
- * animation at time t (the core has no keyframe tracks yet), which stands in
- * for the stream's animation until that lands.
+ * animation at time t (streamed scenes use keyframe tracks instead).
  */
 #ifndef FW_SCENES_H
 #define FW_SCENES_H

@@ -1,18 +1,27 @@
 #!/bin/sh
-# measure.sh ELF PLUGIN OUTDIR [FIRMWARE-ARGS] - executed instructions per
-# frame and per line, counted exactly by the insncount QEMU plugin.
+# measure.sh ELF PLUGIN OUTDIR [FIRMWARE-ARGS] [STREAM...] - executed
+# instructions per frame and per line, counted exactly by the insncount
+# QEMU plugin.
 #
 # Boots the firmware with the plugin watching the five fw_mark_* functions
 # (their addresses from the ELF's symbol table), then splits the count:
-#   prep    cs_frame_begin: transform, segments, monotone pieces, sort
+#   prep    cs_frame_begin: tracks sampled, transform, segments, monotone
+#           pieces, sort
 #   render  cs_render_line, per line (crossings, spans, coverage, compositing)
 #   output  the line sink: RGB565 conversion and CRC-32 (and the panel write,
 #           which on QEMU is a no-op without dump=)
-# FIRMWARE-ARGS default to the demo-like scene "signage" and the animated
-# and beta-stack scenes at 480x272 with 5 sub-scanlines: "jobs=0,2,5".
+# With STREAM files, they are sent over the UART one after the other
+# (FIRMWARE-ARGS then name the frames, e.g. "frames=480x272@0:5"), and each
+# frame is labelled with the file whose commit it shows. Without, the
+# built-in jobs FIRMWARE-ARGS selects (default "jobs=0,2,5": the demo-like
+# "signage", the animated and the beta-stack scenes at 480x272, aa 5).
+# Per-frame counts are exact and repeatable; the whole-run total is not
+# when a stream is sent, since the firmware polls the UART meanwhile.
 set -eu
 elf=$1 plugin=$2 out=$3
 args=${4:-jobs=0,2,5}
+shift 3
+[ $# -gt 0 ] && shift
 mkdir -p "$out"
 marks=""
 for m in fw_mark_frame_begin fw_mark_frame_ready fw_mark_line_rendered fw_mark_line_out \
@@ -21,13 +30,32 @@ for m in fw_mark_frame_begin fw_mark_frame_ready fw_mark_line_rendered fw_mark_l
     [ -n "$a" ] || { echo "measure: $m not in $elf" >&2; exit 1; }
     marks="$marks,mark=0x$a"
 done
+names=""
+if [ $# -gt 0 ]; then
+    cat "$@" >"$out/stream.cels"
+    for f in "$@"; do names="$names $(basename "$f" .cels)"; done
+    args="$args stream=$(wc -c <"$out/stream.cels")"
+else
+    : >"$out/stream.cels"
+fi
 timeout "${FW_QEMU_TIMEOUT:-300}" qemu-system-arm -M mps2-an386 -display none -monitor none \
-    -semihosting-config enable=on,target=native -serial null -kernel "$elf" \
-    -plugin "$plugin$marks,out=$out/marks.log" -append "$args" 2>"$out/console.log"
-python3 - "$out/marks.log" "$out/console.log" <<'PY'
+    -semihosting-config enable=on,target=native -serial stdio -kernel "$elf" \
+    -plugin "$plugin$marks,out=$out/marks.log" -append "$args" <"$out/stream.cels" \
+    >/dev/null 2>"$out/console.log"
+python3 - "$out/marks.log" "$out/console.log" $names <<'PY'
 import sys
 log = [l.split() for l in open(sys.argv[1])]
-jobs = [l.strip() for l in open(sys.argv[2]) if l.startswith("job ") and " scene " in l]
+names = sys.argv[3:]
+jobs = []
+for l in open(sys.argv[2]):
+    w = l.split()
+    if l.startswith("job ") and " scene " in l:
+        jobs.append(l.strip())
+    elif len(w) == 10 and w[0] == "frame" and w[2] == "size":
+        k = int(w[9])
+        jobs.append("%s (commit %d: %s) %s t=%s aa %s" %
+                    (" ".join(w[:2]), k, names[k - 1] if 0 < k <= len(names) else "?",
+                     w[3], w[5], w[7]))
 frames, cur = [], None
 for rec in log:
     if rec[0] == "total":

@@ -1,0 +1,134 @@
+/*
+ * fw_render.c - one frame from a scene store to the panel (see fw_render.h).
+ *
+ * All memory is static and sized by the board's core configuration
+ * (CS_CFG_FILE). The workspace and the decoder's staging store share one
+ * union in .noinit: neither needs clearing at reset (cs_frame_begin clears
+ * the accumulators it relies on, and every transaction starts its back
+ * store afresh), and fw_render_init paints it with NaNs so that a frame
+ * which did rely on old contents would show it, in the qemu test, as a
+ * mismatch with the host.
+ *
+ * The fw_mark_* functions do nothing; a QEMU instruction-count plugin
+ * (tools/qemu-insn) watches their addresses to split the count into frame
+ * preparation, line rendering and line output.
+ */
+#include "fw_render.h"
+
+#include "board.h"
+#include "board_api.h"
+#include "fw_print.h"
+#include "mcu_display.h"
+
+#define PANEL_BPP 2 /* CS_PANEL_PIXFMT is RGB565 */
+typedef char panel_bpp_check_[CS_PANEL_PIXFMT == CS_PIX_RGB565_SRGB ? 1 : -1];
+
+/* The staging store costs no RAM of its own only while the workspace is
+ * the larger of the two. */
+_Static_assert(sizeof(cs_workspace) >= sizeof(cs_scene),
+               "the staging scene store must fit in the render workspace");
+
+static union {
+    cs_workspace ws;
+    cs_scene staging;
+} work __attribute__((section(".noinit.work")));
+static cs_renderer renderer;
+/* The line of linear-light floats; once the sink has taken its float CRC,
+ * the panel pixels are converted into the same memory (cs_pixfmt_convert
+ * allows that), so there is no separate line of panel pixels. */
+static float line[3 * CS_CFG_MAX_WIDTH];
+typedef char panel_fits_line_[PANEL_BPP <= 3 * sizeof(float) ? 1 : -1];
+static mcu_display display;
+
+/* Markers for the instruction-count plugin: distinct, never inlined or
+ * merged (noipa), and kept though they do nothing. */
+#define FW_MARK(name)                                                                              \
+    __attribute__((noipa, used)) void name(void);                                                  \
+    __attribute__((noipa, used)) void name(void) { __asm volatile(""); }
+FW_MARK(fw_mark_frame_begin)
+FW_MARK(fw_mark_frame_ready)
+FW_MARK(fw_mark_line_rendered)
+FW_MARK(fw_mark_line_out)
+FW_MARK(fw_mark_frame_end)
+
+/* With fcrc=1, a CRC-32 of the linear-light floats themselves (as bytes,
+ * little-endian like the host): it shows bit-identical arithmetic, which
+ * the panel's 5/6-bit CRC alone could not (tiny differences round away). */
+static bool float_crc_on;
+static uint32_t float_crc;
+
+static cs_status sink(void *user, int y, const float *rgb_linear, int width)
+{
+    if (float_crc_on)
+        float_crc = cs_crc32(float_crc, rgb_linear, (size_t)width * 3u * sizeof(float));
+    fw_mark_line_rendered();
+    cs_status st = mcu_display_line(user, y, rgb_linear, width);
+    fw_mark_line_out();
+    return st;
+}
+
+void fw_render_init(bool want_float_crc)
+{
+    volatile uint32_t *w = (volatile uint32_t *)(void *)&work;
+    for (uint32_t i = 0; i < sizeof work / 4u; i++)
+        w[i] = 0xFFFFFFFFu; /* a NaN as a float, UINT32_MAX as an index */
+    float_crc_on = want_float_crc;
+    mcu_display_init(&display, board_panel(), (uint8_t *)line);
+}
+
+cs_scene *fw_render_staging(void)
+{
+    return &work.staging;
+}
+
+uint32_t fw_render_work_bytes(void)
+{
+    return (uint32_t)sizeof work;
+}
+
+uint32_t fw_render_frames(void)
+{
+    return display.frames;
+}
+
+void fw_report_error(const char *label, const char *what, cs_status st, const cs_error *err)
+{
+    fw_print("%s error: %s: %s", label, what, cs_status_str(st));
+    if (err && (err->cel >= 0 || err->region >= 0 || err->contour >= 0))
+        fw_print(" (cel %d region %d contour %d item %d)", (int)err->cel, (int)err->region,
+                 (int)err->contour, (int)err->item);
+    fw_print("\n");
+}
+
+int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *label, bool quiet)
+{
+    cs_error err;
+    uint64_t t0 = board_time_us();
+    fw_mark_frame_begin();
+    cs_status st = cs_frame_begin(&renderer, &work.ws, scene, opts, &err);
+    fw_mark_frame_ready();
+    if (st != CS_OK) {
+        fw_report_error(label, "frame", st, &err);
+        return 1;
+    }
+    float_crc = 0;
+    st = mcu_display_begin(&display, opts->width, opts->height);
+    if (st == CS_OK)
+        st = cs_render_frame(&renderer, line, sink, &display);
+    uint32_t crc = mcu_display_end(&display);
+    fw_mark_frame_end();
+    uint64_t t1 = board_time_us();
+    if (st != CS_OK) {
+        fw_report_error(label, "render", st, &renderer.sticky);
+        return 1;
+    }
+    if (quiet)
+        return display.panel_error ? 1 : 0;
+    fw_print("frame crc32 %08X\n", (unsigned)crc);
+    if (float_crc_on)
+        fw_print("float crc32 %08X\n", (unsigned)float_crc);
+    fw_print("%s segments %u pieces %u render_us %llu%s\n", label,
+             (unsigned)renderer.segment_count, (unsigned)renderer.piece_count,
+             (unsigned long long)(t1 - t0), display.panel_error ? " panel-error" : "");
+    return display.panel_error ? 1 : 0;
+}
