@@ -19,8 +19,9 @@ SVG_TEST_SRC := tests/test_svg.c tests/test_svg_unit.c tests/test_svg_cov.c \
         tests/test_svg_rsvg.c tests/svg_refscan.c
 SVG_TEST_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_TEST_SRC))
 
-$(SVG_LIB_OBJ) $(SVG_CELC_OBJ) $(SVG_TEST_OBJ) $(HOST)/obj/tools/svg/svgimport_main.o: \
+$(SVG_LIB_OBJ) $(SVG_CELC_OBJ) $(HOST)/obj/tools/svg/svgimport_main.o: \
         PKG_CFLAGS += $(SVG_CFLAGS) -Wconversion -Wno-sign-conversion -Wno-float-conversion
+$(SVG_TEST_OBJ): PKG_CFLAGS += $(SVG_CFLAGS)
 
 $(HOST)/libsvgimport.a: $(SVG_LIB_OBJ)
 	$(Q)rm -f $@ && ar rcs $@ $^

@@ -112,7 +112,7 @@ bool sv_path_convex_polygon(const sv_path *clip, sv_pt **poly, int *n)
     if (clip->n != 1)
         return false;
     const sv_subpath *sp = &clip->sub[0];
-    sv_pt *v = sv_xrealloc(NULL, (size_t)(sp->n + 1) * sizeof *v);
+    sv_pt *v = sv_xrealloc(NULL, (size_t)(sp->n + 2) * sizeof *v);
     int m = 0;
     for (int k = 0; k < sp->n; k++) {
         if (sp->seg[k].degree != 1) {
@@ -120,6 +120,11 @@ bool sv_path_convex_polygon(const sv_path *clip, sv_pt **poly, int *n)
             return false;
         }
         sv_pt q = sp->seg[k].p[0];
+        if (m == 0 || q.x != v[m - 1].x || q.y != v[m - 1].y)
+            v[m++] = q;
+    }
+    if (sp->n > 0) {
+        sv_pt q = sp->seg[sp->n - 1].p[1];
         if (m == 0 || q.x != v[m - 1].x || q.y != v[m - 1].y)
             v[m++] = q;
     }

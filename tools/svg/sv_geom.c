@@ -483,6 +483,13 @@ void sv_subpath_flatten(const sv_subpath *s, int per_seg, sv_pt **pts, int *n)
             (*pts)[(*n)++] = i == 0 ? g->p[0] : sv_seg_eval(g, (double)i / m);
         }
     }
+    if (s->n > 0) { /* the end of an unclosed subpath; the polygon closes itself */
+        sv_pt e = s->seg[s->n - 1].p[s->seg[s->n - 1].degree];
+        if (e.x != s->seg[0].p[0].x || e.y != s->seg[0].p[0].y) {
+            SV_GROW(*pts, *n, cap);
+            (*pts)[(*n)++] = e;
+        }
+    }
 }
 
 int sv_subpath_winding(const sv_subpath *s, sv_pt q)
@@ -521,6 +528,27 @@ static bool seg_is_point(const sv_seg *s)
     return true;
 }
 
+/* Whether every control point lies on one line: such a contour has no area. */
+static bool collinear(const sv_seg *segs, int k)
+{
+    sv_pt o = segs[0].p[0], far = o;
+    double best = 0;
+    for (int j = 0; j < k; j++)
+        for (int m = 0; m <= segs[j].degree; m++) {
+            double d = sv_len(sv_sub(segs[j].p[m], o));
+            if (d > best) {
+                best = d;
+                far = segs[j].p[m];
+            }
+        }
+    sv_pt dir = sv_sub(far, o);
+    for (int j = 0; j < k; j++)
+        for (int m = 0; m <= segs[j].degree; m++)
+            if (fabs(sv_cross(sv_sub(segs[j].p[m], o), dir)) > 1e-12 * best * best)
+                return false;
+    return true;
+}
+
 void sv_path_to_contours(const sv_path *p, sv_contour **out, int *n)
 {
     for (int i = 0; i < p->n; i++) {
@@ -528,21 +556,14 @@ void sv_path_to_contours(const sv_path *p, sv_contour **out, int *n)
         /* Segments worth keeping, plus the closing line. */
         sv_seg *segs = sv_xrealloc(NULL, (size_t)(sp->n + 2) * sizeof *segs);
         int k = 0, degree = 1;
-        double box[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
         for (int j = 0; j < sp->n; j++) {
             if (seg_is_point(&sp->seg[j]))
                 continue;
             segs[k] = sp->seg[j];
             degree = segs[k].degree > degree ? segs[k].degree : degree;
-            for (int m = 0; m <= segs[k].degree; m++) {
-                box[0] = fmin(box[0], segs[k].p[m].x);
-                box[1] = fmin(box[1], segs[k].p[m].y);
-                box[2] = fmax(box[2], segs[k].p[m].x);
-                box[3] = fmax(box[3], segs[k].p[m].y);
-            }
             k++;
         }
-        if (k == 0 || !(box[2] > box[0] && box[3] > box[1])) {
+        if (k == 0 || collinear(segs, k)) {
             free(segs);
             continue; /* no area: nothing to fill */
         }

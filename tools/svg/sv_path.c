@@ -117,6 +117,11 @@ int sv_parse_path(const char *d, sv_path *path, char *err, size_t errlen)
         if (!*s)
             return 0;
         if (isalpha((unsigned char)*s)) {
+            if (!cmd && *s != 'M' && *s != 'm') {
+                snprintf(err, errlen, "path data must start with a moveto (offset %ld)",
+                         (long)(s - d));
+                return -1;
+            }
             cmd = *s++;
             if (arg_count(cmd) < 0) {
                 snprintf(err, errlen, "unknown path command '%c' at offset %ld", cmd,
