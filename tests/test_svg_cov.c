@@ -355,7 +355,7 @@ static void stroke_case(const svg_test_opts *o, const rpath *rp)
         SVC_CHECK(doc.nwarnings == 0, "%s: %d warnings (%s)", rp->name, doc.nwarnings,
                   doc.nwarnings ? doc.warnings[0] : "");
         cs_scene *scene = malloc(sizeof *scene);
-        sv_scene_opts so = {false, false, {0, 0, 0}};
+        sv_scene_opts so = {.srgb_blend = false};
         SVC_CHECK(sv_doc_to_scene(&doc, &so, scene, err, sizeof err) == 0, "%s: scene: %s",
                   rp->name, err);
         float *got = core_coverage(scene, px, px);

@@ -119,7 +119,7 @@ static void save_triptych(const char *dir, const char *svg, const uint8_t *ours,
 static const char *cause_of(const char *w)
 {
     if (strstr(w, "gradient approximated"))
-        return "gradient (solid fallback until beta)";
+        return "gradient (solid bands until beta)";
     if (strstr(w, "filter"))
         return "filter (blur etc.)";
     if (strstr(w, "mask"))
@@ -211,7 +211,7 @@ void test_svg_rsvg(const svg_test_opts *o)
         if (sv_import_file(svg, &io, &doc, err, sizeof err) < 0) {
             fail_cause = "import error";
         } else {
-            sv_scene_opts so = {true, true, {1, 1, 1}};
+            sv_scene_opts so = {.srgb_blend = true, .has_background = true, .background = {1, 1, 1}};
             if (sv_doc_to_scene(&doc, &so, scene, err, sizeof err) < 0 ||
                 sv_render_rgb8(scene, SIZE, SIZE, CS_AA_SUBSCAN, 16, true, ours) != CS_OK) {
                 fail_cause = "core capacity / render error";

@@ -556,8 +556,85 @@ static void test_stroker(void)
     sv_path_free(&o);
 }
 
+/* Start and end x of each dash of a horizontal path. */
+static int dash_spans(const char *d, const double *dash, int n, double off, double *xs)
+{
+    sv_path p, o;
+    char err[100];
+    sv_path_init(&p);
+    sv_path_init(&o);
+    sv_parse_path(d, &p, err, sizeof err);
+    sv_path_dash(&p, dash, n, off, &o);
+    int k = 0;
+    for (int i = 0; i < o.n && k < 32; i++) {
+        xs[k++] = o.sub[i].seg[0].p[0].x;
+        const sv_seg *l = &o.sub[i].seg[o.sub[i].n - 1];
+        xs[k++] = l->p[l->degree].x;
+    }
+    sv_path_free(&p);
+    sv_path_free(&o);
+    return k / 2;
+}
+
+static void test_dash(void)
+{
+    double xs[64];
+    int n = dash_spans("M0 0 H10", (double[]){2, 1}, 2, 0, xs);
+    SVC_CHECK(n == 4 && xs[0] == 0 && xs[1] == 2 && xs[2] == 3 && xs[3] == 5 && xs[6] == 9 &&
+                  xs[7] == 10,
+              "dashes 2,1 on a line (%d)", n);
+    n = dash_spans("M0 0 H10", (double[]){2, 1}, 2, 1, xs);
+    SVC_CHECK(n == 4 && xs[0] == 0 && xs[1] == 1 && xs[2] == 2 && xs[3] == 4, "dash offset");
+    n = dash_spans("M0 0 H10", (double[]){1}, 1, 0, xs); /* odd lists repeat: 1,1 */
+    SVC_CHECK(n == 5 && xs[2] == 2 && xs[3] == 3, "odd dash list repeats");
+    n = dash_spans("M0 0 H10 M0 5 H10", (double[]){4, 4}, 2, 0, xs);
+    SVC_CHECK(n == 4 && xs[4] == 0 && xs[5] == 4, "pattern restarts on each subpath");
+    /* a closed square, dash on at both ends: the dash through the start is one piece */
+    sv_path p, o;
+    char err[100];
+    sv_path_init(&p);
+    sv_path_init(&o);
+    sv_parse_path("M0 0 H10 V10 H0 Z", &p, err, sizeof err);
+    /* offset 2: on [0,4], [8,14], [18,24], [28,34], [38,40]+[0,4] */
+    sv_path_dash(&p, (double[]){6, 4}, 2, 2, &o);
+    SVC_CHECK(o.n == 4, "closed square dashes (%d)", o.n);
+    const sv_subpath *last = &o.sub[o.n - 1];
+    SVC_CHECK(o.n == 4 && pt_is(last->seg[last->n - 1].p[1], 4, 0) && pt_is(last->seg[0].p[0], 0, 2),
+              "last dash joined with the first through the start point");
+    sv_path_free(&o);
+    sv_path_free(&p);
+    /* on a circle of radius 10 (length 20 pi) dashes of pi/2 every pi: 20 dashes, each
+     * spanning 9 degrees of arc */
+    sv_path_init(&p);
+    sv_path_init(&o);
+    sv_path_ellipse(&p, 0, 0, 10, 10);
+    sv_path_dash(&p, (double[]){M_PI / 2, M_PI / 2}, 2, 0, &o);
+    double worst = 0;
+    for (int i = 0; i < o.n; i++) {
+        sv_pt a = o.sub[i].seg[0].p[0];
+        const sv_seg *l = &o.sub[i].seg[o.sub[i].n - 1];
+        sv_pt b = l->p[l->degree];
+        double ang = fabs(atan2(sv_cross(a, b), sv_dot(a, b)));
+        worst = fmax(worst, fabs(ang - M_PI / 20));
+    }
+    SVC_CHECK(o.n == 20 && worst < 1e-9, "dashes on a circle by arc length (%d, %g)", o.n, worst);
+    sv_path_free(&o);
+    sv_path_free(&p);
+}
+
 static void test_clip(void)
 {
+    /* sub-segments of a conic are the exact pieces: same points, same parameters */
+    sv_seg arc = {2, {{10, 0}, {10, 10}, {0, 10}}, sqrt(0.5)};
+    sv_seg piece = sv_seg_sub(&arc, 0.3, 0.8);
+    double e = 0;
+    for (int j = 0; j <= 10; j++) {
+        sv_pt q = sv_seg_eval(&piece, j / 10.0);
+        e = fmax(e, fabs(sv_len(q) - 10));
+    }
+    SVC_CHECK(e < 1e-12 && sv_len(sv_sub(piece.p[0], sv_seg_eval(&arc, 0.3))) < 1e-12 &&
+                  sv_len(sv_sub(piece.p[2], sv_seg_eval(&arc, 0.8))) < 1e-12,
+              "exact conic sub-segment");
     /* a disc of radius 10 clipped to the square [0,20]^2: a quarter disc, exactly */
     sv_path p, c;
     sv_path_init(&p);
@@ -576,6 +653,23 @@ static void test_clip(void)
     SVC_NEAR(fabs(a), M_PI * 25, 1e-9, "clipped disc area");
     sv_path_free(&p);
     sv_path_free(&c);
+    /* a crossing exactly on a sample point of the root search (t = 16/48) */
+    sv_path_init(&p);
+    sv_parse_path("M24 34 L28.705078125 38.27734375 L35 38.27734375 L35 34 Z", &p, err, sizeof err);
+    double before = sv_subpath_area(&p.sub[0]);
+    sv_path_clip_halfplane(&p, 0, 1, -35.42578125);
+    a = 0;
+    for (int k = 0; k < p.n; k++)
+        a += sv_subpath_area(&p.sub[k]);
+    /* the part above y = 35.42578125 of that quadrilateral, by the shoelace formula */
+    sv_path q;
+    sv_path_init(&q);
+    sv_parse_path("M25.568359375 35.42578125 L28.705078125 38.27734375 L35 38.27734375 L35 35.42578125 Z",
+                  &q, err, sizeof err);
+    SVC_NEAR(a, sv_subpath_area(&q.sub[0]), 1e-9, "clip with a crossing on a sample point");
+    SVC_CHECK(fabs(before) > fabs(a), "clipping removed area");
+    sv_path_free(&p);
+    sv_path_free(&q);
     sv_path_init(&c);
     sv_parse_path("M0 0 H20 L10 5 L10 20 Z", &c, err, sizeof err);
     SVC_CHECK(!sv_path_convex_polygon(&c, &poly, &n), "a concave polygon is refused");
@@ -741,6 +835,7 @@ void test_svg_unit(const svg_test_opts *o)
     test_lengths_css();
     test_contours();
     test_stroker();
+    test_dash();
     test_clip();
     test_import_doc();
     test_glyphs();

@@ -100,6 +100,8 @@ sv_pt sv_seg_eval(const sv_seg *s, double t);
 sv_pt sv_seg_deriv(const sv_seg *s, double t);
 /* Splits at t into a (0..t) and b (t..1), both renormalised to end weights 1. */
 void sv_seg_split(const sv_seg *s, double t, sv_seg *a, sv_seg *b);
+/* The piece of s for t in [t0, t1], exactly (rational segments included). */
+sv_seg sv_seg_sub(const sv_seg *s, double t0, double t1);
 void sv_seg_reverse(sv_seg *s);
 /* Bounding box of the control points (contains the curve: weights > 0). */
 void sv_path_bbox(const sv_path *p, double box[4]);
@@ -183,6 +185,14 @@ typedef struct sv_region {
     sv_contour *contours;
     double bbox[4]; /* x0 y0 x1 y1 of the control points, canvas units */
     char *source;   /* "path#id line 12 (stroke)": for messages */
+    /*
+     * For a gradient paint: solid bands with exact geometry that approximate
+     * it (sv_bands.c), in the order they go into the cel. Back ends without
+     * gradient paints draw these instead of the region; empty when the
+     * average colour is all there is to draw.
+     */
+    int nbands;
+    struct sv_region *bands;
 } sv_region;
 
 typedef struct sv_cel {
@@ -243,6 +253,13 @@ typedef struct sv_stroke_style {
  */
 int sv_stroke_path(const sv_path *in, const sv_stroke_style *st, sv_path *out);
 
+/*
+ * Cuts `in` into its dashes (sv_dash.c): `dash` holds `n` lengths (> 0 sum,
+ * none negative), restarted on each subpath at `offset`. Appends open
+ * subpaths, exact pieces of the original segments, to `out`.
+ */
+void sv_path_dash(const sv_path *in, const double *dash, int n, double offset, sv_path *out);
+
 /* ---------------------------------------------------------- SVG import */
 
 typedef struct sv_import_opts {
@@ -282,6 +299,8 @@ typedef struct sv_scene_opts {
     bool srgb_blend;
     bool has_background;
     double background[3]; /* sRGB 0..1 */
+    /* One average colour per gradient instead of its bands (comparisons). */
+    bool gradient_average;
 } sv_scene_opts;
 
 /* Builds `scene` (cs_scene_init'ed by the call). Returns 0 or -1 with err. */
@@ -290,7 +309,8 @@ int sv_doc_to_scene(const sv_doc *doc, const sv_scene_opts *opts, cs_scene *scen
 
 /*
  * Writes the scene JSON of the contract in DESIGN.md. Returns a malloc'd
- * string (caller frees) or NULL. `background` may be NULL.
+ * string (caller frees) or NULL. `background` may be NULL. Gradients are
+ * written as their bands (solid regions) until the JSON has gradient paints.
  */
 char *sv_doc_to_json(const sv_doc *doc, const double *background_srgb);
 

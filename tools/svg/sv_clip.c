@@ -3,16 +3,17 @@
  *
  * Until CSG reaches the core, a clip path that is one convex polygon (the
  * page rectangles editors add, rotated rectangles, triangles) is applied to
- * the geometry itself. Clipping a closed curve to the half-plane
- * a x + b y + c >= 0 is done the Sutherland-Hodgman way, but without
- * computing any new curve: every segment is split where it crosses the line,
- * and the pieces outside are projected onto the line. The projection is an
- * affine map, so applying it to the control points moves the rational curve
- * exactly; and it moves no curve across a point inside the half-plane, so
- * every inside point keeps its winding number while every outside point gets
- * winding zero. That holds for any fill rule and for strokes' nonzero
- * outlines alike. The projected pieces run along the line in both
- * directions and cancel there.
+ * the geometry itself; the gradient bands (sv_bands.c) use the same cut.
+ * Clipping a closed curve to the half-plane a x + b y + c >= 0 is done the
+ * Sutherland-Hodgman way without computing any new curve: every segment is
+ * split where it crosses the line (exact sub-segments, sv_seg_sub), and the
+ * pieces outside are projected onto the line. The projection moves no curve
+ * across a point inside the half-plane, so every inside point keeps its
+ * winding number while every outside point gets winding zero - for any fill
+ * rule, and for strokes' nonzero outlines alike. A projected piece lies on
+ * the line, where only its end points matter to points off the line, so it
+ * is kept as the chord between them, and a run of such pieces as one line:
+ * repeated clipping does not make the geometry grow.
  */
 #include <math.h>
 
@@ -25,7 +26,11 @@ static double side(const sv_seg *s, double t, double a, double b, double c)
     return a * p.x + b * p.y + c;
 }
 
-/* Parameters in (0,1) where the segment crosses the line, increasing. */
+/*
+ * Parameters in (0,1) where the segment crosses the line, increasing. Sign
+ * changes are bracketed between the last samples that are not exactly on
+ * the line, so a crossing that falls on a sample point is still found.
+ */
 static int crossings(const sv_seg *s, double a, double b, double c, double *ts)
 {
     enum { N = 48 };
@@ -33,11 +38,13 @@ static int crossings(const sv_seg *s, double a, double b, double c, double *ts)
     double t0 = 0, f0 = side(s, 0, a, b, c);
     for (int i = 1; i <= N; i++) {
         double t1 = (double)i / N, f1 = side(s, t1, a, b, c);
+        if (f1 == 0 && i < N)
+            continue; /* decide at the next sample off the line */
         if ((f0 < 0 && f1 > 0) || (f0 > 0 && f1 < 0)) {
             double lo = t0, hi = t1, flo = f0;
             for (int k = 0; k < 60; k++) {
                 double m = 0.5 * (lo + hi), fm = side(s, m, a, b, c);
-                if ((fm < 0) == (flo < 0)) {
+                if (fm != 0 && (fm < 0) == (flo < 0)) {
                     lo = m;
                     flo = fm;
                 } else {
@@ -47,8 +54,10 @@ static int crossings(const sv_seg *s, double a, double b, double c, double *ts)
             if (n < 6 && 0.5 * (lo + hi) > 1e-12 && 0.5 * (lo + hi) < 1 - 1e-12)
                 ts[n++] = 0.5 * (lo + hi);
         }
-        t0 = t1;
-        f0 = f1;
+        if (f1 != 0 || f0 == 0) {
+            t0 = t1;
+            f0 = f1;
+        }
     }
     return n;
 }
@@ -63,6 +72,7 @@ void sv_path_clip_halfplane(sv_path *p, double a, double b, double c)
         if (sp->n == 0)
             continue;
         int emitted = 0;
+        bool prev_outside = false;
         sv_pt first = sp->seg[0].p[0];
         for (int k = 0; k <= sp->n; k++) {
             sv_seg s;
@@ -77,27 +87,33 @@ void sv_path_clip_halfplane(sv_path *p, double a, double b, double c)
             }
             double ts[6];
             int nc = crossings(&s, a, b, c, ts);
-            double prev = 0;
-            sv_seg rest = s;
             for (int j = 0; j <= nc; j++) {
-                sv_seg piece;
-                if (j < nc) {
-                    double u = (ts[j] - prev) / (1 - prev);
-                    sv_seg_split(&rest, u, &piece, &rest);
-                    prev = ts[j];
-                } else {
-                    piece = rest;
+                double ta = j > 0 ? ts[j - 1] : 0, tb = j < nc ? ts[j] : 1;
+                sv_seg piece = nc == 0 ? s : sv_seg_sub(&s, ta, tb);
+                bool outside = side(&piece, 0.5, a, b, c) < 0;
+                if (outside) {
+                    /* The projected curve lies on the line; its chord is the same
+                     * path for every point off the line, so keep just that. */
+                    sv_pt e0 = piece.p[0], e1 = piece.p[piece.degree];
+                    double f0 = (a * e0.x + b * e0.y + c) / nn, f1 = (a * e1.x + b * e1.y + c) / nn;
+                    piece.degree = 1;
+                    piece.w = 1;
+                    piece.p[0] = sv_pt_make(e0.x - f0 * a, e0.y - f0 * b);
+                    piece.p[1] = sv_pt_make(e1.x - f1 * a, e1.y - f1 * b);
                 }
-                if (side(&piece, 0.5, a, b, c) < 0)
-                    for (int m = 0; m <= piece.degree; m++) {
-                        double f = (a * piece.p[m].x + b * piece.p[m].y + c) / nn;
-                        piece.p[m].x -= f * a;
-                        piece.p[m].y -= f * b;
-                    }
-                if (emitted++ == 0)
+                if (emitted == 0) {
                     sv_path_move(&out, piece.p[0].x, piece.p[0].y);
-                else
+                } else {
                     piece.p[0] = out.cur; /* keep the chain exactly joined */
+                    sv_subpath *os = &out.sub[out.n - 1];
+                    if (outside && prev_outside) { /* one run along the line: one line */
+                        os->seg[os->n - 1].p[1] = piece.p[1];
+                        out.cur = piece.p[1];
+                        continue;
+                    }
+                }
+                emitted++;
+                prev_outside = outside;
                 sv_path_add_seg(&out, &piece);
             }
         }

@@ -14,6 +14,100 @@
 
 #include "sv_internal.h"
 
+typedef struct emitter {
+    cs_scene *scene;
+    bool srgb;
+    cs_point *pts;
+    float *iv;
+    size_t cap;
+} emitter;
+
+static size_t region_points(const sv_region *r)
+{
+    size_t n = 0;
+    for (int k = 0; k < r->ncontours; k++)
+        n += (size_t)r->contours[k].count;
+    return n;
+}
+
+static cs_status add_region(emitter *em, const sv_region *reg, cs_error *e)
+{
+    cs_paint p;
+    for (int k = 0; k < 3; k++) {
+        double v = reg->paint.pigment[k], m = reg->paint.medium[k];
+        p.pigment[k] = (float)(em->srgb ? v : sv_srgb_to_linear(v));
+        p.medium[k] = (float)(em->srgb ? m : sv_srgb_to_linear(m));
+    }
+    p.beta = (float)reg->paint.beta;
+    cs_status st = cs_scene_add_region(em->scene, (cs_fill_rule)reg->fill_rule, &p, e);
+    for (int k = 0; st == CS_OK && k < reg->ncontours; k++) {
+        const sv_contour *ct = &reg->contours[k];
+        if ((size_t)ct->count > em->cap) {
+            em->cap = (size_t)ct->count;
+            em->pts = sv_xrealloc(em->pts, em->cap * sizeof *em->pts);
+            em->iv = sv_xrealloc(em->iv, em->cap * sizeof *em->iv);
+        }
+        for (int i = 0; i < ct->count; i++) {
+            em->pts[i].x = (float)ct->pts[3 * i];
+            em->pts[i].y = (float)ct->pts[3 * i + 1];
+            em->pts[i].w = (float)ct->pts[3 * i + 2];
+            em->iv[i] = (float)ct->intervals[i];
+        }
+        st = cs_scene_add_contour(em->scene, ct->degree, ct->count, em->pts, em->iv, e);
+    }
+    return st;
+}
+
+/*
+ * Which gradient regions keep their bands: all of them, unless the scene
+ * store would overflow; then the regions whose bands cost the most points
+ * fall back to their average colour first.
+ */
+static bool *choose_bands(const sv_doc *doc, bool average)
+{
+    size_t nreg = sv_doc_region_count(doc), k = 0;
+    bool *use = sv_xrealloc(NULL, (nreg ? nreg : 1) * sizeof *use);
+    size_t points = 0, regions = 0, contours = 0;
+    for (int c = 0; c < doc->ncels; c++)
+        for (int r = 0; r < doc->cels[c].nregions; r++, k++) {
+            const sv_region *reg = &doc->cels[c].regions[r];
+            use[k] = reg->nbands > 0 && !average;
+            points += region_points(reg);
+            regions++;
+            contours += (size_t)reg->ncontours;
+            for (int b = 0; use[k] && b < reg->nbands; b++) {
+                points += region_points(&reg->bands[b]);
+                regions++;
+                contours += (size_t)reg->bands[b].ncontours;
+            }
+        }
+    while (points > CS_CFG_MAX_POINTS || regions > CS_CFG_MAX_REGIONS ||
+           contours > CS_CFG_MAX_CONTOURS) {
+        size_t best = 0, bi = 0, i = 0;
+        const sv_region *br = NULL;
+        for (int c = 0; c < doc->ncels; c++)
+            for (int r = 0; r < doc->cels[c].nregions; r++, i++) {
+                const sv_region *reg = &doc->cels[c].regions[r];
+                size_t cost = 0;
+                for (int b = 0; use[i] && b < reg->nbands; b++)
+                    cost += region_points(&reg->bands[b]);
+                if (cost > best) {
+                    best = cost;
+                    bi = i;
+                    br = reg;
+                }
+            }
+        if (!br)
+            break; /* no bands left to drop: the scene is simply too big */
+        use[bi] = false;
+        points -= best;
+        regions -= (size_t)br->nbands;
+        for (int b = 0; b < br->nbands; b++)
+            contours -= (size_t)br->bands[b].ncontours;
+    }
+    return use;
+}
+
 int sv_doc_to_scene(const sv_doc *doc, const sv_scene_opts *opts, cs_scene *scene, char *err,
                     size_t errlen)
 {
@@ -33,55 +127,37 @@ int sv_doc_to_scene(const sv_doc *doc, const sv_scene_opts *opts, cs_scene *scen
     }
     cs_affine id = {1, 0, 0, 1, 0, 0};
     cs_error e;
-    size_t cap = 0;
-    cs_point *pts = NULL;
-    float *iv = NULL;
-    for (int c = 0; c < doc->ncels; c++) {
+    emitter em = {scene, o.srgb_blend, NULL, NULL, 0};
+    bool *bands = choose_bands(doc, o.gradient_average);
+    size_t k = 0;
+    int rc = 0;
+    for (int c = 0; c < doc->ncels && rc == 0; c++) {
         st = cs_scene_add_cel(scene, &id, NULL, NULL, &e);
         if (st != CS_OK) {
             snprintf(err, errlen, "cel %d of %d: %s", c, doc->ncels, cs_status_str(st));
-            goto fail;
+            rc = -1;
+            break;
         }
         const sv_cel *cel = &doc->cels[c];
-        for (int r = 0; r < cel->nregions; r++) {
+        for (int r = 0; r < cel->nregions && rc == 0; r++, k++) {
             const sv_region *reg = &cel->regions[r];
-            cs_paint p;
-            for (int k = 0; k < 3; k++) {
-                double v = reg->paint.pigment[k], m = reg->paint.medium[k];
-                p.pigment[k] = (float)(o.srgb_blend ? v : sv_srgb_to_linear(v));
-                p.medium[k] = (float)(o.srgb_blend ? m : sv_srgb_to_linear(m));
-            }
-            p.beta = (float)reg->paint.beta;
-            st = cs_scene_add_region(scene, (cs_fill_rule)reg->fill_rule, &p, &e);
-            for (int k = 0; st == CS_OK && k < reg->ncontours; k++) {
-                const sv_contour *ct = &reg->contours[k];
-                if ((size_t)ct->count > cap) {
-                    cap = (size_t)ct->count;
-                    pts = sv_xrealloc(pts, cap * sizeof *pts);
-                    iv = sv_xrealloc(iv, cap * sizeof *iv);
-                }
-                for (int i = 0; i < ct->count; i++) {
-                    pts[i].x = (float)ct->pts[3 * i];
-                    pts[i].y = (float)ct->pts[3 * i + 1];
-                    pts[i].w = (float)ct->pts[3 * i + 2];
-                    iv[i] = (float)ct->intervals[i];
-                }
-                st = cs_scene_add_contour(scene, ct->degree, ct->count, pts, iv, &e);
+            if (bands[k]) {
+                for (int b = 0; b < reg->nbands && st == CS_OK; b++)
+                    st = add_region(&em, &reg->bands[b], &e);
+            } else {
+                st = add_region(&em, reg, &e);
             }
             if (st != CS_OK) {
                 snprintf(err, errlen, "%s (cel %d region %d, item %d): %s", reg->source, c, r,
                          (int)e.item, cs_status_str(st));
-                goto fail;
+                rc = -1;
             }
         }
     }
-    free(pts);
-    free(iv);
-    return 0;
-fail:
-    free(pts);
-    free(iv);
-    return -1;
+    free(bands);
+    free(em.pts);
+    free(em.iv);
+    return rc;
 }
 
 /* ---------------------------------------------------------------- JSON */
@@ -138,7 +214,9 @@ char *sv_doc_to_json(const sv_doc *doc, const double *background)
         cJSON_AddStringToObject(jc, "name", cel->name);
         cJSON *regions = cJSON_AddArrayToObject(jc, "regions");
         for (int r = 0; r < cel->nregions; r++) {
-            const sv_region *reg = &cel->regions[r];
+            const sv_region *whole = &cel->regions[r];
+            for (int b = 0; b < (whole->nbands ? whole->nbands : 1); b++) {
+            const sv_region *reg = whole->nbands ? &whole->bands[b] : whole;
             cJSON *jr = cJSON_CreateObject();
             cJSON_AddStringToObject(jr, "fill_rule",
                                     reg->fill_rule == CS_FILL_EVENODD ? "evenodd" : "nonzero");
@@ -162,6 +240,7 @@ char *sv_doc_to_json(const sv_doc *doc, const double *background)
                 cJSON_AddItemToArray(contours, jk);
             }
             cJSON_AddItemToArray(regions, jr);
+            }
         }
         cJSON_AddItemToArray(cels, jc);
     }

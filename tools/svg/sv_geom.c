@@ -415,6 +415,19 @@ void sv_seg_split(const sv_seg *s, double t, sv_seg *a, sv_seg *b)
         *b = sb;
 }
 
+sv_seg sv_seg_sub(const sv_seg *s, double t0, double t1)
+{
+    /* Homogeneous splits keep u = t / t1 linear; only the result is renormalised. */
+    double h[4][3], l[4][3], r[4][3];
+    sv_seg_homogeneous(s, h);
+    casteljau(h, s->degree, t1, l, NULL);
+    double u = t1 > 0 ? t0 / t1 : 0;
+    casteljau(l, s->degree, u, NULL, r);
+    sv_seg out;
+    from_homogeneous(r, s->degree, &out);
+    return out;
+}
+
 void sv_seg_reverse(sv_seg *s)
 {
     for (int i = 0, j = s->degree; i < j; i++, j--) {

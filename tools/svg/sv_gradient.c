@@ -48,7 +48,7 @@ static double coord(sv_node *const *chain, int n, const char *name, const char *
     return x;
 }
 
-bool sv_gradient_resolve(sv_node *g, sv_find_fn find, void *ctx, const sv_style *elem,
+bool sv_gradient_resolve(sv_node *g, sv_find_fn find, sv_style_fn style, void *ctx,
                          const double bbox[4], sv_affine ctm, double vp_w, double vp_h,
                          sv_gradient *out, sv_doc *doc)
 {
@@ -106,14 +106,12 @@ bool sv_gradient_resolve(sv_node *g, sv_find_fn find, void *ctx, const sv_style 
     out->transform = sv_affine_mul(m, gt);
     /* stops from the first element of the chain that has any */
     for (int i = 0; i < n && out->nstops == 0; i++) {
-        sv_style gs;
-        sv_style_inherit(&gs, elem);
         for (int k = 0; k < chain[i]->nkids; k++) {
             sv_node *st = chain[i]->kids[k];
             if (strcmp(st->name, "stop") != 0)
                 continue;
             sv_style ss;
-            sv_style_compute(&ss, &gs, st, NULL, diag, doc);
+            style(ctx, st, &ss);
             double off = 0;
             const char *ov = sv_attr(st, "offset");
             if (ov) {
@@ -164,7 +162,7 @@ static double param(const sv_gradient *g, sv_affine inv, sv_pt q)
     return t;
 }
 
-static void color_at(const sv_gradient *g, double t, double rgb[3], double *alpha)
+void sv_gradient_color_at(const sv_gradient *g, double t, double rgb[3], double *alpha)
 {
     if (g->spread == SV_SPREAD_REPEAT) {
         t -= floor(t);
@@ -201,10 +199,10 @@ void sv_gradient_eval(const sv_gradient *g, sv_pt q, double rgb[3], double *alph
         return;
     }
     if (!sv_affine_invert(g->transform, &inv)) {
-        color_at(g, 1, rgb, alpha); /* a degenerate map paints the last stop */
+        sv_gradient_color_at(g, 1, rgb, alpha); /* a degenerate map paints the last stop */
         return;
     }
-    color_at(g, param(g, inv, q), rgb, alpha);
+    sv_gradient_color_at(g, param(g, inv, q), rgb, alpha);
 }
 
 static bool inside(const sv_path *p, int rule, sv_pt q)

@@ -101,6 +101,26 @@ static sv_node *find_href(imp *im, const sv_node *n)
     return (h && h[0] == '#') ? find_id(im, h + 1) : NULL;
 }
 
+/*
+ * The computed style of an element through its own ancestors: what gradient
+ * stops use (they inherit from where the gradient is defined). Percentages
+ * in it refer to the root viewport.
+ */
+static void style_of(void *ctxp, const sv_node *n, sv_style *out)
+{
+    imp *im = ctxp;
+    if (!n->parent) {
+        sv_style s0;
+        sv_style_initial(&s0);
+        memcpy(s0.color, im->opts.current_color, sizeof s0.color);
+        sv_style_compute(out, &s0, n, &im->css, 0, NULL);
+        return;
+    }
+    sv_style parent;
+    style_of(ctxp, n->parent, &parent);
+    sv_style_compute(out, &parent, n, &im->css, 0, NULL);
+}
+
 /* Ids and style sheets of the whole document, before anything is drawn. */
 static void collect(imp *im, sv_node *n)
 {
@@ -283,7 +303,7 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
         bool grad = t && (!strcmp(t->name, "linearGradient") || !strcmp(t->name, "radialGradient"));
         if (grad) {
             sv_gradient g;
-            if (!sv_gradient_resolve(t, find_id, im, s, ubox, c->ctm, c->vp_w, c->vp_h, &g,
+            if (!sv_gradient_resolve(t, find_id, style_of, im, ubox, c->ctm, c->vp_w, c->vp_h, &g,
                                      im->doc) ||
                 g.nstops == 0) {
                 free(g.stops);
@@ -299,8 +319,6 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
                     im->doc->gradients, (size_t)(im->doc->ngradients + 1) * sizeof g);
                 im->doc->gradients[im->doc->ngradients] = g;
                 out->gradient = im->doc->ngradients++;
-                desc(n, d, sizeof d);
-                sv_doc_warn(im->doc, "%s: %s gradient approximated by solid", d, what);
             }
             kind = SV_PAINT_COLOR;
         } else {
@@ -331,9 +349,13 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
     return true;
 }
 
-/* Adds a region (canvas-space path) with the context's clips applied. */
-static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, const ctx *c,
-                       const sv_node *n, const char *what)
+/*
+ * Adds a region (canvas-space path) with the context's clips applied. A
+ * gradient paint also gets its solid bands; `opacity` is what multiplies the
+ * gradient's own stop opacities.
+ */
+static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, double opacity,
+                       const ctx *c, const sv_node *n, const char *what)
 {
     for (int k = 0; k < c->nclips; k++)
         sv_path_clip_polygon(cp, c->clips[k]->v, c->clips[k]->n);
@@ -359,11 +381,24 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, co
     desc(n, d, sizeof d);
     snprintf(src, sizeof src, "%s %s", d, what);
     r.source = sv_xstrdup(src);
+    bool translucent = paint->beta < 1;
+    if (paint->gradient >= 0) {
+        sv_gradient_bands(&im->doc->gradients[paint->gradient], cp, opacity, &r);
+        for (int i = 0; i < r.nbands; i++) {
+            translucent |= r.bands[i].paint.beta < 1;
+            r.bands[i].source = sv_xstrdup(src);
+        }
+        if (r.nbands > 0)
+            sv_doc_warn(im->doc, "%s: %s gradient approximated by %d solid bands", d, what,
+                        r.nbands);
+        else
+            sv_doc_warn(im->doc, "%s: %s gradient approximated by solid (one colour)", d, what);
+    }
     SV_GROW(im->items, im->nitems, im->capitems);
     item *it = &im->items[im->nitems++];
     it->reg = r;
     it->layer = c->layer;
-    it->translucent = paint->beta < 1;
+    it->translucent = translucent;
 }
 
 /* Fill and stroke of one shape, given its user-space path. */
@@ -389,20 +424,25 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
         sv_paint paint;
         if (resolve_paint(im, n, &s->fill, s, s->fill_opacity * opacity, ubox, &c, &cp,
                           s->fill_rule, "fill", &paint))
-            add_region(im, &cp, s->fill_rule, &paint, &c, n, "fill");
+            add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
         sv_path_free(&cp);
     }
     if (stroke) {
-        if (s->has_dash) {
-            desc(n, d, sizeof d);
-            sv_doc_warn(im->doc, "%s: stroke-dasharray not supported, stroked solid", d);
-        }
+        /* a negative dash length is an error, and SVG then strokes solid */
+        bool dashed = s->has_dash;
+        for (int i = 0; i < s->ndash; i++)
+            dashed &= s->dash[i] >= 0;
+        sv_path dashes;
+        sv_path_init(&dashes);
+        if (dashed)
+            sv_path_dash(up, s->dash, s->ndash, s->dash_offset, &dashes);
         double scale = sv_affine_max_scale(c.ctm);
         sv_stroke_style st = {s->stroke_width, s->cap, s->join, s->miter_limit,
                               scale > 0 ? im->tol / scale : im->tol};
         sv_path outline;
         sv_path_init(&outline);
-        int missed = sv_stroke_path(up, &st, &outline);
+        int missed = sv_stroke_path(dashed ? &dashes : up, &st, &outline);
+        sv_path_free(&dashes);
         if (missed) {
             desc(n, d, sizeof d);
             sv_doc_warn(im->doc, "%s: stroke outline above tolerance in %d pieces", d, missed);
@@ -412,7 +452,8 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
         sv_paint paint;
         if (resolve_paint(im, n, &s->stroke, s, s->stroke_opacity * opacity, ubox, &c, &outline,
                           CS_FILL_NONZERO, "stroke", &paint))
-            add_region(im, &outline, CS_FILL_NONZERO, &paint, &c, n, "stroke");
+            add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
+                       "stroke");
         sv_path_free(&outline);
     }
 }

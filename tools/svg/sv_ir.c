@@ -14,6 +14,9 @@ void sv_doc_init(sv_doc *doc)
 
 static void free_region(sv_region *r)
 {
+    for (int i = 0; i < r->nbands; i++)
+        free_region(&r->bands[i]);
+    free(r->bands);
     for (int i = 0; i < r->ncontours; i++)
         sv_contour_free(&r->contours[i]);
     free(r->contours);

@@ -31,7 +31,7 @@ static int render_main(int argc, char **argv)
     cs_aa_mode aa = CS_AA_SUBSCAN;
     sv_import_opts io;
     memset(&io, 0, sizeof io);
-    sv_scene_opts so = {true, true, {1, 1, 1}};
+    sv_scene_opts so = {.srgb_blend = true, .has_background = true, .background = {1, 1, 1}};
     bool quiet = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
