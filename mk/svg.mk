@@ -44,5 +44,25 @@ test-svg: $(HOST)/tests/test_svg
 svg-rsvg-full: $(HOST)/tests/test_svg
 	$(Q)$(HOST)/tests/test_svg --only rsvg --all --outdir $(BUILD)/svg-full
 
+# Demo: imported artwork and text as scene JSON (for celsim) and as PNG
+# rendered straight through the core; celsim renders the JSON too once built.
+SVG_DEMO := $(BUILD)/demo/svg
+SVG_DEMO_ICON := /usr/share/icons/breeze/apps/48/kstars.svg
+.PHONY: svg-demo
+svg-demo: $(HOST)/svgimport
+	@mkdir -p $(SVG_DEMO)
+	$(Q)$(HOST)/svgimport import scenes/svg/sign.svg -o $(SVG_DEMO)/sign.json -q
+	$(Q)$(HOST)/svgimport render scenes/svg/sign.svg -o $(SVG_DEMO)/sign.png --size 640x360 -q
+	$(Q)$(HOST)/svgimport text "celscan: signage in real fonts" -o $(SVG_DEMO)/text.json \
+		--size 48 --position 24,64 --color '#ffd23f' --background '#101820' 2>/dev/null
+	$(Q)if [ -f $(SVG_DEMO_ICON) ]; then \
+		$(HOST)/svgimport import $(SVG_DEMO_ICON) -o $(SVG_DEMO)/icon.json -q && \
+		$(HOST)/svgimport render $(SVG_DEMO_ICON) -o $(SVG_DEMO)/icon.png --size 256x256 -q; fi
+	$(Q)if [ -x $(HOST)/celsim ]; then for j in sign text icon; do \
+		[ -f $(SVG_DEMO)/$$j.json ] && $(HOST)/celsim render $(SVG_DEMO)/$$j.json \
+			-o $(SVG_DEMO)/$$j-celsim.png; done; fi; true
+	@echo "svg-demo: $(SVG_DEMO)/{sign,text,icon}.json and PNGs"
+
 HOST_PROGRAMS += $(HOST)/svgimport
 TEST_TARGETS += test-svg
+DEMO_TARGETS += svg-demo

@@ -824,6 +824,48 @@ static void test_glyphs(void)
     FT_Done_FreeType(lib);
 }
 
+static void test_svg_text(void)
+{
+    /* "AB" set as one run equals "A" then a tspan "B" continuing the pen */
+    const char *one = "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='50'>"
+                      "<text x='10' y='40' font-size='20'>AB</text></svg>";
+    const char *two = "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='50'>"
+                      "<text x='10' y='40' font-size='20'>  A\n<tspan fill='red'>B </tspan>  </text></svg>";
+    const char *moved = "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='50'>"
+                        "<text x='10' y='40' font-size='20'>A<tspan x='100' y='30'>B</tspan></text>"
+                        "<text x='100' y='40' font-size='20' text-anchor='middle'>AB</text></svg>";
+    sv_doc d1, d2, d3;
+    char err[200];
+    sv_import_buffer(one, strlen(one), NULL, &d1, err, sizeof err);
+    sv_import_buffer(two, strlen(two), NULL, &d2, err, sizeof err);
+    sv_import_buffer(moved, strlen(moved), NULL, &d3, err, sizeof err);
+    SVC_CHECK(sv_doc_region_count(&d1) == 1 && sv_doc_region_count(&d2) == 2,
+              "a tspan with its own fill is its own region (%zu, %zu)", sv_doc_region_count(&d1),
+              sv_doc_region_count(&d2));
+    /* the tspan's B sits where B sits in "AB" minus kerning: compare bounding boxes */
+    double b1 = d1.cels[0].regions[0].bbox[2], b2 = 0;
+    for (int c = 0; c < d2.ncels; c++)
+        for (int r = 0; r < d2.cels[c].nregions; r++)
+            b2 = fmax(b2, d2.cels[c].regions[r].bbox[2]);
+    SVC_NEAR(b2, b1, 0.05, "whitespace collapsed and the pen continues into the tspan");
+    double bx = 1e9, mid0 = 1e9, mid1 = -1e9;
+    for (int c = 0; c < d3.ncels; c++)
+        for (int r = 0; r < d3.cels[c].nregions; r++) {
+            const sv_region *g = &d3.cels[c].regions[r];
+            if (g->bbox[3] < 35) /* the B moved up to y = 30 */
+                bx = fmin(bx, g->bbox[0]);
+            else if (g->bbox[0] > 60) { /* the anchored text */
+                mid0 = fmin(mid0, g->bbox[0]);
+                mid1 = fmax(mid1, g->bbox[2]);
+            }
+        }
+    SVC_CHECK(bx >= 100 && bx < 102, "tspan x starts a new chunk at 100 (%g)", bx);
+    SVC_NEAR(0.5 * (mid0 + mid1), 100, 1.5, "text-anchor middle centres the chunk");
+    sv_doc_free(&d1);
+    sv_doc_free(&d2);
+    sv_doc_free(&d3);
+}
+
 void test_svg_unit(const svg_test_opts *o)
 {
     (void)o;
@@ -839,5 +881,6 @@ void test_svg_unit(const svg_test_opts *o)
     test_clip();
     test_import_doc();
     test_glyphs();
+    test_svg_text();
     printf("svg-unit: %s\n", svc_fail == before ? "all checks pass" : "FAILURES above");
 }

@@ -116,6 +116,9 @@ static void reverse_path(sv_path *p)
     }
 }
 
+static void build(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r,
+                  sv_affine inv, double t0, double t1, const double *cum, double var, int n);
+
 void sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r)
 {
     sv_affine inv;
@@ -164,8 +167,34 @@ void sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity
     int n = (int)ceil(var / STEP);
     if (n > MAX_BANDS)
         n = MAX_BANDS;
-    if (n < 2)
-        return;
+    size_t base = 0;
+    for (int i = 0; i < area->n; i++)
+        base += (size_t)area->sub[i].n * 3;
+    size_t budget = base * 6 > 1500 ? base * 6 : 1500;
+    for (; n >= 2; n /= 2) { /* fewer, wider bands while the points exceed the budget */
+        build(g, area, opacity, r, inv, t0, t1, cum, var, n);
+        size_t pts = 0;
+        for (int b = 0; b < r->nbands; b++)
+            for (int k = 0; k < r->bands[b].ncontours; k++)
+                pts += (size_t)r->bands[b].contours[k].count;
+        if (pts <= budget)
+            return;
+        for (int b = 0; b < r->nbands; b++) {
+            for (int k = 0; k < r->bands[b].ncontours; k++)
+                sv_contour_free(&r->bands[b].contours[k]);
+            free(r->bands[b].contours);
+        }
+        free(r->bands);
+        r->bands = NULL;
+        r->nbands = 0;
+    }
+}
+
+/* The n bands of t in [t0, t1] placed by the cumulative colour variation. */
+static void build(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r,
+                  sv_affine inv, double t0, double t1, const double *cum, double var, int n)
+{
+    enum { S = 1024 };
     double bound[MAX_BANDS + 1];
     bound[0] = t0;
     bound[n] = t1;

@@ -208,15 +208,18 @@ char *sv_doc_to_json(const sv_doc *doc, const double *background)
     if (background)
         cJSON_AddItemToObject(canvas, "background", rgb_json(background));
     cJSON *cels = cJSON_AddArrayToObject(root, "cels");
+    bool *use_bands = choose_bands(doc, false); /* what fits the default scene store */
+    size_t idx = 0;
     for (int c = 0; c < doc->ncels; c++) {
         const sv_cel *cel = &doc->cels[c];
         cJSON *jc = cJSON_CreateObject();
         cJSON_AddStringToObject(jc, "name", cel->name);
         cJSON *regions = cJSON_AddArrayToObject(jc, "regions");
-        for (int r = 0; r < cel->nregions; r++) {
+        for (int r = 0; r < cel->nregions; r++, idx++) {
             const sv_region *whole = &cel->regions[r];
-            for (int b = 0; b < (whole->nbands ? whole->nbands : 1); b++) {
-            const sv_region *reg = whole->nbands ? &whole->bands[b] : whole;
+            int nb = use_bands[idx] ? whole->nbands : 0;
+            for (int b = 0; b < (nb ? nb : 1); b++) {
+            const sv_region *reg = nb ? &whole->bands[b] : whole;
             cJSON *jr = cJSON_CreateObject();
             cJSON_AddStringToObject(jr, "fill_rule",
                                     reg->fill_rule == CS_FILL_EVENODD ? "evenodd" : "nonzero");
@@ -244,6 +247,7 @@ char *sv_doc_to_json(const sv_doc *doc, const double *background)
         }
         cJSON_AddItemToArray(cels, jc);
     }
+    free(use_bands);
     char *s = cJSON_PrintUnformatted(root);
     cJSON_Delete(root);
     return s;

@@ -504,7 +504,8 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
             sv_path_transform(&p, km);
             sv_path_append(out, &p);
             *rule = ks.clip_rule;
-        } else if (strcmp(shape->name, "title") && strcmp(shape->name, "desc")) {
+        } else if (strcmp(shape->name, "title") && strcmp(shape->name, "desc") &&
+                   shape->name[0] != '#') {
             *only_paths = false;
         }
         sv_path_free(&p);
@@ -615,8 +616,8 @@ static bool switch_accepts(const sv_node *k)
 static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
 {
     const char *name = n->name;
-    if (strncmp(name, "ns:", 3) == 0 || is_nonrendering(name))
-        return; /* editor metadata and definitions draw nothing by themselves */
+    if (strncmp(name, "ns:", 3) == 0 || name[0] == '#' || is_nonrendering(name))
+        return; /* editor metadata, character data and definitions draw nothing by themselves */
     char d[160];
     if (im->depth >= 64) {
         desc(n, d, sizeof d);
@@ -673,7 +674,8 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
         render_children(im, n, &s, &c);
     } else if (!strcmp(name, "switch")) {
         for (int i = 0; i < n->nkids; i++)
-            if (strncmp(n->kids[i]->name, "ns:", 3) != 0 && switch_accepts(n->kids[i])) {
+            if (strncmp(n->kids[i]->name, "ns:", 3) != 0 && n->kids[i]->name[0] != '#' &&
+                switch_accepts(n->kids[i])) {
                 render(im, n->kids[i], &s, &c);
                 break;
             }
@@ -710,12 +712,13 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             }
         }
     } else if (!strcmp(name, "text")) {
-        sv_path tp;
-        sv_path_init(&tp);
-        sv_svg_text_path(n, &s, c.vp_w, c.vp_h, im->opts.font_path, &tp, im->doc);
-        if (tp.n > 0)
-            paint_shape(im, n, &s, &c, &tp);
-        sv_path_free(&tp);
+        sv_text_run *runs;
+        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
+                                    im->doc);
+        for (int i = 0; i < nr; i++)
+            if (runs[i].path.n > 0)
+                paint_shape(im, runs[i].node, runs[i].style, &c, &runs[i].path);
+        sv_text_runs_free(runs, nr);
     } else {
         desc(n, d, sizeof d);
         sv_doc_warn(im->doc, "%s: element not supported, not drawn", d);

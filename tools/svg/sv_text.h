@@ -52,13 +52,25 @@ int sv_text_outline_path(const struct FT_Outline_ *outline, double scale, double
 
 struct sv_node;
 struct sv_style;
+struct sv_css;
+/* One run of SVG text: glyph outlines in user space, the element they belong
+ * to (<text> or <tspan>) and its computed style (fill, stroke, opacity). */
+typedef struct sv_text_run {
+    const struct sv_node *node;
+    struct sv_style *style;
+    sv_path path;
+} sv_text_run;
+
 /*
- * SVG <text>: the element's character data (tspans concatenated, whitespace
- * collapsed) at its first x/y with its font-size and text-anchor, in user
- * space. font-family maps to the DejaVu faces (sans, serif, mono; bold,
- * italic); anything this cannot honour is a warning in doc.
+ * Lays out SVG <text> (sv_text_svg.c): character data and <tspan>s in
+ * document order, the first value of x/y/dx/dy on the element and each
+ * tspan, text-anchor per text chunk, xml:space, font-size and font-family
+ * mapped to the DejaVu faces. Returns the number of runs (malloc'd into
+ * *runs); anything it cannot honour is a warning in doc.
  */
-void sv_svg_text_path(const struct sv_node *n, const struct sv_style *s, double vp_w,
-                      double vp_h, const char *font_path, sv_path *out, sv_doc *doc);
+int sv_svg_text_layout(const struct sv_node *text, const struct sv_style *style,
+                       const struct sv_css *css, double vp_w, double vp_h, const char *font_path,
+                       sv_text_run **runs, sv_doc *doc);
+void sv_text_runs_free(sv_text_run *runs, int n);
 
 #endif /* SV_TEXT_H */

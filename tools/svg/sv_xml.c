@@ -89,16 +89,39 @@ static void XMLCALL on_end(void *ud, const XML_Char *name)
         b->cur = b->cur->parent;
 }
 
+static void append_text(sv_node *n, const char *s, size_t len)
+{
+    n->text = sv_xrealloc(n->text, n->textlen + len + 1);
+    memcpy(n->text + n->textlen, s, len);
+    n->textlen += len;
+    n->text[n->textlen] = 0;
+}
+
+/*
+ * Character data goes to the element's `text` (all of it, for <style>) and,
+ * so that <text> can interleave it with <tspan>s in order, to "#text"
+ * children as well.
+ */
 static void XMLCALL on_text(void *ud, const XML_Char *s, int len)
 {
     builder *b = ud;
     sv_node *n = b->cur;
     if (!n || len <= 0)
         return;
-    n->text = sv_xrealloc(n->text, n->textlen + (size_t)len + 1);
-    memcpy(n->text + n->textlen, s, (size_t)len);
-    n->textlen += (size_t)len;
-    n->text[n->textlen] = 0;
+    append_text(n, s, (size_t)len);
+    sv_node *last = n->nkids ? n->kids[n->nkids - 1] : NULL;
+    if (!last || strcmp(last->name, "#text") != 0) {
+        last = sv_xrealloc(NULL, sizeof *last);
+        memset(last, 0, sizeof *last);
+        last->name = sv_xstrdup("#text");
+        last->attrs = sv_xrealloc(NULL, sizeof *last->attrs);
+        last->attrs[0] = NULL;
+        last->parent = n;
+        last->line = (int)XML_GetCurrentLineNumber(b->parser);
+        SV_GROW(n->kids, n->nkids, n->capkids);
+        n->kids[n->nkids++] = last;
+    }
+    append_text(last, s, (size_t)len);
 }
 
 sv_node *sv_xml_parse(const char *data, size_t len, char *err, size_t errlen)
