@@ -33,6 +33,7 @@ typedef struct svg_test_opts {
     bool all;           /* every installed icon, not the CI subset */
     int limit;          /* CI subset size */
     bool verbose;
+    bool one_cel;       /* import with one cel per shape (SVG's per-shape "over") */
 } svg_test_opts;
 
 void test_svg_unit(const svg_test_opts *o);

@@ -5,7 +5,7 @@
  * reference at 16, 128 and 512 px; and the comparison with librsvg's
  * rsvg-convert on installed icon artwork (one check: the pass rate).
  *
- *   test_svg [--only unit|cov|rsvg] [--all] [--limit N] [--outdir DIR] [-v]
+ *   test_svg [--only unit|cov|rsvg] [--all] [--limit N] [--outdir DIR] [--one-cel] [-v]
  */
 #include <stdlib.h>
 #include <string.h>
@@ -17,7 +17,7 @@ int svc_pass, svc_fail;
 
 int main(int argc, char **argv)
 {
-    svg_test_opts o = {"build/svg-test", false, 200, false};
+    svg_test_opts o = {"build/svg-test", false, 200, false, false};
     const char *only = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--only") && i + 1 < argc)
@@ -30,6 +30,8 @@ int main(int argc, char **argv)
             o.all = true;
         else if (!strcmp(argv[i], "-v"))
             o.verbose = true;
+        else if (!strcmp(argv[i], "--one-cel"))
+            o.one_cel = true;
         else {
             fprintf(stderr, "usage: test_svg [--only unit|cov|rsvg] [--all] [--limit N] "
                             "[--outdir DIR] [-v]\n");

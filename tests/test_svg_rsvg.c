@@ -204,6 +204,7 @@ void test_svg_rsvg(const svg_test_opts *o)
         sv_import_opts io;
         memset(&io, 0, sizeof io);
         io.nominal_px = SIZE;
+        io.one_cel_per_shape = o->one_cel;
         sv_doc doc;
         char err[512];
         const char *fail_cause = NULL;
