@@ -18,8 +18,9 @@
  * are approximated, within a stated tolerance.
  *
  * The IR holds what the core cannot draw yet, so that the back ends can grow
- * without re-importing: gradients (with a solid area-average fallback in the
- * paint) and clip paths (CSG intersection, kept per region).
+ * without re-importing: gradients (resolved to canvas units, with solid
+ * bands of exact geometry and an area-average colour as fallbacks) and clip
+ * paths that are not one convex polygon (CSG intersection, kept per region).
  *
  * Colours in the IR are sRGB-encoded 0..1, as SVG and the scene JSON write
  * them; the cs_scene back end linearises them (or not, see sv_scene_opts).
