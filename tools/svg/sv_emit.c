@@ -207,6 +207,11 @@ char *sv_doc_to_json(const sv_doc *doc, const double *background)
     cJSON_AddItemToObject(canvas, "height", num(doc->height));
     if (background)
         cJSON_AddItemToObject(canvas, "background", rgb_json(background));
+    /*
+     * Blend hook: imported artwork was designed for sRGB blending. Once the
+     * scene JSON can ask for it (`--blend srgb` from the beta work), write
+     * that request here so celsim shows what the designer's tool showed.
+     */
     cJSON *cels = cJSON_AddArrayToObject(root, "cels");
     bool *use_bands = choose_bands(doc, false); /* what fits the default scene store */
     size_t idx = 0;
