@@ -1,0 +1,50 @@
+/*
+ * test_svg.c - the importer's test program: unit checks of the SVG
+ * grammars, transforms, colours, stroke outliner and glyph conversion;
+ * coverage of stroked paths and text against an independent long-double
+ * reference at 16, 128 and 512 px; and the comparison with librsvg's
+ * rsvg-convert on installed icon artwork (one check: the pass rate).
+ *
+ *   test_svg [--only unit|cov|rsvg] [--all] [--limit N] [--outdir DIR] [--one-cel] [-v]
+ */
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "svg_check.h"
+
+int svc_pass, svc_fail;
+
+int main(int argc, char **argv)
+{
+    svg_test_opts o = {"build/svg-test", false, 200, false, false};
+    const char *only = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--only") && i + 1 < argc)
+            only = argv[++i];
+        else if (!strcmp(argv[i], "--outdir") && i + 1 < argc)
+            o.outdir = argv[++i];
+        else if (!strcmp(argv[i], "--limit") && i + 1 < argc)
+            o.limit = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--all"))
+            o.all = true;
+        else if (!strcmp(argv[i], "-v"))
+            o.verbose = true;
+        else if (!strcmp(argv[i], "--one-cel"))
+            o.one_cel = true;
+        else {
+            fprintf(stderr, "usage: test_svg [--only unit|cov|rsvg] [--all] [--limit N] "
+                            "[--outdir DIR] [-v]\n");
+            return 2;
+        }
+    }
+    mkdir(o.outdir, 0777);
+    if (!only || !strcmp(only, "unit"))
+        test_svg_unit(&o);
+    if (!only || !strcmp(only, "cov"))
+        test_svg_cov(&o);
+    if (!only || !strcmp(only, "rsvg"))
+        test_svg_rsvg(&o);
+    printf("test_svg: %d passed, %d failed\n", svc_pass, svc_fail);
+    return svc_fail ? 1 : 0;
+}

@@ -1,0 +1,874 @@
+/*
+ * sv_import.c - SVG element tree to the IR.
+ *
+ * The walk follows SVG's rendering model: each element computes its style
+ * (sv_style.c) and current transformation matrix, containers pass both on,
+ * and shapes become paths in user space. A fill is the path mapped to canvas
+ * units; a stroke is outlined in user space (so a non-uniform transform
+ * distorts it as SVG says) and then mapped. Each painted fill or stroke is
+ * one region, collected in document order (back to front).
+ *
+ * Cels. celscan sums the coverage of the regions of one cel, each region
+ * claiming only what the regions in front of it left. For opaque regions
+ * that is painter's order without conflation seams; but a translucent region
+ * would hide what lies behind it in the same cel. So after the walk the
+ * regions are reversed (front-most first) and packed into cels: a region
+ * joins the current cel unless it overlaps a translucent region already in
+ * it. Group opacity uses the same mechanism on purpose: everything inside a
+ * group with opacity < 1 (or a shape with both fill and stroke and opacity
+ * < 1) goes into one cel of its own with the opacity multiplied into each
+ * paint, and since front regions hide back ones within the cel, that is the
+ * group rendered opaque and then made translucent - SVG's semantics, exact
+ * for opaque content, approximate only where the group's own children are
+ * translucent and overlap.
+ *
+ * Paint maps to the beta model with medium white and beta = alpha: with
+ * front light 1 and back light 0 this is exactly premultiplied "over".
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+
+#include "sv_gradient.h"
+#include "sv_import.h"
+#include "sv_internal.h"
+#include "sv_text.h"
+
+typedef struct item {
+    sv_region reg;
+    int layer; /* 0, or the group-opacity layer the region belongs to */
+    bool translucent;
+} item;
+
+typedef struct clip_poly {
+    sv_pt *v;
+    int n;
+} clip_poly;
+
+#define MAX_CLIPS 8
+typedef struct ctx {
+    sv_affine ctm;
+    int layer;
+    double alpha; /* opacities of enclosing layers, multiplied into paints */
+    const clip_poly *clips[MAX_CLIPS];
+    int nclips;
+    int ir_clip;
+    double vp_w, vp_h; /* viewport, for percentages */
+} ctx;
+
+typedef struct imp {
+    sv_doc *doc;
+    sv_import_opts opts;
+    sv_css css;
+    struct idmap {
+        const char *id;
+        sv_node *node;
+    } *ids;
+    int nids, capids;
+    item *items;
+    int nitems, capitems;
+    int next_layer;
+    const sv_node *stack[64];
+    int depth;
+    double tol; /* stroke tolerance, canvas units */
+} imp;
+
+static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc);
+
+static void desc(const sv_node *n, char *buf, size_t len)
+{
+    const char *id = sv_attr(n, "id");
+    if (id)
+        snprintf(buf, len, "<%s id=\"%s\"> (line %d)", n->name, id, n->line);
+    else
+        snprintf(buf, len, "<%s> (line %d)", n->name, n->line);
+}
+
+static sv_node *find_id(void *ctxp, const char *id)
+{
+    imp *im = ctxp;
+    for (int i = 0; i < im->nids; i++)
+        if (strcmp(im->ids[i].id, id) == 0)
+            return im->ids[i].node;
+    return NULL;
+}
+
+static sv_node *find_href(imp *im, const sv_node *n)
+{
+    const char *h = sv_attr(n, "xlink:href");
+    if (!h)
+        h = sv_attr(n, "href");
+    return (h && h[0] == '#') ? find_id(im, h + 1) : NULL;
+}
+
+/*
+ * The computed style of an element through its own ancestors: what gradient
+ * stops use (they inherit from where the gradient is defined). Percentages
+ * in it refer to the root viewport.
+ */
+static void style_of(void *ctxp, const sv_node *n, sv_style *out)
+{
+    imp *im = ctxp;
+    if (!n->parent) {
+        sv_style s0;
+        sv_style_initial(&s0);
+        memcpy(s0.color, im->opts.current_color, sizeof s0.color);
+        sv_style_compute(out, &s0, n, &im->css, 0, NULL);
+        return;
+    }
+    sv_style parent;
+    style_of(ctxp, n->parent, &parent);
+    sv_style_compute(out, &parent, n, &im->css, 0, NULL);
+}
+
+/* Ids and style sheets of the whole document, before anything is drawn. */
+static void collect(imp *im, sv_node *n)
+{
+    const char *id = sv_attr(n, "id");
+    if (id && !find_id(im, id)) { /* the first of duplicate ids wins */
+        SV_GROW(im->ids, im->nids, im->capids);
+        im->ids[im->nids].id = id;
+        im->ids[im->nids++].node = n;
+    }
+    if (strcmp(n->name, "style") == 0 && n->text) {
+        const char *type = sv_attr(n, "type");
+        if (!type || strcmp(type, "text/css") == 0)
+            sv_css_parse_sheet(&im->css, n->text, im->doc);
+    }
+    for (int i = 0; i < n->nkids; i++)
+        collect(im, n->kids[i]);
+}
+
+static double attr_len(const sv_node *n, const char *name, const sv_style *s, double ref,
+                       double dflt)
+{
+    const char *v = sv_attr(n, name);
+    double x;
+    if (v && sv_parse_length(v, s->font_size, ref, &x))
+        return x;
+    return dflt;
+}
+
+/* SVG 1.1 section 7.8: the viewBox onto the viewport under preserveAspectRatio. */
+static sv_affine viewbox_map(const double vb[4], const char *par, double x, double y, double w,
+                             double h)
+{
+    double sx = w / vb[2], sy = h / vb[3];
+    char align[16] = "xMidYMid";
+    bool slice = false;
+    if (par) {
+        const char *p = par;
+        while (isspace((unsigned char)*p))
+            p++;
+        if (strncmp(p, "defer", 5) == 0)
+            p += 5;
+        while (isspace((unsigned char)*p))
+            p++;
+        sscanf(p, "%15s", align);
+        slice = strstr(p, "slice") != NULL;
+    }
+    double tx = x - vb[0] * sx, ty = y - vb[1] * sy;
+    if (strcmp(align, "none") != 0) {
+        double s = slice ? fmax(sx, sy) : fmin(sx, sy);
+        sx = sy = s;
+        tx = x - vb[0] * s;
+        ty = y - vb[1] * s;
+        if (strstr(align, "xMid"))
+            tx += (w - vb[2] * s) / 2;
+        else if (strstr(align, "xMax"))
+            tx += w - vb[2] * s;
+        if (strstr(align, "YMid"))
+            ty += (h - vb[3] * s) / 2;
+        else if (strstr(align, "YMax"))
+            ty += h - vb[3] * s;
+    }
+    sv_affine m = {sx, 0, 0, sy, tx, ty};
+    return m;
+}
+
+static bool get_viewbox(const sv_node *n, double vb[4])
+{
+    const char *v = sv_attr(n, "viewBox");
+    return v && sv_parse_numbers(v, vb, 4) == 4 && vb[2] > 0 && vb[3] > 0;
+}
+
+/* ------------------------------------------------------------- shapes */
+
+/* Geometry of a basic shape or path in user space; false if it draws nothing. */
+static bool shape_path(imp *im, const sv_node *n, const sv_style *s, const ctx *c, sv_path *p)
+{
+    double vw = c->vp_w, vh = c->vp_h, vd = sqrt((vw * vw + vh * vh) / 2);
+    const char *name = n->name;
+    char d[160], err[200];
+    if (!strcmp(name, "path")) {
+        const char *data = sv_attr(n, "d");
+        if (!data)
+            return false;
+        if (sv_parse_path(data, p, err, sizeof err) < 0) {
+            desc(n, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: %s; drawn up to the error", d, err);
+        }
+    } else if (!strcmp(name, "rect")) {
+        double x = attr_len(n, "x", s, vw, 0), y = attr_len(n, "y", s, vh, 0);
+        double w = attr_len(n, "width", s, vw, 0), h = attr_len(n, "height", s, vh, 0);
+        double rx = attr_len(n, "rx", s, vw, -1), ry = attr_len(n, "ry", s, vh, -1);
+        if (!(w > 0 && h > 0))
+            return false;
+        if (rx < 0)
+            rx = ry;
+        if (ry < 0)
+            ry = rx;
+        rx = fmin(fmax(rx, 0), w / 2);
+        ry = fmin(fmax(ry, 0), h / 2);
+        if (rx > 0 && ry > 0) { /* corners: exact quarter ellipses, weight sqrt(1/2) */
+            double k = sqrt(0.5);
+            sv_path_move(p, x + rx, y);
+            sv_path_line(p, x + w - rx, y);
+            sv_path_conic(p, x + w, y, k, x + w, y + ry);
+            sv_path_line(p, x + w, y + h - ry);
+            sv_path_conic(p, x + w, y + h, k, x + w - rx, y + h);
+            sv_path_line(p, x + rx, y + h);
+            sv_path_conic(p, x, y + h, k, x, y + h - ry);
+            sv_path_line(p, x, y + ry);
+            sv_path_conic(p, x, y, k, x + rx, y);
+        } else {
+            sv_path_move(p, x, y);
+            sv_path_line(p, x + w, y);
+            sv_path_line(p, x + w, y + h);
+            sv_path_line(p, x, y + h);
+        }
+        sv_path_close(p);
+    } else if (!strcmp(name, "circle") || !strcmp(name, "ellipse")) {
+        double cx = attr_len(n, "cx", s, vw, 0), cy = attr_len(n, "cy", s, vh, 0), rx, ry;
+        if (name[0] == 'c') {
+            rx = ry = attr_len(n, "r", s, vd, 0);
+        } else {
+            rx = attr_len(n, "rx", s, vw, -1);
+            ry = attr_len(n, "ry", s, vh, -1);
+            if (rx < 0) /* SVG 2: auto takes the other radius */
+                rx = ry;
+            if (ry < 0)
+                ry = rx;
+        }
+        if (!(rx > 0 && ry > 0))
+            return false;
+        sv_path_ellipse(p, cx, cy, rx, ry);
+    } else if (!strcmp(name, "line")) {
+        sv_path_move(p, attr_len(n, "x1", s, vw, 0), attr_len(n, "y1", s, vh, 0));
+        sv_path_line(p, attr_len(n, "x2", s, vw, 0), attr_len(n, "y2", s, vh, 0));
+    } else if (!strcmp(name, "polyline") || !strcmp(name, "polygon")) {
+        const char *pts = sv_attr(n, "points");
+        if (!pts)
+            return false;
+        if (sv_parse_points(pts, p, name[4] == 'g') < 0) {
+            desc(n, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: odd number of coordinates, last one ignored", d);
+        }
+    } else {
+        return false;
+    }
+    return p->n > 0;
+}
+
+/* Bounding box of the curve itself (objectBoundingBox wants the tight box). */
+static void tight_bbox(const sv_path *p, double box[4])
+{
+    box[0] = box[1] = INFINITY;
+    box[2] = box[3] = -INFINITY;
+    for (int i = 0; i < p->n; i++)
+        for (int k = 0; k < p->sub[i].n; k++) {
+            const sv_seg *s = &p->sub[i].seg[k];
+            int m = s->degree == 1 ? 1 : 256;
+            for (int j = 0; j <= m; j++) {
+                sv_pt q = j == 0 ? s->p[0] : j == m ? s->p[s->degree] : sv_seg_eval(s, (double)j / m);
+                box[0] = fmin(box[0], q.x);
+                box[1] = fmin(box[1], q.y);
+                box[2] = fmax(box[2], q.x);
+                box[3] = fmax(box[3], q.y);
+            }
+        }
+}
+
+/* A paint spec to a beta paint; false when nothing is to be painted. */
+static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, const sv_style *s,
+                          double opacity, const double ubox[4], const ctx *c,
+                          const sv_path *area, int rule, const char *what, sv_paint *out)
+{
+    char d[160];
+    double rgb[3], a = ps->alpha;
+    sv_paint_kind kind = ps->kind;
+    out->gradient = -1;
+    if (kind == SV_PAINT_URL) {
+        sv_node *t = find_id(im, ps->url);
+        bool grad = t && (!strcmp(t->name, "linearGradient") || !strcmp(t->name, "radialGradient"));
+        if (grad) {
+            sv_gradient g;
+            if (!sv_gradient_resolve(t, find_id, style_of, im, ubox, c->ctm, c->vp_w, c->vp_h, &g,
+                                     im->doc) ||
+                g.nstops == 0) {
+                free(g.stops);
+                return false;
+            }
+            if (g.nstops == 1) { /* one stop is a solid colour, exactly */
+                memcpy(rgb, g.stops[0].rgb, sizeof rgb);
+                a = g.stops[0].opacity;
+                free(g.stops);
+            } else {
+                sv_gradient_average(&g, area, rule, rgb, &a);
+                im->doc->gradients = sv_xrealloc(
+                    im->doc->gradients, (size_t)(im->doc->ngradients + 1) * sizeof g);
+                im->doc->gradients[im->doc->ngradients] = g;
+                out->gradient = im->doc->ngradients++;
+            }
+            kind = SV_PAINT_COLOR;
+        } else {
+            desc(n, d, sizeof d);
+            if (t)
+                sv_doc_warn(im->doc, "%s: %s paint server <%s> not supported%s", d, what, t->name,
+                            ps->fallback_kind ? ", fallback colour used" : ", not painted");
+            else
+                sv_doc_warn(im->doc, "%s: %s paint #%s not found%s", d, what, ps->url,
+                            ps->fallback_kind ? ", fallback colour used" : ", not painted");
+            kind = ps->fallback_kind;
+            memcpy(rgb, ps->fallback_rgb, sizeof rgb);
+            a = 1;
+        }
+    } else if (kind == SV_PAINT_COLOR) {
+        memcpy(rgb, ps->rgb, sizeof rgb);
+    }
+    if (kind == SV_PAINT_CURRENT)
+        memcpy(rgb, s->color, sizeof rgb);
+    else if (kind == SV_PAINT_NONE)
+        return false;
+    a *= opacity;
+    if (!(a > 0))
+        return false;
+    memcpy(out->pigment, rgb, sizeof rgb);
+    out->medium[0] = out->medium[1] = out->medium[2] = 1;
+    out->beta = a > 1 ? 1 : a;
+    return true;
+}
+
+/*
+ * Adds a region (canvas-space path) with the context's clips applied. A
+ * gradient paint also gets its solid bands; `opacity` is what multiplies the
+ * gradient's own stop opacities.
+ */
+static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, double opacity,
+                       const ctx *c, const sv_node *n, const char *what)
+{
+    for (int k = 0; k < c->nclips; k++)
+        sv_path_clip_polygon(cp, c->clips[k]->v, c->clips[k]->n);
+    sv_region r;
+    memset(&r, 0, sizeof r);
+    sv_path_to_contours(cp, &r.contours, &r.ncontours);
+    if (r.ncontours == 0)
+        return;
+    r.fill_rule = rule;
+    r.paint = *paint;
+    r.clip = c->ir_clip;
+    r.bbox[0] = r.bbox[1] = INFINITY;
+    r.bbox[2] = r.bbox[3] = -INFINITY;
+    for (int i = 0; i < r.ncontours; i++)
+        for (int k = 0; k < r.contours[i].count; k++) {
+            const double *q = &r.contours[i].pts[3 * k];
+            r.bbox[0] = fmin(r.bbox[0], q[0]);
+            r.bbox[1] = fmin(r.bbox[1], q[1]);
+            r.bbox[2] = fmax(r.bbox[2], q[0]);
+            r.bbox[3] = fmax(r.bbox[3], q[1]);
+        }
+    char d[160], src[220];
+    desc(n, d, sizeof d);
+    snprintf(src, sizeof src, "%s %s", d, what);
+    r.source = sv_xstrdup(src);
+    bool translucent = paint->beta < 1;
+    if (paint->gradient >= 0) {
+        sv_gradient_bands(&im->doc->gradients[paint->gradient], cp, opacity, &r);
+        for (int i = 0; i < r.nbands; i++) {
+            translucent |= r.bands[i].paint.beta < 1;
+            r.bands[i].source = sv_xstrdup(src);
+        }
+        if (r.nbands > 0)
+            sv_doc_warn(im->doc, "%s: %s gradient approximated by %d solid bands", d, what,
+                        r.nbands);
+        else
+            sv_doc_warn(im->doc, "%s: %s gradient approximated by solid (one colour)", d, what);
+    }
+    SV_GROW(im->items, im->nitems, im->capitems);
+    item *it = &im->items[im->nitems++];
+    it->reg = r;
+    it->layer = c->layer;
+    it->translucent = translucent;
+}
+
+/* Fill and stroke of one shape, given its user-space path. */
+static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
+                        sv_path *up)
+{
+    if (!s->visible)
+        return;
+    ctx c = *pc;
+    double opacity = c.alpha * s->opacity;
+    bool fill = s->fill.kind != SV_PAINT_NONE, stroke = s->stroke.kind != SV_PAINT_NONE &&
+                                                          s->stroke_width > 0;
+    if (fill && stroke && s->opacity < 1 && c.layer == 0)
+        c.layer = ++im->next_layer; /* fill and stroke composite as a group */
+    double ubox[4];
+    tight_bbox(up, ubox);
+    char d[160];
+    if (fill) {
+        sv_path cp;
+        sv_path_init(&cp);
+        sv_path_append(&cp, up);
+        sv_path_transform(&cp, c.ctm);
+        sv_paint paint;
+        if (resolve_paint(im, n, &s->fill, s, s->fill_opacity * opacity, ubox, &c, &cp,
+                          s->fill_rule, "fill", &paint))
+            add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
+        sv_path_free(&cp);
+    }
+    if (stroke) {
+        /* a negative dash length is an error, and SVG then strokes solid */
+        bool dashed = s->has_dash;
+        for (int i = 0; i < s->ndash; i++)
+            dashed &= s->dash[i] >= 0;
+        sv_path dashes;
+        sv_path_init(&dashes);
+        if (dashed)
+            sv_path_dash(up, s->dash, s->ndash, s->dash_offset, &dashes);
+        double scale = sv_affine_max_scale(c.ctm);
+        sv_stroke_style st = {s->stroke_width, s->cap, s->join, s->miter_limit,
+                              scale > 0 ? im->tol / scale : im->tol};
+        sv_path outline;
+        sv_path_init(&outline);
+        int missed = sv_stroke_path(dashed ? &dashes : up, &st, &outline);
+        sv_path_free(&dashes);
+        if (missed) {
+            desc(n, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: stroke outline above tolerance in %d pieces", d, missed);
+        }
+        sv_path_transform(&outline, c.ctm);
+        /* objectBoundingBox for strokes is still the fill's box (SVG 1.1) */
+        sv_paint paint;
+        if (resolve_paint(im, n, &s->stroke, s, s->stroke_opacity * opacity, ubox, &c, &outline,
+                          CS_FILL_NONZERO, "stroke", &paint))
+            add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
+                       "stroke");
+        sv_path_free(&outline);
+    }
+}
+
+/* ------------------------------------------------------------ clipping */
+
+/* The clip path geometry in canvas units (union of its children). */
+static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ctm,
+                          const double ubox[4], const ctx *pc, sv_path *out, int *rule,
+                          bool *only_paths)
+{
+    const char *units = sv_attr(cp, "clipPathUnits");
+    sv_affine m = ctm, t;
+    const char *tr = sv_attr(cp, "transform");
+    if (tr && sv_parse_transform(tr, &t))
+        m = sv_affine_mul(m, t);
+    if (units && !strcmp(units, "objectBoundingBox")) {
+        sv_affine b = {ubox[2] - ubox[0], 0, 0, ubox[3] - ubox[1], ubox[0], ubox[1]};
+        m = sv_affine_mul(m, b);
+    }
+    sv_style cs;
+    sv_style_compute(&cs, ps, cp, &im->css, 0, NULL);
+    for (int i = 0; i < cp->nkids; i++) {
+        sv_node *k = cp->kids[i];
+        sv_node *shape = k;
+        sv_affine km = m;
+        const char *ktr = sv_attr(k, "transform");
+        if (ktr && sv_parse_transform(ktr, &t))
+            km = sv_affine_mul(km, t);
+        if (!strcmp(k->name, "use")) {
+            shape = find_href(im, k);
+            if (!shape)
+                continue;
+            sv_affine tu = {1, 0, 0, 1, attr_len(k, "x", &cs, pc->vp_w, 0),
+                            attr_len(k, "y", &cs, pc->vp_h, 0)};
+            km = sv_affine_mul(km, tu);
+            const char *str = sv_attr(shape, "transform");
+            if (str && sv_parse_transform(str, &t))
+                km = sv_affine_mul(km, t);
+        }
+        sv_style ks;
+        sv_style_compute(&ks, &cs, shape, &im->css, 0, NULL);
+        if (ks.display_none || !ks.visible)
+            continue;
+        sv_path p;
+        sv_path_init(&p);
+        if (shape_path(im, shape, &ks, pc, &p)) {
+            sv_path_transform(&p, km);
+            sv_path_append(out, &p);
+            *rule = ks.clip_rule;
+        } else if (strcmp(shape->name, "title") && strcmp(shape->name, "desc") &&
+                   shape->name[0] != '#') {
+            *only_paths = false;
+        }
+        sv_path_free(&p);
+    }
+}
+
+/*
+ * Applies clip-path to the context: a single convex polygon is clipped
+ * exactly; anything else is kept in the IR (CSG intersection) and drawn
+ * unclipped, with a warning.
+ */
+static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, const sv_path *up,
+                       clip_poly *slot, bool *used_slot)
+{
+    char d[160];
+    desc(n, d, sizeof d);
+    sv_node *cp = find_id(im, s->clip_path);
+    if (!cp || strcmp(cp->name, "clipPath") != 0) {
+        /* SVG 1.1: a reference to a non-existent object is an error; rsvg ignores it */
+        sv_doc_warn(im->doc, "%s: clip-path #%s not found, ignored", d, s->clip_path);
+        return;
+    }
+    double ubox[4] = {0, 0, 0, 0};
+    if (up)
+        tight_bbox(up, ubox);
+    sv_path geo;
+    sv_path_init(&geo);
+    int rule = CS_FILL_NONZERO;
+    bool only_paths = true;
+    clip_geometry(im, cp, s, c->ctm, ubox, c, &geo, &rule, &only_paths);
+    sv_pt *poly;
+    int np;
+    if (only_paths && sv_path_convex_polygon(&geo, &poly, &np) && c->nclips < MAX_CLIPS) {
+        slot->v = poly;
+        slot->n = np;
+        *used_slot = true;
+        c->clips[c->nclips++] = slot;
+        sv_path_free(&geo);
+        return;
+    }
+    /* keep it in the IR for CSG */
+    sv_clip clip;
+    memset(&clip, 0, sizeof clip);
+    clip.parent = c->ir_clip;
+    clip.parts = sv_xrealloc(NULL, sizeof *clip.parts);
+    clip.nparts = 1;
+    clip.parts[0].fill_rule = rule;
+    clip.parts[0].contours = NULL;
+    clip.parts[0].ncontours = 0;
+    sv_path_to_contours(&geo, &clip.parts[0].contours, &clip.parts[0].ncontours);
+    im->doc->clips = sv_xrealloc(im->doc->clips, (size_t)(im->doc->nclips + 1) * sizeof clip);
+    im->doc->clips[im->doc->nclips] = clip;
+    c->ir_clip = im->doc->nclips++;
+    sv_doc_warn(im->doc, "%s: clip-path #%s is not one convex polygon: kept for CSG, drawn unclipped",
+                d, s->clip_path);
+    sv_path_free(&geo);
+}
+
+/* ----------------------------------------------------------- elements */
+
+static void render_children(imp *im, sv_node *n, const sv_style *s, const ctx *c)
+{
+    for (int i = 0; i < n->nkids; i++)
+        render(im, n->kids[i], s, c);
+}
+
+static bool is_nonrendering(const char *name)
+{
+    static const char *const names[] = {
+        "defs", "clipPath", "mask", "linearGradient", "radialGradient", "pattern", "marker",
+        "symbol", "style", "title", "desc", "metadata", "filter", "stop", "font", "font-face",
+        "cursor", "view", "script", "animate", "set", "animateMotion", "animateTransform",
+        "animateColor", "color-profile", "missing-glyph", "glyph", NULL};
+    for (int i = 0; names[i]; i++)
+        if (!strcmp(name, names[i]))
+            return true;
+    return false;
+}
+
+/* A nested viewport (svg element or an instantiated symbol). */
+static void render_viewport(imp *im, sv_node *n, const sv_style *s, ctx *c, double x, double y,
+                            double w, double h)
+{
+    if (!(w > 0 && h > 0))
+        return;
+    double vb[4];
+    if (get_viewbox(n, vb)) {
+        c->ctm = sv_affine_mul(c->ctm, viewbox_map(vb, sv_attr(n, "preserveAspectRatio"), x, y, w, h));
+        c->vp_w = vb[2];
+        c->vp_h = vb[3];
+    } else {
+        sv_affine t = {1, 0, 0, 1, x, y};
+        c->ctm = sv_affine_mul(c->ctm, t);
+        c->vp_w = w;
+        c->vp_h = h;
+    }
+    render_children(im, n, s, c);
+}
+
+static bool switch_accepts(const sv_node *k)
+{
+    if (sv_attr(k, "requiredExtensions"))
+        return false;
+    const char *lang = sv_attr(k, "systemLanguage");
+    return !lang || strstr(lang, "en") != NULL;
+}
+
+static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
+{
+    const char *name = n->name;
+    if (strncmp(name, "ns:", 3) == 0 || name[0] == '#' || is_nonrendering(name))
+        return; /* editor metadata, character data and definitions draw nothing by themselves */
+    char d[160];
+    if (im->depth >= 64) {
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: nesting deeper than 64, not drawn", d);
+        return;
+    }
+    sv_style s;
+    sv_style_compute(&s, ps, n, &im->css, sqrt((pc->vp_w * pc->vp_w + pc->vp_h * pc->vp_h) / 2),
+                     im->doc);
+    if (s.display_none)
+        return;
+    ctx c = *pc;
+    const char *tr = sv_attr(n, "transform");
+    sv_affine t;
+    if (tr) {
+        if (sv_parse_transform(tr, &t)) {
+            c.ctm = sv_affine_mul(c.ctm, t);
+        } else {
+            desc(n, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: bad transform \"%s\", element not drawn", d, tr);
+            return;
+        }
+    }
+    bool shape = !strcmp(name, "path") || !strcmp(name, "rect") || !strcmp(name, "circle") ||
+                 !strcmp(name, "ellipse") || !strcmp(name, "line") || !strcmp(name, "polyline") ||
+                 !strcmp(name, "polygon");
+    if (s.filter[0]) {
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: filter #%s not supported, drawn unfiltered", d, s.filter);
+    }
+    if (s.mask[0]) {
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: mask #%s not supported, drawn unmasked", d, s.mask);
+    }
+    /* group opacity: one layer (cel) for the whole subtree */
+    if (!shape && s.opacity < 1) {
+        if (c.layer == 0)
+            c.layer = ++im->next_layer;
+        c.alpha *= s.opacity;
+        s.opacity = 1;
+    }
+    sv_path up;
+    sv_path_init(&up);
+    bool have_path = shape && shape_path(im, n, &s, &c, &up);
+    clip_poly slot = {NULL, 0};
+    bool used_slot = false;
+    if (s.clip_path[0])
+        apply_clip(im, n, &s, &c, have_path ? &up : NULL, &slot, &used_slot);
+    im->stack[im->depth++] = n;
+    if (shape) {
+        if (have_path)
+            paint_shape(im, n, &s, &c, &up);
+    } else if (!strcmp(name, "g") || !strcmp(name, "a")) {
+        render_children(im, n, &s, &c);
+    } else if (!strcmp(name, "switch")) {
+        for (int i = 0; i < n->nkids; i++)
+            if (strncmp(n->kids[i]->name, "ns:", 3) != 0 && n->kids[i]->name[0] != '#' &&
+                switch_accepts(n->kids[i])) {
+                render(im, n->kids[i], &s, &c);
+                break;
+            }
+    } else if (!strcmp(name, "svg")) {
+        render_viewport(im, n, &s, &c, attr_len(n, "x", &s, c.vp_w, 0),
+                        attr_len(n, "y", &s, c.vp_h, 0), attr_len(n, "width", &s, c.vp_w, c.vp_w),
+                        attr_len(n, "height", &s, c.vp_h, c.vp_h));
+    } else if (!strcmp(name, "use")) {
+        sv_node *target = find_href(im, n);
+        bool cycle = false;
+        for (int i = 0; i < im->depth; i++)
+            cycle |= im->stack[i] == target;
+        desc(n, d, sizeof d);
+        if (!target) {
+            sv_doc_warn(im->doc, "%s: href target not found, nothing drawn", d);
+        } else if (cycle) {
+            sv_doc_warn(im->doc, "%s: reference cycle, not drawn", d);
+        } else {
+            sv_affine tu = {1, 0, 0, 1, attr_len(n, "x", &s, c.vp_w, 0),
+                            attr_len(n, "y", &s, c.vp_h, 0)};
+            c.ctm = sv_affine_mul(c.ctm, tu);
+            if (!strcmp(target->name, "symbol") || !strcmp(target->name, "svg")) {
+                sv_style ts;
+                sv_style_compute(&ts, &s, target, &im->css, 0, im->doc);
+                im->stack[im->depth++] = target;
+                render_viewport(im, target, &ts, &c, 0, 0,
+                                attr_len(n, "width", &s, c.vp_w,
+                                         attr_len(target, "width", &s, c.vp_w, c.vp_w)),
+                                attr_len(n, "height", &s, c.vp_h,
+                                         attr_len(target, "height", &s, c.vp_h, c.vp_h)));
+                im->depth--;
+            } else {
+                render(im, target, &s, &c);
+            }
+        }
+    } else if (!strcmp(name, "text")) {
+        sv_text_run *runs;
+        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
+                                    im->doc);
+        for (int i = 0; i < nr; i++)
+            if (runs[i].path.n > 0)
+                paint_shape(im, runs[i].node, runs[i].style, &c, &runs[i].path);
+        sv_text_runs_free(runs, nr);
+    } else {
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: element not supported, not drawn", d);
+    }
+    im->depth--;
+    if (used_slot)
+        free(slot.v);
+    sv_path_free(&up);
+}
+
+/* ------------------------------------------------------ cel packing */
+
+static bool boxes_meet(const double a[4], const double b[4])
+{
+    return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+}
+
+static void pack_cels(imp *im)
+{
+    sv_doc *doc = im->doc;
+    int cel_layer = -1, first = 0; /* items of the current cel: [first, i) in front order */
+    item **order = sv_xrealloc(NULL, (size_t)(im->nitems + 1) * sizeof *order);
+    for (int i = 0; i < im->nitems; i++)
+        order[i] = &im->items[im->nitems - 1 - i];
+    for (int i = 0; i < im->nitems; i++) {
+        item *it = order[i];
+        bool join = doc->ncels > 0 && it->layer == cel_layer;
+        if (join && it->layer == 0 && im->opts.one_cel_per_shape)
+            join = false;
+        if (join && it->layer == 0)
+            for (int k = first; k < i && join; k++)
+                if (order[k]->translucent && boxes_meet(order[k]->reg.bbox, it->reg.bbox))
+                    join = false;
+        if (!join) {
+            doc->cels = sv_xrealloc(doc->cels, (size_t)(doc->ncels + 1) * sizeof *doc->cels);
+            sv_cel *cel = &doc->cels[doc->ncels++];
+            char nm[32];
+            snprintf(nm, sizeof nm, "svg%d", doc->ncels - 1);
+            cel->name = sv_xstrdup(nm);
+            cel->nregions = 0;
+            cel->regions = NULL;
+            cel_layer = it->layer;
+            first = i;
+        }
+        sv_cel *cel = &doc->cels[doc->ncels - 1];
+        cel->regions = sv_xrealloc(cel->regions, (size_t)(cel->nregions + 1) * sizeof(sv_region));
+        cel->regions[cel->nregions++] = it->reg;
+    }
+    free(order);
+}
+
+/* ------------------------------------------------------------ entry */
+
+int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, sv_doc *doc,
+                     char *err, size_t errlen)
+{
+    sv_doc_init(doc);
+    sv_node *root = sv_xml_parse(data, len, err, errlen);
+    if (!root)
+        return -1;
+    if (strcmp(root->name, "svg") != 0) {
+        snprintf(err, errlen, "root element is <%s>, not <svg> in the SVG namespace", root->name);
+        sv_xml_free(root);
+        return -1;
+    }
+    imp im;
+    memset(&im, 0, sizeof im);
+    im.doc = doc;
+    if (opts)
+        im.opts = *opts;
+    collect(&im, root);
+
+    sv_style s0;
+    sv_style_initial(&s0);
+    memcpy(s0.color, im.opts.current_color, sizeof s0.color);
+    double vb[4];
+    bool has_vb = get_viewbox(root, vb);
+    /* Intrinsic size: width/height, percentages falling back to the viewBox. */
+    double w = has_vb ? vb[2] : 100, h = has_vb ? vb[3] : 100;
+    const char *ws = sv_attr(root, "width"), *hs = sv_attr(root, "height");
+    double x;
+    if (ws && !strchr(ws, '%') && sv_parse_length(ws, 12, 0, &x) && x > 0)
+        w = x;
+    if (hs && !strchr(hs, '%') && sv_parse_length(hs, 12, 0, &x) && x > 0)
+        h = x;
+    if (has_vb && ws && !strchr(ws, '%') && !(hs && !strchr(hs, '%')))
+        h = w * vb[3] / vb[2]; /* one dimension given: keep the viewBox's aspect */
+    if (has_vb && hs && !strchr(hs, '%') && !(ws && !strchr(ws, '%')))
+        w = h * vb[2] / vb[3];
+    doc->width = w;
+    doc->height = h;
+    double nominal = im.opts.nominal_px > 0 ? im.opts.nominal_px : 1024;
+    im.tol = im.opts.tolerance > 0 ? im.opts.tolerance : 0.01 * fmax(w, h) / nominal;
+
+    ctx c;
+    memset(&c, 0, sizeof c);
+    c.ctm = sv_affine_identity();
+    c.alpha = 1;
+    c.ir_clip = -1;
+    c.vp_w = w;
+    c.vp_h = h;
+    /* the root svg is a viewport at the origin whatever its x and y */
+    sv_style rs;
+    sv_style_compute(&rs, &s0, root, &im.css, sqrt((w * w + h * h) / 2), doc);
+    if (rs.opacity < 1) {
+        c.layer = ++im.next_layer;
+        c.alpha = rs.opacity;
+    }
+    if (rs.filter[0])
+        sv_doc_warn(doc, "<svg>: filter #%s not supported, drawn unfiltered", rs.filter);
+    if (rs.mask[0])
+        sv_doc_warn(doc, "<svg>: mask #%s not supported, drawn unmasked", rs.mask);
+    im.stack[im.depth++] = root;
+    if (!rs.display_none)
+        render_viewport(&im, root, &rs, &c, 0, 0, w, h);
+    pack_cels(&im);
+
+    free(im.items);
+    free(im.ids);
+    sv_css_free(&im.css);
+    sv_xml_free(root);
+    return 0;
+}
+
+int sv_import_file(const char *path, const sv_import_opts *opts, sv_doc *doc, char *err,
+                   size_t errlen)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        sv_doc_init(doc);
+        return -1;
+    }
+    char *buf = NULL;
+    size_t len = 0, cap = 0;
+    for (;;) {
+        if (len == cap) {
+            cap = cap ? 2 * cap : 65536;
+            buf = sv_xrealloc(buf, cap);
+        }
+        size_t got = fread(buf + len, 1, cap - len, f);
+        if (got == 0)
+            break;
+        len += got;
+    }
+    fclose(f);
+    char e2[400];
+    int rc = sv_import_buffer(buf, len, opts, doc, e2, sizeof e2);
+    if (rc < 0)
+        snprintf(err, errlen, "%s: %s", path, e2);
+    free(buf);
+    return rc;
+}

@@ -1,0 +1,666 @@
+/*
+ * sv_style.c - CSS and presentation attributes to computed styles, plus the
+ * transform and length grammars.
+ *
+ * The cascade is SVG's: a property starts from the parent (inherited ones)
+ * or its initial value, then presentation attributes apply, then matching
+ * style sheet rules in order of specificity and appearance, then the style
+ * attribute. Style sheets are supported for compound selectors (tag, *,
+ * .class, #id and their combinations, in comma lists), which is what icon
+ * themes and editors write; anything else is skipped with a warning, never
+ * ignored silently.
+ */
+#include <ctype.h>
+#include <math.h>
+#include <strings.h>
+
+#include "sv_import.h"
+#include "sv_internal.h"
+
+/* ------------------------------------------------------------- lengths */
+
+bool sv_parse_length(const char *s, double font_size, double percent_of, double *v)
+{
+    const char *p = s;
+    double x;
+    if (!sv_parse_number(&p, &x))
+        return false;
+    while (*p == ' ')
+        p++;
+    static const struct {
+        const char *unit;
+        double scale; /* user units (px at 96 dpi, as CSS and librsvg) */
+    } units[] = {{"px", 1}, {"pt", 96.0 / 72}, {"pc", 16}, {"mm", 96 / 25.4},
+                 {"cm", 96 / 2.54}, {"in", 96}, {"", 1}};
+    if (*p == '%') {
+        *v = x / 100 * percent_of;
+        return true;
+    }
+    if (strncmp(p, "em", 2) == 0) {
+        *v = x * font_size;
+        return true;
+    }
+    if (strncmp(p, "ex", 2) == 0) {
+        *v = x * font_size / 2;
+        return true;
+    }
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
+        size_t n = strlen(units[i].unit);
+        if (strncmp(p, units[i].unit, n) == 0 && (p[n] == 0 || isspace((unsigned char)p[n]))) {
+            *v = x * units[i].scale;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* ---------------------------------------------------------- transforms */
+
+bool sv_parse_transform(const char *s, sv_affine *out)
+{
+    sv_affine m = sv_affine_identity();
+    for (;;) {
+        s = sv_skip_wsp_comma(s);
+        if (!*s)
+            break;
+        const char *name = s;
+        while (isalpha((unsigned char)*s))
+            s++;
+        size_t nlen = (size_t)(s - name);
+        while (isspace((unsigned char)*s))
+            s++;
+        if (*s != '(' || nlen == 0)
+            return false;
+        s++;
+        double a[6];
+        int n = 0;
+        while (n < 6 && sv_parse_number(&s, &a[n]))
+            n++;
+        s = sv_skip_wsp_comma(s);
+        if (*s != ')')
+            return false;
+        s++;
+        sv_affine t = sv_affine_identity();
+#define IS(str) (nlen == strlen(str) && strncmp(name, str, nlen) == 0)
+        if (IS("matrix") && n == 6) {
+            t.a = a[0], t.b = a[1], t.c = a[2], t.d = a[3], t.e = a[4], t.f = a[5];
+        } else if (IS("translate") && (n == 1 || n == 2)) {
+            t.e = a[0];
+            t.f = n == 2 ? a[1] : 0;
+        } else if (IS("scale") && (n == 1 || n == 2)) {
+            t.a = a[0];
+            t.d = n == 2 ? a[1] : a[0];
+        } else if (IS("rotate") && (n == 1 || n == 3)) {
+            double r = a[0] * M_PI / 180, c = cos(r), sn = sin(r);
+            t.a = c, t.b = sn, t.c = -sn, t.d = c;
+            if (n == 3) { /* translate(cx,cy) rotate(a) translate(-cx,-cy) */
+                t.e = a[1] - c * a[1] + sn * a[2];
+                t.f = a[2] - sn * a[1] - c * a[2];
+            }
+        } else if (IS("skewX") && n == 1) {
+            t.c = tan(a[0] * M_PI / 180);
+        } else if (IS("skewY") && n == 1) {
+            t.b = tan(a[0] * M_PI / 180);
+        } else {
+            return false;
+        }
+#undef IS
+        m = sv_affine_mul(m, t);
+    }
+    *out = m;
+    return true;
+}
+
+/* ---------------------------------------------------------------- CSS */
+
+static char *trim(char *s)
+{
+    while (isspace((unsigned char)*s))
+        s++;
+    size_t n = strlen(s);
+    while (n > 0 && isspace((unsigned char)s[n - 1]))
+        s[--n] = 0;
+    return s;
+}
+
+/* Removes comments in place. */
+static void strip_comments(char *s)
+{
+    char *w = s;
+    while (*s) {
+        if (s[0] == '/' && s[1] == '*') {
+            char *e = strstr(s + 2, "*/");
+            s = e ? e + 2 : s + strlen(s);
+            continue;
+        }
+        *w++ = *s++;
+    }
+    *w = 0;
+}
+
+int sv_css_parse_decls(const char *text, sv_decl **out)
+{
+    char *buf = sv_xstrdup(text);
+    strip_comments(buf);
+    int n = 0, cap = 0;
+    *out = NULL;
+    char *p = buf;
+    while (*p) {
+        /* a declaration ends at ';' outside parentheses and quotes */
+        char *start = p;
+        int depth = 0;
+        char quote = 0;
+        while (*p && (depth > 0 || quote || *p != ';')) {
+            if (quote) {
+                if (*p == quote)
+                    quote = 0;
+            } else if (*p == '"' || *p == '\'') {
+                quote = *p;
+            } else if (*p == '(') {
+                depth++;
+            } else if (*p == ')' && depth > 0) {
+                depth--;
+            }
+            p++;
+        }
+        if (*p)
+            *p++ = 0;
+        char *colon = strchr(start, ':');
+        if (!colon)
+            continue;
+        *colon = 0;
+        char *name = trim(start), *value = trim(colon + 1);
+        char *imp = strstr(value, "!important");
+        if (imp) {
+            *imp = 0;
+            value = trim(value);
+        }
+        if (!*name)
+            continue;
+        for (char *c = name; *c; c++)
+            *c = (char)tolower((unsigned char)*c);
+        SV_GROW(*out, n, cap);
+        (*out)[n].name = sv_xstrdup(name);
+        (*out)[n].value = sv_xstrdup(value);
+        n++;
+    }
+    free(buf);
+    return n;
+}
+
+void sv_decls_free(sv_decl *d, int n)
+{
+    for (int i = 0; i < n; i++) {
+        free(d[i].name);
+        free(d[i].value);
+    }
+    free(d);
+}
+
+/* A compound selector into rule r; false if it is beyond what we match. */
+static bool parse_selector(const char *sel, sv_css_rule *r)
+{
+    const char *p = sel;
+    memset(r, 0, sizeof *r);
+    if (*p == '*') {
+        p++;
+    } else if (isalpha((unsigned char)*p)) {
+        const char *s = p;
+        while (isalnum((unsigned char)*p) || *p == '-' || *p == '_')
+            p++;
+        r->tag = sv_xstrndup(s, (size_t)(p - s));
+        r->specificity += 1;
+    }
+    while (*p == '.' || *p == '#') {
+        char kind = *p++;
+        const char *s = p;
+        while (isalnum((unsigned char)*p) || *p == '-' || *p == '_')
+            p++;
+        if (p == s)
+            return false;
+        if (kind == '#') {
+            if (r->id)
+                return false;
+            r->id = sv_xstrndup(s, (size_t)(p - s));
+            r->specificity += 10000;
+        } else {
+            r->classes = sv_xrealloc(r->classes, (size_t)(r->nclasses + 1) * sizeof(char *));
+            r->classes[r->nclasses++] = sv_xstrndup(s, (size_t)(p - s));
+            r->specificity += 100;
+        }
+    }
+    return *p == 0 && p != sel;
+}
+
+static void rule_free(sv_css_rule *r)
+{
+    free(r->tag);
+    free(r->id);
+    for (int i = 0; i < r->nclasses; i++)
+        free(r->classes[i]);
+    free(r->classes);
+}
+
+void sv_css_parse_sheet(sv_css *css, const char *text, sv_doc *doc)
+{
+    char *buf = sv_xstrdup(text);
+    strip_comments(buf);
+    char *p = buf;
+    for (;;) {
+        while (isspace((unsigned char)*p))
+            p++;
+        if (!*p)
+            break;
+        if (p[0] == '<' && strncmp(p, "<!--", 4) == 0) { /* CDO/CDC tokens are allowed */
+            p += 4;
+            continue;
+        }
+        if (strncmp(p, "-->", 3) == 0) {
+            p += 3;
+            continue;
+        }
+        char *open = strchr(p, '{');
+        if (*p == '@') {
+            char *semi = strchr(p, ';');
+            char word[32];
+            snprintf(word, sizeof word, "%.*s", (int)strcspn(p, " \t\n{;"), p);
+            sv_doc_warn(doc, "<style>: CSS at-rule %s ignored", word);
+            if (semi && (!open || semi < open)) {
+                p = semi + 1;
+                continue;
+            }
+        }
+        if (!open)
+            break;
+        /* the block runs to the matching brace */
+        char *q = open + 1;
+        int depth = 1;
+        while (*q && depth > 0) {
+            if (*q == '{')
+                depth++;
+            else if (*q == '}')
+                depth--;
+            q++;
+        }
+        char *close = q - 1;
+        *open = 0;
+        if (*close == '}')
+            *close = 0;
+        if (*p == '@') {
+            p = q;
+            continue;
+        }
+        sv_decl *decls;
+        int nd = sv_css_parse_decls(open + 1, &decls);
+        int used = 0;
+        char *sels = p;
+        for (char *tok = strtok(sels, ","); tok; tok = strtok(NULL, ",")) {
+            char *sel = trim(tok);
+            sv_css_rule r;
+            if (!parse_selector(sel, &r)) {
+                sv_doc_warn(doc, "<style>: CSS selector '%s' not supported, rule ignored", sel);
+                rule_free(&r);
+                continue;
+            }
+            r.order = css->n;
+            /* each rule owns a copy of the declarations */
+            r.decls = sv_xrealloc(NULL, (size_t)(nd ? nd : 1) * sizeof *r.decls);
+            for (int i = 0; i < nd; i++) {
+                r.decls[i].name = sv_xstrdup(decls[i].name);
+                r.decls[i].value = sv_xstrdup(decls[i].value);
+            }
+            r.ndecls = nd;
+            SV_GROW(css->rules, css->n, css->cap);
+            css->rules[css->n++] = r;
+            used++;
+        }
+        sv_decls_free(decls, nd);
+        p = q;
+    }
+    free(buf);
+}
+
+void sv_css_free(sv_css *css)
+{
+    for (int i = 0; i < css->n; i++) {
+        rule_free(&css->rules[i]);
+        sv_decls_free(css->rules[i].decls, css->rules[i].ndecls);
+    }
+    free(css->rules);
+    memset(css, 0, sizeof *css);
+}
+
+static bool has_class(const char *list, const char *cls)
+{
+    size_t n = strlen(cls);
+    const char *p = list;
+    while (*p) {
+        while (isspace((unsigned char)*p))
+            p++;
+        const char *s = p;
+        while (*p && !isspace((unsigned char)*p))
+            p++;
+        if ((size_t)(p - s) == n && strncmp(s, cls, n) == 0)
+            return true;
+    }
+    return false;
+}
+
+bool sv_css_matches(const sv_css_rule *r, const sv_node *n)
+{
+    if (r->tag && strcmp(r->tag, n->name) != 0)
+        return false;
+    if (r->id) {
+        const char *id = sv_attr(n, "id");
+        if (!id || strcmp(id, r->id) != 0)
+            return false;
+    }
+    if (r->nclasses) {
+        const char *cl = sv_attr(n, "class");
+        if (!cl)
+            return false;
+        for (int i = 0; i < r->nclasses; i++)
+            if (!has_class(cl, r->classes[i]))
+                return false;
+    }
+    return true;
+}
+
+/* -------------------------------------------------------------- styles */
+
+void sv_style_initial(sv_style *s)
+{
+    memset(s, 0, sizeof *s);
+    s->fill.kind = SV_PAINT_COLOR; /* black */
+    s->fill.alpha = 1;
+    s->stroke.kind = SV_PAINT_NONE;
+    s->stroke.alpha = 1;
+    s->fill_opacity = s->stroke_opacity = 1;
+    s->fill_rule = s->clip_rule = CS_FILL_NONZERO;
+    s->stroke_width = 1;
+    s->cap = SV_CAP_BUTT;
+    s->join = SV_JOIN_MITER;
+    s->miter_limit = 4;
+    s->visible = true;
+    s->font_size = 12; /* librsvg's default medium size */
+    strcpy(s->font_family, "sans-serif");
+    s->font_weight = 400;
+    s->opacity = 1;
+    s->stop_opacity = 1;
+}
+
+void sv_style_inherit(sv_style *c, const sv_style *p)
+{
+    *c = *p;
+    c->opacity = 1;
+    c->display_none = false;
+    c->clip_path[0] = c->mask[0] = c->filter[0] = 0;
+    c->stop_color[0] = c->stop_color[1] = c->stop_color[2] = 0;
+    c->stop_opacity = 1;
+}
+
+static double parse_opacity(const char *v, double dflt)
+{
+    const char *p = v;
+    double x;
+    if (!sv_parse_number(&p, &x))
+        return dflt;
+    if (*p == '%')
+        x /= 100;
+    return x < 0 ? 0 : (x > 1 ? 1 : x);
+}
+
+/* "url(#id)" into id; returns pointer past ')' or NULL. */
+static const char *parse_url(const char *v, char *id, size_t idlen)
+{
+    while (isspace((unsigned char)*v))
+        v++;
+    if (strncmp(v, "url(", 4) != 0)
+        return NULL;
+    v += 4;
+    while (isspace((unsigned char)*v) || *v == '"' || *v == '\'')
+        v++;
+    const char *e = strchr(v, ')');
+    if (!e)
+        return NULL;
+    const char *end = e;
+    while (end > v && (isspace((unsigned char)end[-1]) || end[-1] == '"' || end[-1] == '\''))
+        end--;
+    if (*v == '#')
+        v++;
+    snprintf(id, idlen, "%.*s", (int)(end - v), v);
+    return e + 1;
+}
+
+static bool parse_paint(const char *v, sv_paint_spec *ps)
+{
+    while (isspace((unsigned char)*v))
+        v++;
+    sv_paint_spec p;
+    memset(&p, 0, sizeof p);
+    p.alpha = 1;
+    const char *rest = parse_url(v, p.url, sizeof p.url);
+    if (rest) {
+        p.kind = SV_PAINT_URL;
+        while (isspace((unsigned char)*rest))
+            rest++;
+        double a;
+        if (*rest && strcmp(rest, "none") != 0) {
+            sv_color_kind k = sv_parse_color(rest, p.fallback_rgb, &a);
+            p.fallback_kind = k == SV_COLOR_RGB       ? SV_PAINT_COLOR
+                              : k == SV_COLOR_CURRENT ? SV_PAINT_CURRENT
+                                                      : SV_PAINT_NONE;
+        }
+        *ps = p;
+        return true;
+    }
+    if (strcmp(v, "none") == 0) {
+        p.kind = SV_PAINT_NONE;
+        *ps = p;
+        return true;
+    }
+    sv_color_kind k = sv_parse_color(v, p.rgb, &p.alpha);
+    if (k == SV_COLOR_INVALID)
+        return false; /* an invalid value leaves the property as it was */
+    p.kind = k == SV_COLOR_CURRENT ? SV_PAINT_CURRENT : SV_PAINT_COLOR;
+    *ps = p;
+    return true;
+}
+
+bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const char *v,
+                  double diag)
+{
+    bool inherit = strcmp(v, "inherit") == 0;
+#define INH(field)                                                                               \
+    if (inherit) {                                                                               \
+        memcpy(&s->field, &parent->field, sizeof s->field);                                     \
+        return true;                                                                             \
+    }
+    if (!strcmp(name, "fill")) {
+        INH(fill);
+        parse_paint(v, &s->fill);
+    } else if (!strcmp(name, "stroke")) {
+        INH(stroke);
+        parse_paint(v, &s->stroke);
+    } else if (!strcmp(name, "fill-opacity")) {
+        INH(fill_opacity);
+        s->fill_opacity = parse_opacity(v, s->fill_opacity);
+    } else if (!strcmp(name, "stroke-opacity")) {
+        INH(stroke_opacity);
+        s->stroke_opacity = parse_opacity(v, s->stroke_opacity);
+    } else if (!strcmp(name, "opacity")) {
+        INH(opacity);
+        s->opacity = parse_opacity(v, 1);
+    } else if (!strcmp(name, "stop-opacity")) {
+        INH(stop_opacity);
+        s->stop_opacity = parse_opacity(v, 1);
+    } else if (!strcmp(name, "fill-rule") || !strcmp(name, "clip-rule")) {
+        int *rule = name[0] == 'f' ? &s->fill_rule : &s->clip_rule;
+        if (inherit)
+            *rule = name[0] == 'f' ? parent->fill_rule : parent->clip_rule;
+        else if (!strcmp(v, "evenodd"))
+            *rule = CS_FILL_EVENODD;
+        else if (!strcmp(v, "nonzero"))
+            *rule = CS_FILL_NONZERO;
+    } else if (!strcmp(name, "stroke-width")) {
+        INH(stroke_width);
+        double w;
+        if (sv_parse_length(v, s->font_size, diag, &w) && w >= 0)
+            s->stroke_width = w;
+    } else if (!strcmp(name, "stroke-linecap")) {
+        INH(cap);
+        s->cap = !strcmp(v, "round") ? SV_CAP_ROUND : !strcmp(v, "square") ? SV_CAP_SQUARE
+                                                                           : SV_CAP_BUTT;
+    } else if (!strcmp(name, "stroke-linejoin")) {
+        INH(join);
+        if (!strcmp(v, "round"))
+            s->join = SV_JOIN_ROUND;
+        else if (!strcmp(v, "bevel"))
+            s->join = SV_JOIN_BEVEL;
+        else if (!strcmp(v, "miter"))
+            s->join = SV_JOIN_MITER;
+        else
+            return false; /* miter-clip, arcs (SVG 2) */
+    } else if (!strcmp(name, "stroke-miterlimit")) {
+        INH(miter_limit);
+        double m;
+        if (sv_parse_numbers(v, &m, 1) == 1 && m >= 1)
+            s->miter_limit = m;
+    } else if (!strcmp(name, "stroke-dasharray")) {
+        if (inherit) {
+            s->has_dash = parent->has_dash;
+            s->ndash = parent->ndash;
+            memcpy(s->dash, parent->dash, sizeof s->dash);
+            return true;
+        }
+        s->ndash = sv_parse_numbers(v, s->dash, 16);
+        double sum = 0;
+        for (int i = 0; i < s->ndash; i++)
+            sum += s->dash[i] > 0 ? s->dash[i] : 0;
+        s->has_dash = s->ndash > 0 && sum > 0;
+    } else if (!strcmp(name, "stroke-dashoffset")) {
+        INH(dash_offset);
+        sv_parse_length(v, s->font_size, diag, &s->dash_offset);
+    } else if (!strcmp(name, "color")) {
+        INH(color);
+        double a, rgb[3];
+        if (sv_parse_color(v, rgb, &a) == SV_COLOR_RGB)
+            memcpy(s->color, rgb, sizeof rgb);
+    } else if (!strcmp(name, "stop-color")) {
+        INH(stop_color);
+        double a, rgb[3];
+        sv_color_kind k = sv_parse_color(v, rgb, &a);
+        if (k == SV_COLOR_RGB) {
+            memcpy(s->stop_color, rgb, sizeof rgb);
+            s->stop_opacity *= a;
+        } else if (k == SV_COLOR_CURRENT) {
+            memcpy(s->stop_color, s->color, sizeof rgb);
+        }
+    } else if (!strcmp(name, "visibility")) {
+        INH(visible);
+        s->visible = strcmp(v, "hidden") != 0 && strcmp(v, "collapse") != 0;
+    } else if (!strcmp(name, "display")) {
+        s->display_none = !strcmp(v, "none");
+    } else if (!strcmp(name, "clip-path") || !strcmp(name, "mask") || !strcmp(name, "filter")) {
+        char *dst = name[0] == 'c' ? s->clip_path : name[0] == 'm' ? s->mask : s->filter;
+        dst[0] = 0;
+        if (strcmp(v, "none") != 0 && !parse_url(v, dst, 128))
+            return false;
+    } else if (!strcmp(name, "font-size")) {
+        INH(font_size);
+        double fs;
+        if (sv_parse_length(v, parent->font_size, parent->font_size, &fs) && fs > 0)
+            s->font_size = fs;
+    } else if (!strcmp(name, "font-family")) {
+        INH(font_family);
+        snprintf(s->font_family, sizeof s->font_family, "%s", v);
+    } else if (!strcmp(name, "font-weight")) {
+        INH(font_weight);
+        s->font_weight = (!strcmp(v, "bold") || !strcmp(v, "bolder") || atoi(v) >= 600) ? 700 : 400;
+    } else if (!strcmp(name, "font-style")) {
+        INH(font_italic);
+        s->font_italic = !strcmp(v, "italic") || !strcmp(v, "oblique");
+    } else if (!strcmp(name, "text-anchor")) {
+        INH(text_anchor);
+        s->text_anchor = !strcmp(v, "middle") ? 1 : !strcmp(v, "end") ? 2 : 0;
+    } else if (!strcmp(name, "marker-start") || !strcmp(name, "marker-mid") ||
+               !strcmp(name, "marker-end") || !strcmp(name, "marker")) {
+        return strcmp(v, "none") == 0 || inherit;
+    } else if (!strcmp(name, "mix-blend-mode")) {
+        return strcmp(v, "normal") == 0;
+    } else if (!strcmp(name, "paint-order")) {
+        return strcmp(v, "normal") == 0 || strncmp(v, "fill", 4) == 0;
+    }
+#undef INH
+    return true;
+}
+
+static void node_desc(const sv_node *n, char *buf, size_t len)
+{
+    const char *id = sv_attr(n, "id");
+    if (id)
+        snprintf(buf, len, "<%s id=\"%s\"> (line %d)", n->name, id, n->line);
+    else
+        snprintf(buf, len, "<%s> (line %d)", n->name, n->line);
+}
+
+static void apply(sv_style *s, const sv_style *parent, const sv_node *n, const char *name,
+                  const char *value, double diag, sv_doc *doc)
+{
+    if (!sv_style_set(s, parent, name, value, diag) && doc) {
+        char d[160];
+        node_desc(n, d, sizeof d);
+        sv_doc_warn(doc, "%s: %s: %s not supported, ignored", d, name, value);
+    }
+}
+
+static int cmp_rules(const void *a, const void *b)
+{
+    const sv_css_rule *x = *(const sv_css_rule *const *)a, *y = *(const sv_css_rule *const *)b;
+    if (x->specificity != y->specificity)
+        return x->specificity < y->specificity ? -1 : 1;
+    return x->order < y->order ? -1 : (x->order > y->order);
+}
+
+void sv_style_compute(sv_style *s, const sv_style *parent, const sv_node *n, const sv_css *css,
+                      double diag, sv_doc *doc)
+{
+    sv_style_inherit(s, parent);
+    /* `color` first: currentColor anywhere on the element refers to it. */
+    const char *color = sv_attr(n, "color");
+    if (color)
+        apply(s, parent, n, "color", color, diag, doc);
+    for (int i = 0; n->attrs[i]; i += 2)
+        if (strcmp(n->attrs[i], "style") != 0 && strcmp(n->attrs[i], "color") != 0 &&
+            strcmp(n->attrs[i], "class") != 0 && strcmp(n->attrs[i], "id") != 0 &&
+            strcmp(n->attrs[i], "transform") != 0)
+            apply(s, parent, n, n->attrs[i], n->attrs[i + 1], diag, doc);
+    if (css && css->n) {
+        const sv_css_rule **match = sv_xrealloc(NULL, (size_t)css->n * sizeof *match);
+        int nm = 0;
+        for (int i = 0; i < css->n; i++)
+            if (sv_css_matches(&css->rules[i], n))
+                match[nm++] = &css->rules[i];
+        qsort(match, (size_t)nm, sizeof *match, cmp_rules);
+        for (int i = 0; i < nm; i++) {
+            for (int k = 0; k < match[i]->ndecls; k++)
+                if (!strcmp(match[i]->decls[k].name, "color"))
+                    apply(s, parent, n, "color", match[i]->decls[k].value, diag, doc);
+            for (int k = 0; k < match[i]->ndecls; k++)
+                apply(s, parent, n, match[i]->decls[k].name, match[i]->decls[k].value, diag,
+                      doc);
+        }
+        free(match);
+    }
+    const char *st = sv_attr(n, "style");
+    if (st) {
+        sv_decl *d;
+        int nd = sv_css_parse_decls(st, &d);
+        for (int k = 0; k < nd; k++)
+            if (!strcmp(d[k].name, "color"))
+                apply(s, parent, n, "color", d[k].value, diag, doc);
+        for (int k = 0; k < nd; k++)
+            apply(s, parent, n, d[k].name, d[k].value, diag, doc);
+        sv_decls_free(d, nd);
+    }
+}

@@ -1,0 +1,113 @@
+/*
+ * svgimport_main.c - build/host/svgimport: the importer on its own, for
+ * tests and debugging. `svgimport import ...` and `svgimport text ...` are
+ * exactly `celc import` / `celc text`; `svgimport render` renders an SVG
+ * straight through the IR's cs_scene back end with the core:
+ *
+ *   svgimport render icon.svg -o out.png [--size WxH] [--aa none|N|exact]
+ *             [--blend srgb|linear] [--background C|none] [--one-cel-per-shape]
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../celc_import.h"
+#include "sv.h"
+#include "sv_import.h"
+#include "sv_render.h"
+
+static int usage(void)
+{
+    fprintf(stderr, "usage: svgimport import|text|render ... (see celc import/text; render:\n"
+                    "  svgimport render IN.svg -o OUT.png [--size WxH] [--aa none|N|exact]\n"
+                    "            [--blend srgb|linear] [--background C|none] [-q])\n");
+    return 2;
+}
+
+static int render_main(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL;
+    int w = 128, h = 128, sub = 16;
+    cs_aa_mode aa = CS_AA_SUBSCAN;
+    sv_import_opts io;
+    memset(&io, 0, sizeof io);
+    sv_scene_opts so = {.srgb_blend = true, .has_background = true, .background = {1, 1, 1}};
+    bool quiet = false;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-o") && i + 1 < argc) {
+            out = argv[++i];
+        } else if (!strcmp(a, "--size") && i + 1 < argc) {
+            if (sscanf(argv[++i], "%dx%d", &w, &h) != 2)
+                return usage();
+        } else if (!strcmp(a, "--aa") && i + 1 < argc) {
+            const char *v = argv[++i];
+            aa = !strcmp(v, "none") ? CS_AA_NONE : !strcmp(v, "exact") ? CS_AA_EXACT : CS_AA_SUBSCAN;
+            sub = atoi(v) > 0 ? atoi(v) : 16;
+        } else if (!strcmp(a, "--blend") && i + 1 < argc) {
+            so.srgb_blend = strcmp(argv[++i], "linear") != 0;
+        } else if (!strcmp(a, "--background") && i + 1 < argc) {
+            double al;
+            const char *v = argv[++i];
+            so.has_background = strcmp(v, "none") != 0;
+            if (so.has_background && sv_parse_color(v, so.background, &al) != SV_COLOR_RGB)
+                return usage();
+        } else if (!strcmp(a, "--one-cel-per-shape")) {
+            io.one_cel_per_shape = true;
+        } else if (!strcmp(a, "-q")) {
+            quiet = true;
+        } else if (!in) {
+            in = a;
+        } else {
+            return usage();
+        }
+    }
+    if (!in || !out)
+        return usage();
+    io.nominal_px = w > h ? w : h;
+    sv_doc doc;
+    char err[512];
+    if (sv_import_file(in, &io, &doc, err, sizeof err) < 0) {
+        fprintf(stderr, "svgimport: %s\n", err);
+        return 1;
+    }
+    if (!quiet)
+        for (int i = 0; i < doc.nwarnings; i++)
+            fprintf(stderr, "%s: warning: %s\n", in, doc.warnings[i]);
+    cs_scene *scene = malloc(sizeof *scene);
+    uint8_t *rgb = malloc((size_t)3 * w * h);
+    int rc = 0;
+    if (sv_doc_to_scene(&doc, &so, scene, err, sizeof err) < 0) {
+        fprintf(stderr, "svgimport: %s: %s\n", in, err);
+        rc = 1;
+    } else {
+        cs_status st = sv_render_rgb8(scene, w, h, aa, sub, so.srgb_blend, rgb);
+        if (st != CS_OK) {
+            fprintf(stderr, "svgimport: %s: render: %s\n", in, cs_status_str(st));
+            rc = 1;
+        } else if (sv_png_write_rgb(out, rgb, w, h) < 0) {
+            fprintf(stderr, "svgimport: %s: cannot write\n", out);
+            rc = 1;
+        }
+    }
+    if (!quiet)
+        fprintf(stderr, "%s: %d cels, %zu regions, %zu points\n", in, doc.ncels,
+                sv_doc_region_count(&doc), sv_doc_point_count(&doc));
+    free(scene);
+    free(rgb);
+    sv_doc_free(&doc);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2)
+        return usage();
+    if (!strcmp(argv[1], "import"))
+        return celc_import_main(argc - 1, argv + 1);
+    if (!strcmp(argv[1], "text"))
+        return celc_text_main(argc - 1, argv + 1);
+    if (!strcmp(argv[1], "render"))
+        return render_main(argc - 1, argv + 1);
+    return usage();
+}
