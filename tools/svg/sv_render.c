@@ -19,7 +19,9 @@ cs_status sv_render_rgb8(const cs_scene *scene, int w, int h, cs_aa_mode aa, int
         return CS_ERR_ARG;
     }
     cs_renderer r;
-    cs_render_opts o = {w, h, aa, subscanlines, 0.0f};
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.aa = aa;
+    o.subscanlines = subscanlines;
     cs_error e;
     cs_status st = cs_frame_begin(&r, ws, scene, &o, &e);
     cs_pixfmt fmt = encoded_out ? CS_PIX_RGB888_LINEAR : CS_PIX_RGB888_SRGB;
