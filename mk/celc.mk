@@ -43,3 +43,32 @@ test-scenes: $(HOST)/test_scenes $(HOST)/celc $(HOST)/celsim
 	$(Q)sh tests/run.sh -- "$(HOST)/test_scenes scenes" "sh tests/cli_stream.sh $(HOST) $(BUILD)/cli-stream"
 
 TEST_TARGETS += test-scenes
+
+# The same in-process tests under ASan + UBSan, the JSON loader and the core
+# included (mk/stream.mk does the same for the decoder's own tests).
+SCENES_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+SCENES_ASAN := $(ASAN)/scenes
+$(SCENES_ASAN)/core/%.o: core/%.c $(CORE_HDR)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(CORE_CFLAGS) $(SCENES_SAN) -c $< -o $@
+$(SCENES_ASAN)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(HOST_CFLAGS) $(PKG_CFLAGS) -Itests $(SCENES_SAN) -c $< -o $@
+$(SCENES_ASAN)/test_scenes: $(patsubst %.o,$(SCENES_ASAN)/obj/%.o,tests/test_scenes.o \
+        tools/cels_write.o tools/cels_read.o host-sim/scene_json.o host-sim/paint_json.o) \
+        $(patsubst core/%.c,$(SCENES_ASAN)/core/%.o,$(CORE_SRC))
+	$(Q)$(CC) $(SCENES_SAN) $^ -o $@ $(PKG_LIBS) -lm
+
+.PHONY: test-scenes-asan
+test-scenes-asan: $(SCENES_ASAN)/test_scenes
+	$(Q)ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 $< scenes >$<.log 2>&1; \
+		rc=$$?; sed 's/^test_scenes:/test_scenes_asan:/' $<.log; exit $$rc
+
+TEST_TARGETS += test-scenes-asan
+
+# `make demo` also compiles the demo to a stream, as a board would receive it.
+$(DEMO)/demo.cels: scenes/demo.json $(HOST)/celc
+	@mkdir -p $(dir $@)
+	@echo "celc compile $< -o $@"
+	$(Q)$(HOST)/celc compile $< -o $@
+DEMO_TARGETS += $(DEMO)/demo.cels
