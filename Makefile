@@ -32,7 +32,7 @@ PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 
 HOST_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Wmissing-prototypes \
-        -Icore -Ihal -Ihost-sim -D_POSIX_C_SOURCE=200809L -MMD -MP
+        -Icore -Ihal -Ihost-sim -Itools -D_POSIX_C_SOURCE=200809L -MMD -MP
 CORE_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) $(WARN) $(CORE_FREESTANDING) -Icore -MMD -MP
 
 .PHONY: all deps demo demo-all test test-all check-core clean
@@ -92,8 +92,9 @@ $(HOST)/obj/%.o: %.c
 
 # ------------------------------------------------------- host-sim (celsim)
 # celsim = host-sim/ (CLI, scene JSON loader, PNG writer, frame driver) plus
-# the hal/sim backend (in-memory display, host clock) over libcelscan.
-CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c))
+# the hal/sim backend (in-memory display, host clock) and the host side of the
+# cel stream reader (tools/cels_read.c, over the core's decoder) over libcelscan.
+CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c)) tools/cels_read.c
 CELSIM_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELSIM_SRC))
 
 $(HOST)/celsim: $(CELSIM_OBJ) $(HOST)/libcelscan.a
@@ -129,7 +130,7 @@ $(DEMO)/frame-%.png: scenes/demo.json $(HOST)/celsim
 #                    and run them
 # Tests of the parts in mk/*.mk are built by their fragments, not here.
 FRAGMENT_TESTS := tests/test_mcu_display.c tests/test_stream.c tests/test_exact.c \
-        tests/test_beta.c tests/test_paint_json.c $(wildcard tests/test_svg*.c)
+        tests/test_beta.c tests/test_paint_json.c tests/test_scenes.c $(wildcard tests/test_svg*.c)
 TEST_SRC := $(filter-out $(FRAGMENT_TESTS),$(sort $(wildcard tests/test_*.c)))
 TEST_REF_SRC := $(sort $(wildcard tests/ref/*.c))
 TEST_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -MMD -MP

@@ -7,10 +7,14 @@
  *   - setters overwrite values in place (transform, lights, paint, points of
  *     the same count) after checking them exactly as the builder does;
  *   - removing a cel closes the gaps its regions, contours and points leave,
- *     renumbers what follows, and drops the tracks that animated them;
+ *     renumbers what follows, and drops the tracks that animated them and
+ *     the paint functions its regions owned (each function slot belongs to
+ *     one field of one region, so the slots close up and the regions'
+ *     references to later slots move down);
  *   - moving a cel permutes only the cels array (a cel finds its regions
  *     through first_region), so regions need not follow stack order;
- *     cel-targeted tracks are renumbered and re-sorted.
+ *     cel-targeted tracks are renumbered and re-sorted. CSG programs live in
+ *     their regions and operands in their contours, so they move with them.
  * All of it is loops over the used part of the store, with no scratch
  * memory, so the stream decoder can apply a patch to its back store.
  */
@@ -239,6 +243,23 @@ static uint32_t shift_start(uint32_t start, uint32_t first, uint32_t n)
     return start > first ? first : start;
 }
 
+/*
+ * Removes function slot k: later slots move down one, and every reference
+ * to them (1 + slot in a region's func[]) with them. Removed regions that
+ * still wait for their own slots to go are renumbered too, so their
+ * references stay right until they are reached.
+ */
+static void remove_func_slot(cs_scene *scene, uint32_t k)
+{
+    for (uint32_t i = k; i + 1 < scene->func_count; i++)
+        copy_func(&scene->funcs[i], &scene->funcs[i + 1]);
+    scene->func_count--;
+    for (uint32_t r = 0; r < scene->region_count; r++)
+        for (int f = 0; f < 3; f++)
+            if (scene->regions[r].func[f] > k + 1u)
+                scene->regions[r].func[f]--;
+}
+
 cs_status cs_scene_remove_cel(cs_scene *scene, uint32_t cel, cs_error *err)
 {
     if (!scene) {
@@ -262,6 +283,15 @@ cs_status cs_scene_remove_cel(cs_scene *scene, uint32_t cel, cs_error *err)
         for (uint32_t k = fc; k < fc + nc; k++)
             np += scene->contours[k].point_count;
     }
+    /* Paint functions of the cel's regions, while the regions are in place. */
+    for (uint32_t r = fr; r < fr + nr; r++)
+        for (int f = 0; f < 3; f++) {
+            uint16_t ref = scene->regions[r].func[f];
+            if (ref) {
+                scene->regions[r].func[f] = 0;
+                remove_func_slot(scene, ref - 1u);
+            }
+        }
     /* Tracks first, while their targets still mean the old indices. */
     cs__tracks_remove_range(scene, CS__FAM_CEL, cel, 1);
     cs__tracks_remove_range(scene, CS__FAM_REGION, fr, nr);

@@ -340,15 +340,25 @@ cs_status cs_scene_add_contour(cs_scene *scene, int degree, int count, const cs_
 
 /* ------------------------------------------------------ functional paints */
 
-/* The last region, or NULL (with err set) when there is none. */
+/*
+ * The last region, or NULL (with err set) when there is none. As for
+ * cs_scene_add_region, the last cel must own the end of the region array:
+ * after cs_scene_move_cel the array's last region may belong to another cel,
+ * and a stream patch must not reach into it.
+ */
 static cs_region *last_region(cs_scene *scene, cs_error *err, int32_t *cel, int32_t *region)
 {
     if (scene->cel_count == 0 || scene->cels[scene->cel_count - 1].region_count == 0) {
         cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
         return 0;
     }
+    const cs_cel *c = &scene->cels[scene->cel_count - 1];
     *cel = (int32_t)scene->cel_count - 1;
-    *region = scene->cels[*cel].region_count - 1;
+    *region = c->region_count - 1;
+    if (c->first_region + c->region_count != scene->region_count) {
+        cs__error(err, CS_ERR_STATE, *cel, -1, -1, -1);
+        return 0;
+    }
     return &scene->regions[scene->region_count - 1];
 }
 
@@ -507,7 +517,7 @@ cs_status cs_scene_set_contour_operand(cs_scene *scene, int operand, cs_error *e
     cs_region *r = last_region(scene, err, &cel, &region);
     if (!r)
         return CS_ERR_STATE;
-    if (r->contour_count == 0) {
+    if (r->contour_count == 0 || r->first_contour + r->contour_count != scene->contour_count) {
         cs__error(err, CS_ERR_STATE, cel, region, -1, -1);
         return CS_ERR_STATE;
     }

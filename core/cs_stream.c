@@ -54,6 +54,16 @@ static float rd_f32(const uint8_t *p)
     return v.f;
 }
 
+static float word_f32(uint32_t w)
+{
+    union {
+        uint32_t u;
+        float f;
+    } v;
+    v.u = w;
+    return v.f;
+}
+
 static void rd_f32s(const uint8_t *p, float *out, int n)
 {
     for (int i = 0; i < n; i++)
@@ -68,6 +78,8 @@ static int fixed_size(uint32_t type)
     case CS_REC_NO_BACKGROUND:
         return 0;
     case CS_REC_CEL_REMOVE:
+    case CS_REC_REGION_CSG:
+    case CS_REC_CONTOUR_OPERAND:
         return 4;
     case CS_REC_SCENE:
     case CS_REC_CANVAS:
@@ -89,6 +101,8 @@ static int fixed_size(uint32_t type)
         return 32;
     case CS_REC_REGION_PAINT:
         return 36;
+    case CS_REC_REGION_FUNC:
+        return 44;
     case CS_REC_CEL:
         return 52;
     default:
@@ -97,6 +111,9 @@ static int fixed_size(uint32_t type)
 }
 
 _Static_assert(sizeof(((cs_stream *)0)->buf) >= 52, "buf holds the largest fixed part");
+/* A CSG program is kept in buf after its 4-byte length, one byte a token. */
+_Static_assert(sizeof(((cs_stream *)0)->buf) >= 4 + CS_CFG_MAX_CSG, "buf holds a CSG program");
+_Static_assert(CS_CFG_MAX_OPERANDS <= 127, "CSG operands fit the token byte");
 
 static void set_error(cs_stream_error *e, cs_status st, uint64_t offset, uint64_t at,
                       const char *what, const cs_error *where)
@@ -356,6 +373,24 @@ static void finish_record(cs_stream *s)
         break;
     case CS_REC_TRACK:
         break; /* every key was added as it arrived */
+    case CS_REC_REGION_FUNC:
+        /* The function was read into its slot; the call checks it there. */
+        st = cs_scene_set_region_func(sc, (cs_paint_field)rd_u32(b), &sc->funcs[s->base], &where);
+        break;
+    case CS_REC_REGION_CSG: {
+        int rpn[CS_CFG_MAX_CSG];
+        for (uint32_t i = 0; i < s->count; i++) {
+            uint8_t t = b[4 + i];
+            rpn[i] = (t & 0x80u) ? -(int)(t & 0x7Fu) : (int)t;
+        }
+        st = cs_scene_set_region_csg(sc, rpn, (int)s->count, &where);
+        break;
+    }
+    case CS_REC_CONTOUR_OPERAND: {
+        uint32_t op = rd_u32(b);
+        st = cs_scene_set_contour_operand(sc, op > CS_CFG_MAX_OPERANDS ? -1 : (int)op, &where);
+        break;
+    }
     case CS_REC_TRACK_REMOVE: {
         uint32_t kind = rd_u32(b);
         st = cs_scene_remove_track(
@@ -373,6 +408,64 @@ static void finish_record(cs_stream *s)
     }
     s->parse = P_HDR;
     s->fill = 0;
+}
+
+/* Error location of the last region, for faults found before its call. */
+static void last_region_where(const cs_scene *sc, cs_error *where, cs_status st)
+{
+    int32_t cel = (int32_t)sc->cel_count - 1;
+    int32_t region = cel >= 0 ? (int32_t)sc->cels[cel].region_count - 1 : -1;
+    cs__error(where, st, cel, region, -1, -1);
+}
+
+/*
+ * REGION_FUNC: the function is read straight into the slot that
+ * cs_scene_set_region_func will use (the field's own slot if the region
+ * already has one, else the next free one), so no record buffer is needed;
+ * the call then checks it in place. Faults that would make the read unsafe
+ * or that the call reports anyway are caught here, before any float.
+ */
+static bool begin_func(cs_stream *s)
+{
+    cs_scene *sc = s->back;
+    const uint8_t *b = s->buf;
+    uint32_t field = rd_u32(b), kind = rd_u32(b + 4), spread = rd_u32(b + 8);
+    uint32_t cols = rd_u32(b + 12), stops = rd_u32(b + 16);
+    cs_error where;
+    last_region_where(sc, &where, CS_ERR_FUNC);
+    if (field > CS_FIELD_BETA) {
+        fail(s, CS_ERR_FUNC, "paint function field is not pigment (0), medium (1) or beta (2)",
+             &where);
+        return false;
+    }
+    if (stops < 1 || stops > CS_CFG_MAX_STOPS) {
+        fail(s, CS_ERR_FUNC, "paint function stop count is 0 or beyond the decoder's limit", &where);
+        return false;
+    }
+    const cs_cel *c = sc->cel_count ? &sc->cels[sc->cel_count - 1] : 0;
+    if (!c || c->region_count == 0 || c->first_region + c->region_count != sc->region_count) {
+        where.status = CS_ERR_STATE;
+        fail(s, CS_ERR_STATE, "a paint function needs a region of the last cel to belong to",
+             &where);
+        return false;
+    }
+    const cs_region *r = &sc->regions[sc->region_count - 1];
+    uint32_t slot = r->func[field] ? r->func[field] - 1u : sc->func_count;
+    if (slot >= CS_CFG_MAX_FUNCS) {
+        where.status = CS_ERR_CAP_FUNCS;
+        fail(s, CS_ERR_CAP_FUNCS, cs_status_str(CS_ERR_CAP_FUNCS), &where);
+        return false;
+    }
+    cs_paint_func *f = &sc->funcs[slot];
+    /* Values beyond a byte become ones the check refuses, never wrap to valid ones. */
+    f->kind = (uint8_t)(kind <= 0xFFu ? kind : 0u);
+    f->spread = (uint8_t)(spread <= 0xFFu ? spread : 0xFFu);
+    f->map_cols = (uint8_t)(cols <= 0xFFu ? cols : 0u);
+    f->stop_count = (uint8_t)stops;
+    rd_f32s(b + 20, f->geom, 6);
+    s->base = slot;
+    s->count = stops;
+    return true;
 }
 
 /*
@@ -458,6 +551,21 @@ static void begin_floats(cs_stream *s)
         floats = (uint64_t)keys * (1u + s->width);
         break;
     }
+    case CS_REC_REGION_FUNC:
+        if (!begin_func(s))
+            return;
+        floats = 4u * (uint64_t)s->count;
+        break;
+    case CS_REC_REGION_CSG:
+        s->count = rd_u32(b);
+        if (s->count < 1 || s->count > CS_CFG_MAX_CSG) {
+            cs_error where;
+            last_region_where(sc, &where, CS_ERR_CSG);
+            fail(s, CS_ERR_CSG, "CSG program length is 0 or beyond the decoder's limit", &where);
+            return;
+        }
+        floats = s->count;
+        break;
     default:
         break;
     }
@@ -474,11 +582,12 @@ static void begin_floats(cs_stream *s)
         s->parse = P_FLOATS;
 }
 
-/* Stores the next float of a record where it belongs. */
-static void put_float(cs_stream *s, float v)
+/* Stores the next word of a record's counted part where it belongs. */
+static void put_word(cs_stream *s, uint32_t w)
 {
     cs_scene *sc = s->back;
     uint32_t i = s->float_index;
+    float v = word_f32(w);
     switch (s->rec_type) {
     case CS_REC_CONTOUR:
     case CS_REC_CONTOUR_POINTS:
@@ -509,6 +618,27 @@ static void put_float(cs_stream *s, float v)
                 fail(s, st, cs_status_str(st), &where);
         }
         break;
+    case CS_REC_REGION_FUNC: {
+        cs_stop *stop = &sc->funcs[s->base].stops[i / 4u];
+        if (i % 4u == 0)
+            stop->offset = v;
+        else
+            stop->value[i % 4u - 1u] = v;
+        break;
+    }
+    case CS_REC_REGION_CSG: {
+        /* Operand n as n, operator k (-k on the wire, an i32) as 0x80|k, as
+         * the store keeps them; anything else as 0xFF, which the check
+         * refuses with this token's index. */
+        int32_t t = (int32_t)w;
+        uint8_t code = 0xFFu;
+        if (t >= 0 && t <= CS_CFG_MAX_OPERANDS)
+            code = (uint8_t)t;
+        else if (t < 0 && t >= -4)
+            code = (uint8_t)(0x80u | (uint32_t)-t);
+        s->buf[4 + i] = code;
+        break;
+    }
     default:
         break;
     }
@@ -572,14 +702,10 @@ static void parse_byte(cs_stream *s, uint8_t b, uint64_t at)
     case P_FLOATS:
         s->word |= (uint32_t)b << (8u * s->fill);
         if (++s->fill == 4) {
-            union {
-                uint32_t u;
-                float f;
-            } v;
-            v.u = s->word;
+            uint32_t w = s->word;
             s->word = 0;
             s->fill = 0;
-            put_float(s, v.f);
+            put_word(s, w);
             if (s->parse == P_FLOATS && ++s->float_index == s->float_count)
                 finish_record(s);
         }

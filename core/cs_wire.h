@@ -11,7 +11,7 @@
 
 /* Format version written by this code; decoders accept any minor of their major. */
 #define CS_WIRE_MAJOR 1
-#define CS_WIRE_MINOR 0
+#define CS_WIRE_MINOR 1
 
 /* 16-byte headers: magic(4) major(1) minor(1) flags(2) word(4) crc32(4). */
 #define CS_WIRE_HEADER_SIZE 16
@@ -21,7 +21,7 @@
 
 /* Record header: type u16 (class << 8 | subtype), payload length u32. */
 #define CS_WIRE_RECORD_HEADER_SIZE 6
-#define CS_WIRE_CLASS_COUNT 5 /* classes 0..4 known to version 1.0 */
+#define CS_WIRE_CLASS_COUNT 6 /* classes 0..5 known to version 1.1 (1.0 knew 0..4) */
 
 /* Class 0: control */
 #define CS_REC_PAD 0x0000u    /* any payload, ignored */
@@ -46,6 +46,13 @@
 /* Class 4: animation */
 #define CS_REC_TRACK 0x0400u        /* u32 kind, target, ease, keys; f32 (time, value*width)*keys */
 #define CS_REC_TRACK_REMOVE 0x0401u /* u32 kind, target */
+/* Class 5 (1.1): what a region is made of beyond its constant paint. A new
+ * class, not new subtypes of class 2, so that a 1.0 decoder refuses these
+ * transactions instead of skipping the records and showing another picture. */
+#define CS_REC_REGION_FUNC 0x0500u      /* u32 field, kind, spread, map_cols, stops; f32 geom[6];
+                                           f32 (offset, value[3])*stops: last region */
+#define CS_REC_REGION_CSG 0x0501u       /* u32 len; i32 token*len: last region */
+#define CS_REC_CONTOUR_OPERAND 0x0502u  /* u32 operand: last contour */
 
 /* Flag bits; every other bit is reserved and must be 0. */
 #define CS_WIRE_CEL_HAS_FRONT 1u       /* CEL, CEL_LIGHTS: front light given (else the stack's) */

@@ -23,9 +23,10 @@
  * Required: canvas.width, canvas.height, cels, and per cel regions, per region
  * paint and contours, per contour degree and points.
  *
- * Unknown keys are ignored, so scenes may carry extensions (names, notes,
- * "animate" tracks, whose transform and lights keys are shape-checked here
- * but not yet applied).
+ * Unknown keys are ignored, so scenes may carry extensions (names, notes).
+ * "animate" objects are the exception: they become keyframe tracks (see the
+ * animate section below), and an unknown track name in one is an error,
+ * because a misspelt track would otherwise silently not move.
  */
 #include <errno.h>
 #include <float.h>
@@ -312,84 +313,313 @@ static int require_array(loader *L, const cJSON *obj, const char *key, const cJS
 /* ------------------------------------------------------------- animate */
 
 /*
- * Animation is applied by a later part of the system; until then the cel's
- * "animate" object is checked for the shape DESIGN.md gives so that scenes
- * written now stay valid, and otherwise ignored. Only the transform and
- * lights tracks are checked; other tracks are left to their future owner.
+ * "animate" objects become keyframe tracks in the store (cs_scene_add_track
+ * and cs_scene_add_key), so the core checks the values exactly as it checks
+ * the static ones and a compiled stream carries the same tracks. Where they
+ * live and what a key's value is:
+ *
+ *   scene   "animate": {"lights": {front, back}, "background": colour}
+ *   cel     "animate": {"transform": [a,b,c,d,e,f], "lights": {front, back}}
+ *   region  "animate": {"paint": {pigment, medium, beta}}
+ *   contour "animate": {"points": [[x,y] or [x,y,w], ...]}
+ *
+ * Each track is {"keys": [[t, value], ...], "ease": "linear"|"smooth"}.
+ * Object values may leave members out; those hold the item's static value
+ * (its lights, its constant paint). Colours are sRGB and become linear
+ * light, as everywhere in the scene. A paint key may not name a field the
+ * region paints with a function of position: a paint track animates
+ * constants only (docs/SCENE.md).
  */
-static int check_track(loader *L, const cJSON *track, const char *which)
+
+typedef struct track_ctx {
+    cs_track_kind kind;
+    uint32_t target;
+    float defaults[7];    /* static values for members a key leaves out */
+    const bool *func;     /* paint: which fields are functions; else NULL */
+    uint32_t points;      /* points: the contour's count */
+} track_ctx;
+
+/* Reads a {"front", "back"} key into v[0..5], missing members from defaults. */
+static int key_lights(loader *L, const cJSON *j, const track_ctx *c, float *v)
 {
-    if (!cJSON_IsObject(track))
-        return fail(L, "expected a track {\"keys\": [[t, value], ...]}, got %s", kind(track));
-    const cJSON *keys = member(track, "keys");
-    size_t at = push_key(L, "keys");
-    if (keys == NULL)
-        return fail(L, "missing (required array of [t, value])");
-    if (!cJSON_IsArray(keys) || cJSON_GetArraySize(keys) == 0)
-        return fail(L, "expected a non-empty array of [t, value], got %s", kind(keys));
-    float last_t = -FLT_MAX;
-    int i = 0;
-    const cJSON *key;
-    cJSON_ArrayForEach(key, keys)
-    {
-        size_t at2 = push_index(L, i);
-        if (!cJSON_IsArray(key) || cJSON_GetArraySize(key) != 2)
-            return fail(L, "expected a key [t, value]");
-        float t;
-        size_t at3 = push_index(L, 0);
-        if (get_float(L, cJSON_GetArrayItem(key, 0), &t) != 0)
-            return -1;
-        if (t < last_t)
-            return fail(L, "key times must not decrease (%g after %g)", (double)t, (double)last_t);
-        last_t = t;
-        pop(L, at3);
-        push_index(L, 1);
-        const cJSON *v = cJSON_GetArrayItem(key, 1);
-        if (strcmp(which, "transform") == 0) {
-            float m[6];
-            if (get_floats(L, v, m, 6, "a transform [a,b,c,d,e,f]") != 0)
-                return -1;
-        } else {
-            float f[3], b[3];
-            bool hf, hb;
-            if (get_lights_obj(L, v, f, &hf, b, &hb) != 0)
-                return -1;
-        }
-        pop(L, at2);
-        i++;
+    float f[3], b[3];
+    bool hf, hb;
+    if (get_lights_obj(L, j, f, &hf, b, &hb) != 0)
+        return -1;
+    for (int k = 0; k < 3; k++) {
+        v[k] = hf ? f[k] : c->defaults[k];
+        v[3 + k] = hb ? b[k] : c->defaults[3 + k];
     }
-    pop(L, at);
-    const cJSON *ease = member(track, "ease");
-    if (ease != NULL) {
-        at = push_key(L, "ease");
-        if (!cJSON_IsString(ease) ||
-            (strcmp(ease->valuestring, "linear") != 0 && strcmp(ease->valuestring, "smooth") != 0))
-            return fail(L, "ease must be \"linear\" or \"smooth\"");
+    return 0;
+}
+
+/* Reads a {"pigment", "medium", "beta"} key of constants into v[0..6]. */
+static int key_paint(loader *L, const cJSON *j, const track_ctx *c, float *v)
+{
+    if (!cJSON_IsObject(j))
+        return fail(L, "expected a paint {\"pigment\", \"medium\", \"beta\"}, got %s", kind(j));
+    for (int k = 0; k < 7; k++)
+        v[k] = c->defaults[k];
+    static const char *const names[3] = {"pigment", "medium", "beta"};
+    for (int field = 0; field < 3; field++) {
+        const cJSON *m = member(j, names[field]);
+        if (m == NULL)
+            continue;
+        size_t at = push_key(L, names[field]);
+        if (c->func[field])
+            return fail(L, "this region's %s is a function of position; a paint track animates "
+                           "constant paint fields only",
+                        names[field]);
+        if (field == CS_FIELD_BETA) {
+            if (get_float(L, m, &v[6]) != 0)
+                return -1;
+        } else if (paint_json_colour(m, v + 3 * field) != 0) {
+            return fail(L, "expected a colour \"#rrggbb\", \"#rgb\" or [r,g,b] in 0..1, got %s",
+                        kind(m));
+        }
         pop(L, at);
     }
     return 0;
 }
 
-static int check_animate(loader *L, const cJSON *cel)
+/* Reads a key of c->points control points into v (x y w each). */
+static int key_points(loader *L, const cJSON *j, const track_ctx *c, float *v)
 {
-    const cJSON *anim = member(cel, "animate");
+    if (!cJSON_IsArray(j))
+        return fail(L, "expected an array of %u points [x,y] or [x,y,w], got %s", c->points,
+                    kind(j));
+    if ((uint32_t)cJSON_GetArraySize(j) != c->points)
+        return fail(L, "expected %u points (the contour's point count), got %d", c->points,
+                    cJSON_GetArraySize(j));
+    int i = 0;
+    const cJSON *p;
+    cJSON_ArrayForEach(p, j)
+    {
+        size_t at = push_index(L, i);
+        int n = cJSON_IsArray(p) ? cJSON_GetArraySize(p) : 0;
+        if (n != 2 && n != 3)
+            return fail(L, "expected a point [x,y] or [x,y,w], got %s", kind(p));
+        float *q = v + 3 * i;
+        q[2] = 1.0f;
+        if (get_floats(L, p, q, n, n == 2 ? "[x,y]" : "[x,y,w]") != 0)
+            return -1;
+        pop(L, at);
+        i++;
+    }
+    return 0;
+}
+
+/* The value of one key, its path already pushed. */
+static int key_value(loader *L, const cJSON *j, const track_ctx *c, float *v)
+{
+    switch (c->kind) {
+    case CS_TRACK_TRANSFORM:
+        return get_floats(L, j, v, 6, "a transform [a,b,c,d,e,f]");
+    case CS_TRACK_CEL_LIGHTS:
+    case CS_TRACK_STACK_LIGHTS:
+        return key_lights(L, j, c, v);
+    case CS_TRACK_PAINT:
+        return key_paint(L, j, c, v);
+    case CS_TRACK_POINTS:
+        return key_points(L, j, c, v);
+    default:
+        return get_colour(L, j, v);
+    }
+}
+
+/* A core error on key i, with the JSON path of its time or value. */
+static int key_core_error(loader *L, const cs_error *e, float t, float prev)
+{
+    switch (e->status) {
+    case CS_ERR_KEY_ORDER:
+        push_index(L, 0);
+        return fail(L, "key times must increase strictly (%g after %g)", (double)t, (double)prev);
+    case CS_ERR_NONFINITE:
+        if (!isfinite(t)) {
+            push_index(L, 0);
+            return fail(L, "%s", cs_status_str(e->status));
+        }
+        break;
+    case CS_ERR_CAP_KEYS:
+        return fail(L, "%s", cs_status_str(e->status));
+    default:
+        break;
+    }
+    /* A value the core refused (range, weight, paint, light): the key's value. */
+    push_index(L, 1);
+    return fail(L, "%s", cs_status_str(e->status));
+}
+
+/* One track object {"keys": [...], "ease": ...} whose path is pushed. */
+static int load_track(loader *L, const cJSON *track, const track_ctx *c)
+{
+    if (!cJSON_IsObject(track))
+        return fail(L, "expected a track {\"keys\": [[t, value], ...], \"ease\": ...}, got %s",
+                    kind(track));
+    cs_ease ease = CS_EASE_LINEAR;
+    const cJSON *ej = member(track, "ease");
+    if (ej != NULL) {
+        size_t at = push_key(L, "ease");
+        if (cJSON_IsString(ej) && strcmp(ej->valuestring, "linear") == 0)
+            ease = CS_EASE_LINEAR;
+        else if (cJSON_IsString(ej) && strcmp(ej->valuestring, "smooth") == 0)
+            ease = CS_EASE_SMOOTH;
+        else if (cJSON_IsString(ej))
+            return fail(L, "ease must be \"linear\" or \"smooth\", got \"%.40s\"", ej->valuestring);
+        else
+            return fail(L, "ease must be \"linear\" or \"smooth\", got %s", kind(ej));
+        pop(L, at);
+    }
+    const cJSON *keys = member(track, "keys");
+    size_t at = push_key(L, "keys");
+    if (keys == NULL)
+        return fail(L, "missing (required array of keys [t, value])");
+    if (!cJSON_IsArray(keys) || cJSON_GetArraySize(keys) == 0)
+        return fail(L, "expected a non-empty array of keys [t, value], got %s%s", kind(keys),
+                    cJSON_IsArray(keys) ? " with no keys" : "");
+    pop(L, at);
+    cs_error e;
+    if (cs_scene_add_track(L->scene, c->kind, c->target, ease, &e) != CS_OK) {
+        if (e.status == CS_ERR_CAP_ANIM)
+            return fail(L, "%s (the contour has %u points, at most %d animate)",
+                        cs_status_str(e.status), c->points, CS_CFG_MAX_ANIM_POINTS);
+        return fail(L, "%s", cs_status_str(e.status));
+    }
+    uint32_t width = cs_scene_track_width(L->scene, c->kind, c->target);
+    float *v = calloc(width ? width : 1, sizeof *v);
+    if (v == NULL)
+        return fail(L, "out of memory for a key of %u values", width);
+    at = push_key(L, "keys");
+    int i = 0, rc = 0;
+    float prev = 0.0f;
+    const cJSON *key;
+    cJSON_ArrayForEach(key, keys)
+    {
+        size_t at2 = push_index(L, i);
+        float t = 0.0f;
+        if (!cJSON_IsArray(key) || cJSON_GetArraySize(key) != 2) {
+            rc = fail(L, "expected a key [t, value], got %s", kind(key));
+            break;
+        }
+        size_t at3 = push_index(L, 0);
+        if (get_float(L, cJSON_GetArrayItem(key, 0), &t) != 0) {
+            rc = -1;
+            break;
+        }
+        set_path(L->path, &L->plen, at3);
+        push_index(L, 1);
+        if (key_value(L, cJSON_GetArrayItem(key, 1), c, v) != 0) {
+            rc = -1;
+            break;
+        }
+        set_path(L->path, &L->plen, at3);
+        if (cs_scene_add_key(L->scene, t, v, &e) != CS_OK) {
+            rc = key_core_error(L, &e, t, prev);
+            break;
+        }
+        prev = t;
+        pop(L, at2);
+        i++;
+    }
+    free(v);
+    if (rc != 0)
+        return rc;
+    pop(L, at);
+    return 0;
+}
+
+/* The "animate" member of obj: the track names allowed there and what each animates. */
+typedef struct track_name {
+    const char *name;
+    track_ctx ctx;
+} track_name;
+
+static int load_animate(loader *L, const cJSON *obj, const track_name *names, int n,
+                        const char *owner)
+{
+    const cJSON *anim = member(obj, "animate");
     if (anim == NULL)
         return 0;
     size_t at = push_key(L, "animate");
     if (!cJSON_IsObject(anim))
         return fail(L, "expected an object of tracks, got %s", kind(anim));
-    const char *tracks[2] = {"transform", "lights"};
-    for (int i = 0; i < 2; i++) {
-        const cJSON *t = member(anim, tracks[i]);
-        if (t == NULL)
-            continue;
-        size_t at2 = push_key(L, tracks[i]);
-        if (check_track(L, t, tracks[i]) != 0)
+    const cJSON *t;
+    cJSON_ArrayForEach(t, anim)
+    {
+        int k = 0;
+        while (k < n && strcmp(t->string, names[k].name) != 0)
+            k++;
+        if (k == n) {
+            char allowed[96] = "";
+            for (int i = 0; i < n; i++)
+                snprintf(allowed + strlen(allowed), sizeof allowed - strlen(allowed), "%s\"%s\"",
+                         i == 0 ? "" : i == n - 1 ? " and " : ", ", names[i].name);
+            push_key(L, t->string);
+            return fail(L, "unknown track: %s animates %s", owner, allowed);
+        }
+        size_t at2 = push_key(L, t->string);
+        if (load_track(L, t, &names[k].ctx) != 0)
             return -1;
         pop(L, at2);
     }
     pop(L, at);
     return 0;
+}
+
+/* A cel's tracks, after the cel (scene->cels[cel]) was added. */
+static int cel_animate(loader *L, const cJSON *cel_json, uint32_t cel)
+{
+    const cs_cel *c = &L->scene->cels[cel];
+    track_name names[2] = {{"transform", {CS_TRACK_TRANSFORM, cel, {0}, NULL, 0}},
+                           {"lights", {CS_TRACK_CEL_LIGHTS, cel, {0}, NULL, 0}}};
+    for (int k = 0; k < 3; k++) {
+        names[1].ctx.defaults[k] = c->front[k]; /* the stack's if the cel has none */
+        names[1].ctx.defaults[3 + k] = c->back[k];
+    }
+    return load_animate(L, cel_json, names, 2, "a cel");
+}
+
+/* A region's paint track, after the region (the last one) was added. */
+static int region_animate(loader *L, const cJSON *region_json)
+{
+    uint32_t ri = L->scene->region_count - 1u;
+    const cs_region *r = &L->scene->regions[ri];
+    bool func[3] = {r->func[0] != 0, r->func[1] != 0, r->func[2] != 0};
+    track_name names[1] = {{"paint", {CS_TRACK_PAINT, ri, {0}, func, 0}}};
+    for (int k = 0; k < 3; k++) {
+        names[0].ctx.defaults[k] = r->paint.pigment[k];
+        names[0].ctx.defaults[3 + k] = r->paint.medium[k];
+    }
+    names[0].ctx.defaults[6] = r->paint.beta;
+    return load_animate(L, region_json, names, 1, "a region");
+}
+
+/* A contour's points track, after the contour (the last one) was added. */
+static int contour_animate(loader *L, const cJSON *contour_json)
+{
+    uint32_t ci = L->scene->contour_count - 1u;
+    track_name names[1] = {
+        {"points", {CS_TRACK_POINTS, ci, {0}, NULL, L->scene->contours[ci].point_count}}};
+    return load_animate(L, contour_json, names, 1, "a contour");
+}
+
+/* The scene's own tracks: stack lights and the background card. */
+static int scene_animate(loader *L, const cJSON *root)
+{
+    const cs_scene *s = L->scene;
+    track_name names[2] = {{"lights", {CS_TRACK_STACK_LIGHTS, 0, {0}, NULL, 0}},
+                           {"background", {CS_TRACK_BACKGROUND, 0, {0}, NULL, 0}}};
+    for (int k = 0; k < 3; k++) {
+        names[0].ctx.defaults[k] = s->stack_front[k];
+        names[0].ctx.defaults[3 + k] = s->stack_back[k];
+    }
+    const cJSON *anim = member(root, "animate");
+    if (cJSON_IsObject(anim) && member(anim, "background") != NULL && !s->has_background) {
+        push_key(L, "animate");
+        push_key(L, "background");
+        return fail(L, "the canvas has no background to animate (give canvas.background)");
+    }
+    return load_animate(L, root, names, 2, "the scene");
 }
 
 /* ------------------------------------------------------------ structure */
@@ -564,10 +794,14 @@ static int load_region(loader *L, const cJSON *r)
         pop(L, at2);
         if (paint_json_set_operand(L->scene, &csg, i, L->path, msg, sizeof msg) != 0)
             return fail_with(L, msg);
+        size_t at3 = push_index(L, i);
+        if (contour_animate(L, c) != 0)
+            return -1;
+        pop(L, at3);
         i++;
     }
     pop(L, at);
-    return 0;
+    return region_animate(L, r);
 }
 
 static int load_cel(loader *L, const cJSON *cel)
@@ -592,8 +826,6 @@ static int load_cel(loader *L, const cJSON *cel)
     float front[3], back[3];
     bool has_front, has_back;
     if (get_lights(L, cel, front, &has_front, back, &has_back) != 0)
-        return -1;
-    if (check_animate(L, cel) != 0)
         return -1;
     const cJSON *regions;
     if (require_array(L, cel, "regions", &regions) != 0)
@@ -623,7 +855,7 @@ static int load_cel(loader *L, const cJSON *cel)
         i++;
     }
     pop(L, at);
-    return 0;
+    return cel_animate(L, cel, L->scene->cel_count - 1u);
 }
 
 static int load_root(loader *L, const cJSON *root)
@@ -690,7 +922,7 @@ static int load_root(loader *L, const cJSON *root)
         i++;
     }
     pop(L, at);
-    return 0;
+    return scene_animate(L, root);
 }
 
 /* ----------------------------------------------------------------- API */

@@ -9,6 +9,8 @@
  * cannot know: JSON types, field names, array lengths, the sRGB decoding of
  * colours, and error messages that name the file and the JSON path
  * ("scene.json: cels[2].regions[0].contours[1].points[4]: weight must be > 0").
+ * "animate" objects become the store's keyframe tracks (docs/SCENE.md,
+ * Animation), checked by the core like every static value.
  *
  * Every function returns 0 on success and -1 on failure with a one-line
  * message in errbuf (always NUL-terminated when errlen > 0). On failure the
@@ -35,9 +37,9 @@ int scene_json_load_string(const char *text, size_t len, const char *name, cs_sc
                            char *errbuf, size_t errlen);
 
 /*
- * Loads an already parsed document. A tool that needs more than the static
- * scene (the compiler reads the "animate" tracks too) parses once with cJSON
- * and passes the tree here.
+ * Loads an already parsed document, for a tool that also reads other parts
+ * of the tree itself: it parses once with cJSON and passes the tree here.
+ * The scene's "animate" tracks are loaded into the store either way.
  */
 int scene_json_load_tree(const cJSON *root, const char *name, cs_scene *out, char *errbuf,
                          size_t errlen);

@@ -22,6 +22,7 @@ LX_TESTS := $(patsubst tests/linuxhal/%.c,$(HOST)/tests/%,$(wildcard tests/linux
 LX_ALL_OBJ := $(LX_HAL_OBJ) $(LX_FW_OBJ) $(HOST)/obj/firmware/linux/celfw.o $(LX_TEST_SUPPORT) \
         $(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS))
 $(LX_ALL_OBJ): HOST_CFLAGS += -D_DEFAULT_SOURCE $(LX_INC) $(LX_PKG_CFLAGS) $(LX_UMOCKDEV_CFLAGS)
+$(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS)): HOST_CFLAGS += -Ihost-sim
 
 # celfw shows scene JSON files (--scene FILE.json) with celsim's loader.
 LX_JSON_OBJ := $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o
@@ -33,8 +34,9 @@ $(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(L
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) -lm
 
+# The tests also write cel streams (tools/cels_write.c) to feed celfw.
 $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(LX_FW_OBJ) \
-        $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/libcelscan.a
+        $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/obj/tools/cels_write.o $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) -lm -lpthread
 

@@ -26,7 +26,7 @@ $(SVG_TEST_OBJ): PKG_CFLAGS += $(SVG_CFLAGS)
 $(HOST)/libsvgimport.a: $(SVG_LIB_OBJ)
 	$(Q)rm -f $@ && ar rcs $@ $^
 
-$(HOST)/svgimport: $(HOST)/obj/tools/svg/svgimport_main.o $(SVG_CELC_OBJ) \
+$(HOST)/svgimport: $(HOST)/obj/tools/svg/svgimport_main.o $(SVG_CELC_OBJ) $(HOST)/obj/tools/cels_write.o \
         $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(SVG_LIBS)
 

@@ -74,6 +74,7 @@ static uint32_t scene_crc(const cs_scene *s)
     c = crc_bytes(c, s->contours, s->contour_count * sizeof s->contours[0]);
     c = crc_bytes(c, s->points, s->point_count * sizeof s->points[0]);
     c = crc_bytes(c, s->intervals, s->point_count * sizeof s->intervals[0]);
+    c = crc_bytes(c, s->funcs, s->func_count * sizeof s->funcs[0]);
     c = crc_bytes(c, s->tracks, s->track_count * sizeof s->tracks[0]);
     c = crc_bytes(c, s->key_times, s->key_count * sizeof s->key_times[0]);
     return crc_bytes(c, s->key_values, s->value_count * sizeof s->key_values[0]);
@@ -113,7 +114,8 @@ static void check_committed(const cs_scene *s)
     REQUIRE(cs_stream_finish(&st) == CS_STREAM_MORE);
     const cs_scene *again = cs_stream_scene(&st);
     REQUIRE(again && again->cel_count == s->cel_count && again->point_count == s->point_count &&
-            again->track_count == s->track_count && again->value_count == s->value_count);
+            again->track_count == s->track_count && again->value_count == s->value_count &&
+            again->func_count == s->func_count);
     const float times[2] = {0.3f, 2.0f};
     for (int i = 0; i < 2; i++) {
         cs_status sa = render(s, times[i], a);

@@ -28,6 +28,7 @@
 #include "cels_write.h"
 #include "celscan.h"
 #include "cs_wire.h"
+#include "scene_equal.h"
 
 static int passed, failed;
 static const double PI = 3.14159265358979323846;
@@ -82,72 +83,7 @@ static cs_scene *new_scene(void)
 
 /* ------------------------------------------------------------ comparison */
 
-static bool bits_eq(const void *a, const void *b, size_t n)
-{
-    return memcmp(a, b, n) == 0;
-}
-
-#define FEQ(a, b) bits_eq(&(a), &(b), sizeof(a))
-
-/* Every used field of two stores, bit for bit; `why` names the first difference. */
-static bool scene_equal(const cs_scene *a, const cs_scene *b, char *why, size_t whylen)
-{
-#define DIFF(...)                                                                                 \
-    do {                                                                                          \
-        snprintf(why, whylen, __VA_ARGS__);                                                       \
-        return false;                                                                             \
-    } while (0)
-    if (!FEQ(a->canvas_w, b->canvas_w) || !FEQ(a->canvas_h, b->canvas_h))
-        DIFF("canvas");
-    if (a->has_background != b->has_background || !FEQ(a->background, b->background))
-        DIFF("background");
-    if (!FEQ(a->stack_front, b->stack_front) || !FEQ(a->stack_back, b->stack_back))
-        DIFF("stack lights");
-    if (a->cel_count != b->cel_count || a->region_count != b->region_count ||
-        a->contour_count != b->contour_count || a->point_count != b->point_count)
-        DIFF("counts %u/%u %u/%u %u/%u %u/%u", a->cel_count, b->cel_count, a->region_count,
-             b->region_count, a->contour_count, b->contour_count, a->point_count, b->point_count);
-    if (a->track_count != b->track_count || a->key_count != b->key_count ||
-        a->value_count != b->value_count)
-        DIFF("track counts %u/%u %u/%u %u/%u", a->track_count, b->track_count, a->key_count,
-             b->key_count, a->value_count, b->value_count);
-    for (uint32_t i = 0; i < a->cel_count; i++) {
-        const cs_cel *x = &a->cels[i], *y = &b->cels[i];
-        if (x->first_region != y->first_region || x->region_count != y->region_count ||
-            x->has_front != y->has_front || !FEQ(x->transform, y->transform) ||
-            !FEQ(x->front, y->front) || !FEQ(x->back, y->back))
-            DIFF("cel %u", i);
-    }
-    for (uint32_t i = 0; i < a->region_count; i++) {
-        const cs_region *x = &a->regions[i], *y = &b->regions[i];
-        if (x->first_contour != y->first_contour || x->contour_count != y->contour_count ||
-            x->fill_rule != y->fill_rule || !FEQ(x->paint, y->paint))
-            DIFF("region %u", i);
-    }
-    for (uint32_t i = 0; i < a->contour_count; i++) {
-        const cs_contour *x = &a->contours[i], *y = &b->contours[i];
-        if (x->first_point != y->first_point || x->point_count != y->point_count ||
-            x->degree != y->degree)
-            DIFF("contour %u", i);
-    }
-    if (!bits_eq(a->points, b->points, a->point_count * sizeof(cs_point)))
-        DIFF("points");
-    if (!bits_eq(a->intervals, b->intervals, a->point_count * sizeof(float)))
-        DIFF("intervals");
-    for (uint32_t i = 0; i < a->track_count; i++) {
-        const cs_track *x = &a->tracks[i], *y = &b->tracks[i];
-        if (x->target != y->target || x->first_key != y->first_key ||
-            x->first_value != y->first_value || x->width != y->width ||
-            x->key_count != y->key_count || x->kind != y->kind || x->ease != y->ease)
-            DIFF("track %u", i);
-    }
-    if (!bits_eq(a->key_times, b->key_times, a->key_count * sizeof(float)))
-        DIFF("key times");
-    if (!bits_eq(a->key_values, b->key_values, a->value_count * sizeof(float)))
-        DIFF("key values");
-    return true;
-#undef DIFF
-}
+/* scene_equal(): every used field of two stores, bit for bit (tests/scene_equal.h). */
 
 /* ------------------------------------------------------------- rendering */
 
@@ -278,6 +214,100 @@ static void build_demo(cs_scene *s)
     float b0[3] = {0.02f, 0.03f, 0.05f}, b1[3] = {0.3f, 0.1f, 0.1f};
     cs_scene_add_key(s, 0.0f, b0, &e);
     cs_scene_add_key(s, 2.0f, b1, &e);
+}
+
+/* A paint function from its parts; stops[i] = {offset, r, g, b}. */
+static cs_paint_func make_func(int kind, int spread, const float *geom, int nstops, int cols,
+                               const float (*stops)[4])
+{
+    cs_paint_func f;
+    memset(&f, 0, sizeof f);
+    f.kind = (uint8_t)kind;
+    f.spread = (uint8_t)spread;
+    f.stop_count = (uint8_t)nstops;
+    f.map_cols = (uint8_t)cols;
+    for (int i = 0; i < 6; i++)
+        f.geom[i] = geom[i];
+    for (int i = 0; i < nstops; i++) {
+        f.stops[i].offset = stops[i][0];
+        for (int k = 0; k < 3; k++)
+            f.stops[i].value[k] = stops[i][1 + k];
+    }
+    return f;
+}
+
+/*
+ * What the beta model added to a scene, for the class 5 records: a linear
+ * gradient pigment, a radial beta (a feathered matte), a 3x2 colour map
+ * medium, a CSG region (a ring minus a bar, plus a disc) with operands, a
+ * region with a function in every field, and a paint track on a region
+ * whose pigment is a function (it animates the constant fields only).
+ */
+static void build_beta(cs_scene *s)
+{
+    cs_error e;
+    cs_scene_init(s, 96, 64);
+    const float bg[3] = {0.1f, 0.1f, 0.12f};
+    cs_scene_set_background(s, bg);
+    cs_affine id = {1, 0, 0, 1, 0, 0};
+    cs_affine tilt = {0.9f, 0.3f, -0.3f, 0.9f, 10, -4};
+
+    cs_scene_add_cel(s, &tilt, NULL, NULL, &e); /* cel 0: gradients */
+    cs_paint p = paint_of(0.5f, 0.5f, 0.5f, 1.0f);
+    cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e);
+    const float lin_g[6] = {10, 10, 50, 30, 0, 0};
+    const float lin_s[3][4] = {{0, 1, 0, 0}, {0.5f, 0, 1, 0}, {1, 0, 0, 1}};
+    cs_paint_func f = make_func(CS_FUNC_LINEAR, CS_SPREAD_REFLECT, lin_g, 3, 1, lin_s);
+    cs_scene_set_region_func(s, CS_FIELD_PIGMENT, &f, &e);
+    const float rad_g[6] = {30, 20, 18, 26, 22, 0};
+    const float rad_s[2][4] = {{0, 1, 1, 1}, {1, 0.2f, 0.2f, 0.2f}};
+    f = make_func(CS_FUNC_RADIAL, CS_SPREAD_PAD, rad_g, 2, 1, rad_s);
+    cs_scene_set_region_func(s, CS_FIELD_BETA, &f, &e);
+    add_circle(s, 30, 20, 18);
+
+    cs_paint gel = {{0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}, 0.3f};
+    cs_scene_add_region(s, CS_FILL_EVENODD, &gel, &e);
+    const float map_g[6] = {50, 30, 30, 0, 0, 20};
+    const float map_s[6][4] = {{0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1},
+                               {0, 1, 1, 0}, {0, 0, 1, 1}, {0, 1, 0, 1}};
+    f = make_func(CS_FUNC_MAP, CS_SPREAD_REPEAT, map_g, 6, 3, map_s);
+    cs_scene_set_region_func(s, CS_FIELD_MEDIUM, &f, &e);
+    cs_point box[4] = {{50, 30, 1}, {80, 30, 1}, {80, 50, 1}, {50, 50, 1}};
+    cs_scene_add_contour(s, 1, 4, box, NULL, &e);
+
+    cs_scene_add_cel(s, &id, NULL, NULL, &e); /* cel 1: CSG */
+    cs_paint ink = paint_of(0.9f, 0.8f, 0.1f, 1.0f);
+    cs_scene_add_region(s, CS_FILL_EVENODD, &ink, &e);
+    const int rpn[5] = {0, 1, CS_CSG_DIFFERENCE, 2, CS_CSG_UNION};
+    cs_scene_set_region_csg(s, rpn, 5, &e);
+    add_circle(s, 60, 20, 14); /* operand 0: a ring of two circles */
+    cs_scene_set_contour_operand(s, 0, &e);
+    add_circle(s, 60, 20, 8);
+    cs_scene_set_contour_operand(s, 0, &e);
+    cs_point bar[4] = {{40, 17, 1}, {80, 17, 1}, {80, 23, 1}, {40, 23, 1}};
+    cs_scene_add_contour(s, 1, 4, bar, NULL, &e); /* operand 1: the bar */
+    cs_scene_set_contour_operand(s, 1, &e);
+    add_circle(s, 15, 50, 9); /* operand 2: a disc */
+    cs_scene_set_contour_operand(s, 2, &e);
+    /* every field a function, on a region with no CSG */
+    cs_paint any = paint_of(0, 0, 0, 0.5f);
+    cs_scene_add_region(s, CS_FILL_NONZERO, &any, &e);
+    const float lin2[6] = {0, 0, 96, 64, 0, 0};
+    const float two[2][4] = {{0, 0.2f, 0.4f, 0.6f}, {1, 0.9f, 0.7f, 0.5f}};
+    f = make_func(CS_FUNC_LINEAR, CS_SPREAD_PAD, lin2, 2, 1, two);
+    cs_scene_set_region_func(s, CS_FIELD_PIGMENT, &f, &e);
+    cs_scene_set_region_func(s, CS_FIELD_MEDIUM, &f, &e);
+    cs_scene_set_region_func(s, CS_FIELD_BETA, &f, &e);
+    cs_point tri[3] = {{70, 40, 1}, {94, 62, 1}, {60, 62, 1}};
+    cs_scene_add_contour(s, 1, 3, tri, NULL, &e);
+
+    /* Tracks: move the CSG cel, animate the gradient region's constants. */
+    cs_scene_add_track(s, CS_TRACK_TRANSFORM, 1, CS_EASE_SMOOTH, &e);
+    cs_scene_add_key(s, 0, (float[6]){1, 0, 0, 1, 0, 0}, &e);
+    cs_scene_add_key(s, 2, (float[6]){1, 0, 0, 1, -20, 8}, &e);
+    cs_scene_add_track(s, CS_TRACK_PAINT, 0, CS_EASE_LINEAR, &e);
+    cs_scene_add_key(s, 0, (float[7]){0.5f, 0.5f, 0.5f, 1, 1, 1, 1}, &e);
+    cs_scene_add_key(s, 1.5f, (float[7]){0.5f, 0.5f, 0.5f, 0.2f, 0.3f, 1, 0.4f}, &e);
 }
 
 /* ---------------------------------------------------------------- decoding */
@@ -418,6 +448,45 @@ static void test_roundtrip(void)
     free(s);
 }
 
+/* The class 5 records: functions, CSG and operands survive the trip. */
+static void test_roundtrip_beta(void)
+{
+    cs_scene *s = new_scene();
+    build_beta(s);
+    CHECK(s->func_count == 6 && s->regions[2].csg_len == 5 && s->contours[4].operand == 1 &&
+              s->contours[5].operand == 2,
+          "beta scene built: %u functions, csg %u, operands %u %u", s->func_count,
+          s->regions[2].csg_len, s->contours[4].operand, s->contours[5].operand);
+    cels_buf b;
+    encode(s, &b, true);
+    printf("  beta scene: %zu bytes of stream\n", b.len);
+    CHECK(b.len > 21 && b.data[5] == CS_WIRE_MINOR && b.data[21] == CS_WIRE_MINOR &&
+              CS_WIRE_MINOR == 1,
+          "stream and transaction headers say version 1.%d", CS_WIRE_MINOR);
+    for (int chunking = 0; chunking < 4; chunking++) {
+        result r;
+        decode(b.data, b.len, chunking, NULL, &r);
+        char why[128] = "";
+        CHECK(r.commits == 1 && r.errors == 0 && r.scene, "beta chunking %d: %d commits %d errors (%s)",
+              chunking, r.commits, r.errors, r.errors ? r.err[0].what : "-");
+        CHECK(r.scene && scene_equal(s, r.scene, why, sizeof why),
+              "beta chunking %d: decoded store differs: %s", chunking, why);
+        CHECK(r.scene && renders_equal(s, r.scene), "beta chunking %d: renders differ", chunking);
+    }
+    /* The functions and CSG do something: without them the picture differs. */
+    cs_scene *plain = new_scene();
+    cs_scene_copy(plain, s);
+    for (uint32_t i = 0; i < plain->region_count; i++) {
+        plain->regions[i].func[0] = plain->regions[i].func[1] = plain->regions[i].func[2] = 0;
+        plain->regions[i].csg_len = 0;
+    }
+    plain->func_count = 0;
+    CHECK(!renders_equal(s, plain), "functions and CSG change the picture");
+    cels_buf_free(&b);
+    free(plain);
+    free(s);
+}
+
 static void test_crc_and_lights_order(void)
 {
     CHECK(cs_crc32(0, "123456789", 9) == 0xCBF43926u, "CRC-32 check value");
@@ -446,15 +515,20 @@ static void test_copy(void)
     cs_scene_copy(c, s);
     char why[128] = "";
     CHECK(scene_equal(s, c, why, sizeof why), "cs_scene_copy: %s", why);
+    build_beta(s);
+    memset(c, 0xa5, sizeof *c);
+    cs_scene_copy(c, s);
+    CHECK(scene_equal(s, c, why, sizeof why) && renders_equal(s, c),
+          "cs_scene_copy with functions and CSG: %s", why);
     free(s);
     free(c);
 }
 
 /* Truncation at every offset: nothing is committed, and the error is reported. */
-static void test_truncation(void)
+static void truncation(void (*build)(cs_scene *), const char *name)
 {
     cs_scene *s = new_scene();
-    build_demo(s);
+    build(s);
     cels_buf b;
     encode(s, &b, true);
     bulk bk = {0};
@@ -479,7 +553,8 @@ static void test_truncation(void)
             bulk_fail(&bk, msg);
         }
     }
-    bulk_done(&bk, "truncation at every offset", (int)b.len);
+    snprintf(msg, sizeof msg, "%s: truncation at every offset", name);
+    bulk_done(&bk, msg, (int)b.len);
 
     /* The same after a good transaction: the good scene stays. */
     cs_scene *first = new_scene();
@@ -509,7 +584,8 @@ static void test_truncation(void)
             bulk_fail(&bk2, msg);
         }
     }
-    bulk_done(&bk2, "truncation of a second transaction keeps the first", (int)(g.len - second));
+    snprintf(msg, sizeof msg, "%s: truncation of a second transaction keeps the first", name);
+    bulk_done(&bk2, msg, (int)(g.len - second));
     cels_buf_free(&b);
     cels_buf_free(&g);
     free(s);
@@ -521,10 +597,10 @@ static void test_truncation(void)
  * error names the second transaction's offset. Flips in the stream header
  * only cost the header (it is optional).
  */
-static void test_bitflips(void)
+static void bitflips(void (*build)(cs_scene *), const char *name)
 {
     cs_scene *first = new_scene(), *s = new_scene();
-    build_demo(s);
+    build(s);
     cs_scene_init(first, 96, 64);
     cs_affine id = {1, 0, 0, 1, 0, 0};
     cs_error e;
@@ -565,12 +641,25 @@ static void test_bitflips(void)
                 bulk_fail(&bk, msg);
             }
         }
-    bulk_done(&bk, "every bit flip", runs);
-    printf("  bit flips: %d streams\n", runs);
+    snprintf(msg, sizeof msg, "%s: every bit flip", name);
+    bulk_done(&bk, msg, runs);
+    printf("  bit flips, %s: %d streams\n", name, runs);
     free(d);
     cels_buf_free(&g);
     free(first);
     free(s);
+}
+
+static void test_truncation(void)
+{
+    truncation(build_demo, "demo");
+    truncation(build_beta, "beta");
+}
+
+static void test_bitflips(void)
+{
+    bitflips(build_demo, "demo");
+    bitflips(build_beta, "beta");
 }
 
 /* A one-transaction stream around records written by `fill`, resealed. */
@@ -912,6 +1001,369 @@ static void f_bad_rule(cels_buf *b)
     rec_cel_region(b);
     b->data[b->len - 32] = 9; /* fill rule 9 */
     cels_rec_commit(b);
+}
+
+/* REGION_FUNC with raw fields: a two-stop linear gradient unless changed. */
+typedef struct {
+    uint32_t field, kind, spread, cols, stops;
+    float geom[6];
+    float stop[2][4];
+} wire_func;
+
+static wire_func good_func(void)
+{
+    wire_func f = {0, CS_FUNC_LINEAR, 0, 1, 2, {0, 0, 40, 0, 0, 0},
+                   {{0, 1, 0, 0}, {1, 0, 0, 1}}};
+    return f;
+}
+
+static void rec_func(cels_buf *b, const wire_func *f, uint32_t carried)
+{
+    cels_rec_begin(b, CS_REC_REGION_FUNC);
+    cels_put_u32(b, f->field);
+    cels_put_u32(b, f->kind);
+    cels_put_u32(b, f->spread);
+    cels_put_u32(b, f->cols);
+    cels_put_u32(b, f->stops);
+    cels_put_f32s(b, f->geom, 6);
+    for (uint32_t i = 0; i < carried; i++)
+        cels_put_f32s(b, f->stop[i < 2 ? i : 1], 4);
+    cels_rec_end(b);
+}
+
+static void rec_csg(cels_buf *b, const int32_t *tok, uint32_t n, uint32_t len)
+{
+    cels_rec_begin(b, CS_REC_REGION_CSG);
+    cels_put_u32(b, len);
+    for (uint32_t i = 0; i < n; i++)
+        cels_put_u32(b, (uint32_t)tok[i]);
+    cels_rec_end(b);
+}
+
+static void rec_operand(cels_buf *b, uint32_t op)
+{
+    cels_rec_begin(b, CS_REC_CONTOUR_OPERAND);
+    cels_put_u32(b, op);
+    cels_rec_end(b);
+}
+
+/* SCENE, a cel with a region, `f` as the region's function, a square, COMMIT. */
+static void func_body(cels_buf *b, const wire_func *f)
+{
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_func(b, f, f->stops);
+    rec_square(b, 10);
+    cels_rec_commit(b);
+}
+static void f_func_field(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.field = 3;
+    func_body(b, &f);
+}
+static void f_func_no_stops(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.stops = 0;
+    func_body(b, &f);
+}
+static void f_func_many_stops(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.stops = CS_CFG_MAX_STOPS + 1;
+    func_body(b, &f);
+}
+static void f_func_huge_stops(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.stops = 0xFFFFFFFFu;
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_func(b, &f, 2);
+    cels_rec_commit(b);
+}
+static void f_func_kind(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.kind = 0x101; /* would be LINEAR if cut to a byte */
+    func_body(b, &f);
+}
+static void f_func_spread(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.spread = 0x100;
+    func_body(b, &f);
+}
+static void f_func_degenerate(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.geom[2] = 0; /* p1 == p0 */
+    func_body(b, &f);
+}
+static void f_func_nan_geom(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.geom[1] = NAN;
+    func_body(b, &f);
+}
+static void f_func_inf_stop(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.stop[1][2] = INFINITY;
+    func_body(b, &f);
+}
+static void f_func_stop_range(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.stop[0][1] = 1.5f;
+    func_body(b, &f);
+}
+static void f_func_stop_order(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.stop[0][0] = 0.8f;
+    f.stop[1][0] = 0.2f;
+    func_body(b, &f);
+}
+static void f_func_map_cols(cels_buf *b)
+{
+    wire_func f = good_func();
+    f.kind = CS_FUNC_MAP;
+    f.cols = 0x102; /* would be 2 if cut to a byte */
+    f.geom[0] = 0, f.geom[1] = 0, f.geom[2] = 10, f.geom[3] = 0, f.geom[4] = 0, f.geom[5] = 10;
+    func_body(b, &f);
+}
+static void f_func_short(cels_buf *b)
+{
+    wire_func f = good_func();
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_func(b, &f, 1); /* says 2 stops, carries 1 */
+    cels_rec_commit(b);
+}
+static void f_func_no_region(cels_buf *b)
+{
+    wire_func f = good_func();
+    rec_scene(b);
+    rec_func(b, &f, 2);
+    cels_rec_commit(b);
+}
+static void f_csg_empty(cels_buf *b)
+{
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_csg(b, NULL, 0, 0);
+    cels_rec_commit(b);
+}
+static void f_csg_long(cels_buf *b)
+{
+    int32_t t[17];
+    for (int i = 0; i < 17; i++)
+        t[i] = i % 2 ? CS_CSG_UNION : 0;
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_csg(b, t, 17, 17);
+    cels_rec_commit(b);
+}
+static void f_csg_huge_len(cels_buf *b)
+{
+    int32_t t[1] = {0};
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_csg(b, t, 1, 0x80000001u);
+    cels_rec_commit(b);
+}
+static void f_csg_operand(cels_buf *b)
+{
+    int32_t t[3] = {0, CS_CFG_MAX_OPERANDS, CS_CSG_UNION};
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_csg(b, t, 3, 3);
+    cels_rec_commit(b);
+}
+static void f_csg_operator(cels_buf *b)
+{
+    int32_t t[3] = {0, 1, -5};
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_csg(b, t, 3, 3);
+    cels_rec_commit(b);
+}
+static void f_csg_wrap(cels_buf *b)
+{
+    int32_t t[3] = {0, 1, (int32_t)0x80000001u};
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_csg(b, t, 3, 3);
+    cels_rec_commit(b);
+}
+static void f_csg_leftover(cels_buf *b)
+{
+    int32_t t[2] = {0, 1};
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_csg(b, t, 2, 2);
+    cels_rec_commit(b);
+}
+static void f_csg_underflow(cels_buf *b)
+{
+    int32_t t[2] = {0, CS_CSG_XOR};
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_csg(b, t, 2, 2);
+    cels_rec_commit(b);
+}
+static void f_csg_no_region(cels_buf *b)
+{
+    int32_t t[1] = {0};
+    rec_scene(b);
+    rec_csg(b, t, 1, 1);
+    cels_rec_commit(b);
+}
+static void f_operand_range(cels_buf *b)
+{
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_square(b, 10);
+    rec_operand(b, CS_CFG_MAX_OPERANDS);
+    cels_rec_commit(b);
+}
+static void f_operand_huge(cels_buf *b)
+{
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_square(b, 10);
+    rec_operand(b, 0xFFFFFFFFu);
+    cels_rec_commit(b);
+}
+static void f_operand_no_contour(cels_buf *b)
+{
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_operand(b, 1);
+    cels_rec_commit(b);
+}
+static void f_operand_long(cels_buf *b)
+{
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_square(b, 10);
+    cels_rec_begin(b, CS_REC_CONTOUR_OPERAND);
+    cels_put_u32(b, 1);
+    cels_put_u32(b, 1);
+    cels_rec_end(b);
+    cels_rec_commit(b);
+}
+/* A function on a region of a cel moved away from the end of the store. */
+static void f_func_moved_cel(cels_buf *b)
+{
+    wire_func f = good_func();
+    rec_scene(b);
+    rec_cel_region(b);
+    rec_square(b, 10);
+    rec_cel_region(b);
+    rec_square(b, 40);
+    cels_rec_begin(b, CS_REC_CEL_MOVE);
+    cels_put_u32(b, 1);
+    cels_put_u32(b, 0);
+    cels_rec_end(b);
+    rec_func(b, &f, 2);
+    cels_rec_commit(b);
+}
+/* One function more than the store holds. */
+static void f_func_cap(cels_buf *b)
+{
+    wire_func f = good_func();
+    rec_scene(b);
+    cels_rec_begin(b, CS_REC_CEL);
+    cels_put_u32(b, 0);
+    float m[12] = {1, 0, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0};
+    cels_put_f32s(b, m, 12);
+    cels_rec_end(b);
+    for (int i = 0; i <= CS_CFG_MAX_FUNCS; i++) {
+        if (i % 3 == 0) {
+            cels_rec_begin(b, CS_REC_REGION);
+            cels_put_u32(b, 0);
+            float p[7] = {1, 1, 1, 1, 1, 1, 1};
+            cels_put_f32s(b, p, 7);
+            cels_rec_end(b);
+        }
+        f.field = (uint32_t)(i % 3);
+        rec_func(b, &f, 2);
+    }
+    cels_rec_commit(b);
+}
+
+static void test_crafted_beta(void)
+{
+    expect_error("function field 3", f_func_field, CS_ERR_FUNC);
+    expect_error("function without stops", f_func_no_stops, CS_ERR_FUNC);
+    expect_error("function with 17 stops", f_func_many_stops, CS_ERR_FUNC);
+    expect_error("function with 2^32-1 stops", f_func_huge_stops, CS_ERR_FUNC);
+    expect_error("function kind 0x101", f_func_kind, CS_ERR_FUNC);
+    expect_error("function spread 0x100", f_func_spread, CS_ERR_FUNC);
+    expect_error("degenerate gradient", f_func_degenerate, CS_ERR_FUNC);
+    expect_error("NaN gradient geometry", f_func_nan_geom, CS_ERR_NONFINITE);
+    expect_error("Inf stop value", f_func_inf_stop, CS_ERR_NONFINITE);
+    expect_error("stop value 1.5", f_func_stop_range, CS_ERR_PAINT);
+    expect_error("stop offsets decreasing", f_func_stop_order, CS_ERR_FUNC);
+    expect_error("map columns 0x102", f_func_map_cols, CS_ERR_FUNC);
+    expect_error("function record short of its stops", f_func_short, CS_ERR_STREAM_RECORD);
+    expect_error("function before any region", f_func_no_region, CS_ERR_STATE);
+    expect_error("function on a moved-away cel", f_func_moved_cel, CS_ERR_STATE);
+    expect_error("one function more than the store holds", f_func_cap, CS_ERR_CAP_FUNCS);
+    expect_error("empty CSG program", f_csg_empty, CS_ERR_CSG);
+    expect_error("CSG program of 17 tokens", f_csg_long, CS_ERR_CSG);
+    expect_error("CSG length 0x80000001", f_csg_huge_len, CS_ERR_CSG);
+    expect_error("CSG operand 8", f_csg_operand, CS_ERR_CSG);
+    expect_error("CSG operator -5", f_csg_operator, CS_ERR_CSG);
+    expect_error("CSG token 0x80000001", f_csg_wrap, CS_ERR_CSG);
+    expect_error("CSG program leaves two values", f_csg_leftover, CS_ERR_CSG);
+    expect_error("CSG operator without operands", f_csg_underflow, CS_ERR_CSG);
+    expect_error("CSG before any region", f_csg_no_region, CS_ERR_STATE);
+    expect_error("operand 8", f_operand_range, CS_ERR_CSG);
+    expect_error("operand 0xFFFFFFFF", f_operand_huge, CS_ERR_CSG);
+    expect_error("operand before any contour", f_operand_no_contour, CS_ERR_STATE);
+    expect_error("operand record too long", f_operand_long, CS_ERR_STREAM_RECORD);
+
+    /* The fault is located: a bad stop names its cel, region and stop. */
+    cels_buf b;
+    one_txn(&b, f_func_stop_range);
+    result r;
+    decode(b.data, b.len, 1, NULL, &r);
+    size_t func_rec = 16 + (6 + 8) + (6 + 52) + (6 + 32);
+    CHECK(r.errors == 1 && r.err[0].at == func_rec && r.err[0].where.cel == 0 &&
+              r.err[0].where.region == 0 && r.err[0].where.item == 0,
+          "bad stop located at record %llu cel %d region %d item %d (want %zu 0 0 0)",
+          r.errors ? (unsigned long long)r.err[0].at : 0ull, r.err[0].where.cel,
+          r.err[0].where.region, r.err[0].where.item, func_rec);
+    cels_buf_free(&b);
+    /* A bad token names its index. */
+    one_txn(&b, f_csg_operator);
+    decode(b.data, b.len, 0, NULL, &r);
+    CHECK(r.errors == 1 && r.err[0].where.item == 2, "bad CSG token located: item %d (want 2)",
+          r.err[0].where.item);
+    cels_buf_free(&b);
+
+    /* Setting a field twice replaces its function in place, as the call does. */
+    cels_buf_init(&b);
+    cels_txn_begin(&b);
+    rec_scene(&b);
+    rec_cel_region(&b);
+    wire_func f = good_func();
+    rec_func(&b, &f, 2);
+    f.geom[2] = 80;
+    rec_func(&b, &f, 2);
+    rec_square(&b, 10);
+    cels_rec_commit(&b);
+    cels_txn_end(&b);
+    decode(b.data, b.len, 1, NULL, &r);
+    CHECK(r.commits == 1 && r.scene && r.scene->func_count == 1 &&
+              r.scene->regions[0].func[0] == 1 && r.scene->funcs[0].geom[2] == 80,
+          "a field set twice: %d commits, %u functions", r.commits,
+          r.scene ? r.scene->func_count : 0);
+    cels_buf_free(&b);
 }
 
 static void test_crafted(void)
@@ -1506,6 +1958,177 @@ static void test_edit_ops(void)
     free(want);
 }
 
+/* Three cels with paint functions, CSG and operands, in the given order. */
+static void build_three_beta(cs_scene *s, const int *order, int n)
+{
+    cs_error e;
+    cs_scene_init(s, 64, 64);
+    for (int i = 0; i < n; i++) {
+        int k = order[i];
+        float fk = (float)k;
+        cs_affine m = {1, 0, 0, 1, 6 * fk, 3 * fk};
+        cs_scene_add_cel(s, &m, NULL, NULL, &e);
+        cs_paint p = paint_of(0.2f, 0.4f, 0.6f, 1.0f);
+        cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e);
+        const float lg[6] = {10 + fk, 10, 40, 20 + 5 * fk, 0, 0};
+        const float ls[2][4] = {{0, 0.1f * fk, 0.5f, 1}, {1, 1, 0.3f * fk, 0}};
+        cs_paint_func f = make_func(CS_FUNC_LINEAR, k % 3, lg, 2, 1, ls);
+        cs_scene_set_region_func(s, CS_FIELD_PIGMENT, &f, &e);
+        if (k != 1) { /* cel 1 has one function fewer: slots are not evenly spread */
+            const float rg[6] = {20, 20, 12 + fk, 20, 22, 0};
+            const float rs[2][4] = {{0, 1, 1, 1}, {1, 0.3f, 0.3f, 0.3f}};
+            f = make_func(CS_FUNC_RADIAL, 0, rg, 2, 1, rs);
+            cs_scene_set_region_func(s, CS_FIELD_BETA, &f, &e);
+        }
+        add_circle(s, 20, 20, 8 + 2 * fk);
+        cs_scene_add_region(s, CS_FILL_EVENODD, &p, &e);
+        const float mg[6] = {20, 20, 20, 0, 0, 20};
+        const float ms[4][4] = {{0, 1, 0, 0}, {0, 0, fk / 2, 0}, {0, 0, 0, 1}, {0, 1, 1, 1}};
+        f = make_func(CS_FUNC_MAP, 0, mg, 4, 2, ms);
+        cs_scene_set_region_func(s, CS_FIELD_MEDIUM, &f, &e);
+        const int rpn[3] = {0, 1, k == 2 ? CS_CSG_XOR : CS_CSG_DIFFERENCE};
+        cs_scene_set_region_csg(s, rpn, 3, &e);
+        add_circle(s, 30, 30, 9);
+        cs_scene_set_contour_operand(s, 0, &e);
+        add_circle(s, 34, 30, 5);
+        cs_scene_set_contour_operand(s, 1, &e);
+    }
+    for (int i = 0; i < n; i++) {
+        int k = order[i];
+        cs_scene_add_track(s, CS_TRACK_TRANSFORM, (uint32_t)i, CS_EASE_LINEAR, &e);
+        cs_scene_add_key(s, 0, (float[6]){1, 0, 0, 1, 6 * (float)k, 3 * (float)k}, &e);
+        cs_scene_add_key(s, 1, (float[6]){1, 0, 0, 1, 6 * (float)k + 5, 3 * (float)k}, &e);
+    }
+}
+
+/* Removing and moving cels that own paint functions, CSG programs and operands. */
+static void test_edit_ops_beta(void)
+{
+    cs_scene *s = new_scene(), *want = new_scene();
+    cs_error e;
+    char why[128] = "";
+    const int abc[3] = {0, 1, 2}, ac[2] = {0, 2}, bc[2] = {1, 2}, ab[2] = {0, 1};
+    const int cab[3] = {2, 0, 1}, bca[3] = {1, 2, 0};
+    build_three_beta(s, abc, 3);
+    CHECK(s->func_count == 8, "three cels hold 8 functions: %u", s->func_count);
+    const int *keep[3] = {bc, ac, ab};
+    for (uint32_t victim = 0; victim < 3; victim++) {
+        build_three_beta(s, abc, 3);
+        CHECK(cs_scene_remove_cel(s, victim, &e) == CS_OK, "remove cel %u", victim);
+        build_three_beta(want, keep[victim], 2);
+        CHECK(scene_equal(want, s, why, sizeof why), "remove cel %u with functions: %s", victim,
+              why);
+        CHECK(renders_equal(want, s), "remove cel %u with functions: renders differ", victim);
+    }
+    /* Remove them all, one by one: no function slot is left behind. */
+    build_three_beta(s, abc, 3);
+    cs_scene_remove_cel(s, 1, &e);
+    cs_scene_remove_cel(s, 0, &e);
+    cs_scene_remove_cel(s, 0, &e);
+    CHECK(s->cel_count == 0 && s->region_count == 0 && s->func_count == 0 && s->track_count == 0,
+          "all removed: %u cels %u regions %u functions %u tracks", s->cel_count, s->region_count,
+          s->func_count, s->track_count);
+    /* Functions can be added again up to the capacity after removals. */
+    build_three_beta(s, abc, 3);
+    for (int round = 0; round < 3 * CS_CFG_MAX_FUNCS; round++) {
+        cs_scene_remove_cel(s, 0, &e);
+        const int one[1] = {round % 3};
+        cs_scene *t = want;
+        build_three_beta(t, one, 1);
+        /* append the same cel by hand at the back */
+        cs_affine m = {1, 0, 0, 1, 0, 0};
+        cs_scene_add_cel(s, &m, NULL, NULL, &e);
+        cs_paint p = paint_of(0.2f, 0.4f, 0.6f, 1.0f);
+        cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e);
+        cs_status fs = cs_scene_set_region_func(s, CS_FIELD_PIGMENT, &t->funcs[0], &e);
+        if (fs != CS_OK) {
+            CHECK(fs == CS_OK, "round %d: function slot leaked (%s, %u in use)", round,
+                  cs_status_str(fs), s->func_count);
+            break;
+        }
+        add_circle(s, 20, 20, 8);
+    }
+    CHECK(s->func_count <= 8, "after %d remove/add rounds: %u functions in use",
+          3 * CS_CFG_MAX_FUNCS, s->func_count);
+    /* Moves keep functions and CSG with their cels. */
+    build_three_beta(s, abc, 3);
+    cs_scene_move_cel(s, 2, 0, &e);
+    build_three_beta(want, cab, 3);
+    CHECK(renders_equal(want, s), "move with functions: back cel to front: renders differ");
+    build_three_beta(s, abc, 3);
+    cs_scene_move_cel(s, 0, 2, &e);
+    build_three_beta(want, bca, 3);
+    CHECK(renders_equal(want, s), "move with functions: front cel to back: renders differ");
+    /* Remove after a move, then a stream round trip of the result. */
+    cs_scene_remove_cel(s, 1, &e);
+    const int ba[2] = {1, 0};
+    build_three_beta(want, ba, 2);
+    CHECK(renders_equal(want, s), "move then remove with functions: renders differ");
+    cels_buf b;
+    encode(s, &b, true);
+    result r;
+    decode(b.data, b.len, 2, NULL, &r);
+    CHECK(r.commits == 1 && r.errors == 0 && r.scene && renders_equal(s, r.scene) &&
+              r.scene->func_count == s->func_count,
+          "edited store with functions round trip: %d commits %d errors", r.commits, r.errors);
+    cels_buf_free(&b);
+    free(s);
+    free(want);
+}
+
+/* A patch that replaces a cel with functions and CSG, as the stream carries it. */
+static void test_patch_beta(void)
+{
+    cs_scene *s = new_scene(), *want = new_scene();
+    const int abc[3] = {0, 1, 2}, acc[3] = {0, 2, 2};
+    build_three_beta(s, abc, 3);
+    /* Replace cel 1 (remove, append, move) by the cel built for index 2. */
+    cs_scene *donor = new_scene();
+    const int two[1] = {2};
+    build_three_beta(donor, two, 1);
+    cels_buf full;
+    encode(donor, &full, false);
+    /* The donor's transaction: its records between SCENE and the tracks. */
+    cels_buf b;
+    cels_buf_init(&b);
+    cels_txn_begin(&b);
+    cels_rec_begin(&b, CS_REC_CEL_REMOVE);
+    cels_put_u32(&b, 1);
+    cels_rec_end(&b);
+    size_t pos = 16;
+    while (pos + 6 <= full.len - 4) {
+        uint32_t type = (uint32_t)full.data[pos] | (uint32_t)full.data[pos + 1] << 8;
+        uint32_t len = (uint32_t)full.data[pos + 2] | (uint32_t)full.data[pos + 3] << 8 |
+                       (uint32_t)full.data[pos + 4] << 16 | (uint32_t)full.data[pos + 5] << 24;
+        if ((type >> 8) == 2 || (type >> 8) == 5)
+            cels_put_bytes(&b, full.data + pos, 6 + (size_t)len);
+        pos += 6 + (size_t)len;
+    }
+    cels_rec_begin(&b, CS_REC_CEL_MOVE);
+    cels_put_u32(&b, 2);
+    cels_put_u32(&b, 1);
+    cels_rec_end(&b);
+    cels_rec_commit(&b);
+    cels_txn_end(&b);
+    result r;
+    decode(b.data, b.len, 1, s, &r);
+    /* a, c', c: the old cel 1's track went with it, and the donor's was not sent. */
+    build_three_beta(want, acc, 3);
+    cs_error e;
+    cs_scene_remove_track(want, CS_TRACK_TRANSFORM, 1, &e);
+    CHECK(r.commits == 1 && r.errors == 0, "replace a cel with functions: %d commits %d errors (%s)",
+          r.commits, r.errors, r.errors ? r.err[0].what : "-");
+    CHECK(r.scene && r.scene->func_count == 9 && r.scene->cel_count == 3,
+          "replaced: %u functions, %u cels", r.scene ? r.scene->func_count : 0,
+          r.scene ? r.scene->cel_count : 0);
+    CHECK(r.scene && renders_equal(want, r.scene), "replace a cel with functions: renders differ");
+    cels_buf_free(&b);
+    cels_buf_free(&full);
+    free(donor);
+    free(s);
+    free(want);
+}
+
 static void test_track_validation(void)
 {
     cs_scene *s = new_scene();
@@ -1675,7 +2298,8 @@ static void test_sampling(void)
 
 /* Writes small seeds for the fuzz target (a mode byte, then a stream): a
  * whole scene, a simple scene, a scene then a patch with a points track and
- * an unknown record, a scene then an added, moved and removed cel. */
+ * an unknown record, a scene then an added, moved and removed cel, and a
+ * scene with paint functions, CSG and operands (class 5). */
 static int write_seeds(const char *dir)
 {
     cs_scene *s = new_scene();
@@ -1683,7 +2307,7 @@ static int write_seeds(const char *dir)
     struct {
         const char *name;
         cels_buf b;
-    } seeds[4];
+    } seeds[5];
     seeds[0].name = "demo.fuzz";
     encode(s, &seeds[0].b, true);
     seeds[1].name = "square.fuzz";
@@ -1724,13 +2348,18 @@ static int write_seeds(const char *dir)
     cels_rec_end(&seeds[3].b);
     cels_rec_commit(&seeds[3].b);
     cels_txn_end(&seeds[3].b);
+    seeds[4].name = "beta.fuzz";
+    cs_scene *beta = new_scene();
+    build_beta(beta);
+    encode(beta, &seeds[4].b, false);
+    free(beta);
     int rc = 0;
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < 5; i++) {
         char path[512];
         snprintf(path, sizeof path, "%s/%s", dir, seeds[i].name);
         FILE *f = fopen(path, "wb");
         /* The fuzz target's first byte: chunking, built-in scene, CRC re-sealing. */
-        static const uint8_t mode[4] = {0x40, 0x01, 0xC2, 0x83};
+        static const uint8_t mode[5] = {0x40, 0x01, 0xC2, 0x83, 0x42};
         if (!f || fwrite(&mode[i], 1, 1, f) != 1 ||
             fwrite(seeds[i].b.data, 1, seeds[i].b.len, f) != seeds[i].b.len) {
             fprintf(stderr, "test_stream: cannot write %s\n", path);
@@ -1759,15 +2388,19 @@ int main(int argc, char **argv)
     test_crc_and_lights_order();
     test_copy();
     test_roundtrip();
+    test_roundtrip_beta();
     test_truncation();
     test_bitflips();
     test_crafted();
+    test_crafted_beta();
     test_random_and_resync();
     test_valid_then_damaged();
     test_busy();
     test_patches();
     test_reader();
     test_edit_ops();
+    test_edit_ops_beta();
+    test_patch_beta();
     test_track_validation();
     test_sampling();
     test_centroid();

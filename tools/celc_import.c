@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "celc_import.h"
+#include "cels_write.h"
 #include "svg/sv.h"
 #include "svg/sv_import.h"
 #include "svg/sv_text.h"
@@ -56,15 +57,34 @@ static int write_text(const char *path, const char *text)
 }
 
 /*
- * The cel stream hook: when the stream encoder lands, encode `doc` here
- * (walk doc->cels / regions / contours exactly as sv_doc_to_json does).
+ * Straight to a cel stream: the IR becomes a scene store through the core's
+ * builder calls (the same back end the importer's tests render with), and
+ * the host stream writer encodes that, as `celc compile` does for JSON.
  */
 static int write_cels(const sv_doc *doc, const char *path)
 {
-    (void)doc;
-    fprintf(stderr, "celc import: %s: the .cels stream encoder is not available yet; "
-                    "write .json and run `celc compile`\n", path);
-    return 1;
+    cs_scene *scene = malloc(sizeof *scene);
+    if (!scene) {
+        fprintf(stderr, "celc import: out of memory for the scene store\n");
+        return 1;
+    }
+    sv_scene_opts so;
+    memset(&so, 0, sizeof so);
+    char err[512];
+    int rc = 1;
+    if (sv_doc_to_scene(doc, &so, scene, err, sizeof err) != 0) {
+        fprintf(stderr, "celc import: %s: %s\n", path, err);
+    } else {
+        FILE *f = fopen(path, "wb");
+        if (!f || cels_write_scene(scene, f) != 0 || fclose(f) != 0) {
+            fprintf(stderr, "celc import: cannot write %s\n", path);
+            remove(path);
+        } else {
+            rc = 0;
+        }
+    }
+    free(scene);
+    return rc;
 }
 
 static bool parse_bg(const char *s, double rgb[3])

@@ -8,7 +8,8 @@
  * are renumbered to that order, so even a store whose regions are not in
  * stack order (after cs_scene_move_cel) round-trips to the same picture.
  * For a store built only by appending (the JSON loader) the decoded store is
- * identical, byte for byte, in its used part.
+ * identical, byte for byte, in its used part: paint functions, CSG programs
+ * and contour operands included (class 5 records, format 1.1).
  */
 #include "cels_write.h"
 
@@ -154,6 +155,36 @@ static void put_paint(cels_buf *b, const cs_paint *p)
     cels_put_f32(b, p->beta);
 }
 
+/* REGION_FUNC for field `field` of the region just written. */
+static void put_func(cels_buf *b, int field, const cs_paint_func *f)
+{
+    cels_rec_begin(b, CS_REC_REGION_FUNC);
+    cels_put_u32(b, (uint32_t)field);
+    cels_put_u32(b, f->kind);
+    cels_put_u32(b, f->spread);
+    cels_put_u32(b, f->map_cols);
+    cels_put_u32(b, f->stop_count);
+    cels_put_f32s(b, f->geom, 6);
+    for (int i = 0; i < f->stop_count; i++) {
+        cels_put_f32(b, f->stops[i].offset);
+        cels_put_f32s(b, f->stops[i].value, 3);
+    }
+    cels_rec_end(b);
+}
+
+/* REGION_CSG: tokens as the API writes them (operand n, operator -k). */
+static void put_csg(cels_buf *b, const cs_region *r)
+{
+    cels_rec_begin(b, CS_REC_REGION_CSG);
+    cels_put_u32(b, r->csg_len);
+    for (int i = 0; i < r->csg_len; i++) {
+        uint8_t t = r->csg[i];
+        int32_t tok = (t & 0x80u) ? -(int32_t)(t & 0x7Fu) : (int32_t)t;
+        cels_put_u32(b, (uint32_t)tok);
+    }
+    cels_rec_end(b);
+}
+
 static bool is_default(const float *v, float x)
 {
     return v[0] == x && v[1] == x && v[2] == x;
@@ -204,6 +235,14 @@ int cels_encode_scene(cels_buf *b, const cs_scene *sc)
             cels_put_u32(b, r->fill_rule);
             put_paint(b, &r->paint);
             cels_rec_end(b);
+            /* Functions in field order and CSG, before the contours: the
+             * order the JSON loader makes its calls in, so the function
+             * slots come out numbered the same. */
+            for (int f = 0; f < 3; f++)
+                if (r->func[f])
+                    put_func(b, f, &sc->funcs[r->func[f] - 1u]);
+            if (r->csg_len)
+                put_csg(b, r);
             for (uint32_t k = r->first_contour; k < r->first_contour + r->contour_count; k++) {
                 const cs_contour *ct = &sc->contours[k];
                 const cs_point *pts = &sc->points[ct->first_point];
@@ -224,6 +263,11 @@ int cels_encode_scene(cels_buf *b, const cs_scene *sc)
                 if (!uniform)
                     cels_put_f32s(b, iv, ct->point_count);
                 cels_rec_end(b);
+                if (ct->operand) {
+                    cels_rec_begin(b, CS_REC_CONTOUR_OPERAND);
+                    cels_put_u32(b, ct->operand);
+                    cels_rec_end(b);
+                }
             }
         }
     }

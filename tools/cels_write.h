@@ -52,7 +52,8 @@ void cels_rec_commit(cels_buf *b);
 
 /*
  * Appends one transaction that defines `scene` whole: SCENE, LIGHTS,
- * BACKGROUND, then each cel with its regions and contours, then its tracks
+ * BACKGROUND, then each cel with its regions (each with its paint
+ * functions and CSG program) and contours (each with its CSG operand), then its tracks
  * in the order their keys were added, then COMMIT. Returns 0, or -1 if the
  * buffer ran out of memory.
  */

@@ -95,24 +95,25 @@ static void on_bytes(void *user, const uint8_t *p, size_t n)
     while (n > 0) {
         size_t used = 0;
         celfw_stream_error err = {0};
-        cs_scene *back = fw->scene[fw->front ^ 1];
-        celfw_stream_result r = celfw_stream_feed(fw->stream, p, n, &used, back, &err);
+        cs_scene *shown = fw->scene[fw->front], *back = fw->scene[fw->front ^ 1];
+        celfw_stream_result r = celfw_stream_feed(fw->stream, p, n, &used, shown, back, &err);
         if (used > n)
             used = n;
         p += used;
         n -= used;
         fw->stream_bytes += used;
         if (r == CELFW_STREAM_COMMIT) {
-            /* between frames: the next frame shows the new scene whole */
+            /* between frames: the next frame shows the new scene whole; the
+             * old one becomes the decoder's scratch (a patch copies what is
+             * shown before it edits) */
             fw->front ^= 1;
-            memcpy(fw->scene[fw->front ^ 1], fw->scene[fw->front], sizeof(cs_scene));
             fw->builtin[0] = 0;
             fw->commits++;
             say("event", "stream commit %llu applied", (unsigned long long)fw->commits);
         } else if (r == CELFW_STREAM_ERROR) {
             fw->stream_errors++;
-            say("event", "stream error at byte %llu: %s (transaction dropped, scene kept)",
-                (unsigned long long)err.offset, err.what);
+            say("event", "stream error at byte %llu: %s; scene kept", (unsigned long long)err.offset,
+                err.what);
         } else if (used == 0) {
             break;
         }
@@ -122,7 +123,13 @@ static void on_bytes(void *user, const uint8_t *p, size_t n)
 static void on_reset(void *user, const char *why)
 {
     (void)why;
-    celfw_stream_reset(((celfw *)user)->stream);
+    celfw *fw = user;
+    celfw_stream_error err;
+    while (celfw_stream_reset(fw->stream, &err) == CELFW_STREAM_ERROR) {
+        fw->stream_errors++;
+        say("event", "stream error at byte %llu: %s; scene kept", (unsigned long long)err.offset,
+            err.what);
+    }
 }
 
 static void on_note(void *user, const char *what)
@@ -394,7 +401,7 @@ int main(int argc, char **argv)
         snprintf(aa, sizeof aa, "%d", fw->cfg.subscanlines);
     say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s",
         fw->disp->ops->name, fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
-        celfw_input_describe(fw->in), fw->cfg.scene, celfw_stream_available() ? "cel-stream" : "stub",
+        celfw_input_describe(fw->in), fw->cfg.scene, celfw_stream_available() ? "cel-stream" : "none",
         display_state(fw));
     if (!celfw_stream_available() && strcmp(fw->cfg.input, "none") != 0)
         say("event", "stream decoder not in this build: input bytes are counted, not decoded");

@@ -1,6 +1,9 @@
 /*
  * test_celfw.c - celfw as a program: configuration errors, inputs, the USB
- * display over its whole life (stream over TCP, unplug, replug), SIGTERM.
+ * display over its whole life (stream over TCP, unplug, replug), SIGTERM,
+ * and a cel stream received over TCP rendered to the emulated USB display,
+ * with a damaged transaction that is logged with its offset and changes
+ * nothing on the glass.
  *
  * celfw runs as a child process under the same umockdev preload, so its
  * libusb finds the emulated GUD display that this process serves; the panel
@@ -20,10 +23,12 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "cels_write.h"
 #include "celfw_scenes.h"
 #include "fake_gud.h"
 #include "gud_wire.h"
 #include "lx_test.h"
+#include "scene_json.h"
 
 static const char *celfw_path;
 static cs_scene scene;
@@ -206,16 +211,17 @@ static void test_config_errors(void)
     unlink(path);
 }
 
-/* The truth for the panel: the frame at time t, rendered by the core, as RGB565. */
-static int compare_panel(fake_gud *dev, const char *name, float t, int w, int h)
+/* The truth for the panel: the frame of `s` at time t, rendered by the core, as RGB565. */
+static int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h)
 {
-    celfw_scene_build(name, &scene, t);
-    cs_render_opts o = {w, h, CS_AA_SUBSCAN, 4, t};
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.subscanlines = 4;
+    o.time = t;
     cs_renderer r;
     cs_error e;
     uint8_t *want = malloc((size_t)w * (size_t)h * 2u), *got = malloc((size_t)w * (size_t)h * 2u);
     float *line = malloc((size_t)w * 3u * sizeof(float));
-    cs_frame_begin(&r, &ws, &scene, &o, &e);
+    cs_frame_begin(&r, &ws, s, &o, &e);
     for (int y = 0; y < h; y++) {
         cs_render_line(&r, y, line);
         cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, want + (size_t)y * (size_t)w * 2u);
@@ -228,6 +234,13 @@ static int compare_panel(fake_gud *dev, const char *name, float t, int w, int h)
     free(got);
     free(line);
     return bad;
+}
+
+/* The same for a built-in scene of celfw. */
+static int compare_panel(fake_gud *dev, const char *name, float t, int w, int h)
+{
+    celfw_scene_build(name, &scene, t);
+    return compare_panel_scene(dev, &scene, t, w, h);
 }
 
 static int tcp_connect(int port)
@@ -293,6 +306,135 @@ static void test_usb_tcp(UMockdevTestbed *tb)
     fake_gud_stats ds;
     fake_gud_get_stats(dev, &ds);
     CHECK(!ds.display_on && !ds.controller_on, "display disabled at exit");
+    fake_gud_unplug(dev);
+    fake_gud_free(dev);
+}
+
+static bool send_all(int fd, const uint8_t *p, size_t n)
+{
+    while (n > 0) {
+        ssize_t w = write(fd, p, n);
+        if (w <= 0)
+            return false;
+        p += w;
+        n -= (size_t)w;
+    }
+    return true;
+}
+
+/*
+ * The issue's done-criterion for celfw: a cel stream received over TCP
+ * renders to the emulated USB display. The stream is scenes/motion.json as
+ * `celc compile` writes it (a track of every kind, so the panel animates),
+ * sent in uneven pieces; then a patch transaction that would move a cel,
+ * damaged by one flipped bit. celfw must log the damage with the byte offset
+ * of the transaction's CRC field, and the panel must still show the first
+ * scene at celfw's last frame time, pixel for pixel.
+ */
+static void test_usb_stream(UMockdevTestbed *tb)
+{
+    static cs_scene motion;
+    char err[SCENE_JSON_ERRLEN];
+    int rc = scene_json_load("scenes/motion.json", &motion, err, sizeof err);
+    CHECK(rc == 0, "scenes/motion.json loads: %s", err);
+    if (rc != 0)
+        return;
+    cels_buf b;
+    cels_buf_init(&b);
+    cels_stream_header(&b);
+    CHECK(cels_encode_scene(&b, &motion) == 0, "encode the scene");
+    size_t scene_len = b.len;
+    /* The patch: move cel 3 (the tile, which has no transform track) 60 px right. */
+    cels_txn_begin(&b);
+    cels_rec_begin(&b, CS_REC_CEL_TRANSFORM);
+    cels_put_u32(&b, 3);
+    const float m[6] = {1, 0, 0, 1, 60, 0};
+    cels_put_f32s(&b, m, 6);
+    cels_rec_end(&b);
+    cels_rec_commit(&b);
+    cels_txn_end(&b);
+    size_t crc_at = b.len - 4;
+    b.data[scene_len + 16 + 6 + 4 + 16] ^= 0x08; /* the patch's e, 60 -> another number */
+
+    fake_gud_opts o;
+    fake_gud_opts_default(&o);
+    o.pid = 0x7103;
+    fake_gud *dev = fake_gud_add(tb, 5, 2, &o);
+    child c;
+    spawn(&c,
+          (const char *[]){"--backend", "usb", "--usb-device", "1d50:7103", "--scene", "builtin:anim",
+                           "--time-step", "0.03", "--fps", "60", "--input", "tcp:127.0.0.1:0",
+                           "--log-interval", "0.1", NULL},
+          false);
+    char line[1024] = "";
+    bool started = wait_line(&c, "celfw: start", 10.0, line, sizeof line);
+    CHECK(started && strstr(line, "display=320x180") && strstr(line, "decoder=cel-stream"),
+          "start line names the decoder: %s", line);
+    const char *tcp = strstr(line, "input=tcp:127.0.0.1:");
+    int port = tcp ? atoi(tcp + strlen("input=tcp:127.0.0.1:")) : 0;
+    int fd = port > 0 ? tcp_connect(port) : -1;
+    CHECK(fd >= 0, "connect to celfw");
+    /* The scene in uneven pieces, as a network delivers it. */
+    size_t off = 0, piece = 1;
+    while (fd >= 0 && off < scene_len) {
+        size_t k = piece < scene_len - off ? piece : scene_len - off;
+        CHECK(send_all(fd, b.data + off, k), "send %zu bytes at %zu", k, off);
+        off += k;
+        piece = piece * 3 + 7;
+        g_usleep(2000);
+    }
+    CHECK(wait_line(&c, "stream commit 1 applied", 10.0, line, sizeof line), "the scene commits: %s",
+          c.log);
+    /* Some frames of it, then the damaged patch. */
+    bool ran = false;
+    for (int i = 0; i < 50 && !ran; i++)
+        ran = wait_line(&c, "celfw: status", 5.0, line, sizeof line) && field(line, "frames") >= 20;
+    CHECK(ran, "frames after the commit");
+    CHECK(fd >= 0 && send_all(fd, b.data + scene_len, b.len - scene_len), "send the damaged patch");
+    char want[160];
+    snprintf(want, sizeof want, "stream error at byte %zu: transaction CRC mismatch", crc_at);
+    CHECK(wait_line(&c, "stream error at byte", 10.0, line, sizeof line) && strstr(line, want) &&
+              strstr(line, "scene kept"),
+          "the damage is logged with its offset (want \"%s\"): %s", want, line);
+    snprintf(want, sizeof want, "(transaction at byte %zu dropped)", scene_len);
+    CHECK(strstr(line, want) != NULL, "the log names the dropped transaction %s: %s", want, line);
+    /* More frames, so the glass has had every chance to change. */
+    unsigned long long before = 0;
+    for (int i = 0; i < 50; i++) {
+        if (wait_line(&c, "celfw: status", 5.0, line, sizeof line) && before == 0)
+            before = field(line, "frames");
+        else if (before && field(line, "frames") >= before + 10)
+            break;
+    }
+    if (fd >= 0)
+        close(fd);
+    kill(c.pid, SIGTERM);
+    rc = wait_exit(&c, 10.0);
+    if (getenv("LX_TEST_VERBOSE"))
+        fprintf(stderr, "%s", c.log);
+    const char *ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && field(ex, "commits") == 1 && field(ex, "stream_errors") == 1 &&
+              field(ex, "stream_bytes") == b.len,
+          "exit line: one commit, one stream error, every byte: rc %d, %s", rc, ex ? ex : c.log);
+    if (ex) {
+        const char *at = strstr(ex, "anim_t=");
+        float t = at ? strtof(at + 7, NULL) : -1.0f;
+        CHECK(t > 0.5f, "the scene ran for a while: last frame at t=%g", (double)t);
+        int bad = compare_panel_scene(dev, &motion, t, 320, 180);
+        CHECK(bad == 0, "the panel shows the streamed scene at t=%g, unpatched (%d pixels differ)",
+              (double)t, bad);
+        /* And that is not the built-in scene celfw started with, nor the patched one. */
+        celfw_scene_build("anim", &scene, t);
+        CHECK(compare_panel_scene(dev, &scene, t, 320, 180) > 1000,
+              "the panel no longer shows the built-in scene");
+        cs_error e;
+        cs_scene_copy(&scene, &motion);
+        const cs_affine moved = {1, 0, 0, 1, 60, 0};
+        cs_scene_set_transform(&scene, 3, &moved, &e);
+        CHECK(compare_panel_scene(dev, &scene, t, 320, 180) > 100,
+              "the panel does not show the patch");
+    }
+    cels_buf_free(&b);
     fake_gud_unplug(dev);
     fake_gud_free(dev);
 }
@@ -424,6 +566,7 @@ int main(void)
 
     test_config_errors();
     test_usb_tcp(tb);
+    test_usb_stream(tb);
     test_usb_unplug(tb);
     test_sigterm_stdin();
     test_file_and_tty(tb);

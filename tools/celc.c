@@ -1,0 +1,209 @@
+/*
+ * celc.c - the scene compiler: authoring formats in, cel streams out.
+ *
+ *   celc compile SCENE.json -o OUT.cels    scene JSON (DESIGN.md, docs/SCENE.md) to a stream
+ *   celc import ...                        SVG to scene JSON or a stream (tools/celc_import.c)
+ *
+ * compile loads the JSON with the same loader celsim uses (host-sim/
+ * scene_json.c), so the scene is built and checked by the core's cs_scene_*
+ * calls, "animate" tracks included, and a refusal names the JSON path of the
+ * culprit. It then writes the whole store as one transaction after a stream
+ * header (tools/cels_write.c, docs/STREAM.md). The decoder rebuilds the very
+ * same store from it through the very same calls, so the board shows what
+ * celsim shows for the JSON, bit for bit.
+ *
+ * The output appears only when it is complete: it is written to a temporary
+ * file next to OUT and renamed over it, so a failed compile never leaves a
+ * truncated stream for a board to pick up.
+ *
+ * Exit status: 0 written; 1 the scene was refused or a file could not be
+ * read or written; 2 bad command line.
+ */
+#include <errno.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "celc_import.h"
+#include "cels_write.h"
+#include "celscan.h"
+#include "scene_json.h"
+
+enum { EXIT_FAIL = 1, EXIT_USAGE = 2 };
+
+static const char usage_text[] =
+    "usage: celc compile SCENE.json -o OUT.cels [-v]\n"
+    "       celc import DRAWING.svg -o OUT.json|OUT.cels [options]   (celc import --help)\n"
+    "       celc text \"STRING\" -o OUT.json [options]                 (celc text --help)\n"
+    "\n"
+    "compile   turns authoring JSON (with its \"animate\" tracks) into a cel stream\n"
+    "          (docs/STREAM.md): a stream header and one transaction that defines\n"
+    "          the whole scene. -o - writes to standard output. Errors name the\n"
+    "          JSON path, e.g. cels[2].regions[0].contours[1].points[4].\n"
+    "  -v      print what was written (cels, regions, contours, functions, tracks, bytes)\n"
+    "import    turns an SVG drawing into scene JSON or straight into a stream: paths,\n"
+    "          shapes, transforms, styles, gradients, strokes as regions, text\n"
+    "text      sets a string in a font (FreeType) as scene JSON\n"
+    "\n"
+    "exit status: 0 ok, 1 scene refused or file error, 2 usage error\n";
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static int usage_error(const char *fmt, ...);
+
+static int usage_error(const char *fmt, ...)
+{
+    va_list ap;
+    fputs("celc: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    return EXIT_USAGE;
+}
+
+/* Writes all of `data` to `path` through a temporary file renamed into place. */
+static int write_atomically(const char *path, const uint8_t *data, size_t len)
+{
+    if (strcmp(path, "-") == 0) {
+        if (fwrite(data, 1, len, stdout) != len || fflush(stdout) != 0) {
+            fprintf(stderr, "celc: cannot write to standard output: %s\n", strerror(errno));
+            return EXIT_FAIL;
+        }
+        return 0;
+    }
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 16);
+    if (tmp == NULL) {
+        fprintf(stderr, "celc: out of memory\n");
+        return EXIT_FAIL;
+    }
+    snprintf(tmp, n + 16, "%s.tmp.XXXXXX", path);
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        fprintf(stderr, "celc: %s: cannot create a file next to it: %s\n", path, strerror(errno));
+        free(tmp);
+        return EXIT_FAIL;
+    }
+    FILE *f = fdopen(fd, "wb");
+    bool ok = f != NULL && fwrite(data, 1, len, f) == len;
+    int saved = errno;
+    if (f != NULL) {
+        if (fclose(f) != 0 && ok) {
+            ok = false;
+            saved = errno;
+        }
+    } else {
+        close(fd);
+    }
+    /* mkstemp makes the file 0600; a stream is no secret. */
+    if (ok && chmod(tmp, 0644) != 0)
+        saved = errno;
+    if (ok && rename(tmp, path) != 0) {
+        ok = false;
+        saved = errno;
+    }
+    if (!ok) {
+        fprintf(stderr, "celc: %s: cannot write: %s\n", path, strerror(saved));
+        remove(tmp);
+    }
+    free(tmp);
+    return ok ? 0 : EXIT_FAIL;
+}
+
+static int compile_main(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL;
+    bool verbose = false;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+            if (i + 1 >= argc || argv[i + 1][0] == '\0')
+                return usage_error("%s needs a file name (see celc --help)", a);
+            out = argv[++i];
+        } else if (strncmp(a, "--output=", 9) == 0) {
+            out = a + 9;
+        } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
+            verbose = true;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            fputs(usage_text, stdout);
+            return 0;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return usage_error("compile: unknown option '%s' (see celc --help)", a);
+        } else if (in == NULL) {
+            in = a;
+        } else {
+            return usage_error("compile: unexpected argument '%s': one SCENE per run", a);
+        }
+    }
+    if (in == NULL)
+        return usage_error("compile needs a SCENE.json (see celc --help)");
+    if (out == NULL || out[0] == '\0')
+        return usage_error("compile needs -o OUT.cels (or -o - for standard output)");
+
+    /* The store is half a megabyte: heap, not stack. */
+    cs_scene *scene = calloc(1, sizeof *scene);
+    if (scene == NULL) {
+        fprintf(stderr, "celc: out of memory for the scene store\n");
+        return EXIT_FAIL;
+    }
+    char err[SCENE_JSON_ERRLEN];
+    if (scene_json_load(in, scene, err, sizeof err) != 0) {
+        fprintf(stderr, "celc: %s\n", err);
+        free(scene);
+        return EXIT_FAIL;
+    }
+    cels_buf b;
+    cels_buf_init(&b);
+    cels_stream_header(&b);
+    int rc = 0;
+    if (cels_encode_scene(&b, scene) != 0) {
+        fprintf(stderr, "celc: out of memory encoding %s\n", in);
+        rc = EXIT_FAIL;
+    } else if (b.len - 2 * CS_WIRE_HEADER_SIZE - CS_WIRE_TRAILER_SIZE > CS_CFG_STREAM_MAX_TXN) {
+        /* The stream header, then the transaction's header, body and trailer. */
+        fprintf(stderr, "celc: %s: the scene's transaction body is %zu bytes, more than a decoder "
+                        "accepts (%u)\n",
+                in, b.len - 2 * CS_WIRE_HEADER_SIZE - CS_WIRE_TRAILER_SIZE,
+                (unsigned)CS_CFG_STREAM_MAX_TXN);
+        rc = EXIT_FAIL;
+    } else {
+        rc = write_atomically(out, b.data, b.len);
+    }
+    if (rc == 0 && verbose)
+        fprintf(stderr,
+                "celc: %s -> %s: %u cels, %u regions, %u contours, %u points, %u functions, "
+                "%u tracks, %u keys; %zu bytes (stream %d.%d)\n",
+                in, out, scene->cel_count, scene->region_count, scene->contour_count,
+                scene->point_count, scene->func_count, scene->track_count, scene->key_count,
+                b.len, CS_WIRE_MAJOR, CS_WIRE_MINOR);
+    cels_buf_free(&b);
+    free(scene);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fputs(usage_text, stderr);
+        return EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
+        fputs(usage_text, stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "compile") == 0)
+        return compile_main(argc - 1, argv + 1);
+    /* SVG import and text setting live in tools/celc_import.c (tools/svg/). */
+    if (strcmp(cmd, "import") == 0)
+        return celc_import_main(argc - 1, argv + 1);
+    if (strcmp(cmd, "text") == 0)
+        return celc_text_main(argc - 1, argv + 1);
+    return usage_error("unknown command '%s' (compile, import or text; see celc --help)", cmd);
+}
