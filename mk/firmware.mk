@@ -77,8 +77,8 @@ firmware-all: $(addprefix firmware-,$(FW_BOARDS))
 # ---------------------------------------------------------- host side
 # The reference renderer for the built-in scenes, and the QEMU plugin.
 # fw_host_ref renders built-in scenes, the animated C scene and decoded
-# streams; fw_cels_gen writes the streams the qemu test sends (JSON through
-# celsim's loader, then the host encoder) until celc lands.
+# streams; the qemu test sends scene JSON compiled by celc, and fw_cels_gen
+# writes the stream of the animated C scene.
 $(HOST)/obj/tests/fw_host_ref.o $(HOST)/obj/tests/fw_cels_gen.o: HOST_CFLAGS += -Ifirmware/scenes -Itools
 $(HOST)/obj/firmware/scenes/fw_scenes.o: HOST_CFLAGS += -Ifirmware/scenes
 $(HOST)/fw_host_ref: $(HOST)/obj/tests/fw_host_ref.o $(HOST)/obj/firmware/scenes/fw_scenes.o \
@@ -86,9 +86,8 @@ $(HOST)/fw_host_ref: $(HOST)/obj/tests/fw_host_ref.o $(HOST)/obj/firmware/scenes
                      $(HOST)/libcelscan.a
 	$(Q)$(CC) $^ -o $@
 $(HOST)/fw_cels_gen: $(HOST)/obj/tests/fw_cels_gen.o $(HOST)/obj/tests/fw_tracks_scene.o \
-                     $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o \
                      $(HOST)/obj/tools/cels_write.o $(HOST)/libcelscan.a
-	$(Q)$(CC) $^ $(PKG_LIBS) -lm -o $@
+	$(Q)$(CC) $^ -lm -o $@
 HOST_PROGRAMS += $(HOST)/fw_host_ref $(HOST)/fw_cels_gen
 
 # The MCU display backend is plain C: its unit test runs on the host.
@@ -110,7 +109,8 @@ $(HOST)/libinsncount.so: tools/qemu-insn/insncount.c
 # ------------------------------------------------------------ running
 FW_QEMU_ELF := $(BUILD)/$(FW_QEMU_BOARD)/celfw.elf
 
-qemu-test: firmware-$(FW_QEMU_BOARD) $(HOST)/fw_host_ref $(HOST)/fw_cels_gen $(HOST)/celsim
+qemu-test: firmware-$(FW_QEMU_BOARD) $(HOST)/fw_host_ref $(HOST)/fw_cels_gen $(HOST)/celsim \
+           $(HOST)/celc
 	$(Q)tools/fw_qemu_test.sh $(FW_QEMU_ELF) $(BUILD)/$(FW_QEMU_BOARD)/qemu-test
 
 STREAM ?=
@@ -118,7 +118,7 @@ SCENE ?= signage
 SIZE ?= 480x272
 TIME ?= 0
 AA ?= 16
-qemu-run: firmware-$(FW_QEMU_BOARD) $(if $(STREAM),$(HOST)/fw_cels_gen)
+qemu-run: firmware-$(FW_QEMU_BOARD) $(if $(STREAM),$(HOST)/celc)
 	$(Q)tools/fw_qemu_run.sh $(FW_QEMU_ELF) $(if $(STREAM),--stream "$(STREAM)",--scene "$(SCENE)") \
 		"$(SIZE)" "$(TIME)" "$(AA)"
 

@@ -11,7 +11,7 @@
 # prints what `celsim render F --size WxH --time T --crc` prints.
 #
 # --stream: FILE (a .cels stream; a .json scene is first compiled with
-# FW_CELC, default build/host/fw_cels_gen, until celc lands) is sent over
+# FW_CELC, default `build/host/celc compile`) is sent over
 # the UART; the frame is rendered from the last committed scene once the
 # stream has ended (errors are printed as they happen).
 # --scene: one of the firmware's built-in scenes; TIME must then be whole
@@ -27,7 +27,7 @@ case $mode in
     *.json)
         tmp=$(mktemp -d)
         trap 'rm -rf "$tmp"' EXIT
-        default_celc="build/host/fw_cels_gen {json} {out}"
+        default_celc="build/host/celc compile {json} -o {out}"
         cmd=$(echo "${FW_CELC:-$default_celc}" | sed -e "s|{json}|$file|g" -e "s|{out}|$tmp/s.cels|g")
         $cmd
         file=$tmp/s.cels ;;

@@ -12,7 +12,7 @@
 #    that the UART delivers a known byte sequence intact.
 #
 # 2. Streamed scenes. Test scenes are compiled to cel streams on the host
-#    (FW_CELC, default build/host/fw_cels_gen; `celc compile` once it lands)
+#    (FW_CELC, default `build/host/celc compile`)
 #    and sent over the UART in one stream:
 #      the board demo (scenes/demo-board.json), the animated scene with
 #      keyframe tracks (tests/fw_tracks_scene.c), the beta-model stack
@@ -39,7 +39,7 @@ elf=$1 out=$2
 host=build/host
 default_ref="$host/fw_host_ref --scene {scene} --size {size} --time {time} --aa {aa} --crc --float-crc --dump {dump}"
 ref=${FW_REF:-$default_ref}
-default_celc="$host/fw_cels_gen {json} {out}"
+default_celc="$host/celc compile {json} -o {out}"
 celc=${FW_CELC:-$default_celc}
 celsim=${FW_CELSIM:-$host/celsim}
 FRAMES=${FW_FRAMES:-480x272@0:5,480x272@0.5:5,480x272@1.25:5,240x136@0.75:none}
