@@ -1,0 +1,70 @@
+#!/bin/sh
+# bench_run.sh - what `make bench` measures, written to RESULTS/*.txt.
+#
+#   tools/bench_run.sh BENCH CELSIM RESULTS SCRATCH [bench options...]
+#
+# Runs the bench program (speed, accuracy, beam racing, scaling), the
+# celsim command line of issue 8's "done" criterion on the Many-blobs scene,
+# and one frame under callgrind for an instruction count that does not
+# depend on the machine's load. Each result is a Markdown fragment that
+# tools/bench_md.py splices into BENCHMARKS.md.
+set -eu
+bench=$1
+celsim=$2
+res=$3
+tmp=$4
+shift 4
+start=$(date +%s)
+
+{
+    echo "- machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+    echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
+    echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- core bench 2>/dev/null || echo ' (with local changes)')"
+    echo "- compiler: $(${CC:-cc} --version | head -n 1), core and bench at -O2"
+    echo "- cairo $(pkg-config --modversion cairo), FreeType $(pkg-config --modversion freetype2) (libtool version)"
+    echo "- load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: medians and ratios, not absolute times, are the figures to trust)"
+    echo "- command: \`make bench\` (runs \`$bench --out $res $*\`, then the celsim and callgrind runs below)"
+} >"$res/machine.txt"
+
+"$bench" --out "$res" "$@"
+
+# The issue's own command line, next to cairo on the same scene and size.
+{
+    echo "### celsim on Many-blobs at 1920x1080 (median of 5 renders)"
+    echo
+    echo "| command | result |"
+    echo "|---|---|"
+    for aa in 16 exact; do
+        r=$("$celsim" render scenes/bench/blobs.json --size 1920x1080 --aa $aa --repeat 5)
+        echo "| \`celsim render scenes/bench/blobs.json --size 1920x1080 --aa $aa --repeat 5\` | $r |"
+    done
+} >"$res/celsim.txt"
+cat "$res/celsim.txt"
+
+# Instructions per frame: repeatable where wall-clock time is not.
+{
+    echo "### Instructions per frame (callgrind, one 1920x1080 frame of celscan, cs_frame_begin to the last converted line)"
+    echo
+    echo "| scene | --aa | instructions | top functions (share of the frame) |"
+    echo "|---|---|---:|---|"
+    for run in "blobs 16" "blobs exact" "signage 16"; do
+        set -- $run
+        valgrind --tool=callgrind --callgrind-out-file="$tmp/callgrind.out" \
+            --toggle-collect=celscan_frame "$bench" --profile "$1" --aa "$2" --frames 1 \
+            >/dev/null 2>&1
+        callgrind_annotate "$tmp/callgrind.out" 2>/dev/null | awk -v scene="$1" -v aa="$2" '
+            /PROGRAM TOTALS/ { gsub(",", "", $1); total = $1 }
+            /file:function/ { list = 1; next }
+            list && NF >= 3 && $1 ~ /^[0-9,]+$/ && n < 6 {
+                f = $3; sub(/.*:/, "", f); sub(/ .*/, "", f)
+                share = $2; gsub(/[()]/, "", share)
+                top = top (n ? ", " : "") f " " share
+                n++
+            }
+            END { printf "| %s | %s | %.1f M | %s |\n", scene, aa, total / 1e6, top }'
+    done
+} >"$res/callgrind.txt"
+cat "$res/callgrind.txt"
+
+end=$(date +%s)
+echo "- \`make bench\` took $((end - start)) s" >>"$res/machine.txt"
