@@ -237,6 +237,11 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
     float py = (float)y + 0.5f;
     float run = 0.0f;
     for (int32_t x = lo; x < hi; x++) {
+        /* Between a region's spans nothing was accumulated and the running
+         * cover is zero: such a pixel would get c = 0, so skip it cheaply
+         * (a hairline's region spans the line but touches a few pixels). */
+        if (run == 0.0f && ws->cover[x] == 0.0f && ws->area[x] == 0.0f)
+            continue;
         run += ws->cover[x];
         float c = cs__clampf(ws->area[x] + run, 0.0f, 1.0f);
         ws->area[x] = 0.0f;
@@ -307,8 +312,12 @@ static bool region_may_hide(const cs_renderer *r, uint32_t reg)
 }
 
 /*
- * Composites the accumulated cel behind the stack and clears it. Pixels in
- * the opaque record are jumped over. If the cel may hide (`snap`), T is
+ * Composites the accumulated cel behind the stack and clears it. Only pixels
+ * the cel covers (used[x] > 0) change the stack: elsewhere E_cel = 0 and
+ * T_cel = 1, which leave E and T as they are, so they are skipped. Pixels in
+ * the opaque record never have coverage (fold_region does not accumulate
+ * there, and the record only grows at the pixel being composited), so the
+ * same test jumps over them. If the cel may hide (`snap`), T is
  * snapped to 0 below CS__T_ZERO; with `record` as well, pixels whose stack
  * T reaches 0 on every channel join the record, so no later cel visits
  * them. Snapping depends on the cel alone, never on `record`, so turning
@@ -318,12 +327,10 @@ static void composite_cel(cs_workspace *ws, float *stack_E, int32_t lo, int32_t 
                           bool record)
 {
     uint16_t *next = ws->opaque_next;
+    const float *used = ws->used;
     for (uint32_t x = (uint32_t)lo; x < (uint32_t)hi; x++) {
-        if (next[x] != x) { /* an opaque run: jump over it in one step */
-            x = cs__clear_from(next, x);
-            if (x >= (uint32_t)hi)
-                break;
-        }
+        if (used[x] == 0.0f)
+            continue;
         float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
         float *se = &stack_E[3 * x], *st = &ws->stack_T[3 * x];
         float t0 = 1.0f - ca[0], t1 = 1.0f - ca[1], t2 = 1.0f - ca[2];
