@@ -62,6 +62,26 @@ static inline void cs__error(cs_error *err, cs_status st, int32_t cel, int32_t r
 float cs__poly_eval(const float *c, int degree, float u);
 
 /*
+ * The same Horner evaluation unrolled per degree, for the inner loops: the
+ * loop form spends as many instructions on its counter as on arithmetic.
+ * The operations and their order are those of cs__poly_eval, so the result
+ * is the same float.
+ */
+static inline float cs__horner(const float *c, int degree, float u)
+{
+    switch (degree) {
+    case 1:
+        return c[1] * u + c[0];
+    case 2:
+        return (c[2] * u + c[1]) * u + c[0];
+    case 3:
+        return ((c[3] * u + c[2]) * u + c[1]) * u + c[0];
+    default:
+        return cs__poly_eval(c, degree, u);
+    }
+}
+
+/*
  * Real roots of the polynomial c (degree <= 4) strictly inside (lo, hi), in
  * increasing order, written to roots[]; returns how many (at most degree).
  * Roots are isolated between the roots of the derivative and refined by a

@@ -97,7 +97,7 @@ static int32_t crossings_at(cs_renderer *r, const cs_index *act, uint32_t n, flo
             return -1;
         const cs_segment *s = &ws->segments[pc->segment];
         float u = cs__solve_level(s->y, s->w, s->degree, ys, pc->u0, pc->u1);
-        float x = cs__poly_eval(s->x, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
+        float x = cs__horner(s->x, s->degree, u) / cs__horner(s->w, s->degree, u);
         ws->crossings[count].x = cs__clampf(x, 0.0f, width);
         ws->crossings[count].dir = pc->dir;
         ws->crossings[count].operand = pc->operand;

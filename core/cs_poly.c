@@ -36,7 +36,7 @@ static float illinois(const float *c, int degree, float a, float b, float fa, fl
             if (!(m > a && m < b))
                 break; /* the bracket is two adjacent floats */
         }
-        float fm = cs__poly_eval(c, degree, m);
+        float fm = cs__horner(c, degree, m);
         if (fm == 0.0f)
             return m;
         if ((fm < 0.0f) == (fb < 0.0f)) {
@@ -104,8 +104,8 @@ float cs__solve_level(const float *num, const float *den, int degree, float leve
     float g[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     for (int i = 0; i <= degree; i++)
         g[i] = num[i] - level * den[i];
-    float flo = cs__poly_eval(g, degree, lo);
-    float fhi = cs__poly_eval(g, degree, hi);
+    float flo = cs__horner(g, degree, lo);
+    float fhi = cs__horner(g, degree, hi);
     if (flo == 0.0f)
         return lo;
     if (fhi == 0.0f)
