@@ -100,6 +100,16 @@ float cs__solve_level(const float *num, const float *den, int degree, float leve
                       float hi);
 
 /*
+ * The same root on a monotone piece of y = num/den (`rising`: y grows with
+ * u), found by Newton's iteration from `guess`, the root for a nearby level
+ * (the previous sub-scanline of the same line). The result is
+ * deterministic for given arguments; it may differ from cs__solve_level's
+ * in the last bits.
+ */
+float cs__solve_level_from(const float *num, const float *den, int degree, float level,
+                           float lo, float hi, float guess, bool rising);
+
+/*
  * Converts one closed periodic NURBS contour to rational polynomial segments
  * in device space (cs_nurbs.c). Control points go through `to_device` first;
  * a transformed NURBS is still a NURBS with the same weights. Fails with
