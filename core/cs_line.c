@@ -244,7 +244,7 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
 {
     cs_workspace *ws = r->ws;
     const cs_region *region = &r->scene->regions[reg];
-    const uint16_t *next = ws->opaque_next;
+    uint16_t *next = ws->opaque_next;
     bool functional = (region->func[0] | region->func[1] | region->func[2]) != 0;
     const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];
     const float *front = cel->has_front ? cel->front : r->scene->stack_front;
@@ -253,6 +253,10 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
     float fE[3], fA[3];
     float py = (float)y + 0.5f;
     float run = 0.0f;
+    /* Opaque constant paint (T exactly 0): see the solid run below. */
+    bool solid = !functional && T[0] == 0.0f && T[1] == 0.0f && T[2] == 0.0f;
+    bool record = !r->opts.no_early_out;
+    float *stack_E = r->stack_E, *stack_T = ws->stack_T;
     for (int32_t x = lo; x < hi; x++) {
         /* Between a region's spans nothing was accumulated and the running
          * cover is zero: such a pixel would get c = 0, so skip it cheaply
@@ -270,6 +274,23 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
             c = room;
         if (!(c > 0.0f))
             continue;
+        if (solid && c == 1.0f && ws->used[x] == 0.0f) {
+            /* The whole pixel, untouched by the cel so far: the cel's map here
+             * is exactly (E, 0) whatever lies behind in the cel, so it joins
+             * the stack now (E_s += T_s E, T_s = 0), as composite_cel would
+             * do bit for bit. used = 1 hides the regions behind; the record
+             * tells composite_cel that the pixel is done (without the record
+             * it composites the zero map left in cel_E/cel_A: no change). */
+            float *se = &stack_E[3 * x], *st = &stack_T[3 * x];
+            se[0] += st[0] * E[0];
+            se[1] += st[1] * E[1];
+            se[2] += st[2] * E[2];
+            st[0] = st[1] = st[2] = 0.0f;
+            ws->used[x] = 1.0f;
+            if (record)
+                next[x] = (uint16_t)(x + 1);
+            continue;
+        }
         ws->used[x] += c;
         const float *e = E, *a = A;
         if (functional) {
@@ -332,9 +353,9 @@ static bool region_may_hide(const cs_renderer *r, uint32_t reg)
  * Composites the accumulated cel behind the stack and clears it. Only pixels
  * the cel covers (used[x] > 0) change the stack: elsewhere E_cel = 0 and
  * T_cel = 1, which leave E and T as they are, so they are skipped. Pixels in
- * the opaque record never have coverage (fold_region does not accumulate
- * there, and the record only grows at the pixel being composited), so the
- * same test jumps over them. If the cel may hide (`snap`), T is
+ * the opaque record have no coverage (fold_region does not accumulate there)
+ * except those fold_region composited itself (solid runs), which only need
+ * their claim cleared. If the cel may hide (`snap`), T is
  * snapped to 0 below CS__T_ZERO; with `record` as well, pixels whose stack
  * T reaches 0 on every channel join the record, so no later cel visits
  * them. Snapping depends on the cel alone, never on `record`, so turning
@@ -348,6 +369,10 @@ static void composite_cel(cs_workspace *ws, float *stack_E, int32_t lo, int32_t 
     for (uint32_t x = (uint32_t)lo; x < (uint32_t)hi; x++) {
         if (used[x] == 0.0f)
             continue;
+        if (next[x] != x) { /* a solid pixel fold_region composited already */
+            ws->used[x] = 0.0f;
+            continue;
+        }
         float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
         float *se = &stack_E[3 * x], *st = &ws->stack_T[3 * x];
         float t0 = 1.0f - ca[0], t1 = 1.0f - ca[1], t2 = 1.0f - ca[2];
