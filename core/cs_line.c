@@ -439,6 +439,74 @@ static void update_active(cs_renderer *r, int y)
     r->next_line = y + 1;
 }
 
+/*
+ * The pixel ranges a cel's regions touched on this line, sorted and
+ * disjoint: composite_cel walks these rather than the hull from the
+ * leftmost to the rightmost region, which for a cel of scattered shapes
+ * is most of the line. A few ranges suffice; when an added range would
+ * make one too many, the two closest ranges become one (covering the gap
+ * costs a scan of pixels whose coverage is zero, never a wrong pixel).
+ */
+#define CEL_RANGES 8
+
+typedef struct cel_ranges {
+    int32_t lo[CEL_RANGES + 1], hi[CEL_RANGES + 1];
+    uint32_t n;
+} cel_ranges;
+
+static void ranges_add(cel_ranges *s, int32_t lo, int32_t hi)
+{
+    int32_t tlo[CEL_RANGES + 1], thi[CEL_RANGES + 1];
+    uint32_t n = 0;
+    bool placed = false;
+    for (uint32_t k = 0; k < s->n; k++) {
+        if (s->hi[k] < lo) {
+            tlo[n] = s->lo[k];
+            thi[n++] = s->hi[k];
+        } else if (s->lo[k] > hi) {
+            if (!placed) {
+                tlo[n] = lo;
+                thi[n++] = hi;
+                placed = true;
+            }
+            tlo[n] = s->lo[k];
+            thi[n++] = s->hi[k];
+        } else { /* overlapping or touching: absorb it */
+            lo = s->lo[k] < lo ? s->lo[k] : lo;
+            hi = s->hi[k] > hi ? s->hi[k] : hi;
+        }
+    }
+    if (!placed) {
+        tlo[n] = lo;
+        thi[n++] = hi;
+    }
+    if (n > CEL_RANGES) { /* join the two ranges with the smallest gap */
+        uint32_t best = 0;
+        for (uint32_t k = 1; k + 1 < n; k++)
+            if (tlo[k + 1] - thi[k] < tlo[best + 1] - thi[best])
+                best = k;
+        thi[best] = thi[best + 1];
+        for (uint32_t k = best + 1; k + 1 < n; k++) {
+            tlo[k] = tlo[k + 1];
+            thi[k] = thi[k + 1];
+        }
+        n--;
+    }
+    for (uint32_t k = 0; k < n; k++) {
+        s->lo[k] = tlo[k];
+        s->hi[k] = thi[k];
+    }
+    s->n = n;
+}
+
+static void composite_ranges(cs_workspace *ws, float *stack_E, cel_ranges *s, bool snap,
+                             bool record)
+{
+    for (uint32_t k = 0; k < s->n; k++)
+        composite_cel(ws, stack_E, s->lo[k], s->hi[k], snap, record);
+    s->n = 0;
+}
+
 void cs__line_stack(cs_renderer *r, int y)
 {
     cs_workspace *ws = r->ws;
@@ -455,7 +523,8 @@ void cs__line_stack(cs_renderer *r, int y)
     uint32_t cache_end = r->cache ? r->cache->cel_first + r->cache->cel_count : 0;
     bool cache_pending = r->cache != 0;
     uint32_t i = 0;
-    int32_t cel_lo = INT32_MAX, cel_hi = INT32_MIN;
+    cel_ranges ranges;
+    ranges.n = 0;
     uint32_t current_cel = UINT32_MAX;
     bool cel_hides = false;
     while (i < r->active_count) {
@@ -465,10 +534,7 @@ void cs__line_stack(cs_renderer *r, int y)
             j++;
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel) {
-            if (cel_lo < cel_hi)
-                composite_cel(ws, r->stack_E, cel_lo, cel_hi, cel_hides, record);
-            cel_lo = INT32_MAX;
-            cel_hi = INT32_MIN;
+            composite_ranges(ws, r->stack_E, &ranges, cel_hides, record);
             cel_hides = false;
             if (cache_pending && cel >= cache_end) {
                 cs__cache_composite(r->cache, ws, r->stack_E, y, record);
@@ -484,17 +550,13 @@ void cs__line_stack(cs_renderer *r, int y)
             region_coverage(r, reg, &ws->active[i], j - i, y, &lo, &hi);
             if (lo < hi) {
                 fold_region(r, reg, y, lo, hi);
-                if (lo < cel_lo)
-                    cel_lo = lo;
-                if (hi > cel_hi)
-                    cel_hi = hi;
+                ranges_add(&ranges, lo, hi);
                 cel_hides = cel_hides || region_may_hide(r, reg);
             }
         }
         i = j;
     }
-    if (cel_lo < cel_hi)
-        composite_cel(ws, r->stack_E, cel_lo, cel_hi, cel_hides, record);
+    composite_ranges(ws, r->stack_E, &ranges, cel_hides, record);
     if (cache_pending)
         cs__cache_composite(r->cache, ws, r->stack_E, y, record);
 }
