@@ -69,11 +69,24 @@ static void add_span_centres(float *cover, float xa, float xb)
     }
 }
 
-/* Shell sort by x: no scratch memory, fast on the short lists lines give. */
+/* Shell sort by x: no scratch memory, fast on the short lists lines give.
+ * Most lists are one shape's two crossings, which need one comparison, not
+ * eight passes. Gaps not below n would be empty passes. */
 static void sort_crossings(cs_crossing *c, uint32_t n)
 {
     static const uint32_t gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
-    for (unsigned g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {
+    if (n <= 2u) {
+        if (n == 2u && c[1].x < c[0].x) {
+            cs_crossing t = c[0];
+            c[0] = c[1];
+            c[1] = t;
+        }
+        return;
+    }
+    unsigned g = 0;
+    while (gaps[g] >= n)
+        g++;
+    for (; g < sizeof gaps / sizeof gaps[0]; g++) {
         uint32_t gap = gaps[g];
         for (uint32_t i = gap; i < n; i++) {
             cs_crossing t = c[i];
