@@ -294,14 +294,25 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
              * do bit for bit. used = 1 hides the regions behind; the record
              * tells composite_cel that the pixel is done (without the record
              * it composites the zero map left in cel_E/cel_A: no change). */
-            float *se = &stack_E[3 * x], *st = &stack_T[3 * x];
-            se[0] += st[0] * E[0];
-            se[1] += st[1] * E[1];
-            se[2] += st[2] * E[2];
-            st[0] = st[1] = st[2] = 0.0f;
-            ws->used[x] = 1.0f;
-            if (record)
-                next[x] = (uint16_t)(x + 1);
+            for (;;) {
+                float *se = &stack_E[3 * x], *st = &stack_T[3 * x];
+                se[0] += st[0] * E[0];
+                se[1] += st[1] * E[1];
+                se[2] += st[2] * E[2];
+                st[0] = st[1] = st[2] = 0.0f;
+                ws->used[x] = 1.0f;
+                if (record)
+                    next[x] = (uint16_t)(x + 1);
+                /* The run goes on while nothing new was accumulated and the
+                 * running cover alone is full (then c = clamp(0 + run) = 1;
+                 * a pixel can be full through its own area with run < 1),
+                 * and the next pixel is as untouched. */
+                int32_t n = x + 1;
+                if (!(n < hi && run >= 1.0f && ws->cover[n] == 0.0f && ws->area[n] == 0.0f &&
+                      next[n] == (uint32_t)n && ws->used[n] == 0.0f))
+                    break;
+                x = n;
+            }
             continue;
         }
         ws->used[x] += c;
