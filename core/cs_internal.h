@@ -104,10 +104,12 @@ float cs__solve_level(const float *num, const float *den, int degree, float leve
  * u), found by Newton's iteration from `guess`, the root for a nearby level
  * (the previous sub-scanline of the same line). The result is
  * deterministic for given arguments; it may differ from cs__solve_level's
- * in the last bits.
+ * in the last bits. *slope receives d(num - level den)/du near the root
+ * (0 when unknown), from which the caller can predict the next root:
+ * du/dlevel = den(u) / slope.
  */
 float cs__solve_level_from(const float *num, const float *den, int degree, float level,
-                           float lo, float hi, float guess, bool rising);
+                           float lo, float hi, float guess, bool rising, float *slope);
 
 /*
  * Converts one closed periodic NURBS contour to rational polynomial segments

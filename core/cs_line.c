@@ -104,7 +104,7 @@ static void sort_crossings(cs_crossing *c, uint32_t n)
  * Crossings of the active pieces act[0..n) with scanline ys, sorted by x
  * and clamped to [0, width]. Returns the count, or -1 if they do not fit.
  */
-static int32_t crossings_at(cs_renderer *r, const cs_index *act, uint32_t n, float ys)
+static int32_t crossings_at(cs_renderer *r, const cs_index *act, uint32_t n, float ys, float step)
 {
     cs_workspace *ws = r->ws;
     float width = (float)r->opts.width;
@@ -116,16 +116,28 @@ static int32_t crossings_at(cs_renderer *r, const cs_index *act, uint32_t n, flo
         if (count >= CS_CFG_MAX_CROSSINGS)
             return -1;
         const cs_segment *s = &ws->segments[pc->segment];
-        float u, span = pc->u1 - pc->u0;
-        if (pc->warm) {
-            float guess = pc->u0 + (float)(pc->warm - 1u) * (1.0f / 65534.0f) * span;
-            u = cs__solve_level_from(s->y, s->w, s->degree, ys, pc->u0, pc->u1, guess,
-                                     pc->dir > 0);
+        float u, w, slope = 0.0f;
+        if (s->degree == 1) { /* closed form: no guess needed */
+            u = cs__solve_level(s->y, s->w, 1, ys, pc->u0, pc->u1);
+            w = cs__horner(s->w, 1, u);
         } else {
-            u = cs__solve_level(s->y, s->w, s->degree, ys, pc->u0, pc->u1);
+            float span = pc->u1 - pc->u0;
+            if (pc->warm) {
+                float guess = pc->u0 + (float)(pc->warm - 1u) * (1.0f / 65534.0f) * span;
+                u = cs__solve_level_from(s->y, s->w, s->degree, ys, pc->u0, pc->u1, guess,
+                                         pc->dir > 0, &slope);
+            } else {
+                u = cs__solve_level(s->y, s->w, s->degree, ys, pc->u0, pc->u1);
+            }
+            w = cs__horner(s->w, s->degree, u);
+            /* The next sub-scanline's guess: this root moved along the level
+             * by one step (du/dlevel = W / g'), or the root itself. */
+            float next = slope != 0.0f ? u + step * w / slope : u;
+            pc->warm = (uint16_t)(1u + (uint32_t)(cs__clampf((next - pc->u0) / span, 0.0f, 1.0f) *
+                                                      65534.0f +
+                                                  0.5f));
         }
-        pc->warm = (uint16_t)(1u + (uint32_t)(cs__clampf((u - pc->u0) / span, 0.0f, 1.0f) * 65534.0f + 0.5f));
-        float x = cs__horner(s->x, s->degree, u) / cs__horner(s->w, s->degree, u);
+        float x = cs__horner(s->x, s->degree, u) / w;
         ws->crossings[count].x = cs__clampf(x, 0.0f, width);
         ws->crossings[count].dir = pc->dir;
         ws->crossings[count].operand = pc->operand;
@@ -190,7 +202,7 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
         ws->pieces[act[i]].warm = 0;
     for (int k = 0; k < samples; k++) {
         float ys = (float)y + ((float)k + 0.5f) * weight;
-        int32_t count = crossings_at(r, act, n, ys);
+        int32_t count = crossings_at(r, act, n, ys, weight);
         if (count < 0) {
             if (r->sticky.status == CS_OK) {
                 const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];

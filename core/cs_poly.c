@@ -17,6 +17,7 @@
 
 #define ILLINOIS_MAX_ITER 48
 #define NEWTON_MAX_ITER 8
+#define WARM_STEP_TOL 1.0e-5f
 
 float cs__poly_eval(const float *c, int degree, float u)
 {
@@ -193,17 +194,20 @@ float cs__solve_level(const float *num, const float *den, int degree, float leve
  * does not settle inside the piece, the full bracketed solve decides.
  */
 float cs__solve_level_from(const float *num, const float *den, int degree, float level,
-                           float lo, float hi, float guess, bool rising)
+                           float lo, float hi, float guess, bool rising, float *slope)
 {
     float g[4];
+    *slope = 0.0f;
     level_poly(num, den, degree, level, g);
     if (degree == 1 || !(guess > lo && guess < hi))
         return cs__solve_level(num, den, degree, level, lo, hi);
     float a = lo, b = hi, u = guess;
     for (int it = 0; it < NEWTON_MAX_ITER; it++) {
         float d, f = horner_d(g, degree, u, &d);
-        if (f == 0.0f)
+        if (f == 0.0f) {
+            *slope = d;
             return u;
+        }
         if ((f < 0.0f) == rising)
             a = u;
         else
@@ -211,8 +215,12 @@ float cs__solve_level_from(const float *num, const float *den, int degree, float
         float next = u - f / d;
         if (!(next > a && next < b))
             break;
-        if (cs__absf(next - u) <= 1.0e-7f)
+        /* Newton leaves an error of about K s^2 after a step s (K = g''/2g'),
+         * so a step of 1e-5 already lands within ~1e-10 K of the root. */
+        if (cs__absf(next - u) <= WARM_STEP_TOL) {
+            *slope = d;
             return next;
+        }
         u = next;
     }
     return cs__solve_level(num, den, degree, level, lo, hi);
