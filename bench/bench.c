@@ -3,7 +3,7 @@
  *
  *   bench [--sections speed,accuracy,beam,scaling] [--scenes blobs,signage,...]
  *         [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]
- *   bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N]
+ *   bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]
  *   bench --selftest
  *
  * For each reference scene (BENCHMARKS.md) the same geometry is rendered by
@@ -879,7 +879,7 @@ static void usage(void)
     fputs("usage: bench [--sections speed,accuracy,beam,scaling] [--scenes blobs,signage,thin,"
           "rational,anim]\n"
           "             [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]\n"
-          "       bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N]\n"
+          "       bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]\n"
           "       bench --selftest\n",
           stderr);
     exit(2);
@@ -912,7 +912,7 @@ int main(int argc, char **argv)
     const char *profile = NULL;
     cs_aa_mode prof_aa = CS_AA_SUBSCAN;
     int prof_sub = 16;
-    bool self = false;
+    bool self = false, prof_cache = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -951,6 +951,8 @@ int main(int argc, char **argv)
             else
                 prof_sub = atoi(v);
             i++;
+        } else if (strcmp(a, "--cache") == 0) {
+            prof_cache = true;
         } else if (strcmp(a, "--selftest") == 0) {
             self = true;
         } else {
@@ -974,9 +976,14 @@ int main(int argc, char **argv)
         if (idx < 0)
             die("unknown scene '%s'", profile);
         load(&scene_defs[idx]);
+        anim *a = anim_load(scene_defs[idx].path, g_scene);
+        anim_apply(a, g_scene, 0.0);
         cs_target t;
         target_init(&t, cfg.width, cfg.height);
         cs_render_opts o = opts_for(cfg.width, cfg.height, prof_aa, prof_sub);
+        if (prof_cache) /* the static background pre-combined, as the animation runs it */
+            celscan_cache(&t, &o, anim_static_from(a, g_scene));
+        anim_free(a);
         double *s = malloc((size_t)cfg.frames * sizeof *s);
         for (int f = 0; f < cfg.frames; f++)
             s[f] = celscan_frame(&t, &o);
