@@ -19,11 +19,11 @@ start=$(date +%s)
 {
     echo "- machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
     echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
-    echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- core bench 2>/dev/null || echo ' (with local changes)')"
+    echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- core host-sim bench ':!bench/results' 2>/dev/null || echo ' (with local changes)')"
     echo "- compiler: $(${CC:-cc} --version | head -n 1), core and bench at -O2"
-    echo "- cairo $(pkg-config --modversion cairo), FreeType $(pkg-config --modversion freetype2) (libtool version)"
+    echo "- cairo $(dpkg-query -W -f='${Version}' libcairo2 2>/dev/null || pkg-config --modversion cairo), FreeType $(dpkg-query -W -f='${Version}' libfreetype6 2>/dev/null || pkg-config --modversion freetype2) (Debian packages)"
     echo "- load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: medians and ratios, not absolute times, are the figures to trust)"
-    echo "- command: \`make bench\` (runs \`$bench --out $res $*\`, then the celsim and callgrind runs below)"
+    echo "- command: \`make bench\` (runs \`$bench --out $res${*:+ $*}\`, then the celsim and callgrind runs below)"
 } >"$res/machine.txt"
 
 "$bench" --out "$res" "$@"
