@@ -3,6 +3,7 @@
 #   make bench         generate the scenes, run every section, write bench/results/*.txt
 #                      and regenerate the tables of BENCHMARKS.md (a few minutes)
 #   make bench-smoke   the bench binary on one small scene, one run (part of `make test`)
+#   make bench-scenes  redraw scenes/bench/*.json from bench/gen_scenes.py
 #
 # BENCH_ARGS adds options to the main run (e.g. BENCH_ARGS="--repeat 3").
 # The bench binary links the core library, the scene loader, the test
@@ -25,8 +26,11 @@ $(HOST)/bench-obj/%.o: %.c
 $(BENCH_BIN): $(BENCH_OBJ) $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $(BENCH_OBJ) $(HOST)/libcelscan.a $(shell pkg-config --libs $(BENCH_PKGS)) -lm
 
-# The scenes are committed; this regenerates them when the generator changes.
-$(BENCH_SCENES) &: bench/gen_scenes.py
+# The scenes are committed, so that every checkout measures the same bytes
+# (a Python with another random module could draw them differently);
+# `make bench-scenes` redraws them after bench/gen_scenes.py changes.
+.PHONY: bench-scenes
+bench-scenes:
 	$(Q)python3 bench/gen_scenes.py scenes/bench
 
 HOST_PROGRAMS += $(BENCH_BIN)
