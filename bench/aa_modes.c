@@ -10,7 +10,7 @@
  * Times are CPU time of the process (the machine is shared), printed as
  * median and minimum ms/frame.
  *
- *   build/host/bench/aa_modes [runs]
+ *   build/host/bench_aa_modes [runs]
  */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */

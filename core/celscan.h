@@ -441,6 +441,7 @@ typedef struct cs_piece {
     float y_top, y_bot;
     cs_index segment;
     uint16_t region;   /* copied from the segment: spares an indirection per line */
+    uint16_t warm;     /* the line's last root, 1 + 65534 (u - u0) / (u1 - u0); 0: none yet */
     uint8_t operand;   /* winding counter it moves: always 0 without CSG */
     int8_t dir;        /* +1 if y grows with u, -1 if it falls */
 } cs_piece;

@@ -150,16 +150,37 @@ void cs__cache_composite(const cs_cache *cache, cs_workspace *ws, float *stack_E
                          bool record)
 {
     uint16_t *next = ws->opaque_next;
+    float *stack_T = ws->stack_T;
     for (uint32_t k = cache->line_first[y]; k < cache->line_first[y + 1]; k++) {
         const cs_cache_run *run = &cache->runs[k];
         uint32_t end = (uint32_t)run->x + run->len;
-        for (uint32_t x = cs__clear_from(next, run->x); x < end; x = cs__clear_from(next, x + 1)) {
-            float *se = &stack_E[3 * x], *st = &ws->stack_T[3 * x];
-            for (int ch = 0; ch < 3; ch++) {
-                se[ch] += st[ch] * run->E[ch];
-                st[ch] *= run->T[ch];
+        float E0 = run->E[0], E1 = run->E[1], E2 = run->E[2];
+        float T0 = run->T[0], T1 = run->T[1], T2 = run->T[2];
+        /* An opaque run leaves T = 0 behind it (finite T times 0), so its
+         * pixels join the record without a test. */
+        bool opaque = T0 == 0.0f && T1 == 0.0f && T2 == 0.0f;
+        /* Pixels of the run in order; an opaque stretch of the record is
+         * jumped in one step (the record only grows behind x here). */
+        for (uint32_t x = run->x; x < end; x++) {
+            if (next[x] != x) {
+                x = cs__clear_from(next, x);
+                if (x >= end)
+                    break;
             }
-            if (record && st[0] == 0.0f && st[1] == 0.0f && st[2] == 0.0f)
+            float *se = &stack_E[3 * x], *st = &stack_T[3 * x];
+            se[0] += st[0] * E0;
+            se[1] += st[1] * E1;
+            se[2] += st[2] * E2;
+            if (opaque) {
+                st[0] = st[1] = st[2] = 0.0f;
+                if (record)
+                    next[x] = (uint16_t)(x + 1);
+                continue;
+            }
+            st[0] *= T0;
+            st[1] *= T1;
+            st[2] *= T2;
+            if (record && ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f)))
                 next[x] = (uint16_t)(x + 1);
         }
     }

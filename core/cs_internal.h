@@ -94,6 +94,26 @@ static inline float cs__lerp(float a, float b, float s) { return (1.0f - s) * a 
 float cs__poly_eval(const float *c, int degree, float u);
 
 /*
+ * The same Horner evaluation unrolled per degree, for the inner loops: the
+ * loop form spends as many instructions on its counter as on arithmetic.
+ * The operations and their order are those of cs__poly_eval, so the result
+ * is the same float.
+ */
+static inline float cs__horner(const float *c, int degree, float u)
+{
+    switch (degree) {
+    case 1:
+        return c[1] * u + c[0];
+    case 2:
+        return (c[2] * u + c[1]) * u + c[0];
+    case 3:
+        return ((c[3] * u + c[2]) * u + c[1]) * u + c[0];
+    default:
+        return cs__poly_eval(c, degree, u);
+    }
+}
+
+/*
  * Real roots of the polynomial c (degree <= 4) strictly inside (lo, hi), in
  * increasing order, written to roots[]; returns how many (at most degree).
  * Roots are isolated between the roots of the derivative and refined by a
@@ -110,6 +130,18 @@ int cs__poly_roots(const float *c, int degree, float lo, float hi, float *roots)
  */
 float cs__solve_level(const float *num, const float *den, int degree, float level, float lo,
                       float hi);
+
+/*
+ * The same root on a monotone piece of y = num/den (`rising`: y grows with
+ * u), found by Newton's iteration from `guess`, the root for a nearby level
+ * (the previous sub-scanline of the same line). The result is
+ * deterministic for given arguments; it may differ from cs__solve_level's
+ * in the last bits. *slope receives d(num - level den)/du near the root
+ * (0 when unknown), from which the caller can predict the next root:
+ * du/dlevel = den(u) / slope.
+ */
+float cs__solve_level_from(const float *num, const float *den, int degree, float level,
+                           float lo, float hi, float guess, bool rising, float *slope);
 
 /*
  * Converts one closed periodic NURBS contour to rational polynomial segments

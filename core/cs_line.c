@@ -4,7 +4,14 @@
  * For each line the active monotone pieces (those whose y range meets the
  * pixel row) are intersected afresh with each sample scanline: nothing is
  * carried from line to line but the list of which pieces are active, so
- * errors cannot accumulate and rows off screen cost nothing.
+ * errors cannot accumulate, rows off screen cost nothing, and a line comes
+ * out the same whichever lines were rendered before it. Within a line, a
+ * piece's root on one sub-scanline starts the Newton solve on the next,
+ * 1/N of a pixel lower, which converges in two or three steps where a solve
+ * over the whole piece needs several more. The root is kept in 16 bits in
+ * the piece (the padding of cs_piece on a 32-bit MCU), as a starting guess
+ * only: the result is the solver's, from a guess that is the same on every
+ * target.
  *
  * Pieces are kept in scene order, which groups them by region and regions
  * by cel, front-most first. For one region the crossings of a scanline,
@@ -62,11 +69,24 @@ static void add_span_centres(float *cover, float xa, float xb)
     }
 }
 
-/* Shell sort by x: no scratch memory, fast on the short lists lines give. */
+/* Shell sort by x: no scratch memory, fast on the short lists lines give.
+ * Most lists are one shape's two crossings, which need one comparison, not
+ * eight passes. Gaps not below n would be empty passes. */
 static void sort_crossings(cs_crossing *c, uint32_t n)
 {
     static const uint32_t gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
-    for (unsigned g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {
+    if (n <= 2u) {
+        if (n == 2u && c[1].x < c[0].x) {
+            cs_crossing t = c[0];
+            c[0] = c[1];
+            c[1] = t;
+        }
+        return;
+    }
+    unsigned g = 0;
+    while (gaps[g] >= n)
+        g++;
+    for (; g < sizeof gaps / sizeof gaps[0]; g++) {
         uint32_t gap = gaps[g];
         for (uint32_t i = gap; i < n; i++) {
             cs_crossing t = c[i];
@@ -84,20 +104,40 @@ static void sort_crossings(cs_crossing *c, uint32_t n)
  * Crossings of the active pieces act[0..n) with scanline ys, sorted by x
  * and clamped to [0, width]. Returns the count, or -1 if they do not fit.
  */
-static int32_t crossings_at(cs_renderer *r, const cs_index *act, uint32_t n, float ys)
+static int32_t crossings_at(cs_renderer *r, const cs_index *act, uint32_t n, float ys, float step)
 {
     cs_workspace *ws = r->ws;
     float width = (float)r->opts.width;
     uint32_t count = 0;
     for (uint32_t i = 0; i < n; i++) {
-        const cs_piece *pc = &ws->pieces[act[i]];
+        cs_piece *pc = &ws->pieces[act[i]];
         if (!(pc->y_top <= ys && ys < pc->y_bot))
             continue;
         if (count >= CS_CFG_MAX_CROSSINGS)
             return -1;
         const cs_segment *s = &ws->segments[pc->segment];
-        float u = cs__solve_level(s->y, s->w, s->degree, ys, pc->u0, pc->u1);
-        float x = cs__poly_eval(s->x, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
+        float u, w, slope = 0.0f;
+        if (s->degree == 1) { /* closed form: no guess needed */
+            u = cs__solve_level(s->y, s->w, 1, ys, pc->u0, pc->u1);
+            w = cs__horner(s->w, 1, u);
+        } else {
+            float span = pc->u1 - pc->u0;
+            if (pc->warm) {
+                float guess = pc->u0 + (float)(pc->warm - 1u) * (1.0f / 65534.0f) * span;
+                u = cs__solve_level_from(s->y, s->w, s->degree, ys, pc->u0, pc->u1, guess,
+                                         pc->dir > 0, &slope);
+            } else {
+                u = cs__solve_level(s->y, s->w, s->degree, ys, pc->u0, pc->u1);
+            }
+            w = cs__horner(s->w, s->degree, u);
+            /* The next sub-scanline's guess: this root moved along the level
+             * by one step (du/dlevel = W / g'), or the root itself. */
+            float next = slope != 0.0f ? u + step * w / slope : u;
+            pc->warm = (uint16_t)(1u + (uint32_t)(cs__clampf((next - pc->u0) / span, 0.0f, 1.0f) *
+                                                      65534.0f +
+                                                  0.5f));
+        }
+        float x = cs__horner(s->x, s->degree, u) / w;
         ws->crossings[count].x = cs__clampf(x, 0.0f, width);
         ws->crossings[count].dir = pc->dir;
         ws->crossings[count].operand = pc->operand;
@@ -158,6 +198,8 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
     }
     float weight = samples > 0 ? 1.0f / (float)samples : 0.0f;
     int32_t lo = INT32_MAX, hi = INT32_MIN;
+    for (uint32_t i = 0; i < n; i++) /* no root carries over from another line */
+        ws->pieces[act[i]].warm = 0;
 #if CS_CFG_EXACT
     if (r->opts.aa == CS_AA_EXACT) {
         cs_status st = cs__exact_region(r, region, act, n, y, &lo, &hi);
@@ -170,7 +212,7 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
 #endif
     for (int k = 0; k < samples; k++) {
         float ys = (float)y + ((float)k + 0.5f) * weight;
-        int32_t count = crossings_at(r, act, n, ys);
+        int32_t count = crossings_at(r, act, n, ys, weight);
         if (count < 0) {
             if (r->sticky.status == CS_OK) {
                 const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];
@@ -237,7 +279,7 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
 {
     cs_workspace *ws = r->ws;
     const cs_region *region = &r->scene->regions[reg];
-    const uint16_t *next = ws->opaque_next;
+    uint16_t *next = ws->opaque_next;
     bool functional = (region->func[0] | region->func[1] | region->func[2]) != 0;
     const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];
     const float *front = cel->has_front ? cel->front : r->scene->stack_front;
@@ -246,7 +288,16 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
     float fE[3], fA[3];
     float py = (float)y + 0.5f;
     float run = 0.0f;
+    /* Opaque constant paint (T exactly 0): see the solid run below. */
+    bool solid = !functional && T[0] == 0.0f && T[1] == 0.0f && T[2] == 0.0f;
+    bool record = !r->opts.no_early_out;
+    float *stack_E = r->stack_E, *stack_T = ws->stack_T;
     for (int32_t x = lo; x < hi; x++) {
+        /* Between a region's spans nothing was accumulated and the running
+         * cover is zero: such a pixel would get c = 0, so skip it cheaply
+         * (a hairline's region spans the line but touches a few pixels). */
+        if (run == 0.0f && ws->cover[x] == 0.0f && ws->area[x] == 0.0f)
+            continue;
         run += ws->cover[x];
         float c = cs__clampf(ws->area[x] + run, 0.0f, 1.0f);
         ws->area[x] = 0.0f;
@@ -258,6 +309,34 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
             c = room;
         if (!(c > 0.0f))
             continue;
+        if (solid && c == 1.0f && ws->used[x] == 0.0f) {
+            /* The whole pixel, untouched by the cel so far: the cel's map here
+             * is exactly (E, 0) whatever lies behind in the cel, so it joins
+             * the stack now (E_s += T_s E, T_s = 0), as composite_cel would
+             * do bit for bit. used = 1 hides the regions behind; the record
+             * tells composite_cel that the pixel is done (without the record
+             * it composites the zero map left in cel_E/cel_A: no change). */
+            for (;;) {
+                float *se = &stack_E[3 * x], *st = &stack_T[3 * x];
+                se[0] += st[0] * E[0];
+                se[1] += st[1] * E[1];
+                se[2] += st[2] * E[2];
+                st[0] = st[1] = st[2] = 0.0f;
+                ws->used[x] = 1.0f;
+                if (record)
+                    next[x] = (uint16_t)(x + 1);
+                /* The run goes on while nothing new was accumulated and the
+                 * running cover alone is full (then c = clamp(0 + run) = 1;
+                 * a pixel can be full through its own area with run < 1),
+                 * and the next pixel is as untouched. */
+                int32_t n = x + 1;
+                if (!(n < hi && run >= 1.0f && ws->cover[n] == 0.0f && ws->area[n] == 0.0f &&
+                      next[n] == (uint32_t)n && ws->used[n] == 0.0f))
+                    break;
+                x = n;
+            }
+            continue;
+        }
         ws->used[x] += c;
         const float *e = E, *a = A;
         if (functional) {
@@ -317,8 +396,12 @@ static bool region_may_hide(const cs_renderer *r, uint32_t reg)
 }
 
 /*
- * Composites the accumulated cel behind the stack and clears it. Pixels in
- * the opaque record are jumped over. If the cel may hide (`snap`), T is
+ * Composites the accumulated cel behind the stack and clears it. Only pixels
+ * the cel covers (used[x] > 0) change the stack: elsewhere E_cel = 0 and
+ * T_cel = 1, which leave E and T as they are, so they are skipped. Pixels in
+ * the opaque record have no coverage (fold_region does not accumulate there)
+ * except those fold_region composited itself (solid runs), which only need
+ * their claim cleared. If the cel may hide (`snap`), T is
  * snapped to 0 below CS__T_ZERO; with `record` as well, pixels whose stack
  * T reaches 0 on every channel join the record, so no later cel visits
  * them. Snapping depends on the cel alone, never on `record`, so turning
@@ -328,11 +411,13 @@ static void composite_cel(cs_workspace *ws, float *stack_E, int32_t lo, int32_t 
                           bool record)
 {
     uint16_t *next = ws->opaque_next;
+    const float *used = ws->used;
     for (uint32_t x = (uint32_t)lo; x < (uint32_t)hi; x++) {
-        if (next[x] != x) { /* an opaque run: jump over it in one step */
-            x = cs__clear_from(next, x);
-            if (x >= (uint32_t)hi)
-                break;
+        if (used[x] == 0.0f)
+            continue;
+        if (next[x] != x) { /* a solid pixel fold_region composited already */
+            ws->used[x] = 0.0f;
+            continue;
         }
         float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
         float *se = &stack_E[3 * x], *st = &ws->stack_T[3 * x];
@@ -400,6 +485,74 @@ static void update_active(cs_renderer *r, int y)
     r->next_line = y + 1;
 }
 
+/*
+ * The pixel ranges a cel's regions touched on this line, sorted and
+ * disjoint: composite_cel walks these rather than the hull from the
+ * leftmost to the rightmost region, which for a cel of scattered shapes
+ * is most of the line. A few ranges suffice; when an added range would
+ * make one too many, the two closest ranges become one (covering the gap
+ * costs a scan of pixels whose coverage is zero, never a wrong pixel).
+ */
+#define CEL_RANGES 8
+
+typedef struct cel_ranges {
+    int32_t lo[CEL_RANGES + 1], hi[CEL_RANGES + 1];
+    uint32_t n;
+} cel_ranges;
+
+static void ranges_add(cel_ranges *s, int32_t lo, int32_t hi)
+{
+    int32_t tlo[CEL_RANGES + 1], thi[CEL_RANGES + 1];
+    uint32_t n = 0;
+    bool placed = false;
+    for (uint32_t k = 0; k < s->n; k++) {
+        if (s->hi[k] < lo) {
+            tlo[n] = s->lo[k];
+            thi[n++] = s->hi[k];
+        } else if (s->lo[k] > hi) {
+            if (!placed) {
+                tlo[n] = lo;
+                thi[n++] = hi;
+                placed = true;
+            }
+            tlo[n] = s->lo[k];
+            thi[n++] = s->hi[k];
+        } else { /* overlapping or touching: absorb it */
+            lo = s->lo[k] < lo ? s->lo[k] : lo;
+            hi = s->hi[k] > hi ? s->hi[k] : hi;
+        }
+    }
+    if (!placed) {
+        tlo[n] = lo;
+        thi[n++] = hi;
+    }
+    if (n > CEL_RANGES) { /* join the two ranges with the smallest gap */
+        uint32_t best = 0;
+        for (uint32_t k = 1; k + 1 < n; k++)
+            if (tlo[k + 1] - thi[k] < tlo[best + 1] - thi[best])
+                best = k;
+        thi[best] = thi[best + 1];
+        for (uint32_t k = best + 1; k + 1 < n; k++) {
+            tlo[k] = tlo[k + 1];
+            thi[k] = thi[k + 1];
+        }
+        n--;
+    }
+    for (uint32_t k = 0; k < n; k++) {
+        s->lo[k] = tlo[k];
+        s->hi[k] = thi[k];
+    }
+    s->n = n;
+}
+
+static void composite_ranges(cs_workspace *ws, float *stack_E, cel_ranges *s, bool snap,
+                             bool record)
+{
+    for (uint32_t k = 0; k < s->n; k++)
+        composite_cel(ws, stack_E, s->lo[k], s->hi[k], snap, record);
+    s->n = 0;
+}
+
 void cs__line_stack(cs_renderer *r, int y)
 {
     cs_workspace *ws = r->ws;
@@ -416,7 +569,8 @@ void cs__line_stack(cs_renderer *r, int y)
     uint32_t cache_end = r->cache ? r->cache->cel_first + r->cache->cel_count : 0;
     bool cache_pending = r->cache != 0;
     uint32_t i = 0;
-    int32_t cel_lo = INT32_MAX, cel_hi = INT32_MIN;
+    cel_ranges ranges;
+    ranges.n = 0;
     uint32_t current_cel = UINT32_MAX;
     bool cel_hides = false;
     while (i < r->active_count) {
@@ -426,10 +580,7 @@ void cs__line_stack(cs_renderer *r, int y)
             j++;
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel) {
-            if (cel_lo < cel_hi)
-                composite_cel(ws, r->stack_E, cel_lo, cel_hi, cel_hides, record);
-            cel_lo = INT32_MAX;
-            cel_hi = INT32_MIN;
+            composite_ranges(ws, r->stack_E, &ranges, cel_hides, record);
             cel_hides = false;
             if (cache_pending && cel >= cache_end) {
                 cs__cache_composite(r->cache, ws, r->stack_E, y, record);
@@ -445,17 +596,13 @@ void cs__line_stack(cs_renderer *r, int y)
             region_coverage(r, reg, &ws->active[i], j - i, y, &lo, &hi);
             if (lo < hi) {
                 fold_region(r, reg, y, lo, hi);
-                if (lo < cel_lo)
-                    cel_lo = lo;
-                if (hi > cel_hi)
-                    cel_hi = hi;
+                ranges_add(&ranges, lo, hi);
                 cel_hides = cel_hides || region_may_hide(r, reg);
             }
         }
         i = j;
     }
-    if (cel_lo < cel_hi)
-        composite_cel(ws, r->stack_E, cel_lo, cel_hi, cel_hides, record);
+    composite_ranges(ws, r->stack_E, &ranges, cel_hides, record);
     if (cache_pending)
         cs__cache_composite(r->cache, ws, r->stack_E, y, record);
 }

@@ -17,6 +17,12 @@
  * A zero interval yields no segment, and the validation in cs_scene.c
  * guarantees at most p-1 of them in a row, so neighbouring spans still meet
  * with at least C0 continuity and the contour stays closed.
+ *
+ * The matrix depends only on the knots around the span, and in practice
+ * they repeat from span to span (a Bezier path, a uniform B-spline, a
+ * circle's [1,0,1,0...]), so the last matrix is kept and reused while the
+ * knots are the same floats: the same matrix, computed once per contour
+ * instead of once per segment.
  */
 #include "cs_internal.h"
 
@@ -81,26 +87,41 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
         }
     }
     uint32_t n = 0;
+    float basis[4][4], last[8];
+    bool have_basis = false;
     for (int j = 0; j < count; j++) {
         float h = intervals[j];
         if (h <= 0.0f)
             continue;
         if (n >= capacity)
             return CS_ERR_CAP_SEGMENTS;
+        /* Indices stay within [0, 2 count): count >= degree + 1 (cs_scene.c). */
         float knots[8];
         knots[degree] = 0.0f;
-        for (int m = 0; m < degree + 1; m++) /* t(j+m+1) */
-            knots[degree + m + 1] = knots[degree + m] + intervals[(j + m) % count];
-        for (int m = 0; m > -degree; m--) /* t(j+m-1) */
-            knots[degree + m - 1] = knots[degree + m] - intervals[(j + m - 1 + count) % count];
-        float basis[4][4];
-        span_basis(degree, knots, h, basis);
+        for (int m = 0; m < degree + 1; m++) { /* t(j+m+1) */
+            int at = j + m < count ? j + m : j + m - count;
+            knots[degree + m + 1] = knots[degree + m] + intervals[at];
+        }
+        for (int m = 0; m > -degree; m--) { /* t(j+m-1) */
+            int at = j + m - 1 >= 0 ? j + m - 1 : j + m - 1 + count;
+            knots[degree + m - 1] = knots[degree + m] - intervals[at];
+        }
+        bool same = have_basis;
+        for (int m = 0; m <= 2 * degree + 1 && same; m++)
+            same = knots[m] == last[m];
+        if (!same) {
+            span_basis(degree, knots, h, basis);
+            for (int m = 0; m <= 2 * degree + 1; m++)
+                last[m] = knots[m];
+            have_basis = true;
+        }
 
         cs_segment *s = &out[n];
         for (int i = 0; i < 4; i++)
             s->x[i] = s->y[i] = s->w[i] = 0.0f;
         for (int k = 0; k <= degree; k++) {
-            const cs_point *p = &points[(j - degree + k + count) % count];
+            int at = j - degree + k >= 0 ? j - degree + k : j - degree + k + count;
+            const cs_point *p = &points[at];
             float dx = to_device->a * p->x + to_device->c * p->y + to_device->e;
             float dy = to_device->b * p->x + to_device->d * p->y + to_device->f;
             float hx = p->w * dx, hy = p->w * dy;

@@ -17,6 +17,13 @@
  * a still frame does not shimmer and its CRC is stable), and a value that
  * lies exactly on an output level is left alone. The plain conversion is
  * untouched by it: the firmware's frame CRCs are defined on that one.
+ *
+ * Flat artwork makes long runs of bit-identical pixels, and the encoding
+ * (a square root and a table interpolation per channel) costs more than the
+ * rest of a flat pixel's rendering, so the undithered conversions reuse the
+ * previous pixel's code when its three floats are equal: the same bytes
+ * (equal floats encode equally; NaN never compares equal), a fraction of
+ * the work.
  */
 #include "cs_internal.h"
 
@@ -87,14 +94,30 @@ static void convert(cs_pixfmt fmt, const float *rgb, int width, int y, uint8_t *
 {
     const uint8_t *row = bayer8[(uint32_t)(y < 0 ? 0 : y) & 7u];
 #define BIAS(x) (y < 0 ? 0.5f : (float)(2u * row[(uint32_t)(x) & 7u] + 1u) * (1.0f / 128.0f))
+    /* Pixel x repeats pixel x-1 exactly (rounding only: dithering depends on x). */
+#define SAME(x)                                                                                   \
+    (y < 0 && (x) > 0 && rgb[3 * (x)] == rgb[3 * (x)-3] && rgb[3 * (x) + 1] == rgb[3 * (x)-2] && \
+     rgb[3 * (x) + 2] == rgb[3 * (x)-1])
     switch (fmt) {
     case CS_PIX_RGB888_SRGB:
-        for (int x = 0; x < width; x++)
+        for (int x = 0; x < width; x++) {
+            if (SAME(x)) {
+                out[3 * x] = out[3 * x - 3];
+                out[3 * x + 1] = out[3 * x - 2];
+                out[3 * x + 2] = out[3 * x - 1];
+                continue;
+            }
             for (int ch = 0; ch < 3; ch++)
                 out[3 * x + ch] = (uint8_t)code(cs__srgb_encode(rgb[3 * x + ch]), 255.0f, BIAS(x));
+        }
         break;
     case CS_PIX_RGB565_SRGB:
         for (int x = 0; x < width; x++) {
+            if (SAME(x)) {
+                out[2 * x] = out[2 * x - 2];
+                out[2 * x + 1] = out[2 * x - 1];
+                continue;
+            }
             const float *px = &rgb[3 * x];
             float bias = BIAS(x);
             uint32_t v = code(cs__srgb_encode(px[0]), 31.0f, bias) << 11 |
@@ -106,6 +129,11 @@ static void convert(cs_pixfmt fmt, const float *rgb, int width, int y, uint8_t *
         break;
     case CS_PIX_RGB444_SRGB:
         for (int x = 0; x < width; x++) {
+            if (SAME(x)) {
+                out[2 * x] = out[2 * x - 2];
+                out[2 * x + 1] = out[2 * x - 1];
+                continue;
+            }
             const float *px = &rgb[3 * x];
             float bias = BIAS(x);
             uint32_t v = code(cs__srgb_encode(px[0]), 15.0f, bias) << 8 |
@@ -117,6 +145,10 @@ static void convert(cs_pixfmt fmt, const float *rgb, int width, int y, uint8_t *
         break;
     case CS_PIX_RGB332_SRGB:
         for (int x = 0; x < width; x++) {
+            if (SAME(x)) {
+                out[x] = out[x - 1];
+                continue;
+            }
             const float *px = &rgb[3 * x];
             float bias = BIAS(x);
             out[x] = (uint8_t)(code(cs__srgb_encode(px[0]), 7.0f, bias) << 5 |
@@ -139,6 +171,7 @@ static void convert(cs_pixfmt fmt, const float *rgb, int width, int y, uint8_t *
         break;
     }
 #undef BIAS
+#undef SAME
 }
 
 void cs_pixfmt_convert(cs_pixfmt fmt, const float *rgb, int width, uint8_t *out)

@@ -16,6 +16,8 @@
 #include "cs_internal.h"
 
 #define ILLINOIS_MAX_ITER 48
+#define NEWTON_MAX_ITER 8
+#define WARM_STEP_TOL 1.0e-5f
 
 float cs__poly_eval(const float *c, int degree, float u)
 {
@@ -36,7 +38,7 @@ static float illinois(const float *c, int degree, float a, float b, float fa, fl
             if (!(m > a && m < b))
                 break; /* the bracket is two adjacent floats */
         }
-        float fm = cs__poly_eval(c, degree, m);
+        float fm = cs__horner(c, degree, m);
         if (fm == 0.0f)
             return m;
         if ((fm < 0.0f) == (fb < 0.0f)) {
@@ -98,19 +100,128 @@ int cs__poly_roots(const float *c, int degree, float lo, float hi, float *roots)
     return n;
 }
 
+/* Value of c at u, and its derivative in *d, by Horner's scheme (unrolled). */
+static inline float horner_d(const float *c, int degree, float u, float *d)
+{
+    switch (degree) {
+    case 2:
+        *d = c[2] * u + (c[2] * u + c[1]);
+        return (c[2] * u + c[1]) * u + c[0];
+    case 3: {
+        float v2 = c[3] * u + c[2];
+        float v1 = v2 * u + c[1];
+        *d = (c[3] * u + v2) * u + v1;
+        return v1 * u + c[0];
+    }
+    default: {
+        float v = c[degree], dv = 0.0f;
+        for (int i = degree - 1; i >= 0; i--) {
+            dv = dv * u + v;
+            v = v * u + c[i];
+        }
+        *d = dv;
+        return v;
+    }
+    }
+}
+
+/*
+ * Root of g in [a, b] (fa, fb of opposite signs) by Newton's method from
+ * `guess`, keeping the bracket: every evaluation moves one end of it, and a
+ * step that would leave it (a flat or turning stretch, or a poor guess)
+ * hands the narrowed bracket to the Illinois iteration instead.
+ */
+static float newton(const float *g, int degree, float a, float b, float fa, float fb, float guess)
+{
+    float u = guess;
+    if (!(u > a && u < b))
+        return illinois(g, degree, a, b, fa, fb);
+    for (int it = 0; it < NEWTON_MAX_ITER; it++) {
+        float d, f = horner_d(g, degree, u, &d);
+        if (f == 0.0f)
+            return u;
+        if ((f < 0.0f) == (fa < 0.0f)) {
+            a = u;
+            fa = f;
+        } else {
+            b = u;
+            fb = f;
+        }
+        float next = u - f / d;
+        if (!(next > a && next < b))
+            break;
+        if (cs__absf(next - u) <= 1.0e-7f)
+            return next;
+        u = next;
+    }
+    return illinois(g, degree, a, b, fa, fb);
+}
+
+/* g = num - level den. */
+static inline void level_poly(const float *num, const float *den, int degree, float level,
+                              float *g)
+{
+    g[0] = num[0] - level * den[0];
+    g[1] = num[1] - level * den[1];
+    g[2] = degree >= 2 ? num[2] - level * den[2] : 0.0f;
+    g[3] = degree >= 3 ? num[3] - level * den[3] : 0.0f;
+}
+
 float cs__solve_level(const float *num, const float *den, int degree, float level, float lo,
                       float hi)
 {
-    float g[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (int i = 0; i <= degree; i++)
-        g[i] = num[i] - level * den[i];
-    float flo = cs__poly_eval(g, degree, lo);
-    float fhi = cs__poly_eval(g, degree, hi);
+    float g[4];
+    level_poly(num, den, degree, level, g);
+    float flo = cs__horner(g, degree, lo);
+    float fhi = cs__horner(g, degree, hi);
     if (flo == 0.0f)
         return lo;
     if (fhi == 0.0f)
         return hi;
     if ((flo < 0.0f) == (fhi < 0.0f))
         return cs__absf(flo) <= cs__absf(fhi) ? lo : hi;
-    return illinois(g, degree, lo, hi, flo, fhi);
+    if (degree == 1) /* a straight piece: the root in closed form */
+        return cs__clampf(-g[0] / g[1], lo, hi);
+    /* Newton from the regula falsi point, the first guess Illinois would make. */
+    return newton(g, degree, lo, hi, flo, fhi, (lo * fhi - hi * flo) / (fhi - flo));
+}
+
+/*
+ * With W > 0, g(u) = W(u) (y(u) - level) has the sign of y(u) - level, so
+ * on a monotone piece the side of the root is known from the sign of g at
+ * any u, without evaluating the ends: for a rising piece g < 0 before the
+ * root. Newton from the nearby root then needs no set-up at all; when it
+ * does not settle inside the piece, the full bracketed solve decides.
+ */
+float cs__solve_level_from(const float *num, const float *den, int degree, float level,
+                           float lo, float hi, float guess, bool rising, float *slope)
+{
+    float g[4];
+    *slope = 0.0f;
+    level_poly(num, den, degree, level, g);
+    if (degree == 1 || !(guess > lo && guess < hi))
+        return cs__solve_level(num, den, degree, level, lo, hi);
+    float a = lo, b = hi, u = guess;
+    for (int it = 0; it < NEWTON_MAX_ITER; it++) {
+        float d, f = horner_d(g, degree, u, &d);
+        if (f == 0.0f) {
+            *slope = d;
+            return u;
+        }
+        if ((f < 0.0f) == rising)
+            a = u;
+        else
+            b = u;
+        float next = u - f / d;
+        if (!(next > a && next < b))
+            break;
+        /* Newton leaves an error of about K s^2 after a step s (K = g''/2g'),
+         * so a step of 1e-5 already lands within ~1e-10 K of the root. */
+        if (cs__absf(next - u) <= WARM_STEP_TOL) {
+            *slope = d;
+            return next;
+        }
+        u = next;
+    }
+    return cs__solve_level(num, den, degree, level, lo, hi);
 }

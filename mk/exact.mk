@@ -24,7 +24,7 @@ $(EXACT_ASAN)/test_exact: $(addprefix $(EXACT_ASAN)/obj/,$(EXACT_TEST_OBJ)) \
                           $(patsubst core/%.c,$(EXACT_ASAN)/core/%.o,$(CORE_SRC))
 	$(Q)$(CC) $(EXACT_SAN) $^ -lm -o $@
 
-$(HOST)/bench/aa_modes: $(HOST)/obj/bench/aa_modes.o $(HOST)/libcelscan.a
+$(HOST)/bench_aa_modes: $(HOST)/obj/bench/aa_modes.o $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $^ -lm -o $@
 
@@ -33,8 +33,8 @@ test-exact: $(HOST)/tests/test_exact
 	$(Q)$<
 test-exact-asan: $(EXACT_ASAN)/test_exact
 	$(Q)$<
-bench-aa: $(HOST)/bench/aa_modes
+bench-aa: $(HOST)/bench_aa_modes
 	$(Q)$<
 
 TEST_TARGETS += test-exact test-exact-asan
-HOST_PROGRAMS += $(HOST)/bench/aa_modes
+HOST_PROGRAMS += $(HOST)/bench_aa_modes

@@ -1,0 +1,1011 @@
+/*
+ * bench.c - celscan against cairo and FreeType, in one process, on one core.
+ *
+ *   bench [--sections speed,accuracy,beam,scaling] [--scenes blobs,signage,...]
+ *         [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]
+ *   bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]
+ *   bench --selftest
+ *
+ * For each reference scene (BENCHMARKS.md) the same geometry is rendered by
+ *
+ *   celscan   cs_frame_begin, then cs_render_line and cs_pixfmt_convert
+ *             (8-bit sRGB) for every line: what celsim and a board do;
+ *   cairo     an ARGB32 image surface, default antialias and tolerance;
+ *   FreeType  FT_Outline_Render (smooth, direct spans) with a span compositor;
+ *
+ * and the medians of N interleaved runs are compared (ratio celscan/peer:
+ * below 1 means celscan is faster). Quality comes with speed: the accuracy
+ * section measures every renderer's coverage against the exact reference
+ * (accuracy.c). The beam section times every single line (median over runs
+ * per line) against the line period of a display scanned out at 60 Hz. The
+ * scaling section varies output height, segment count and sub-scanlines.
+ *
+ * The peers get their Bezier paths ready-made in device space (outline.c,
+ * outside the timing); celscan's timed frame includes its own per-frame
+ * preparation from NURBS control points. Every timed path ends with pixels
+ * in memory: 8-bit sRGB RGB for celscan, 8-bit premultiplied ARGB for the
+ * peers.
+ *
+ * Tables are printed and, with --out, written as DIR/<section>.txt in
+ * Markdown, for tools/bench_md.py to splice into BENCHMARKS.md.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bench.h"
+#include "ref/ref.h"
+#include "scene_json.h"
+
+/* Line periods of the displays the beam report races (60 Hz). */
+static const struct {
+    int w, h;
+    double period_us;
+    const char *name;
+} displays[] = {
+    {1920, 1080, 14.8, "1080p60"},
+    {1280, 720, 22.2, "720p60"},
+    {480, 272, 61.0, "480x272@60"},
+};
+
+typedef struct bench_scene_def {
+    const char *name, *title, *path;
+} bench_scene_def;
+
+static const bench_scene_def scene_defs[] = {
+    {"blobs", "Many-blobs", "scenes/bench/blobs.json"},
+    {"signage", "Signage (demo)", "scenes/demo.json"},
+    {"thin", "Thin-and-small", "scenes/bench/thin.json"},
+    {"rational", "Rational", "scenes/bench/rational.json"},
+    {"anim", "Animation", "scenes/bench/anim.json"},
+};
+#define SCENE_COUNT (int)(sizeof scene_defs / sizeof scene_defs[0])
+
+typedef struct config {
+    int width, height;
+    int repeat;
+    int frames;     /* animation frames */
+    int shapes;     /* accuracy sample per scene */
+    const char *out_dir;
+    bool sections[4];
+    bool scenes[SCENE_COUNT];
+    bool quick;
+} config;
+
+enum { SEC_SPEED, SEC_ACCURACY, SEC_BEAM, SEC_SCALING };
+static const char *const section_names[4] = {"speed", "accuracy", "beam", "scaling"};
+
+/* Big state lives here once: the core's scene store and workspace are megabytes. */
+static cs_scene *g_scene;
+static cs_workspace *g_ws;
+
+/* ---------------------------------------------------------------- utils */
+
+double bench_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double bench_median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void die(const char *fmt, ...)
+{
+    va_list ap;
+    fputs("bench: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    exit(1);
+}
+
+/* Printing to stdout and to the section's results file at once. */
+static FILE *g_out;
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static void out(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vprintf(fmt, ap);
+    va_end(ap);
+    if (g_out) {
+        va_start(ap, fmt);
+        vfprintf(g_out, fmt, ap);
+        va_end(ap);
+    }
+    fflush(stdout);
+}
+
+static void section_open(const config *cfg, int sec)
+{
+    g_out = NULL;
+    if (!cfg->out_dir)
+        return;
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s.txt", cfg->out_dir, section_names[sec]);
+    g_out = fopen(path, "w");
+    if (!g_out)
+        die("cannot write %s", path);
+}
+
+static void section_close(void)
+{
+    if (g_out)
+        fclose(g_out);
+    g_out = NULL;
+}
+
+static void load(const bench_scene_def *d)
+{
+    char err[SCENE_JSON_ERRLEN];
+    if (scene_json_load(d->path, g_scene, err, sizeof err) != 0)
+        die("%s (run bench/gen_scenes.py first?)", err);
+}
+
+static const char *aa_name(cs_aa_mode aa, int n, char *buf, size_t len)
+{
+    if (aa == CS_AA_NONE)
+        return "none";
+    if (aa == CS_AA_EXACT)
+        return "exact";
+    snprintf(buf, len, "%d", n);
+    return buf;
+}
+
+/* ------------------------------------------------------ celscan frames */
+
+typedef struct cs_target {
+    int w, h;
+    float *line;
+    uint8_t *image;  /* w*h*3 bytes, 8-bit sRGB */
+    cs_cache cache;
+    void *cache_buf;
+    bool cached;
+} cs_target;
+
+static void target_init(cs_target *t, int w, int h)
+{
+    memset(t, 0, sizeof *t);
+    t->w = w;
+    t->h = h;
+    t->line = malloc((size_t)w * 3 * sizeof *t->line);
+    t->image = malloc((size_t)w * h * 3);
+    if (!t->line || !t->image)
+        die("out of memory");
+}
+
+static void target_free(cs_target *t)
+{
+    free(t->line);
+    free(t->image);
+    free(t->cache_buf);
+}
+
+static cs_render_opts opts_for(int w, int h, cs_aa_mode aa, int n)
+{
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.aa = aa;
+    if (aa == CS_AA_SUBSCAN)
+        o.subscanlines = n;
+    return o;
+}
+
+/* One whole frame, as celsim renders it; returns seconds. */
+__attribute__((noinline)) static double celscan_frame(cs_target *t, const cs_render_opts *o)
+{
+    cs_renderer r;
+    cs_error e;
+    double t0 = bench_now();
+    cs_status st = t->cached ? cs_frame_begin_cached(&r, g_ws, g_scene, o, &t->cache, &e)
+                             : cs_frame_begin(&r, g_ws, g_scene, o, &e);
+    if (st != CS_OK)
+        die("cs_frame_begin: %s", cs_status_str(st));
+    for (int y = 0; y < t->h; y++) {
+        cs_render_line(&r, y, t->line);
+        cs_pixfmt_convert(CS_PIX_RGB888_SRGB, t->line, t->w, t->image + (size_t)y * t->w * 3);
+    }
+    double dt = bench_now() - t0;
+    if (cs_frame_error(&r).status != CS_OK)
+        die("frame degraded: %s", cs_status_str(cs_frame_error(&r).status));
+    return dt;
+}
+
+/* Pre-combines cels [from, cel_count) into t's cache; returns the build time. */
+static double celscan_cache(cs_target *t, const cs_render_opts *o, uint32_t from)
+{
+    cs_error e;
+    free(t->cache_buf);
+    t->cache_buf = NULL;
+    t->cached = false;
+    uint32_t count = g_scene->cel_count - from;
+    if (count == 0)
+        return 0.0;
+    cs_cache_build(&t->cache, NULL, 0, g_ws, g_scene, o, from, count, &e);
+    size_t need = t->cache.bytes_needed;
+    t->cache_buf = malloc(need ? need : 1);
+    double t0 = bench_now();
+    cs_status st = cs_cache_build(&t->cache, t->cache_buf, need, g_ws, g_scene, o, from, count, &e);
+    double dt = bench_now() - t0;
+    if (st != CS_OK)
+        die("cs_cache_build: %s", cs_status_str(st));
+    t->cached = true;
+    return dt;
+}
+
+/* --------------------------------------------------------------- speed */
+
+enum { V_CS16, V_CSX, V_CAIRO, V_CAIRO_FINE, V_FT, V_COUNT };
+
+typedef struct peers {
+    peer_cairo *cairo, *cairo_fine;
+    peer_ft *ft;
+    ol_set set;
+} peers;
+
+static void peers_init(peers *p, int w, int h)
+{
+    memset(p, 0, sizeof *p);
+    p->cairo = peer_cairo_new(w, h, 0.1);
+    p->cairo_fine = peer_cairo_new(w, h, 0.01);
+    p->ft = peer_ft_new(w, h);
+    if (!p->cairo || !p->cairo_fine || !p->ft)
+        die("cannot set up cairo / FreeType at %dx%d", w, h);
+}
+
+static void peers_prepare(peers *p, int w, int h)
+{
+    ol_free(&p->set);
+    if (ol_build(&p->set, g_scene, w, h) < 0 || peer_ft_prepare(p->ft, &p->set) != 0)
+        die("cannot convert the scene to peer outlines");
+}
+
+static void peers_free(peers *p)
+{
+    peer_cairo_free(p->cairo);
+    peer_cairo_free(p->cairo_fine);
+    peer_ft_free(p->ft);
+    ol_free(&p->set);
+}
+
+static double time_variant(int v, cs_target *t16, cs_target *tx, peers *p, int first, int end,
+                           bool over_saved)
+{
+    double t0;
+    switch (v) {
+    case V_CS16: {
+        cs_render_opts o = opts_for(t16->w, t16->h, CS_AA_SUBSCAN, 16);
+        return celscan_frame(t16, &o);
+    }
+    case V_CSX: {
+        cs_render_opts o = opts_for(tx->w, tx->h, CS_AA_EXACT, 0);
+        return celscan_frame(tx, &o);
+    }
+    case V_CAIRO:
+        t0 = bench_now();
+        peer_cairo_frame(p->cairo, &p->set, first, end, over_saved);
+        return bench_now() - t0;
+    case V_CAIRO_FINE:
+        t0 = bench_now();
+        peer_cairo_frame(p->cairo_fine, &p->set, first, end, over_saved);
+        return bench_now() - t0;
+    default:
+        t0 = bench_now();
+        peer_ft_frame(p->ft, &p->set, first, end, over_saved);
+        return bench_now() - t0;
+    }
+}
+
+/*
+ * How alike celscan's picture (blended in sRGB, as cairo blends) and
+ * cairo's are: a check that both drew the same scene, not a quality figure.
+ */
+static void agreement(cs_target *t, peers *p, double *mean, double *big)
+{
+    cs_render_opts o = opts_for(t->w, t->h, CS_AA_SUBSCAN, 16);
+    o.blend = CS_BLEND_SRGB;
+    bool was = t->cached;
+    t->cached = false;
+    celscan_frame(t, &o);
+    t->cached = was;
+    int stride;
+    const uint32_t *px = peer_cairo_pixels(p->cairo, &stride);
+    double sum = 0;
+    long n = 0, over = 0;
+    for (int y = 0; y < t->h; y++)
+        for (int x = 0; x < t->w; x++) {
+            uint32_t c = px[(size_t)y * (stride / 4) + x];
+            const uint8_t *s = &t->image[((size_t)y * t->w + x) * 3];
+            int d = abs((int)((c >> 16) & 255) - s[0]) + abs((int)((c >> 8) & 255) - s[1]) +
+                    abs((int)(c & 255) - s[2]);
+            sum += d / 3.0;
+            over += d / 3.0 > 8.0;
+            n++;
+        }
+    *mean = sum / (double)n;
+    *big = 100.0 * (double)over / (double)n;
+}
+
+typedef struct speed_row {
+    double ms[V_COUNT];
+    double agree_mean, agree_big;
+} speed_row;
+
+static void speed_static(const config *cfg, const bench_scene_def *d, speed_row *row)
+{
+    int w = cfg->width, h = cfg->height, n = cfg->repeat;
+    load(d);
+    cs_target t16, tx;
+    target_init(&t16, w, h);
+    target_init(&tx, w, h);
+    peers p;
+    peers_init(&p, w, h);
+    peers_prepare(&p, w, h);
+    double *s = malloc((size_t)V_COUNT * n * sizeof *s);
+    /* One warm-up of each, then n interleaved runs: load on a shared machine
+     * then falls on every variant alike. */
+    for (int v = 0; v < V_COUNT; v++)
+        time_variant(v, &t16, &tx, &p, 0, p.set.region_count, false);
+    for (int k = 0; k < n; k++)
+        for (int v = 0; v < V_COUNT; v++)
+            s[v * n + k] = time_variant(v, &t16, &tx, &p, 0, p.set.region_count, false);
+    for (int v = 0; v < V_COUNT; v++)
+        row->ms[v] = 1e3 * bench_median(&s[v * n], n);
+    agreement(&t16, &p, &row->agree_mean, &row->agree_big);
+    free(s);
+    peers_free(&p);
+    target_free(&t16);
+    target_free(&tx);
+}
+
+/*
+ * The animation: frames at 60 Hz, each variant once per frame (interleaved),
+ * direct and with a static-background cache (celscan: cs_cache_build of the
+ * cels behind every animated one; peers: that background drawn once and
+ * copied into each frame).
+ */
+typedef struct anim_row {
+    double direct[V_COUNT], cached[V_COUNT]; /* median ms per frame */
+    double cache_ms[2];                      /* celscan cache builds: aa 16, exact */
+    int frames;
+    uint32_t static_from;
+} anim_row;
+
+static void speed_anim(const config *cfg, const bench_scene_def *d, anim_row *row)
+{
+    int w = cfg->width, h = cfg->height, nf = cfg->frames;
+    load(d);
+    anim *a = anim_load(d->path, g_scene);
+    row->frames = nf;
+    row->static_from = anim_static_from(a, g_scene);
+    cs_target t16, tx;
+    target_init(&t16, w, h);
+    target_init(&tx, w, h);
+    peers p;
+    peers_init(&p, w, h);
+    /* The backgrounds: celscan caches, and the peers' saved images. */
+    anim_apply(a, g_scene, 0.0);
+    cs_render_opts o16 = opts_for(w, h, CS_AA_SUBSCAN, 16), ox = opts_for(w, h, CS_AA_EXACT, 0);
+    row->cache_ms[0] = 1e3 * celscan_cache(&t16, &o16, row->static_from);
+    row->cache_ms[1] = 1e3 * celscan_cache(&tx, &ox, row->static_from);
+    peers_prepare(&p, w, h);
+    int static_region = p.set.region_count;
+    for (int i = 0; i < p.set.region_count; i++)
+        if ((uint32_t)p.set.regions[i].cel >= row->static_from) {
+            static_region = i;
+            break;
+        }
+    peer_cairo_frame(p.cairo, &p.set, static_region, p.set.region_count, false);
+    peer_cairo_save_background(p.cairo);
+    peer_cairo_frame(p.cairo_fine, &p.set, static_region, p.set.region_count, false);
+    peer_cairo_save_background(p.cairo_fine);
+    peer_ft_frame(p.ft, &p.set, static_region, p.set.region_count, false);
+    peer_ft_save_background(p.ft);
+
+    double *sd = malloc((size_t)V_COUNT * nf * sizeof *sd);
+    double *sc = malloc((size_t)V_COUNT * nf * sizeof *sc);
+    for (int f = 0; f < nf; f++) {
+        anim_apply(a, g_scene, f / 60.0);
+        peers_prepare(&p, w, h);
+        for (int v = 0; v < V_COUNT; v++) {
+            bool c16 = t16.cached, cx = tx.cached;
+            t16.cached = tx.cached = false;
+            sd[v * nf + f] = time_variant(v, &t16, &tx, &p, 0, p.set.region_count, false);
+            t16.cached = c16;
+            tx.cached = cx;
+            sc[v * nf + f] = time_variant(v, &t16, &tx, &p, 0, static_region, true);
+        }
+    }
+    for (int v = 0; v < V_COUNT; v++) {
+        row->direct[v] = 1e3 * bench_median(&sd[v * nf], nf);
+        row->cached[v] = 1e3 * bench_median(&sc[v * nf], nf);
+    }
+    free(sd);
+    free(sc);
+    anim_free(a);
+    peers_free(&p);
+    target_free(&t16);
+    target_free(&tx);
+}
+
+static void run_speed(const config *cfg)
+{
+    section_open(cfg, SEC_SPEED);
+    out("### Speed at %dx%d: median ms per frame over %d interleaved runs\n\n", cfg->width,
+        cfg->height, cfg->repeat);
+    out("| scene | celscan aa 16 | celscan exact | cairo | cairo tol 0.01 | FreeType "
+        "| aa16/cairo | exact/cairo | aa16/FT | exact/FT | picture vs cairo |\n");
+    out("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    anim_row ar;
+    bool have_anim = false;
+    for (int i = 0; i < SCENE_COUNT; i++) {
+        if (!cfg->scenes[i])
+            continue;
+        if (strcmp(scene_defs[i].name, "anim") == 0) {
+            speed_anim(cfg, &scene_defs[i], &ar);
+            have_anim = true;
+            continue;
+        }
+        speed_row r;
+        speed_static(cfg, &scene_defs[i], &r);
+        out("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f (%.2f%% > 8) |\n",
+            scene_defs[i].title, r.ms[V_CS16], r.ms[V_CSX], r.ms[V_CAIRO], r.ms[V_CAIRO_FINE],
+            r.ms[V_FT], r.ms[V_CS16] / r.ms[V_CAIRO], r.ms[V_CSX] / r.ms[V_CAIRO],
+            r.ms[V_CS16] / r.ms[V_FT], r.ms[V_CSX] / r.ms[V_FT], r.agree_mean, r.agree_big);
+    }
+    out("\nRatios are celscan time / peer time: below 1 celscan is faster. \"picture vs cairo\" is the "
+        "mean absolute difference (of 255) between celscan blending in sRGB and cairo, and the share "
+        "of pixels off by more than 8: a check that both drew the same scene.\n");
+    if (have_anim) {
+        out("\n### Animation at %dx%d: median ms per frame over %d frames (t = 0 .. %.3f s at 60 Hz)\n\n",
+            cfg->width, cfg->height, ar.frames, (ar.frames - 1) / 60.0);
+        out("| | celscan aa 16 | celscan exact | cairo | cairo tol 0.01 | FreeType | aa16/cairo "
+            "| exact/cairo | aa16/FT | exact/FT |\n");
+        out("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        const char *names[2] = {"every cel every frame", "static background cached"};
+        for (int k = 0; k < 2; k++) {
+            const double *m = k ? ar.cached : ar.direct;
+            out("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", names[k],
+                m[V_CS16], m[V_CSX], m[V_CAIRO], m[V_CAIRO_FINE], m[V_FT], m[V_CS16] / m[V_CAIRO],
+                m[V_CSX] / m[V_CAIRO], m[V_CS16] / m[V_FT], m[V_CSX] / m[V_FT]);
+        }
+        out("\nCached: celscan pre-combines cels %u.. (the static background) once with "
+            "cs_cache_build (%.1f ms at aa 16, %.1f ms exact) and composites its runs per frame; "
+            "the peers draw the same background once and copy it into every frame.\n",
+            ar.static_from, ar.cache_ms[0], ar.cache_ms[1]);
+    }
+    section_close();
+}
+
+/* ------------------------------------------------------------ accuracy */
+
+static void run_accuracy(const config *cfg)
+{
+    section_open(cfg, SEC_ACCURACY);
+    out("### Coverage error against the exact area at %dx%d (in 1/255)\n\n", cfg->width,
+        cfg->height);
+    out("Up to %d single shapes per scene (an even sample of the contours), each alone in white "
+        "on black; reference: tests/ref exact area (long double, flattened to 2e-6 px). Mean over "
+        "edge pixels (exact coverage strictly inside 0..1); max over every pixel; \">1\" is the "
+        "share of edge pixels off by more than 1/255.\n\n",
+        cfg->shapes);
+    out("| scene | shapes | edge px |");
+    for (int k = 0; k < ACC_COUNT; k++)
+        out(" %s mean / max / >1 |", acc_names[k]);
+    out("\n|---|---:|---:|");
+    for (int k = 0; k < ACC_COUNT; k++)
+        out("---:|");
+    out("\n");
+    peer_ft *ft = peer_ft_new(16, 16);
+    double ref_total = 0.0;
+    for (int i = 0; i < SCENE_COUNT; i++) {
+        if (!cfg->scenes[i])
+            continue;
+        load(&scene_defs[i]);
+        acc_stats st[ACC_COUNT];
+        double ref_s;
+        if (acc_measure(g_scene, cfg->width, cfg->height, cfg->shapes, ft, st, &ref_s) != 0)
+            die("accuracy: %s failed", scene_defs[i].name);
+        ref_total += ref_s;
+        out("| %s | %d | %ld |", scene_defs[i].title, st[0].shapes, st[0].edge_pixels);
+        for (int k = 0; k < ACC_COUNT; k++)
+            out(" %.2f / %.2f / %.1f%% |",
+                st[k].edge_pixels ? st[k].sum_err / (double)st[k].edge_pixels : 0.0, st[k].max_err,
+                st[k].edge_pixels ? 100.0 * (double)st[k].over_1 / (double)st[k].edge_pixels : 0.0);
+        out("\n");
+    }
+    out("\ncelscan coverage is its float coverage; cairo's and FreeType's are their 8-bit "
+        "coverage (so at least 0.5/255 of rounding is theirs by format). Rational curves reach "
+        "the peers as cubics within %.2f px (outline.c). The reference took %.1f s.\n",
+        OL_RATIONAL_TOL, ref_total);
+    peer_ft_free(ft);
+    section_close();
+}
+
+/* ---------------------------------------------------------------- beam */
+
+typedef struct beam_result {
+    double worst_us, median_us, prep_us;
+    int worst_line;
+} beam_result;
+
+/* Every line timed on its own (render + pixel conversion), median per line. */
+static void beam_measure(int w, int h, cs_aa_mode aa, int n, int runs, beam_result *res)
+{
+    cs_render_opts o = opts_for(w, h, aa, n);
+    double *s = malloc((size_t)h * runs * sizeof *s), *prep = malloc((size_t)runs * sizeof *prep);
+    float *line = malloc((size_t)w * 3 * sizeof *line);
+    uint8_t *px = malloc((size_t)w * 3);
+    for (int k = 0; k <= runs; k++) { /* run 0 warms up */
+        cs_renderer r;
+        cs_error e;
+        double t0 = bench_now();
+        if (cs_frame_begin(&r, g_ws, g_scene, &o, &e) != CS_OK)
+            die("cs_frame_begin failed");
+        double t1 = bench_now();
+        if (k)
+            prep[k - 1] = t1 - t0;
+        for (int y = 0; y < h; y++) {
+            double a = bench_now();
+            cs_render_line(&r, y, line);
+            cs_pixfmt_convert(CS_PIX_RGB888_SRGB, line, w, px);
+            double b = bench_now();
+            if (k)
+                s[(size_t)y * runs + k - 1] = b - a;
+        }
+    }
+    res->worst_us = -1;
+    res->worst_line = 0;
+    double *med = malloc((size_t)h * sizeof *med);
+    for (int y = 0; y < h; y++) {
+        med[y] = 1e6 * bench_median(&s[(size_t)y * runs], runs);
+        if (med[y] > res->worst_us) {
+            res->worst_us = med[y];
+            res->worst_line = y;
+        }
+    }
+    res->median_us = bench_median(med, h);
+    res->prep_us = 1e6 * bench_median(prep, runs);
+    free(med);
+    free(s);
+    free(prep);
+    free(line);
+    free(px);
+}
+
+static void run_beam(const config *cfg)
+{
+    section_open(cfg, SEC_BEAM);
+    int runs = cfg->quick ? 1 : (cfg->repeat < 5 ? cfg->repeat : 5);
+    out("### Beam racing: the slowest single line (render + 8-bit sRGB conversion), median of %d "
+        "runs per line\n\n",
+        runs);
+    out("| scene | display | mode | worst line us | at line | median line us | line period us "
+        "| margin us | frame prep us |\n");
+    out("|---|---|---|---:|---:|---:|---:|---:|---:|\n");
+    for (int i = 0; i < SCENE_COUNT; i++) {
+        if (!cfg->scenes[i])
+            continue;
+        load(&scene_defs[i]);
+        anim *a = anim_load(scene_defs[i].path, g_scene);
+        anim_apply(a, g_scene, 0.0);
+        anim_free(a);
+        for (size_t d = 0; d < sizeof displays / sizeof displays[0]; d++) {
+            if (cfg->quick && d + 1 < sizeof displays / sizeof displays[0])
+                continue;
+            for (int m = 0; m < 2; m++) {
+                beam_result r;
+                beam_measure(displays[d].w, displays[d].h, m ? CS_AA_EXACT : CS_AA_SUBSCAN, 16,
+                             runs, &r);
+                out("| %s | %s | %s | %.2f | %d | %.2f | %.1f | %+.2f%s | %.0f |\n",
+                    scene_defs[i].title, displays[d].name, m ? "exact" : "aa 16", r.worst_us,
+                    r.worst_line, r.median_us, displays[d].period_us,
+                    displays[d].period_us - r.worst_us,
+                    r.worst_us > displays[d].period_us ? " **over**" : "", r.prep_us);
+            }
+        }
+    }
+    out("\nMargin = line period - worst line (negative: that line would miss the beam). Frame prep "
+        "(cs_frame_begin: NURBS to monotone pieces) runs in the vertical blanking, 45 lines "
+        "(666 us) at 1080p60. The Animation row is its frame at t = 0.\n");
+    section_close();
+}
+
+/* ------------------------------------------------------------- scaling */
+
+/* A blob of k cubic segments on a smooth radial outline (Catmull-Rom handles). */
+static void add_blob(cs_scene *s, double cx, double cy, double r, double ph, int k)
+{
+    cs_point *pt = malloc((size_t)3 * k * sizeof *pt);
+    float *iv = malloc((size_t)3 * k * sizeof *iv);
+    double x[64 + 2], y[64 + 2];
+    for (int i = 0; i < k; i++) {
+        double a = 2 * 3.14159265358979323846 * i / k;
+        double rr = r * (1.0 + 0.25 * sin(3 * a + ph) + 0.1 * cos(5 * a + 2 * ph));
+        x[i] = cx + rr * cos(a);
+        y[i] = cy + rr * sin(a);
+    }
+    for (int i = 0; i < k; i++) {
+        int ip = (i + k - 1) % k, in = (i + 1) % k, in2 = (i + 2) % k;
+        pt[3 * i] = (cs_point){(float)x[i], (float)y[i], 1};
+        pt[3 * i + 1] = (cs_point){(float)(x[i] + (x[in] - x[ip]) / 6), (float)(y[i] + (y[in] - y[ip]) / 6), 1};
+        pt[3 * i + 2] = (cs_point){(float)(x[in] - (x[in2] - x[i]) / 6), (float)(y[in] - (y[in2] - y[i]) / 6), 1};
+        iv[3 * i] = 1;
+        iv[3 * i + 1] = iv[3 * i + 2] = 0;
+    }
+    cs_error e;
+    if (cs_scene_add_contour(s, 3, 3 * k, pt, iv, &e) != CS_OK)
+        die("scaling blob: %s", cs_status_str(e.status));
+    free(pt);
+    free(iv);
+}
+
+static void blob_scene(int k, int count)
+{
+    srand(8005);
+    cs_scene_init(g_scene, 1920, 1080);
+    float bg[3] = {0.02f, 0.02f, 0.03f};
+    cs_scene_set_background(g_scene, bg);
+    cs_error e;
+    cs_affine id = {1, 0, 0, 1, 0, 0};
+    cs_scene_add_cel(g_scene, &id, NULL, NULL, &e);
+    for (int i = 0; i < count; i++) {
+        double u = rand() / (double)RAND_MAX, v = rand() / (double)RAND_MAX;
+        double r = 30 + 90 * (rand() / (double)RAND_MAX), ph = 6.28 * rand() / (double)RAND_MAX;
+        cs_paint p = {{(float)u, (float)v, 0.5f}, {1, 1, 1}, 1.0f};
+        cs_scene_add_region(g_scene, CS_FILL_NONZERO, &p, &e);
+        add_blob(g_scene, 1920 * u, 1080 * v, r, ph, k);
+    }
+}
+
+static double median_ms(int n, double (*fn)(void *), void *arg)
+{
+    double *s = malloc((size_t)n * sizeof *s);
+    fn(arg);
+    for (int k = 0; k < n; k++)
+        s[k] = fn(arg);
+    double m = 1e3 * bench_median(s, n);
+    free(s);
+    return m;
+}
+
+typedef struct frame_arg {
+    cs_target *t;
+    cs_render_opts o;
+    peers *p;
+    int which; /* 0 celscan, 1 cairo, 2 FreeType */
+} frame_arg;
+
+static double frame_fn(void *arg)
+{
+    frame_arg *a = arg;
+    double t0;
+    switch (a->which) {
+    case 0:
+        return celscan_frame(a->t, &a->o);
+    case 1:
+        t0 = bench_now();
+        peer_cairo_frame(a->p->cairo, &a->p->set, 0, a->p->set.region_count, false);
+        return bench_now() - t0;
+    default:
+        t0 = bench_now();
+        peer_ft_frame(a->p->ft, &a->p->set, 0, a->p->set.region_count, false);
+        return bench_now() - t0;
+    }
+}
+
+static double measure(int n, int w, int h, int which, cs_aa_mode aa, int sub, peers *p)
+{
+    cs_target t;
+    target_init(&t, w, h);
+    frame_arg a = {&t, opts_for(w, h, aa, sub), p, which};
+    double ms = median_ms(n, frame_fn, &a);
+    target_free(&t);
+    return ms;
+}
+
+static void run_scaling(const config *cfg)
+{
+    section_open(cfg, SEC_SCALING);
+    int n = cfg->repeat < 5 ? cfg->repeat : 5;
+    int w = cfg->width;
+
+    out("### Time against output height (Many-blobs, width %d, shapes stretched): median ms over %d runs\n\n",
+        w, n);
+    out("| height | celscan aa 16 ms | us/line | celscan exact ms | us/line | cairo ms | us/line |\n");
+    out("|---:|---:|---:|---:|---:|---:|---:|\n");
+    const int heights[] = {135, 270, 540, 1080, 2160};
+    for (size_t i = 0; i < sizeof heights / sizeof heights[0]; i++) {
+        int h = heights[i];
+        if (cfg->quick && h > 270)
+            break;
+        load(&scene_defs[0]);
+        peers p;
+        peers_init(&p, w, h);
+        peers_prepare(&p, w, h);
+        double a = measure(n, w, h, 0, CS_AA_SUBSCAN, 16, &p);
+        double b = measure(n, w, h, 0, CS_AA_EXACT, 0, &p);
+        double c = measure(n, w, h, 1, CS_AA_SUBSCAN, 0, &p);
+        out("| %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", h, a, 1e3 * a / h, b, 1e3 * b / h,
+            c, 1e3 * c / h);
+        peers_free(&p);
+    }
+
+    int h = cfg->height;
+    out("\n### Time against segment count (64 blobs of k cubic segments on the same smooth outlines, "
+        "%dx%d)\n\n", w, h);
+    out("| segments per blob | total segments | celscan aa 16 ms | celscan exact ms | cairo ms | FreeType ms |\n");
+    out("|---:|---:|---:|---:|---:|---:|\n");
+    const int ks[] = {4, 8, 16, 32, 64};
+    for (size_t i = 0; i < sizeof ks / sizeof ks[0]; i++) {
+        if (cfg->quick && ks[i] > 8)
+            break;
+        blob_scene(ks[i], 64);
+        peers p;
+        peers_init(&p, w, h);
+        peers_prepare(&p, w, h);
+        double a = measure(n, w, h, 0, CS_AA_SUBSCAN, 16, &p);
+        double b = measure(n, w, h, 0, CS_AA_EXACT, 0, &p);
+        double c = measure(n, w, h, 1, CS_AA_SUBSCAN, 0, &p);
+        double d = measure(n, w, h, 2, CS_AA_SUBSCAN, 0, &p);
+        out("| %d | %d | %.2f | %.2f | %.2f | %.2f |\n", ks[i], 64 * ks[i], a, b, c, d);
+        peers_free(&p);
+    }
+
+    out("\n### Time against sub-scanlines (Many-blobs, %dx%d)\n\n", w, h);
+    out("| --aa | ms | ms per sub-scanline |\n|---|---:|---:|\n");
+    load(&scene_defs[0]);
+    const int subs[] = {0, 1, 2, 4, 8, 16, 32, 64, -1};
+    for (size_t i = 0; i < sizeof subs / sizeof subs[0]; i++) {
+        if (cfg->quick && (subs[i] > 4))
+            continue;
+        cs_aa_mode aa = subs[i] == 0 ? CS_AA_NONE : subs[i] < 0 ? CS_AA_EXACT : CS_AA_SUBSCAN;
+        double ms = measure(n, w, h, 0, aa, subs[i], NULL);
+        char buf[16];
+        if (subs[i] > 0)
+            out("| %s | %.2f | %.2f |\n", aa_name(aa, subs[i], buf, sizeof buf), ms, ms / subs[i]);
+        else
+            out("| %s | %.2f | |\n", aa_name(aa, subs[i], buf, sizeof buf), ms);
+    }
+    section_close();
+}
+
+/* ------------------------------------------------------------ selftest */
+
+/*
+ * The Bezier paths the peers get must be the scene's curves: every span's
+ * start point is checked against tests/ref's de Boor evaluation, and for
+ * polynomial spans the middle point too (rational spans are cubic
+ * approximations, whose error the accuracy table shows).
+ */
+static int selftest(void)
+{
+    int failed = 0, checked = 0;
+    for (int i = 0; i < SCENE_COUNT; i++) {
+        load(&scene_defs[i]);
+        int w = 1920, h = 1080;
+        for (uint32_t ci = 0; ci < g_scene->cel_count; ci++) {
+            const cs_cel *cel = &g_scene->cels[ci];
+            double m[6];
+            ol_cel_device_map(g_scene, (int)ci, w, h, m);
+            for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++)
+                for (uint32_t k = 0; k < g_scene->regions[ri].contour_count; k++) {
+                    uint32_t cn = g_scene->regions[ri].first_contour + k;
+                    const cs_contour *c = &g_scene->contours[cn];
+                    ol_set set;
+                    memset(&set, 0, sizeof set);
+                    ol_contour oc;
+                    if (ol_add_contour(&set, g_scene, (int)cn, m, &oc) != 0)
+                        return 1;
+                    float *xyw = malloc((size_t)c->point_count * 3 * sizeof *xyw);
+                    for (int q = 0; q < c->point_count; q++) {
+                        const cs_point *p = &g_scene->points[c->first_point + q];
+                        xyw[3 * q] = p->x;
+                        xyw[3 * q + 1] = p->y;
+                        xyw[3 * q + 2] = p->w;
+                    }
+                    ref_region *rr = ref_region_new(0);
+                    ref_region_add(rr, c->degree, c->point_count, xyw,
+                                   &g_scene->intervals[c->first_point]);
+                    const cs_affine *t = &cel->transform;
+                    long double mt[6] = {t->a, t->b, t->c, t->d, t->e, t->f};
+                    ref_region_transform(rr, mt, (long double)w / g_scene->canvas_w,
+                                         (long double)h / g_scene->canvas_h);
+                    const ref_contour *rc = &rr->contours[0];
+                    /* Walk the commands span by span: each span's first command starts at
+                     * the previous end point. */
+                    double px = oc.x0, py = oc.y0;
+                    int cmd = oc.first;
+                    for (int j = 0; j < c->point_count; j++) {
+                        if (!(rc->iv[j] > 0))
+                            continue;
+                        long double ref[2];
+                        ref_eval_span(rc, j, 0, ref);
+                        double err = hypot(px - (double)ref[0], py - (double)ref[1]);
+                        checked++;
+                        if (err > 1e-6) {
+                            if (failed++ < 5)
+                                fprintf(stderr, "selftest: %s contour %u span %d start off by %g px\n",
+                                        scene_defs[i].name, cn, j, err);
+                        }
+                        /* Skip this span's commands: up to the one ending at the next span start. */
+                        long double nxt[2];
+                        int jn = j + 1;
+                        while (jn < c->point_count && !(rc->iv[jn] > 0))
+                            jn++;
+                        if (jn < c->point_count)
+                            ref_eval_span(rc, jn, 0, nxt);
+                        else
+                            ref_eval_span(rc, j, 1, nxt);
+                        while (cmd < oc.first + oc.count) {
+                            const ol_cmd *cm = &set.cmds[cmd++];
+                            px = cm->p[2 * cm->op - 2];
+                            py = cm->p[2 * cm->op - 1];
+                            if (hypot(px - (double)nxt[0], py - (double)nxt[1]) < 1e-6)
+                                break;
+                        }
+                    }
+                    free(xyw);
+                    ref_region_free(rr);
+                    ol_free(&set);
+                }
+        }
+    }
+    printf("bench selftest: %d passed, %d failed\n", checked - failed, failed);
+    return failed != 0;
+}
+
+/* --------------------------------------------------------------- main */
+
+static void usage(void)
+{
+    fputs("usage: bench [--sections speed,accuracy,beam,scaling] [--scenes blobs,signage,thin,"
+          "rational,anim]\n"
+          "             [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]\n"
+          "       bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]\n"
+          "       bench --selftest\n",
+          stderr);
+    exit(2);
+}
+
+static void parse_list(const char *arg, const char *const *names, int n, bool *set, size_t stride)
+{
+    for (int i = 0; i < n; i++)
+        set[i] = false;
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", arg);
+    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        int found = -1;
+        for (int i = 0; i < n; i++)
+            if (strcmp(*(const char *const *)((const char *)names + (size_t)i * stride), tok) == 0)
+                found = i;
+        if (found < 0)
+            die("unknown name '%s'", tok);
+        set[found] = true;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    config cfg = {.width = 1920, .height = 1080, .repeat = 7, .frames = 120, .shapes = 24};
+    for (int i = 0; i < 4; i++)
+        cfg.sections[i] = true;
+    for (int i = 0; i < SCENE_COUNT; i++)
+        cfg.scenes[i] = true;
+    const char *profile = NULL;
+    cs_aa_mode prof_aa = CS_AA_SUBSCAN;
+    int prof_sub = 16;
+    bool self = false, prof_cache = false;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--sections") == 0 && v) {
+            parse_list(v, section_names, 4, cfg.sections, sizeof section_names[0]);
+            i++;
+        } else if (strcmp(a, "--scenes") == 0 && v) {
+            parse_list(v, &scene_defs[0].name, SCENE_COUNT, cfg.scenes, sizeof scene_defs[0]);
+            i++;
+        } else if (strcmp(a, "--size") == 0 && v) {
+            if (sscanf(v, "%dx%d", &cfg.width, &cfg.height) != 2 || cfg.width < 1 || cfg.height < 1)
+                usage();
+            i++;
+        } else if (strcmp(a, "--repeat") == 0 && v) {
+            cfg.repeat = atoi(v);
+            i++;
+        } else if (strcmp(a, "--frames") == 0 && v) {
+            cfg.frames = atoi(v);
+            i++;
+        } else if (strcmp(a, "--shapes") == 0 && v) {
+            cfg.shapes = atoi(v);
+            i++;
+        } else if (strcmp(a, "--out") == 0 && v) {
+            cfg.out_dir = v;
+            i++;
+        } else if (strcmp(a, "--quick") == 0) {
+            cfg.quick = true;
+        } else if (strcmp(a, "--profile") == 0 && v) {
+            profile = v;
+            i++;
+        } else if (strcmp(a, "--aa") == 0 && v) {
+            if (strcmp(v, "none") == 0)
+                prof_aa = CS_AA_NONE;
+            else if (strcmp(v, "exact") == 0)
+                prof_aa = CS_AA_EXACT;
+            else
+                prof_sub = atoi(v);
+            i++;
+        } else if (strcmp(a, "--cache") == 0) {
+            prof_cache = true;
+        } else if (strcmp(a, "--selftest") == 0) {
+            self = true;
+        } else {
+            usage();
+        }
+    }
+    if (cfg.repeat < 1 || cfg.frames < 1 || cfg.shapes < 1)
+        usage();
+    g_scene = calloc(1, sizeof *g_scene);
+    g_ws = calloc(1, sizeof *g_ws);
+    if (!g_scene || !g_ws)
+        die("out of memory");
+    if (self)
+        return selftest();
+    if (profile) {
+        /* One scene, cfg.frames frames of celscan only: for callgrind and perf. */
+        int idx = -1;
+        for (int i = 0; i < SCENE_COUNT; i++)
+            if (strcmp(scene_defs[i].name, profile) == 0)
+                idx = i;
+        if (idx < 0)
+            die("unknown scene '%s'", profile);
+        load(&scene_defs[idx]);
+        anim *a = anim_load(scene_defs[idx].path, g_scene);
+        anim_apply(a, g_scene, 0.0);
+        cs_target t;
+        target_init(&t, cfg.width, cfg.height);
+        cs_render_opts o = opts_for(cfg.width, cfg.height, prof_aa, prof_sub);
+        if (prof_cache) /* the static background pre-combined, as the animation runs it */
+            celscan_cache(&t, &o, anim_static_from(a, g_scene));
+        anim_free(a);
+        double *s = malloc((size_t)cfg.frames * sizeof *s);
+        for (int f = 0; f < cfg.frames; f++)
+            s[f] = celscan_frame(&t, &o);
+        printf("%.3f ms/frame\n", 1e3 * bench_median(s, cfg.frames));
+        free(s);
+        target_free(&t);
+        return 0;
+    }
+    if (cfg.quick) {
+        cfg.repeat = 1;
+        cfg.frames = cfg.frames < 3 ? cfg.frames : 3;
+        cfg.shapes = cfg.shapes < 3 ? cfg.shapes : 3;
+    }
+    if (cfg.sections[SEC_SPEED])
+        run_speed(&cfg);
+    if (cfg.sections[SEC_ACCURACY])
+        run_accuracy(&cfg);
+    if (cfg.sections[SEC_BEAM])
+        run_beam(&cfg);
+    if (cfg.sections[SEC_SCALING])
+        run_scaling(&cfg);
+    free(g_scene);
+    free(g_ws);
+    return 0;
+}

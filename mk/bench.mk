@@ -1,0 +1,51 @@
+# mk/bench.mk - the benchmark suite: celscan against cairo and FreeType.
+#
+#   make bench         generate the scenes, run every section, write bench/results/*.txt
+#                      and regenerate the tables of BENCHMARKS.md (a few minutes)
+#   make bench-smoke   the bench binary on one small scene, one run (part of `make test`)
+#   make bench-scenes  redraw scenes/bench/*.json from bench/gen_scenes.py
+#
+# BENCH_ARGS adds options to the main run (e.g. BENCH_ARGS="--repeat 3").
+# The bench binary links the core library, the scene loader, the test
+# suite's reference (tests/ref, for accuracy), cairo and FreeType.
+
+BENCH_PKGS := cairo freetype2 libcjson
+BENCH_SRC := bench/bench.c bench/outline.c bench/peer_cairo.c bench/peer_ft.c bench/anim.c \
+        bench/accuracy.c host-sim/scene_json.c host-sim/paint_json.c tests/ref/ref.c
+BENCH_OBJ := $(patsubst %.c,$(HOST)/bench-obj/%.o,$(BENCH_SRC))
+BENCH_BIN := $(HOST)/bench
+BENCH_SCENES := scenes/bench/blobs.json scenes/bench/thin.json scenes/bench/rational.json \
+        scenes/bench/anim.json
+BENCH_RESULTS := bench/results
+BENCH_ARGS ?=
+
+$(HOST)/bench-obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(HOST_CFLAGS) -Itests -Ibench $(shell pkg-config --cflags $(BENCH_PKGS)) -c $< -o $@
+
+$(BENCH_BIN): $(BENCH_OBJ) $(HOST)/libcelscan.a
+	$(Q)$(CC) -o $@ $(BENCH_OBJ) $(HOST)/libcelscan.a $(shell pkg-config --libs $(BENCH_PKGS)) -lm
+
+# The scenes are committed, so that every checkout measures the same bytes
+# (a Python with another random module could draw them differently);
+# `make bench-scenes` redraws them after bench/gen_scenes.py changes.
+.PHONY: bench-scenes
+bench-scenes:
+	$(Q)python3 bench/gen_scenes.py scenes/bench
+
+HOST_PROGRAMS += $(BENCH_BIN)
+
+.PHONY: bench bench-smoke
+bench: $(BENCH_BIN) $(BENCH_SCENES) $(HOST)/celsim
+	@mkdir -p $(BENCH_RESULTS) $(BUILD)/bench
+	$(Q)tools/bench_run.sh $(BENCH_BIN) $(HOST)/celsim $(BENCH_RESULTS) $(BUILD)/bench $(BENCH_ARGS)
+	$(Q)python3 tools/bench_md.py $(BENCH_RESULTS) BENCHMARKS.md
+
+# So that the benchmark does not rot: outline conversion checked against
+# tests/ref, and every section once on a small frame.
+bench-smoke: $(BENCH_BIN) $(BENCH_SCENES)
+	$(Q)$(BENCH_BIN) --selftest
+	$(Q)$(BENCH_BIN) --quick --size 480x272 --scenes signage,anim >/dev/null && \
+		echo "bench-smoke: 1 passed, 0 failed"
+
+TEST_TARGETS += bench-smoke

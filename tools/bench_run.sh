@@ -1,0 +1,78 @@
+#!/bin/sh
+# bench_run.sh - what `make bench` measures, written to RESULTS/*.txt.
+#
+#   tools/bench_run.sh BENCH CELSIM RESULTS SCRATCH [bench options...]
+#
+# Runs the bench program (speed, accuracy, beam racing, scaling), the
+# celsim command line of issue 8's "done" criterion on the Many-blobs scene,
+# and one frame under callgrind for an instruction count that does not
+# depend on the machine's load. Each result is a Markdown fragment that
+# tools/bench_md.py splices into BENCHMARKS.md.
+set -eu
+bench=$1
+celsim=$2
+res=$3
+tmp=$4
+shift 4
+start=$(date +%s)
+
+{
+    echo "- machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+    echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
+    echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- core host-sim bench ':!bench/results' 2>/dev/null || echo ' (with local changes)')"
+    echo "- compiler: $(${CC:-cc} --version | head -n 1), core and bench at -O2"
+    echo "- cairo $(dpkg-query -W -f='${Version}' libcairo2 2>/dev/null || pkg-config --modversion cairo), FreeType $(dpkg-query -W -f='${Version}' libfreetype6 2>/dev/null || pkg-config --modversion freetype2) (Debian packages)"
+    echo "- load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: medians and ratios, not absolute times, are the figures to trust)"
+    echo "- command: \`make bench\` (runs \`$bench --out $res${*:+ $*}\`, then the celsim and callgrind runs below)"
+} >"$res/machine.txt"
+
+"$bench" --out "$res" "$@"
+
+# The issue's own command line, next to cairo on the same scene and size.
+{
+    echo "### celsim on Many-blobs at 1920x1080 (median of 5 renders)"
+    echo
+    echo "| command | result |"
+    echo "|---|---|"
+    for aa in 16 exact; do
+        r=$("$celsim" render scenes/bench/blobs.json --size 1920x1080 --aa $aa --repeat 5)
+        echo "| \`celsim render scenes/bench/blobs.json --size 1920x1080 --aa $aa --repeat 5\` | $r |"
+    done
+} >"$res/celsim.txt"
+cat "$res/celsim.txt"
+
+# Instructions per frame: repeatable where wall-clock time is not.
+{
+    echo "### Instructions per frame (callgrind, one 1920x1080 frame of celscan, cs_frame_begin to the last converted line)"
+    echo
+    echo "| scene | --aa | instructions | top functions (share of the frame) |"
+    echo "|---|---|---:|---|"
+    for run in "blobs 16" "blobs exact" "blobs none" "signage 16" "thin 16"; do
+        set -- $run
+        valgrind --tool=callgrind --callgrind-out-file="$tmp/callgrind-$1-$2.out" \
+            --toggle-collect=celscan_frame "$bench" --profile "$1" --aa "$2" --frames 1 \
+            >/dev/null 2>&1
+        callgrind_annotate "$tmp/callgrind-$1-$2.out" 2>/dev/null | awk -v scene="$1" -v aa="$2" '
+            /PROGRAM TOTALS/ { gsub(",", "", $1); total = $1 }
+            /file:function/ { list = 1; next }
+            list && n < 6 && /^ *[0-9,]+ +\( *[0-9.]+%\)/ {
+                s = $0
+                sub(/^ *[0-9,]+ +\( */, "", s)
+                pct = s; sub(/%\).*/, "", pct)
+                f = s; sub(/^[^)]*\) +/, "", f); sub(/ .*/, "", f); sub(/.*\//, "", f)
+                top = top (n ? ", " : "") f " " pct "%"
+                n++
+            }
+            END { printf "| %s | %s | %.1f M | %s |\n", scene, aa, total / 1e6, top }'
+    done
+    echo
+    echo "The function list charges inlined code to its caller (most of a line is inlined into"
+    echo "cs__line_stack). By the source function each instruction was written in"
+    echo "(tools/cg_functions.py), one frame of Many-blobs at --aa 16:"
+    echo
+    python3 tools/cg_functions.py "$tmp/callgrind-blobs-16.out" 16
+} >"$res/callgrind.txt"
+cat "$res/callgrind.txt"
+
+end=$(date +%s)
+echo "- \`make bench\` took $((end - start)) s" >>"$res/machine.txt"
