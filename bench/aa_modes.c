@@ -183,7 +183,9 @@ static int cmp_d(const void *a, const void *b)
 
 static double frame_ms(const cs_scene *s, cs_workspace *ws, cs_aa_mode aa, int sub, float *line)
 {
-    cs_render_opts o = {W, H, aa, sub, 0.0f};
+    cs_render_opts o = cs_render_defaults(W, H);
+    o.aa = aa;
+    o.subscanlines = sub;
     cs_renderer r;
     cs_error err;
     double t0 = now_ms();

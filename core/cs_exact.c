@@ -414,20 +414,6 @@ static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, float u
     add_cell(cx, s, sign, cs__floori(cs__minf(x0, x1)), u0, x0, y0, u1, x1, y1);
 }
 
-/* Parameters in (lo, hi) where x(u) turns: roots of X'W - XW'. */
-static int x_turns(const cs_segment *s, float lo, float hi, float *roots)
-{
-    int p = s->degree;
-    float n[5] = {0, 0, 0, 0, 0};
-    for (int i = 0; i <= p; i++)
-        for (int j = 0; j <= p; j++) {
-            int k = i + j - 1;
-            if (i != j && k >= 0 && k <= 2 * p - 2)
-                n[k] += (float)(i - j) * s->x[i] * s->w[j];
-        }
-    return cs__poly_roots(n, 2 * p - 2, lo, hi, roots);
-}
-
 /* Effective edge e over the band [ya, yb]: sign +1 where the region begins. */
 static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float ya, float yb)
 {
@@ -457,7 +443,8 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
     py[np++] = ya;
     if (!e->monotone) {
         float t[4];
-        int nt = x_turns(s, cs__minf(e->u_top, e->u_bot), cs__maxf(e->u_top, e->u_bot), t);
+        int nt = cs__turns(s->x, s->w, s->degree, cs__minf(e->u_top, e->u_bot),
+                           cs__maxf(e->u_top, e->u_bot), t);
         bool up = e->u_top <= e->u_bot;
         for (int k = 0; k < nt; k++) {
             float u = up ? t[k] : t[nt - 1 - k];

@@ -38,24 +38,6 @@ static float seg_y(const cs_segment *s, float u)
 }
 
 /*
- * Parameters in (0,1) where dy/du = 0: roots of Y'W - YW', whose u^(2p-1)
- * coefficient cancels analytically and is dropped rather than left to
- * rounding.
- */
-static int y_turns(const cs_segment *s, float *roots)
-{
-    int p = s->degree;
-    float n[5] = {0, 0, 0, 0, 0};
-    for (int i = 0; i <= p; i++)
-        for (int j = 0; j <= p; j++) {
-            int k = i + j - 1;
-            if (i != j && k >= 0 && k <= 2 * p - 2)
-                n[k] += (float)(i - j) * s->y[i] * s->w[j];
-        }
-    return cs__poly_roots(n, 2 * p - 2, 0.0f, 1.0f, roots);
-}
-
-/*
  * x bounds of a segment from its Bezier form: with positive homogeneous
  * weights the curve lies in the hull of its control points. Power to
  * Bernstein: b_i = sum_{j<=i} C(i,j)/C(p,j) a_j.
@@ -98,7 +80,7 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t
     float cut[6];
     int n = 0;
     cut[n++] = 0.0f;
-    n += y_turns(s, &cut[1]);
+    n += cs__turns(s->y, s->w, s->degree, 0.0f, 1.0f, &cut[1]);
     cut[n++] = 1.0f;
     float ya = seg_y(s, 0.0f);
     for (int k = 0; k + 1 < n; k++) {

@@ -123,6 +123,14 @@ static inline float cs__horner(const float *c, int degree, float u)
 int cs__poly_roots(const float *c, int degree, float lo, float hi, float *roots);
 
 /*
+ * Parameters in (lo, hi) where the rational coordinate c(u)/w(u) turns
+ * (c and w of `degree`): roots of c'w - cw', whose u^(2p-1) coefficient
+ * cancels analytically and is dropped rather than left to rounding. At most
+ * 2*degree - 2 of them, in increasing order.
+ */
+int cs__turns(const float *c, const float *w, int degree, float lo, float hi, float *roots);
+
+/*
  * Solves f(u) = 0 for u in [lo, hi] where f(lo) and f(hi) have opposite
  * signs (or one is zero), f given as num(u) - level*den(u) with num, den
  * polynomials of degree `degree`. Bounded Illinois iteration; returns the

@@ -225,3 +225,15 @@ float cs__solve_level_from(const float *num, const float *den, int degree, float
     }
     return cs__solve_level(num, den, degree, level, lo, hi);
 }
+
+int cs__turns(const float *c, const float *w, int degree, float lo, float hi, float *roots)
+{
+    float n[5] = {0, 0, 0, 0, 0};
+    for (int i = 0; i <= degree; i++)
+        for (int j = 0; j <= degree; j++) {
+            int k = i + j - 1;
+            if (i != j && k >= 0 && k <= 2 * degree - 2)
+                n[k] += (float)(i - j) * c[i] * w[j];
+        }
+    return cs__poly_roots(n, 2 * degree - 2, lo, hi, roots);
+}
