@@ -89,72 +89,81 @@ size_t cs_pixfmt_bytes_per_pixel(cs_pixfmt fmt)
     return 0;
 }
 
+/* Panel formats that pack three sRGB channels into 1 or 2 little-endian bytes. */
+typedef struct packed_layout {
+    float max[3];       /* channel code maxima: 31 63 31 for RGB565 */
+    uint32_t shift[3];  /* bit positions of R, G and B */
+    uint32_t bytes;     /* 1 or 2 */
+} packed_layout;
+
+static const packed_layout rgb565 = {{31.0f, 63.0f, 31.0f}, {11, 5, 0}, 2};
+static const packed_layout rgb444 = {{15.0f, 15.0f, 15.0f}, {8, 4, 0}, 2};
+static const packed_layout rgb332 = {{7.0f, 7.0f, 3.0f}, {5, 2, 0}, 1};
+
+static inline void convert_packed(const packed_layout *L, const float *rgb, int width, int y,
+                                  uint8_t *out)
+{
+    const uint8_t *row = bayer8[(uint32_t)(y < 0 ? 0 : y) & 7u];
+    uint32_t v = 0;
+    float last[3] = {-1.0f, -1.0f, -1.0f}; /* no light value is negative */
+    for (int x = 0; x < width; x++) {
+        const float *px = &rgb[3 * x];
+        /* Without dithering a pixel equal to its left neighbour has its code.
+         * The neighbour is kept in locals: converting in place (2 bytes over
+         * 12) overwrites the floats behind. */
+        float r = px[0], g = px[1], b = px[2];
+        if (y >= 0 || r != last[0] || g != last[1] || b != last[2]) {
+            last[0] = r;
+            last[1] = g;
+            last[2] = b;
+            float bias = y < 0 ? 0.5f : (float)(2u * row[(uint32_t)x & 7u] + 1u) * (1.0f / 128.0f);
+            v = code(cs__srgb_encode(px[0]), L->max[0], bias) << L->shift[0] |
+                code(cs__srgb_encode(px[1]), L->max[1], bias) << L->shift[1] |
+                code(cs__srgb_encode(px[2]), L->max[2], bias) << L->shift[2];
+        }
+        if (L->bytes == 1) {
+            out[x] = (uint8_t)v;
+        } else {
+            out[2 * x] = (uint8_t)(v & 0xFFu);
+            out[2 * x + 1] = (uint8_t)(v >> 8);
+        }
+    }
+}
+
 /* One line; `y` < 0 means round to nearest, else dither with row y's thresholds. */
 static void convert(cs_pixfmt fmt, const float *rgb, int width, int y, uint8_t *out)
 {
     const uint8_t *row = bayer8[(uint32_t)(y < 0 ? 0 : y) & 7u];
 #define BIAS(x) (y < 0 ? 0.5f : (float)(2u * row[(uint32_t)(x) & 7u] + 1u) * (1.0f / 128.0f))
-    /* Pixel x repeats pixel x-1 exactly (rounding only: dithering depends on x). */
-#define SAME(x)                                                                                   \
-    (y < 0 && (x) > 0 && rgb[3 * (x)] == rgb[3 * (x)-3] && rgb[3 * (x) + 1] == rgb[3 * (x)-2] && \
-     rgb[3 * (x) + 2] == rgb[3 * (x)-1])
     switch (fmt) {
-    case CS_PIX_RGB888_SRGB:
+    case CS_PIX_RGB888_SRGB: {
+        float last[3] = {-1.0f, -1.0f, -1.0f}; /* no light value is negative */
+        uint8_t code8[3] = {0, 0, 0};
         for (int x = 0; x < width; x++) {
-            if (SAME(x)) {
-                out[3 * x] = out[3 * x - 3];
-                out[3 * x + 1] = out[3 * x - 2];
-                out[3 * x + 2] = out[3 * x - 1];
-                continue;
+            const float *px = &rgb[3 * x];
+            /* Kept in locals: converting in place overwrites the floats behind. */
+            float r = px[0], g = px[1], b = px[2];
+            if (y >= 0 || r != last[0] || g != last[1] || b != last[2]) {
+                for (int ch = 0; ch < 3; ch++)
+                    code8[ch] = (uint8_t)code(cs__srgb_encode(px[ch]), 255.0f, BIAS(x));
+                last[0] = r;
+                last[1] = g;
+                last[2] = b;
             }
-            for (int ch = 0; ch < 3; ch++)
-                out[3 * x + ch] = (uint8_t)code(cs__srgb_encode(rgb[3 * x + ch]), 255.0f, BIAS(x));
+            out[3 * x] = code8[0];
+            out[3 * x + 1] = code8[1];
+            out[3 * x + 2] = code8[2];
         }
         break;
+    }
     case CS_PIX_RGB565_SRGB:
-        for (int x = 0; x < width; x++) {
-            if (SAME(x)) {
-                out[2 * x] = out[2 * x - 2];
-                out[2 * x + 1] = out[2 * x - 1];
-                continue;
-            }
-            const float *px = &rgb[3 * x];
-            float bias = BIAS(x);
-            uint32_t v = code(cs__srgb_encode(px[0]), 31.0f, bias) << 11 |
-                         code(cs__srgb_encode(px[1]), 63.0f, bias) << 5 |
-                         code(cs__srgb_encode(px[2]), 31.0f, bias);
-            out[2 * x] = (uint8_t)(v & 0xFFu);
-            out[2 * x + 1] = (uint8_t)(v >> 8);
-        }
+        convert_packed(&rgb565, rgb, width, y, out);
         break;
     case CS_PIX_RGB444_SRGB:
-        for (int x = 0; x < width; x++) {
-            if (SAME(x)) {
-                out[2 * x] = out[2 * x - 2];
-                out[2 * x + 1] = out[2 * x - 1];
-                continue;
-            }
-            const float *px = &rgb[3 * x];
-            float bias = BIAS(x);
-            uint32_t v = code(cs__srgb_encode(px[0]), 15.0f, bias) << 8 |
-                         code(cs__srgb_encode(px[1]), 15.0f, bias) << 4 |
-                         code(cs__srgb_encode(px[2]), 15.0f, bias);
-            out[2 * x] = (uint8_t)(v & 0xFFu);
-            out[2 * x + 1] = (uint8_t)(v >> 8);
-        }
+        convert_packed(&rgb444, rgb, width, y, out);
         break;
     case CS_PIX_RGB332_SRGB:
-        for (int x = 0; x < width; x++) {
-            if (SAME(x)) {
-                out[x] = out[x - 1];
-                continue;
-            }
-            const float *px = &rgb[3 * x];
-            float bias = BIAS(x);
-            out[x] = (uint8_t)(code(cs__srgb_encode(px[0]), 7.0f, bias) << 5 |
-                               code(cs__srgb_encode(px[1]), 7.0f, bias) << 2 |
-                               code(cs__srgb_encode(px[2]), 3.0f, bias));
-        }
+        convert_packed(&rgb332, rgb, width, y, out);
         break;
     case CS_PIX_RGB16_LINEAR: /* fine enough not to need dithering */
         for (int i = 0; i < 3 * width; i++) {
@@ -171,7 +180,6 @@ static void convert(cs_pixfmt fmt, const float *rgb, int width, int y, uint8_t *
         break;
     }
 #undef BIAS
-#undef SAME
 }
 
 void cs_pixfmt_convert(cs_pixfmt fmt, const float *rgb, int width, uint8_t *out)
