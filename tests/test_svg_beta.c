@@ -235,6 +235,18 @@ static void test_clips(cs_scene *scene, float *img)
          pi * 576 - 256},
         {"empty clip path",
          "<clipPath id='c'/><rect width='64' height='64' fill='#fff' clip-path='url(#c)'/>", 0},
+        /* eight evenodd children need eight operands apart; with disjoint boxes they share one */
+        {"eight evenodd clip children",
+         "<clipPath id='c'><path clip-rule='evenodd' d='M0 8h7v7h-7z M2 10h3v3h-3z'/>"
+         "<path clip-rule='evenodd' d='M8 8h7v7h-7z M10 10h3v3h-3z'/>"
+         "<path clip-rule='evenodd' d='M16 8h7v7h-7z M18 10h3v3h-3z'/>"
+         "<path clip-rule='evenodd' d='M24 8h7v7h-7z M26 10h3v3h-3z'/>"
+         "<path clip-rule='evenodd' d='M32 8h7v7h-7z M34 10h3v3h-3z'/>"
+         "<path clip-rule='evenodd' d='M40 8h7v7h-7z M42 10h3v3h-3z'/>"
+         "<path clip-rule='evenodd' d='M48 8h7v7h-7z M50 10h3v3h-3z'/>"
+         "<path clip-rule='evenodd' d='M56 8h7v7h-7z M58 10h3v3h-3z'/></clipPath>"
+         "<rect width='64' height='64' fill='#fff' clip-path='url(#c)'/>",
+         8 * (49 - 9)},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         const clip_case *cc = &cases[i];
