@@ -16,8 +16,11 @@ SVG_LIB_SRC := $(sort $(wildcard tools/svg/sv_*.c))
 SVG_LIB_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_LIB_SRC))
 SVG_CELC_OBJ := $(HOST)/obj/tools/celc_import.o
 SVG_TEST_SRC := tests/test_svg.c tests/test_svg_unit.c tests/test_svg_cov.c \
-        tests/test_svg_rsvg.c tests/svg_refscan.c
+        tests/test_svg_beta.c tests/test_svg_rsvg.c tests/svg_refscan.c
 SVG_TEST_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_TEST_SRC))
+# celsim's scene loader, to check that the JSON the importer writes loads
+# into the scene its cs_scene back end builds
+SVG_TEST_LOADER := $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o
 
 $(SVG_LIB_OBJ) $(SVG_CELC_OBJ) $(HOST)/obj/tools/svg/svgimport_main.o: \
         PKG_CFLAGS += $(SVG_CFLAGS) -Wconversion -Wno-sign-conversion -Wno-float-conversion
@@ -30,7 +33,8 @@ $(HOST)/svgimport: $(HOST)/obj/tools/svg/svgimport_main.o $(SVG_CELC_OBJ) $(HOST
         $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(SVG_LIBS)
 
-$(HOST)/tests/test_svg: $(SVG_TEST_OBJ) $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
+$(HOST)/tests/test_svg: $(SVG_TEST_OBJ) $(SVG_TEST_LOADER) $(HOST)/libsvgimport.a \
+        $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(SVG_LIBS)
 
@@ -45,7 +49,9 @@ svg-rsvg-full: $(HOST)/tests/test_svg
 	$(Q)$(HOST)/tests/test_svg --only rsvg --all --outdir $(BUILD)/svg-full
 
 # Demo: imported artwork and text as scene JSON (for celsim) and as PNG
-# rendered straight through the core; celsim renders the JSON too once built.
+# rendered straight through the core; celsim renders the JSON too once built
+# (imported artwork with --blend srgb, which its JSON also asks for with
+# "canvas": {"blend": "srgb"} for a loader that reads it).
 SVG_DEMO := $(BUILD)/demo/svg
 SVG_DEMO_ICON := /usr/share/icons/breeze/apps/48/kstars.svg
 .PHONY: svg-demo
@@ -58,9 +64,10 @@ svg-demo: $(HOST)/svgimport
 	$(Q)if [ -f $(SVG_DEMO_ICON) ]; then \
 		$(HOST)/svgimport import $(SVG_DEMO_ICON) -o $(SVG_DEMO)/icon.json -q && \
 		$(HOST)/svgimport render $(SVG_DEMO_ICON) -o $(SVG_DEMO)/icon.png --size 256x256 -q; fi
-	$(Q)if [ -x $(HOST)/celsim ]; then for j in sign text icon; do \
+	$(Q)if [ -x $(HOST)/celsim ]; then for j in sign icon; do \
 		[ -f $(SVG_DEMO)/$$j.json ] && $(HOST)/celsim render $(SVG_DEMO)/$$j.json \
-			-o $(SVG_DEMO)/$$j-celsim.png; done; fi; true
+			--blend srgb -o $(SVG_DEMO)/$$j-celsim.png; done; \
+		$(HOST)/celsim render $(SVG_DEMO)/text.json -o $(SVG_DEMO)/text-celsim.png; fi; true
 	@echo "svg-demo: $(SVG_DEMO)/{sign,text,icon}.json and PNGs"
 
 HOST_PROGRAMS += $(HOST)/svgimport

@@ -60,7 +60,15 @@ static void add_span(long double *row, int w, long double xa, long double xb, lo
         xb = w;
     if (!(xb > xa))
         return;
-    int ia = (int)floorl(xa), ib = (int)floorl(xb);
+    /* floor of values >= 0, exactly: truncate through double, then step
+     * back where rounding to double went up to the next integer. (Inline x87
+     * floorl, which switches the control word twice per call, ran this
+     * loop 3x slower or faster depending on where the linker placed it.) */
+    int ia = (int)(double)xa, ib = (int)(double)xb;
+    if (ia > xa)
+        ia--;
+    if (ib > xb)
+        ib--;
     if (ib >= w)
         ib = w - 1;
     if (ia == ib) {

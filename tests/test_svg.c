@@ -2,10 +2,12 @@
  * test_svg.c - the importer's test program: unit checks of the SVG
  * grammars, transforms, colours, stroke outliner and glyph conversion;
  * coverage of stroked paths and text against an independent long-double
- * reference at 16, 128 and 512 px; and the comparison with librsvg's
- * rsvg-convert on installed icon artwork (one check: the pass rate).
+ * reference at 16, 128 and 512 px; gradients as paint functions, clip paths
+ * as CSG and the scene JSON's round trip through celsim's loader; and the
+ * comparison with librsvg's rsvg-convert on installed icon artwork (one
+ * check: the pass rate).
  *
- *   test_svg [--only unit|cov|rsvg] [--all] [--limit N] [--outdir DIR] [--one-cel] [-v]
+ *   test_svg [--only unit|cov|beta|rsvg] [--all] [--limit N] [--outdir DIR] [--one-cel] [-v]
  */
 #include <stdlib.h>
 #include <string.h>
@@ -33,7 +35,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--one-cel"))
             o.one_cel = true;
         else {
-            fprintf(stderr, "usage: test_svg [--only unit|cov|rsvg] [--all] [--limit N] "
+            fprintf(stderr, "usage: test_svg [--only unit|cov|beta|rsvg] [--all] [--limit N] "
                             "[--outdir DIR] [-v]\n");
             return 2;
         }
@@ -43,6 +45,8 @@ int main(int argc, char **argv)
         test_svg_unit(&o);
     if (!only || !strcmp(only, "cov"))
         test_svg_cov(&o);
+    if (!only || !strcmp(only, "beta"))
+        test_svg_beta(&o);
     if (!only || !strcmp(only, "rsvg"))
         test_svg_rsvg(&o);
     printf("test_svg: %d passed, %d failed\n", svc_pass, svc_fail);

@@ -111,7 +111,8 @@ static float *core_coverage(const cs_scene *scene, int w, int h)
     cs_workspace *ws = malloc(sizeof *ws);
     float *out = malloc(sizeof(float) * (size_t)w * h), *line = malloc(sizeof(float) * 3 * (size_t)w);
     cs_renderer r;
-    cs_render_opts o = {w, h, CS_AA_EXACT, 0, 0};
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.aa = CS_AA_EXACT;
     cs_error e;
     cs_status st = cs_frame_begin(&r, ws, scene, &o, &e);
     for (int y = 0; y < h; y++) {
@@ -355,7 +356,7 @@ static void stroke_case(const svg_test_opts *o, const rpath *rp)
         SVC_CHECK(doc.nwarnings == 0, "%s: %d warnings (%s)", rp->name, doc.nwarnings,
                   doc.nwarnings ? doc.warnings[0] : "");
         cs_scene *scene = malloc(sizeof *scene);
-        sv_scene_opts so = {.srgb_blend = false};
+        sv_scene_opts so = {0};
         SVC_CHECK(sv_doc_to_scene(&doc, &so, scene, err, sizeof err) == 0, "%s: scene: %s",
                   rp->name, err);
         float *got = core_coverage(scene, px, px);

@@ -2,9 +2,12 @@
  * celc_import.c - the `celc import` and `celc text` subcommands.
  *
  * `celc import drawing.svg -o scene.json` runs the SVG importer (tools/svg)
- * and writes the scene JSON of the authoring contract; every warning the
- * importer raised (unsupported elements, gradients approximated by solids,
- * clips kept for CSG) goes to stderr naming the element. `-o out.cels` will
+ * and writes the scene JSON of the authoring contract (docs/SCENE.md:
+ * gradients as paint functions, clip paths as CSG, and "canvas": {"blend":
+ * "srgb"} so the scene asks to be blended as SVG renderers do); every
+ * warning the importer raised (unsupported elements, gradients the core's
+ * functions cannot draw, clips beyond CSG capacity) goes to stderr naming
+ * the element. `-o out.cels` will
  * write the binary cel stream once its encoder lands: the hook is
  * write_cels() below, which receives the same IR the JSON writer gets.
  *
@@ -30,6 +33,8 @@ static int usage_import(void)
             "  --nominal PX     output size the default tolerance is meant for (1024)\n"
             "  --background C   give the canvas an opaque background (#rrggbb, name)\n"
             "  --one-cel-per-shape  SVG's per-shape compositing instead of shared cels\n"
+            "  --blend srgb|linear  blending the scene asks for: srgb (default, as the\n"
+            "                   designer's tool showed it) or linear (celscan's own)\n"
             "  -q               no warnings\n");
     return 2;
 }
@@ -98,7 +103,7 @@ int celc_import_main(int argc, char **argv)
     const char *in = NULL, *out = NULL;
     sv_import_opts opts;
     memset(&opts, 0, sizeof opts);
-    bool quiet = false, has_bg = false;
+    bool quiet = false, has_bg = false, blend_srgb = true;
     double bg[3];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -116,6 +121,11 @@ int celc_import_main(int argc, char **argv)
             has_bg = true;
         } else if (!strcmp(a, "--one-cel-per-shape")) {
             opts.one_cel_per_shape = true;
+        } else if (!strcmp(a, "--blend") && i + 1 < argc) {
+            const char *v = argv[++i];
+            if (strcmp(v, "srgb") != 0 && strcmp(v, "linear") != 0)
+                return usage_import();
+            blend_srgb = strcmp(v, "srgb") == 0;
         } else if (!strcmp(a, "-q")) {
             quiet = true;
         } else if (a[0] == '-' && a[1]) {
@@ -134,6 +144,7 @@ int celc_import_main(int argc, char **argv)
         fprintf(stderr, "celc import: %s\n", err);
         return 1;
     }
+    doc.blend_srgb = blend_srgb;
     if (!quiet)
         for (int i = 0; i < doc.nwarnings; i++)
             fprintf(stderr, "%s: warning: %s\n", in, doc.warnings[i]);

@@ -17,13 +17,15 @@
  * points, which is exact for rational curves. Only offset curves (strokes)
  * are approximated, within a stated tolerance.
  *
- * The IR holds what the core cannot draw yet, so that the back ends can grow
- * without re-importing: gradients (resolved to canvas units, with solid
- * bands of exact geometry and an area-average colour as fallbacks) and clip
- * paths that are not one convex polygon (CSG intersection, kept per region).
+ * The IR keeps gradients resolved to canvas units (drawn as the core's paint
+ * functions, with solid bands of exact geometry and an area-average colour as
+ * fallbacks) and clip paths that are not one convex polygon (drawn as a CSG
+ * intersection per region). After packing, sv_doc_plan (sv_plan.c) decides
+ * per region how the back ends draw it, within the core's capacities, and
+ * warns where that is not exact.
  *
  * Colours in the IR are sRGB-encoded 0..1, as SVG and the scene JSON write
- * them; the cs_scene back end linearises them (or not, see sv_scene_opts).
+ * them; the cs_scene back end linearises them.
  */
 #ifndef SV_H
 #define SV_H
@@ -124,6 +126,8 @@ void sv_path_clip_halfplane(sv_path *p, double a, double b, double c);
 bool sv_path_convex_polygon(const sv_path *clip, sv_pt **poly, int *n);
 /* Clips the filled path to a convex polygon (either orientation). */
 void sv_path_clip_polygon(sv_path *p, const sv_pt *v, int n);
+/* Reverses every subpath (closing it first), negating every winding number. */
+void sv_path_reverse(sv_path *p);
 
 /* ------------------------------------------------------------------ IR */
 
@@ -165,9 +169,15 @@ typedef struct sv_paint {
     double medium[3];
     double beta;
     int gradient; /* index into sv_doc.gradients, or -1; pigment/beta are its average */
+    double gradient_opacity; /* multiplies the gradient's stop opacities (fill-opacity etc.) */
 } sv_paint;
 
-/* A clip path: the union of its contours (each set with its own fill rule). */
+/*
+ * A clip path: the union of its parts. Children with clip-rule nonzero share
+ * one part (each child oriented so its winding is not negative, so the sum
+ * of windings is non-zero exactly on their union); each evenodd child is a
+ * part of its own.
+ */
 typedef struct sv_clip {
     int nparts;
     struct sv_clip_part {
@@ -175,8 +185,15 @@ typedef struct sv_clip {
         int ncontours;
         sv_contour *contours;
     } *parts;
-    int parent; /* clip of the clipPath itself (clip-path on clipPath), or -1 */
+    int parent; /* the enclosing context's clip (nested clip-path), or -1 */
 } sv_clip;
+
+/* How the back ends draw a region (sv_doc_plan decides; zero is solid). */
+typedef enum sv_draw {
+    SV_DRAW_SOLID = 0, /* the paint's constants (a gradient's average colour) */
+    SV_DRAW_FUNC = 1,  /* the gradient as the core's paint functions */
+    SV_DRAW_BANDS = 2  /* the gradient's solid bands */
+} sv_draw;
 
 typedef struct sv_region {
     int fill_rule; /* CS_FILL_NONZERO / CS_FILL_EVENODD */
@@ -194,12 +211,24 @@ typedef struct sv_region {
      */
     int nbands;
     struct sv_region *bands;
+    sv_draw draw;
+    /* Clips of the chain from `clip` that the back ends intersect by CSG
+     * (innermost first); 0 draws the region unclipped. */
+    int csg_clips;
 } sv_region;
 
 typedef struct sv_cel {
     char *name;
     int nregions;
     sv_region *regions; /* front-most first */
+    /*
+     * Cel space to canvas. Contours in the IR stay in canvas units; a back
+     * end writes them mapped by the inverse. Set when a radial gradient is
+     * elliptical on the canvas: in cel space it is a circle, which the core's
+     * radial function can draw.
+     */
+    bool has_transform;
+    sv_affine transform;
 } sv_cel;
 
 typedef struct sv_doc {
@@ -212,6 +241,8 @@ typedef struct sv_doc {
     sv_clip *clips;
     int nwarnings;
     char **warnings;
+    /* Ask for sRGB blending (SVG's) in the scene JSON: "canvas": {"blend": "srgb"}. */
+    bool blend_srgb;
 } sv_doc;
 
 void sv_doc_init(sv_doc *doc);
@@ -290,28 +321,54 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
 
 /* ----------------------------------------------------------- back ends */
 
+/*
+ * Decides how each region is drawn (sv_region.draw, .csg_clips) within the
+ * default scene store's capacities, and warns for every fallback
+ * (sv_plan.c). sv_import_* call it; call it again after editing the IR.
+ */
+void sv_doc_plan(sv_doc *doc);
+
+/*
+ * A region's CSG program with the first `nclips` clips of its chain (see
+ * sv_plan.c): the fill rule for all operands, the RPN (CS_CSG_* operators),
+ * and every contour to write - the region's own first, then the clips' -
+ * with its operand. False when the core's capacity does not hold it.
+ */
+typedef struct sv_csg {
+    int rule;
+    int nrpn;
+    int rpn[CS_CFG_MAX_CSG];
+    int nops;
+    int ncontours, nown;
+    const sv_contour **contours;
+    int *ops;
+} sv_csg;
+
+bool sv_csg_build(const sv_doc *doc, const sv_region *r, int nclips, sv_csg *out);
+void sv_csg_free(sv_csg *c);
+/* How many clips enclose the region (its clip and their parents). */
+int sv_clip_chain_length(const sv_doc *doc, const sv_region *r);
+
 typedef struct sv_scene_opts {
-    /*
-     * Blend in sRGB space as SVG renderers do, emulated on today's core: the
-     * pigments stay sRGB-encoded and the caller reads the output as encoded
-     * values (CS_PIX_RGB888_LINEAR writes them unchanged). Linear light
-     * compositing of encoded values is exactly SVG's sRGB "over".
-     */
-    bool srgb_blend;
     bool has_background;
     double background[3]; /* sRGB 0..1 */
-    /* One average colour per gradient instead of its bands (comparisons). */
+    /* One average colour per gradient instead of its functions or bands. */
     bool gradient_average;
 } sv_scene_opts;
 
-/* Builds `scene` (cs_scene_init'ed by the call). Returns 0 or -1 with err. */
+/*
+ * Builds `scene` (cs_scene_init'ed by the call) with every colour in linear
+ * light, as the core wants. Render it with cs_render_opts.blend =
+ * CS_BLEND_SRGB to blend as SVG renderers do (doc->blend_srgb). Returns 0
+ * or -1 with err.
+ */
 int sv_doc_to_scene(const sv_doc *doc, const sv_scene_opts *opts, cs_scene *scene, char *err,
                     size_t errlen);
 
 /*
- * Writes the scene JSON of the contract in DESIGN.md. Returns a malloc'd
- * string (caller frees) or NULL. `background` may be NULL. Gradients are
- * written as their bands (solid regions) until the JSON has gradient paints.
+ * Writes the scene JSON of DESIGN.md and docs/SCENE.md (paint functions,
+ * CSG, cel transforms; "canvas": {"blend": "srgb"} when doc->blend_srgb).
+ * Returns a malloc'd string (caller frees) or NULL. `background` may be NULL.
  */
 char *sv_doc_to_json(const sv_doc *doc, const double *background_srgb);
 

@@ -1,6 +1,6 @@
 /*
- * sv_bands.c - a gradient as solid bands with exact geometry, for back ends
- * without gradient paints (today's core).
+ * sv_bands.c - a gradient as solid bands with exact geometry, the fallback
+ * for gradients the core's paint functions cannot draw (sv_plan.c).
  *
  * The IR keeps a gradient-filled region whole, with its gradient; this file
  * adds the fallback the back ends use meanwhile. The gradient parameter t
@@ -92,28 +92,6 @@ static void clip_disc(const sv_gradient *g, double t, sv_path *p)
         poly[i] = sv_affine_apply(g->transform, sv_pt_make(cx + rad * cos(a), cy + rad * sin(a)));
     }
     sv_path_clip_polygon(p, poly, DISC_SIDES);
-}
-
-static void reverse_path(sv_path *p)
-{
-    for (int i = 0; i < p->n; i++) {
-        sv_subpath *sp = &p->sub[i];
-        if (sp->n == 0)
-            continue;
-        sv_pt first = sp->seg[0].p[0], last = sp->seg[sp->n - 1].p[sp->seg[sp->n - 1].degree];
-        if (first.x != last.x || first.y != last.y) { /* close it before turning it round */
-            sv_seg l = {1, {last, first}, 1};
-            SV_GROW(sp->seg, sp->n, sp->cap);
-            sp->seg[sp->n++] = l;
-        }
-        for (int a = 0, b = sp->n - 1; a < b; a++, b--) {
-            sv_seg t = sp->seg[a];
-            sp->seg[a] = sp->seg[b];
-            sp->seg[b] = t;
-        }
-        for (int k = 0; k < sp->n; k++)
-            sv_seg_reverse(&sp->seg[k]);
-    }
 }
 
 static void build(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r,
@@ -239,7 +217,7 @@ static void build(const sv_gradient *g, const sv_path *area, double opacity, sv_
                 sv_path_init(&inner);
                 sv_path_append(&inner, area);
                 clip_disc(g, bound[k], &inner);
-                reverse_path(&inner);
+                sv_path_reverse(&inner);
                 sv_path_append(&geo, &inner);
                 sv_path_free(&inner);
             }

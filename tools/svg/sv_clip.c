@@ -1,9 +1,10 @@
 /*
  * sv_clip.c - exact clipping of filled paths by convex polygons.
  *
- * Until CSG reaches the core, a clip path that is one convex polygon (the
- * page rectangles editors add, rotated rectangles, triangles) is applied to
- * the geometry itself; the gradient bands (sv_bands.c) use the same cut.
+ * A clip path that is one convex polygon (the page rectangles editors add,
+ * rotated rectangles, triangles) is applied to the geometry itself, which
+ * costs the core nothing; other clip paths go to the core's CSG (sv_plan.c).
+ * The gradient bands (sv_bands.c) use the same cut, and sv_path_reverse.
  * Clipping a closed curve to the half-plane a x + b y + c >= 0 is done the
  * Sutherland-Hodgman way without computing any new curve: every segment is
  * split where it crosses the line (exact sub-segments, sv_seg_sub), and the
@@ -180,5 +181,27 @@ void sv_path_clip_polygon(sv_path *p, const sv_pt *v, int n)
             continue;
         /* keep s * cross(d, q - a) >= 0 */
         sv_path_clip_halfplane(p, -s * d.y, s * d.x, s * (d.y * a.x - d.x * a.y));
+    }
+}
+
+void sv_path_reverse(sv_path *p)
+{
+    for (int i = 0; i < p->n; i++) {
+        sv_subpath *sp = &p->sub[i];
+        if (sp->n == 0)
+            continue;
+        sv_pt first = sp->seg[0].p[0], last = sp->seg[sp->n - 1].p[sp->seg[sp->n - 1].degree];
+        if (first.x != last.x || first.y != last.y) { /* close it before turning it round */
+            sv_seg l = {1, {last, first}, 1};
+            SV_GROW(sp->seg, sp->n, sp->cap);
+            sp->seg[sp->n++] = l;
+        }
+        for (int a = 0, b = sp->n - 1; a < b; a++, b--) {
+            sv_seg t = sp->seg[a];
+            sp->seg[a] = sp->seg[b];
+            sp->seg[b] = t;
+        }
+        for (int k = 0; k < sp->n; k++)
+            sv_seg_reverse(&sp->seg[k]);
     }
 }

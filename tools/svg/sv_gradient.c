@@ -9,11 +9,12 @@
  * one map from gradient space to canvas units. The IR keeps the result so a
  * back end that can draw gradients needs nothing else.
  *
- * Until the core draws gradients, back ends draw the bands of sv_bands.c;
- * the region's own paint holds the last resort, one colour: the gradient's
- * average over the area actually painted, premultiplied by its opacity,
- * sampled on a grid over the region's bounding box - the solid colour
- * closest (in the mean square, in the blend space) to the gradient there.
+ * The back ends draw a gradient as the core's paint functions (sv_gradfn.c)
+ * where those can express it, else as the bands of sv_bands.c; the region's
+ * own paint holds the last resort, one colour: the gradient's average over
+ * the area actually painted, premultiplied by its opacity, sampled on a grid
+ * over the region's bounding box - the solid colour closest (in the mean
+ * square, in the blend space) to the gradient there.
  */
 #include <math.h>
 

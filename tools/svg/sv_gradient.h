@@ -34,4 +34,40 @@ void sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity
 void sv_gradient_average(const sv_gradient *g, const sv_path *area, int rule, double rgb[3],
                          double *alpha);
 
+
+/* ------------------------------------------ paint functions (sv_gradfn.c) */
+
+/* Whether a gradient can be the core's paint functions, and if not why. */
+typedef enum sv_fn_status {
+    SV_FN_OK = 0,
+    SV_FN_SOLID,   /* it paints one colour: the region's constant paint is exact */
+    SV_FN_STOPS,   /* more than CS_CFG_MAX_STOPS stops after merging */
+    SV_FN_ELLIPSE, /* radial, and not a circle in the cel's space */
+    SV_FN_FOCAL,   /* SVG 2 focal radius fr > 0 */
+    SV_FN_RANGE    /* geometry beyond the core's coordinate range */
+} sv_fn_status;
+
+typedef struct sv_gradfn {
+    bool has_pigment, has_beta;  /* which fields vary (are functions) */
+    cs_paint_func pigment;       /* stop values sRGB-encoded 0..1 */
+    cs_paint_func beta;          /* stop opacities, the same offsets and geometry */
+    double pigment_const[3];     /* sRGB; the value of a field that does not vary */
+    double beta_const;
+} sv_gradfn;
+
+/*
+ * Gradient g with its stop opacities multiplied by `opacity`, for a region
+ * in a cel whose transform (cel space to canvas) is `cel`: functions in cel
+ * space. SV_FN_OK fills *out; SV_FN_SOLID fills only the constants.
+ */
+sv_fn_status sv_gradient_funcs(const sv_gradient *g, double opacity, sv_affine cel,
+                               sv_gradfn *out);
+const char *sv_fn_status_str(sv_fn_status st);
+/* For a radial gradient that is elliptical on the canvas: a cel transform
+ * under which it is a circle (false when it is a circle already, is not
+ * radial, or is too thin to map). */
+bool sv_gradient_circle_space(const sv_gradient *g, sv_affine *cel);
+/* Whether g (if radial) is a circle in the space of a cel with transform `cel`. */
+bool sv_gradient_circular_in(const sv_gradient *g, sv_affine cel);
+
 #endif /* SV_GRADIENT_H */

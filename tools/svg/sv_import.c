@@ -22,8 +22,18 @@
  * for opaque content, approximate only where the group's own children are
  * translucent and overlap.
  *
+ * A cel also has a space. The core's radial function is a circle in its
+ * cel's space, so a radial gradient that is an ellipse on the canvas
+ * (objectBoundingBox on a box that is not square, a skewing
+ * gradientTransform) gives its cel a transform under which it is a circle;
+ * a later region whose radial gradient is no circle in that space starts a
+ * new cel, within CS_CFG_MAX_CELS.
+ *
  * Paint maps to the beta model with medium white and beta = alpha: with
  * front light 1 and back light 0 this is exactly premultiplied "over".
+ * Clip paths that are one convex polygon are cut into the geometry; others
+ * go into the IR (sv_doc.clips) for the back ends' CSG. sv_doc_plan then
+ * decides how each region is drawn.
  */
 #include <ctype.h>
 #include <errno.h>
@@ -298,6 +308,7 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
     double rgb[3], a = ps->alpha;
     sv_paint_kind kind = ps->kind;
     out->gradient = -1;
+    out->gradient_opacity = opacity;
     if (kind == SV_PAINT_URL) {
         sv_node *t = find_id(im, ps->url);
         bool grad = t && (!strcmp(t->name, "linearGradient") || !strcmp(t->name, "radialGradient"));
@@ -350,9 +361,10 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
 }
 
 /*
- * Adds a region (canvas-space path) with the context's clips applied. A
- * gradient paint also gets its solid bands; `opacity` is what multiplies the
- * gradient's own stop opacities.
+ * Adds a region (canvas-space path) with the context's convex clips applied.
+ * A gradient paint also gets its solid bands, the fallback sv_doc_plan uses
+ * where the core's paint functions cannot draw it; `opacity` is what
+ * multiplies the gradient's own stop opacities.
  */
 static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, double opacity,
                        const ctx *c, const sv_node *n, const char *what)
@@ -383,16 +395,13 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
     r.source = sv_xstrdup(src);
     bool translucent = paint->beta < 1;
     if (paint->gradient >= 0) {
-        sv_gradient_bands(&im->doc->gradients[paint->gradient], cp, opacity, &r);
-        for (int i = 0; i < r.nbands; i++) {
-            translucent |= r.bands[i].paint.beta < 1;
+        const sv_gradient *g = &im->doc->gradients[paint->gradient];
+        sv_gradient_bands(g, cp, opacity, &r);
+        for (int i = 0; i < r.nbands; i++)
             r.bands[i].source = sv_xstrdup(src);
-        }
-        if (r.nbands > 0)
-            sv_doc_warn(im->doc, "%s: %s gradient approximated by %d solid bands", d, what,
-                        r.nbands);
-        else
-            sv_doc_warn(im->doc, "%s: %s gradient approximated by solid (one colour)", d, what);
+        /* translucent wherever any stop is (the bands may skip the clear ones) */
+        for (int i = 0; i < g->nstops; i++)
+            translucent |= g->stops[i].opacity * opacity < 1;
     }
     SV_GROW(im->items, im->nitems, im->capitems);
     item *it = &im->items[im->nitems++];
@@ -460,10 +469,71 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
 
 /* ------------------------------------------------------------ clipping */
 
-/* The clip path geometry in canvas units (union of its children). */
+/*
+ * The clip path's children in canvas units, as parts of an IR clip (see
+ * sv_clip in sv.h): a clipPath is the union of its children, each under its
+ * own clip-rule. Nonzero children, and evenodd ones of one contour (where the
+ * rules agree), go into one part, each turned so its largest subpath winds
+ * positively: with no child winding negatively, their summed winding is
+ * non-zero exactly on the union. An evenodd child of several contours joins
+ * an evenodd part whose children's boxes its box does not meet (without
+ * overlap, parity is union), or starts one. `all` gets every child unchanged
+ * (the convex test).
+ */
+typedef struct eo_part {
+    sv_path path;
+    double (*boxes)[4]; /* of its children */
+    int nboxes;
+} eo_part;
+
+typedef struct clip_parts {
+    sv_path all;
+    sv_path nz; /* the shared nonzero part */
+    eo_part *eo;
+    int neo;
+    int nchildren;
+    bool only_shapes;
+} clip_parts;
+
+static void add_evenodd(clip_parts *out, sv_path *p)
+{
+    double box[4];
+    sv_path_bbox(p, box);
+    int k = 0;
+    for (; k < out->neo; k++) {
+        bool apart = true;
+        for (int i = 0; i < out->eo[k].nboxes && apart; i++) {
+            const double *b = out->eo[k].boxes[i];
+            apart = box[2] < b[0] || b[2] < box[0] || box[3] < b[1] || b[3] < box[1];
+        }
+        if (apart)
+            break;
+    }
+    if (k == out->neo) {
+        out->eo = sv_xrealloc(out->eo, (size_t)(out->neo + 1) * sizeof *out->eo);
+        memset(&out->eo[out->neo++], 0, sizeof *out->eo);
+        sv_path_init(&out->eo[k].path);
+    }
+    eo_part *e = &out->eo[k];
+    sv_path_append(&e->path, p);
+    e->boxes = sv_xrealloc(e->boxes, (size_t)(e->nboxes + 1) * sizeof *e->boxes);
+    memcpy(e->boxes[e->nboxes++], box, sizeof box);
+}
+
+static void orient_positive(sv_path *p)
+{
+    double best = 0;
+    for (int i = 0; i < p->n; i++) {
+        double a = sv_subpath_area(&p->sub[i]);
+        if (fabs(a) > fabs(best))
+            best = a;
+    }
+    if (best < 0)
+        sv_path_reverse(p);
+}
+
 static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ctm,
-                          const double ubox[4], const ctx *pc, sv_path *out, int *rule,
-                          bool *only_paths)
+                          const double ubox[4], const ctx *pc, clip_parts *out)
 {
     const char *units = sv_attr(cp, "clipPathUnits");
     sv_affine m = ctm, t;
@@ -474,8 +544,13 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
         sv_affine b = {ubox[2] - ubox[0], 0, 0, ubox[3] - ubox[1], ubox[0], ubox[1]};
         m = sv_affine_mul(m, b);
     }
+    char d[160];
     sv_style cs;
     sv_style_compute(&cs, ps, cp, &im->css, 0, NULL);
+    if (cs.clip_path[0]) {
+        desc(cp, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: clip-path on a clipPath not supported, ignored", d);
+    }
     for (int i = 0; i < cp->nkids; i++) {
         sv_node *k = cp->kids[i];
         sv_node *shape = k;
@@ -501,21 +576,45 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
         sv_path p;
         sv_path_init(&p);
         if (shape_path(im, shape, &ks, pc, &p)) {
+            if (ks.clip_path[0] && shape == k) {
+                desc(k, d, sizeof d);
+                sv_doc_warn(im->doc, "%s: clip-path on a clipPath child not supported, ignored",
+                            d);
+            }
             sv_path_transform(&p, km);
-            sv_path_append(out, &p);
-            *rule = ks.clip_rule;
+            sv_path_append(&out->all, &p);
+            out->nchildren++;
+            if (ks.clip_rule == CS_FILL_EVENODD && p.n > 1) {
+                add_evenodd(out, &p);
+                sv_path_free(&p);
+                continue;
+            }
+            orient_positive(&p);
+            sv_path_append(&out->nz, &p);
         } else if (strcmp(shape->name, "title") && strcmp(shape->name, "desc") &&
-                   shape->name[0] != '#') {
-            *only_paths = false;
+                   shape->name[0] != '#' && strncmp(shape->name, "ns:", 3) != 0) {
+            out->only_shapes = false;
+            desc(shape, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: not supported in a clipPath, left out of the clip", d);
         }
         sv_path_free(&p);
     }
 }
 
+static void add_clip_part(sv_clip *clip, const sv_path *p, int rule)
+{
+    struct sv_clip_part part = {rule, 0, NULL};
+    sv_path_to_contours(p, &part.contours, &part.ncontours);
+    if (part.ncontours == 0)
+        return;
+    clip->parts = sv_xrealloc(clip->parts, (size_t)(clip->nparts + 1) * sizeof part);
+    clip->parts[clip->nparts++] = part;
+}
+
 /*
  * Applies clip-path to the context: a single convex polygon is clipped
- * exactly; anything else is kept in the IR (CSG intersection) and drawn
- * unclipped, with a warning.
+ * exactly into the geometry; anything else becomes an IR clip that the back
+ * ends intersect by CSG (sv_doc_plan warns where they cannot).
  */
 static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, const sv_path *up,
                        clip_poly *slot, bool *used_slot)
@@ -531,37 +630,39 @@ static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, con
     double ubox[4] = {0, 0, 0, 0};
     if (up)
         tight_bbox(up, ubox);
-    sv_path geo;
-    sv_path_init(&geo);
-    int rule = CS_FILL_NONZERO;
-    bool only_paths = true;
-    clip_geometry(im, cp, s, c->ctm, ubox, c, &geo, &rule, &only_paths);
+    clip_parts parts;
+    memset(&parts, 0, sizeof parts);
+    parts.only_shapes = true;
+    sv_path_init(&parts.all);
+    sv_path_init(&parts.nz);
+    clip_geometry(im, cp, s, c->ctm, ubox, c, &parts);
     sv_pt *poly;
     int np;
-    if (only_paths && sv_path_convex_polygon(&geo, &poly, &np) && c->nclips < MAX_CLIPS) {
+    if (parts.only_shapes && parts.nchildren == 1 && c->nclips < MAX_CLIPS &&
+        sv_path_convex_polygon(&parts.all, &poly, &np)) {
         slot->v = poly;
         slot->n = np;
         *used_slot = true;
         c->clips[c->nclips++] = slot;
-        sv_path_free(&geo);
-        return;
+    } else {
+        /* an IR clip for CSG; an empty one clips everything away */
+        sv_clip clip;
+        memset(&clip, 0, sizeof clip);
+        clip.parent = c->ir_clip;
+        add_clip_part(&clip, &parts.nz, CS_FILL_NONZERO);
+        for (int i = 0; i < parts.neo; i++)
+            add_clip_part(&clip, &parts.eo[i].path, CS_FILL_EVENODD);
+        im->doc->clips = sv_xrealloc(im->doc->clips, (size_t)(im->doc->nclips + 1) * sizeof clip);
+        im->doc->clips[im->doc->nclips] = clip;
+        c->ir_clip = im->doc->nclips++;
     }
-    /* keep it in the IR for CSG */
-    sv_clip clip;
-    memset(&clip, 0, sizeof clip);
-    clip.parent = c->ir_clip;
-    clip.parts = sv_xrealloc(NULL, sizeof *clip.parts);
-    clip.nparts = 1;
-    clip.parts[0].fill_rule = rule;
-    clip.parts[0].contours = NULL;
-    clip.parts[0].ncontours = 0;
-    sv_path_to_contours(&geo, &clip.parts[0].contours, &clip.parts[0].ncontours);
-    im->doc->clips = sv_xrealloc(im->doc->clips, (size_t)(im->doc->nclips + 1) * sizeof clip);
-    im->doc->clips[im->doc->nclips] = clip;
-    c->ir_clip = im->doc->nclips++;
-    sv_doc_warn(im->doc, "%s: clip-path #%s is not one convex polygon: kept for CSG, drawn unclipped",
-                d, s->clip_path);
-    sv_path_free(&geo);
+    sv_path_free(&parts.all);
+    sv_path_free(&parts.nz);
+    for (int i = 0; i < parts.neo; i++) {
+        sv_path_free(&parts.eo[i].path);
+        free(parts.eo[i].boxes);
+    }
+    free(parts.eo);
 }
 
 /* ----------------------------------------------------------- elements */
@@ -736,37 +837,93 @@ static bool boxes_meet(const double a[4], const double b[4])
     return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
 }
 
-static void pack_cels(imp *im)
+/*
+ * The cel space a region's radial gradient needs to be a circle there (the
+ * core's radial function is one): false when it needs none (no radial
+ * gradient, or one too thin for any cel space: bands).
+ */
+static bool wanted_space(const imp *im, const item *it, sv_affine *space)
 {
-    sv_doc *doc = im->doc;
-    int cel_layer = -1, first = 0; /* items of the current cel: [first, i) in front order */
-    item **order = sv_xrealloc(NULL, (size_t)(im->nitems + 1) * sizeof *order);
-    for (int i = 0; i < im->nitems; i++)
-        order[i] = &im->items[im->nitems - 1 - i];
+    int gi = it->reg.paint.gradient;
+    if (gi < 0 || im->doc->gradients[gi].type != SV_GRAD_RADIAL)
+        return false;
+    const sv_gradient *g = &im->doc->gradients[gi];
+    if (sv_gradient_circular_in(g, sv_affine_identity())) {
+        *space = sv_affine_identity();
+        return true;
+    }
+    return sv_gradient_circle_space(g, space);
+}
+
+/*
+ * Packs the items (front-most first) into cels; returns the cel count. With
+ * `doc` NULL it only counts. A cel's space is fixed by its first region that
+ * wants one; a later region whose radial gradient is no circle there starts
+ * a new cel (SVG's own "over" per shape, so nothing changes) while `splits`
+ * lasts, or else joins and is drawn by its bands. Group layers never split.
+ */
+static int pack(imp *im, item **order, sv_doc *doc, int splits)
+{
+    int cel_layer = -1, first = 0, ncels = 0; /* items of the current cel: [first, i) */
+    bool fixed = false;
+    sv_affine space = sv_affine_identity();
     for (int i = 0; i < im->nitems; i++) {
         item *it = order[i];
-        bool join = doc->ncels > 0 && it->layer == cel_layer;
+        bool join = ncels > 0 && it->layer == cel_layer;
         if (join && it->layer == 0 && im->opts.one_cel_per_shape)
             join = false;
         if (join && it->layer == 0)
             for (int k = first; k < i && join; k++)
                 if (order[k]->translucent && boxes_meet(order[k]->reg.bbox, it->reg.bbox))
                     join = false;
+        sv_affine want;
+        bool wants = wanted_space(im, it, &want);
+        int gi = it->reg.paint.gradient;
+        if (join && it->layer == 0 && wants && fixed && splits > 0 &&
+            !sv_gradient_circular_in(&im->doc->gradients[gi], space)) {
+            join = false;
+            splits--;
+        }
         if (!join) {
-            doc->cels = sv_xrealloc(doc->cels, (size_t)(doc->ncels + 1) * sizeof *doc->cels);
-            sv_cel *cel = &doc->cels[doc->ncels++];
-            char nm[32];
-            snprintf(nm, sizeof nm, "svg%d", doc->ncels - 1);
-            cel->name = sv_xstrdup(nm);
-            cel->nregions = 0;
-            cel->regions = NULL;
+            ncels++;
             cel_layer = it->layer;
             first = i;
+            fixed = false;
+            space = sv_affine_identity();
+            if (doc) {
+                doc->cels = sv_xrealloc(doc->cels, (size_t)ncels * sizeof *doc->cels);
+                sv_cel *cel = &doc->cels[ncels - 1];
+                memset(cel, 0, sizeof *cel);
+                char nm[32];
+                snprintf(nm, sizeof nm, "svg%d", ncels - 1);
+                cel->name = sv_xstrdup(nm);
+                doc->ncels = ncels;
+            }
         }
-        sv_cel *cel = &doc->cels[doc->ncels - 1];
-        cel->regions = sv_xrealloc(cel->regions, (size_t)(cel->nregions + 1) * sizeof(sv_region));
-        cel->regions[cel->nregions++] = it->reg;
+        if (wants && !fixed) {
+            fixed = true;
+            space = want;
+        }
+        if (doc) {
+            sv_cel *cel = &doc->cels[ncels - 1];
+            cel->regions = sv_xrealloc(cel->regions, (size_t)(cel->nregions + 1) * sizeof(sv_region));
+            cel->regions[cel->nregions++] = it->reg;
+            sv_affine id = sv_affine_identity();
+            cel->has_transform = memcmp(&space, &id, sizeof id) != 0;
+            cel->transform = space;
+        }
     }
+    return ncels;
+}
+
+static void pack_cels(imp *im)
+{
+    item **order = sv_xrealloc(NULL, (size_t)(im->nitems + 1) * sizeof *order);
+    for (int i = 0; i < im->nitems; i++)
+        order[i] = &im->items[im->nitems - 1 - i];
+    /* each split adds at most one cel to the packing without splits */
+    int base = pack(im, order, NULL, 0);
+    pack(im, order, im->doc, base < CS_CFG_MAX_CELS ? CS_CFG_MAX_CELS - base : 0);
     free(order);
 }
 
@@ -835,6 +992,8 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     if (!rs.display_none)
         render_viewport(&im, root, &rs, &c, 0, 0, w, h);
     pack_cels(&im);
+    doc->blend_srgb = true; /* SVG blends in sRGB: the scene JSON asks for it */
+    sv_doc_plan(doc);
 
     free(im.items);
     free(im.ids);

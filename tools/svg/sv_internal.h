@@ -18,6 +18,9 @@
 #define M_PI 3.14159265358979323846
 #endif
 
+#define SV_STR_(x) #x
+#define SV_STR(x) SV_STR_(x)
+
 void *sv_xrealloc(void *p, size_t size);
 char *sv_xstrdup(const char *s);
 char *sv_xstrndup(const char *s, size_t n);

@@ -9,7 +9,7 @@
 #include "sv_render.h"
 
 cs_status sv_render_rgb8(const cs_scene *scene, int w, int h, cs_aa_mode aa, int subscanlines,
-                         bool encoded_out, uint8_t *rgb)
+                         cs_blend blend, uint8_t *rgb)
 {
     cs_workspace *ws = malloc(sizeof *ws);
     float *line = malloc(sizeof(float) * 3 * (size_t)w);
@@ -22,12 +22,12 @@ cs_status sv_render_rgb8(const cs_scene *scene, int w, int h, cs_aa_mode aa, int
     cs_render_opts o = cs_render_defaults(w, h);
     o.aa = aa;
     o.subscanlines = subscanlines;
+    o.blend = blend;
     cs_error e;
     cs_status st = cs_frame_begin(&r, ws, scene, &o, &e);
-    cs_pixfmt fmt = encoded_out ? CS_PIX_RGB888_LINEAR : CS_PIX_RGB888_SRGB;
     for (int y = 0; st == CS_OK && y < h; y++) {
         st = cs_render_line(&r, y, line);
-        cs_pixfmt_convert(fmt, line, w, rgb + (size_t)3 * w * y);
+        cs_pixfmt_convert(CS_PIX_RGB888_SRGB, line, w, rgb + (size_t)3 * w * y);
     }
     if (st == CS_OK)
         st = r.sticky.status;

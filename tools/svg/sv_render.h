@@ -11,13 +11,12 @@
 #include "celscan.h"
 
 /*
- * Renders `scene` at w x h into rgb (3*w*h bytes). `encoded_out` writes the
- * composited values unchanged (CS_PIX_RGB888_LINEAR), which is what the
- * sRGB-blend emulation of sv_scene_opts needs; otherwise the output is
- * sRGB-encoded from linear light. Returns CS_OK or the first error.
+ * Renders `scene` at w x h into rgb (3*w*h bytes, sRGB-encoded), compositing
+ * in `blend` space (CS_BLEND_SRGB for imported SVG, as SVG renderers do).
+ * Returns CS_OK or the first error.
  */
 cs_status sv_render_rgb8(const cs_scene *scene, int w, int h, cs_aa_mode aa, int subscanlines,
-                         bool encoded_out, uint8_t *rgb);
+                         cs_blend blend, uint8_t *rgb);
 
 /* RGBA8, straight alpha; malloc'd into *px. 0 or -1. */
 int sv_png_read_rgba(const char *path, uint8_t **px, int *w, int *h);

@@ -31,7 +31,8 @@ static int render_main(int argc, char **argv)
     cs_aa_mode aa = CS_AA_SUBSCAN;
     sv_import_opts io;
     memset(&io, 0, sizeof io);
-    sv_scene_opts so = {.srgb_blend = true, .has_background = true, .background = {1, 1, 1}};
+    sv_scene_opts so = {.has_background = true, .background = {1, 1, 1}};
+    cs_blend blend = CS_BLEND_SRGB;
     bool quiet = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -45,7 +46,7 @@ static int render_main(int argc, char **argv)
             aa = !strcmp(v, "none") ? CS_AA_NONE : !strcmp(v, "exact") ? CS_AA_EXACT : CS_AA_SUBSCAN;
             sub = atoi(v) > 0 ? atoi(v) : 16;
         } else if (!strcmp(a, "--blend") && i + 1 < argc) {
-            so.srgb_blend = strcmp(argv[++i], "linear") != 0;
+            blend = strcmp(argv[++i], "linear") != 0 ? CS_BLEND_SRGB : CS_BLEND_LINEAR;
         } else if (!strcmp(a, "--background") && i + 1 < argc) {
             double al;
             const char *v = argv[++i];
@@ -81,7 +82,7 @@ static int render_main(int argc, char **argv)
         fprintf(stderr, "svgimport: %s: %s\n", in, err);
         rc = 1;
     } else {
-        cs_status st = sv_render_rgb8(scene, w, h, aa, sub, so.srgb_blend, rgb);
+        cs_status st = sv_render_rgb8(scene, w, h, aa, sub, blend, rgb);
         if (st != CS_OK) {
             fprintf(stderr, "svgimport: %s: render: %s\n", in, cs_status_str(st));
             rc = 1;
