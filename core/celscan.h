@@ -261,6 +261,7 @@ typedef struct cs_track {
 typedef struct cs_scene {
     float canvas_w, canvas_h;
     bool has_background;
+    uint8_t blend;       /* cs_blend the scene asks for (imported SVG: sRGB); see cs_render_opts */
     float background[3]; /* linear light */
     float stack_front[3];
     float stack_back[3];
@@ -395,8 +396,12 @@ typedef enum cs_aa_mode {
 
 typedef enum cs_blend {
     CS_BLEND_LINEAR = 0, /* composite in linear light (the beta model's own space) */
-    CS_BLEND_SRGB = 1    /* composite sRGB-encoded values, as SVG renderers do */
+    CS_BLEND_SRGB = 1,   /* composite sRGB-encoded values, as SVG renderers do */
+    CS_BLEND_SCENE = 2   /* as the scene asks (cs_scene_set_blend): cs_render_defaults' choice */
 } cs_blend;
+
+/* The blending space the scene asks for: CS_BLEND_LINEAR (the default) or CS_BLEND_SRGB. */
+cs_status cs_scene_set_blend(cs_scene *scene, cs_blend blend);
 
 typedef struct cs_render_opts {
     int width, height;  /* output size in pixels */

@@ -56,6 +56,8 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
         return CS_ERR_ARG;
     }
     cache->opts = *opts;
+    if (opts->blend == CS_BLEND_SCENE) /* the cache holds resolved options */
+        cache->opts.blend = (cs_blend)scene->blend;
 #if !CS_CFG_CACHE
     (void)buffer;
     (void)size;

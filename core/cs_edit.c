@@ -365,6 +365,7 @@ void cs_scene_copy(cs_scene *dst, const cs_scene *src)
     dst->canvas_w = src->canvas_w;
     dst->canvas_h = src->canvas_h;
     dst->has_background = src->has_background;
+    dst->blend = src->blend;
     copy3(dst->background, src->background);
     copy3(dst->stack_front, src->stack_front);
     copy3(dst->stack_back, src->stack_back);

@@ -139,7 +139,7 @@ cs_render_opts cs_render_defaults(int width, int height)
     o.aa = CS_AA_SUBSCAN;
     o.subscanlines = 16;
     o.time = 0.0f;
-    o.blend = CS_BLEND_LINEAR;
+    o.blend = CS_BLEND_SCENE;
     o.no_early_out = false;
     return o;
 }
@@ -153,7 +153,7 @@ static cs_status check_opts(const cs_render_opts *o)
         return CS_ERR_ARG;
     if (o->aa == CS_AA_SUBSCAN && (o->subscanlines < 1 || o->subscanlines > CS_CFG_MAX_SUBSCANLINES))
         return CS_ERR_ARG;
-    if (o->blend != CS_BLEND_LINEAR && o->blend != CS_BLEND_SRGB)
+    if (o->blend != CS_BLEND_LINEAR && o->blend != CS_BLEND_SRGB && o->blend != CS_BLEND_SCENE)
         return CS_ERR_ARG;
     if (!cs__finite(o->time))
         return CS_ERR_NONFINITE;
@@ -243,8 +243,9 @@ cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene
 {
     if (cache && opts) {
         const cs_render_opts *c = &cache->opts;
+        cs_blend blend = opts->blend == CS_BLEND_SCENE && scene ? (cs_blend)scene->blend : opts->blend;
         if (cache->status != CS_OK || c->width != opts->width || c->height != opts->height ||
-            c->aa != opts->aa || c->blend != opts->blend ||
+            c->aa != opts->aa || c->blend != blend ||
             (opts->aa == CS_AA_SUBSCAN && c->subscanlines != opts->subscanlines) || !scene ||
             cache->cel_first + cache->cel_count > scene->cel_count) {
             cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
@@ -271,6 +272,8 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     r->scene = scene;
     r->ws = ws;
     r->opts = *opts;
+    if (r->opts.blend == CS_BLEND_SCENE)
+        r->opts.blend = (cs_blend)scene->blend;
     r->segment_count = r->piece_count = r->active_count = r->next_order = 0;
     r->next_line = 0;
     r->cache = cache;
@@ -303,7 +306,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     tr = cs__track_find(scene, CS_TRACK_BACKGROUND, 0);
     if (tr && tr->key_count)
         sample(scene, tr, t, bg);
-    bool srgb = opts->blend == CS_BLEND_SRGB;
+    bool srgb = r->opts.blend == CS_BLEND_SRGB;
     for (int k = 0; k < 3; k++) {
         float card = srgb ? cs__encode(bg[k]) : bg[k];
         r->behind[k] = scene->has_background ? card * stack[k] : stack[3 + k];

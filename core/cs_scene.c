@@ -98,6 +98,7 @@ cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
     scene->canvas_w = canvas_w;
     scene->canvas_h = canvas_h;
     scene->has_background = false;
+    scene->blend = CS_BLEND_LINEAR;
     for (int i = 0; i < 3; i++) {
         scene->background[i] = 0.0f;
         scene->stack_front[i] = 1.0f;
@@ -527,5 +528,15 @@ cs_status cs_scene_set_contour_operand(cs_scene *scene, int operand, cs_error *e
         return CS_ERR_CSG;
     }
     scene->contours[scene->contour_count - 1].operand = (uint8_t)operand;
+    return CS_OK;
+}
+
+cs_status cs_scene_set_blend(cs_scene *scene, cs_blend blend)
+{
+    if (!scene)
+        return CS_ERR_ARG;
+    if (blend != CS_BLEND_LINEAR && blend != CS_BLEND_SRGB)
+        return CS_ERR_ARG;
+    scene->blend = (uint8_t)blend;
     return CS_OK;
 }

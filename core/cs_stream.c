@@ -78,6 +78,7 @@ static int fixed_size(uint32_t type)
     case CS_REC_NO_BACKGROUND:
         return 0;
     case CS_REC_CEL_REMOVE:
+    case CS_REC_BLEND:
     case CS_REC_REGION_CSG:
     case CS_REC_CONTOUR_OPERAND:
         return 4;
@@ -326,6 +327,9 @@ static void finish_record(cs_stream *s)
         break;
     case CS_REC_NO_BACKGROUND:
         st = cs_scene_clear_background(sc);
+        break;
+    case CS_REC_BLEND:
+        st = rd_u32(b) > 1u ? CS_ERR_STREAM_RECORD : cs_scene_set_blend(sc, (cs_blend)rd_u32(b));
         break;
     case CS_REC_CEL:
         wire_affine(b + 4, &m);

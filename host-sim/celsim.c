@@ -63,7 +63,8 @@ static const char usage_text[] =
     "  --encoding srgb|linear  8-bit sRGB PNG (default), or 16-bit linear-light PNG\n"
     "  --repeat N              render N times; print the median render time as\n"
     "                          'X.XXX ms/frame' (rendering only, not loading or writing)\n"
-    "  --blend linear|srgb     compositing space: linear light (default) or sRGB-encoded as SVG renderers\n"
+    "  --blend linear|srgb     compositing space: linear light, or sRGB-encoded as SVG renderers\n"
+    "                          blend (default: what the scene asks, \"canvas\": {\"blend\": ...})\n"
     "  --crc                   print 'frame crc32 XXXXXXXX' of the frame in the panel\n"
     "                          pixel format (RGB565, little-endian, rows top to bottom)\n"
     "  -h, --help              show this help\n"
@@ -80,7 +81,7 @@ typedef struct options {
     int subscanlines;
     bool linear;
     int repeat;        /* 0: not timing */
-    bool blend_srgb;
+    cs_blend blend;    /* CS_BLEND_SCENE unless --blend says */
     bool crc;
 } options;
 
@@ -147,7 +148,8 @@ static bool is_option(const char *arg, const char *name)
 
 static int parse_render_args(int argc, char **argv, options *o)
 {
-    *o = (options){.aa = CS_AA_SUBSCAN, .subscanlines = DEFAULT_SUBSCANLINES};
+    *o = (options){.aa = CS_AA_SUBSCAN, .subscanlines = DEFAULT_SUBSCANLINES,
+                   .blend = CS_BLEND_SCENE};
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *v;
@@ -205,9 +207,9 @@ static int parse_render_args(int argc, char **argv, options *o)
                 return usage_error("--repeat expects a count 1..%d, got '%s'", MAX_REPEAT, v);
         } else if (name && strcmp(name, "--blend") == 0) {
             if (strcmp(v, "linear") == 0)
-                o->blend_srgb = false;
+                o->blend = CS_BLEND_LINEAR;
             else if (strcmp(v, "srgb") == 0)
-                o->blend_srgb = true;
+                o->blend = CS_BLEND_SRGB;
             else
                 return usage_error("--blend expects linear or srgb, got '%s'", v);
         } else if (strcmp(a, "--crc") == 0) {
@@ -370,7 +372,7 @@ static int render(const options *o, sim_state *s)
         .aa = o->aa,
         .subscanlines = o->aa == CS_AA_SUBSCAN ? o->subscanlines : 1,
         .time = o->time,
-        .blend = o->blend_srgb ? CS_BLEND_SRGB : CS_BLEND_LINEAR,
+        .blend = o->blend,
     };
     if (ro.width == 0) {
         /* The canvas size, rounded; at least one pixel. */

@@ -895,6 +895,18 @@ static int load_root(loader *L, const cJSON *root)
             return fail(L, "%s", cs_status_str(st));
         }
     }
+    /* "blend": "srgb" asks for SVG-like blending (imported artwork does). */
+    const cJSON *blend = member(canvas, "blend");
+    if (blend != NULL) {
+        size_t at_blend = push_key(L, "blend");
+        if (!cJSON_IsString(blend) ||
+            (strcmp(blend->valuestring, "linear") != 0 && strcmp(blend->valuestring, "srgb") != 0))
+            return fail(L, "expected \"linear\" or \"srgb\", got %s",
+                        cJSON_IsString(blend) ? blend->valuestring : kind(blend));
+        cs_scene_set_blend(L->scene, strcmp(blend->valuestring, "srgb") == 0 ? CS_BLEND_SRGB
+                                                                           : CS_BLEND_LINEAR);
+        pop(L, at_blend);
+    }
     pop(L, at);
 
     float front[3] = {1.0f, 1.0f, 1.0f}, back[3] = {0.0f, 0.0f, 0.0f};

@@ -249,6 +249,7 @@ static void build_beta(cs_scene *s)
     cs_scene_init(s, 96, 64);
     const float bg[3] = {0.1f, 0.1f, 0.12f};
     cs_scene_set_background(s, bg);
+    cs_scene_set_blend(s, CS_BLEND_SRGB); /* the BLEND record travels too */
     cs_affine id = {1, 0, 0, 1, 0, 0};
     cs_affine tilt = {0.9f, 0.3f, -0.3f, 0.9f, 10, -4};
 
@@ -461,7 +462,7 @@ static void test_roundtrip_beta(void)
     encode(s, &b, true);
     printf("  beta scene: %zu bytes of stream\n", b.len);
     CHECK(b.len > 21 && b.data[5] == CS_WIRE_MINOR && b.data[21] == CS_WIRE_MINOR &&
-              CS_WIRE_MINOR == 1,
+              CS_WIRE_MINOR == 2,
           "stream and transaction headers say version 1.%d", CS_WIRE_MINOR);
     for (int chunking = 0; chunking < 4; chunking++) {
         result r;

@@ -219,6 +219,11 @@ int cels_encode_scene(cels_buf *b, const cs_scene *sc)
         cels_put_f32s(b, sc->background, 3);
         cels_rec_end(b);
     }
+    if (sc->blend != CS_BLEND_LINEAR) {
+        cels_rec_begin(b, CS_REC_BLEND);
+        cels_put_u32(b, sc->blend);
+        cels_rec_end(b);
+    }
     uint32_t next_region = 0, next_contour = 0;
     for (uint32_t ci = 0; ci < sc->cel_count; ci++) {
         const cs_cel *c = &sc->cels[ci];
