@@ -48,27 +48,25 @@ test-svg: $(HOST)/tests/test_svg
 svg-rsvg-full: $(HOST)/tests/test_svg
 	$(Q)$(HOST)/tests/test_svg --only rsvg --all --outdir $(BUILD)/svg-full
 
-# Demo: imported artwork and text as scene JSON (for celsim) and as PNG
-# rendered straight through the core; celsim renders the JSON too once built
-# (imported artwork with --blend srgb, which its JSON also asks for with
-# "canvas": {"blend": "srgb"} for a loader that reads it).
+# Demo: imported artwork and text through the product's own path: `celc
+# import` / `celc text` to scene JSON and to a cel stream, rendered by celsim
+# (imported scenes ask for sRGB blending in their JSON, as SVG renderers blend).
 SVG_DEMO := $(BUILD)/demo/svg
 SVG_DEMO_ICON := /usr/share/icons/breeze/apps/48/kstars.svg
 .PHONY: svg-demo
-svg-demo: $(HOST)/svgimport
+svg-demo: $(HOST)/celc $(HOST)/celsim
 	@mkdir -p $(SVG_DEMO)
-	$(Q)$(HOST)/svgimport import scenes/svg/sign.svg -o $(SVG_DEMO)/sign.json -q
-	$(Q)$(HOST)/svgimport render scenes/svg/sign.svg -o $(SVG_DEMO)/sign.png --size 640x360 -q
-	$(Q)$(HOST)/svgimport text "celscan: signage in real fonts" -o $(SVG_DEMO)/text.json \
+	@echo "celc import scenes/svg/sign.svg -> $(SVG_DEMO)/sign.{json,cels,png}"
+	$(Q)$(HOST)/celc import scenes/svg/sign.svg -o $(SVG_DEMO)/sign.json -q
+	$(Q)$(HOST)/celc import scenes/svg/sign.svg -o $(SVG_DEMO)/sign.cels -q
+	$(Q)$(HOST)/celsim render $(SVG_DEMO)/sign.cels -o $(SVG_DEMO)/sign.png --size 1280x720
+	$(Q)$(HOST)/celc text "celscan: signage in real fonts" -o $(SVG_DEMO)/text.json \
 		--size 48 --position 24,64 --color '#ffd23f' --background '#101820' 2>/dev/null
+	$(Q)$(HOST)/celsim render $(SVG_DEMO)/text.json -o $(SVG_DEMO)/text.png
 	$(Q)if [ -f $(SVG_DEMO_ICON) ]; then \
-		$(HOST)/svgimport import $(SVG_DEMO_ICON) -o $(SVG_DEMO)/icon.json -q && \
-		$(HOST)/svgimport render $(SVG_DEMO_ICON) -o $(SVG_DEMO)/icon.png --size 256x256 -q; fi
-	$(Q)if [ -x $(HOST)/celsim ]; then for j in sign icon; do \
-		[ -f $(SVG_DEMO)/$$j.json ] && $(HOST)/celsim render $(SVG_DEMO)/$$j.json \
-			--blend srgb -o $(SVG_DEMO)/$$j-celsim.png; done; \
-		$(HOST)/celsim render $(SVG_DEMO)/text.json -o $(SVG_DEMO)/text-celsim.png; fi; true
-	@echo "svg-demo: $(SVG_DEMO)/{sign,text,icon}.json and PNGs"
+		$(HOST)/celc import $(SVG_DEMO_ICON) -o $(SVG_DEMO)/icon.json -q && \
+		$(HOST)/celsim render $(SVG_DEMO)/icon.json -o $(SVG_DEMO)/icon.png --size 256x256; fi
+	@echo "svg-demo: $(SVG_DEMO)/{sign,text,icon}.png"
 
 HOST_PROGRAMS += $(HOST)/svgimport
 TEST_TARGETS += test-svg
