@@ -67,17 +67,6 @@ static int track_cmp(const cs_track *t, int kind, uint32_t target)
     return 0;
 }
 
-static void track_copy(cs_track *dst, const cs_track *src)
-{
-    dst->target = src->target;
-    dst->first_key = src->first_key;
-    dst->first_value = src->first_value;
-    dst->width = src->width;
-    dst->key_count = src->key_count;
-    dst->kind = src->kind;
-    dst->ease = src->ease;
-}
-
 /* First index whose (kind, target) is not below the pair. */
 static uint32_t lower_bound(const cs_scene *scene, int kind, uint32_t target)
 {
@@ -115,7 +104,7 @@ static void remove_track_at(cs_scene *scene, uint32_t i)
     scene->key_count -= nk;
     scene->value_count -= nv;
     for (uint32_t j = i; j + 1 < scene->track_count; j++)
-        track_copy(&scene->tracks[j], &scene->tracks[j + 1]);
+        cs__copy_track(&scene->tracks[j], &scene->tracks[j + 1]);
     scene->track_count--;
     for (uint32_t j = 0; j < scene->track_count; j++) {
         cs_track *u = &scene->tracks[j];
@@ -195,7 +184,7 @@ cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t targe
     if (replace)
         remove_track_at(scene, i);
     for (uint32_t j = scene->track_count; j > i; j--)
-        track_copy(&scene->tracks[j], &scene->tracks[j - 1]);
+        cs__copy_track(&scene->tracks[j], &scene->tracks[j - 1]);
     cs_track *t = &scene->tracks[i];
     t->kind = (uint8_t)kind;
     t->ease = (uint8_t)ease;
@@ -319,13 +308,13 @@ void cs__tracks_sort(cs_scene *scene)
     /* Insertion sort: few tracks, usually already in order, and stable. */
     for (uint32_t i = 1; i < scene->track_count; i++) {
         cs_track t;
-        track_copy(&t, &scene->tracks[i]);
+        cs__copy_track(&t, &scene->tracks[i]);
         uint32_t j = i;
         while (j > 0 && track_cmp(&scene->tracks[j - 1], t.kind, t.target) > 0) {
-            track_copy(&scene->tracks[j], &scene->tracks[j - 1]);
+            cs__copy_track(&scene->tracks[j], &scene->tracks[j - 1]);
             j--;
         }
-        track_copy(&scene->tracks[j], &t);
+        cs__copy_track(&scene->tracks[j], &t);
     }
     scene->open_track = UINT32_MAX;
 }

@@ -20,13 +20,6 @@
  */
 #include "cs_internal.h"
 
-static void copy3(float *dst, const float *src)
-{
-    dst[0] = src[0];
-    dst[1] = src[1];
-    dst[2] = src[2];
-}
-
 static void copy_affine(cs_affine *dst, const cs_affine *src)
 {
     dst->a = src->a;
@@ -43,8 +36,8 @@ static void copy_cel(cs_cel *dst, const cs_cel *src)
     dst->region_count = src->region_count;
     dst->has_front = src->has_front;
     copy_affine(&dst->transform, &src->transform);
-    copy3(dst->front, src->front);
-    copy3(dst->back, src->back);
+    cs__copy3(dst->front, src->front);
+    cs__copy3(dst->back, src->back);
 }
 
 static void copy_region(cs_region *dst, const cs_region *src)
@@ -148,8 +141,8 @@ cs_status cs_scene_set_cel_lights(cs_scene *scene, uint32_t cel, const float fro
     static const float black[3] = {0.0f, 0.0f, 0.0f};
     cs_cel *c = &scene->cels[cel];
     c->has_front = front != 0;
-    copy3(c->front, front ? front : scene->stack_front);
-    copy3(c->back, back ? back : black);
+    cs__copy3(c->front, front ? front : scene->stack_front);
+    cs__copy3(c->back, back ? back : black);
     return CS_OK;
 }
 
@@ -366,9 +359,9 @@ void cs_scene_copy(cs_scene *dst, const cs_scene *src)
     dst->canvas_h = src->canvas_h;
     dst->has_background = src->has_background;
     dst->blend = src->blend;
-    copy3(dst->background, src->background);
-    copy3(dst->stack_front, src->stack_front);
-    copy3(dst->stack_back, src->stack_back);
+    cs__copy3(dst->background, src->background);
+    cs__copy3(dst->stack_front, src->stack_front);
+    cs__copy3(dst->stack_back, src->stack_back);
     dst->cel_count = src->cel_count;
     dst->region_count = src->region_count;
     dst->contour_count = src->contour_count;
@@ -390,17 +383,8 @@ void cs_scene_copy(cs_scene *dst, const cs_scene *src)
         copy_point(&dst->points[i], &src->points[i]);
         dst->intervals[i] = src->intervals[i];
     }
-    for (uint32_t i = 0; i < src->track_count; i++) {
-        cs_track *t = &dst->tracks[i];
-        const cs_track *u = &src->tracks[i];
-        t->target = u->target;
-        t->first_key = u->first_key;
-        t->first_value = u->first_value;
-        t->width = u->width;
-        t->key_count = u->key_count;
-        t->kind = u->kind;
-        t->ease = u->ease;
-    }
+    for (uint32_t i = 0; i < src->track_count; i++)
+        cs__copy_track(&dst->tracks[i], &src->tracks[i]);
     for (uint32_t i = 0; i < src->key_count; i++)
         dst->key_times[i] = src->key_times[i];
     for (uint32_t i = 0; i < src->value_count; i++)

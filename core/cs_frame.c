@@ -224,13 +224,6 @@ static const cs_point *sample_points(const cs_scene *scene, const cs_track *tr, 
     return out;
 }
 
-static void copy3(float *dst, const float *src)
-{
-    dst[0] = src[0];
-    dst[1] = src[1];
-    dst[2] = src[2];
-}
-
 cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                          const cs_render_opts *opts, cs_error *err)
 {
@@ -297,9 +290,9 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     }
     const float t = opts->time;
     float stack[6], bg[3];
-    copy3(stack, scene->stack_front);
-    copy3(stack + 3, scene->stack_back);
-    copy3(bg, scene->background);
+    cs__copy3(stack, scene->stack_front);
+    cs__copy3(stack + 3, scene->stack_back);
+    cs__copy3(bg, scene->background);
     const cs_track *tr = cs__track_find(scene, CS_TRACK_STACK_LIGHTS, 0);
     if (tr && tr->key_count)
         sample(scene, tr, t, stack);
@@ -320,8 +313,8 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         float m[6] = {cel->transform.a, cel->transform.b, cel->transform.c,
                       cel->transform.d, cel->transform.e, cel->transform.f};
         float lights[6];
-        copy3(lights, cel->has_front ? cel->front : stack);
-        copy3(lights + 3, cel->back);
+        cs__copy3(lights, cel->has_front ? cel->front : stack);
+        cs__copy3(lights + 3, cel->back);
         if ((tr = cs__track_find(scene, CS_TRACK_TRANSFORM, ci)) != 0 && tr->key_count)
             sample(scene, tr, t, m);
         if ((tr = cs__track_find(scene, CS_TRACK_CEL_LIGHTS, ci)) != 0 && tr->key_count)

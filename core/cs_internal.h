@@ -23,6 +23,28 @@
 static inline float cs__absf(float v) { return v < 0.0f ? -v : v; }
 static inline float cs__minf(float a, float b) { return a < b ? a : b; }
 static inline float cs__maxf(float a, float b) { return a > b ? a : b; }
+/*
+ * Field-by-field copies: a struct assignment may become a memcpy call, which
+ * the freestanding core must not make (tools/check_core_symbols.sh).
+ */
+static inline void cs__copy3(float *dst, const float *src)
+{
+    dst[0] = src[0];
+    dst[1] = src[1];
+    dst[2] = src[2];
+}
+
+static inline void cs__copy_track(cs_track *dst, const cs_track *src)
+{
+    dst->target = src->target;
+    dst->first_key = src->first_key;
+    dst->first_value = src->first_value;
+    dst->width = src->width;
+    dst->key_count = src->key_count;
+    dst->kind = src->kind;
+    dst->ease = src->ease;
+}
+
 /* Clamps v to [lo, hi]; NaN becomes lo, so no NaN reaches an integer cast. */
 static inline float cs__clampf(float v, float lo, float hi)
 {

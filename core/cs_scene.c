@@ -70,13 +70,6 @@ cs_status cs__check_point(const cs_point *p)
     return CS_OK;
 }
 
-static void copy3(float *dst, const float *src)
-{
-    dst[0] = src[0];
-    dst[1] = src[1];
-    dst[2] = src[2];
-}
-
 cs_status cs__check_canvas(float canvas_w, float canvas_h)
 {
     if (!cs__finite(canvas_w) || !cs__finite(canvas_h))
@@ -118,7 +111,7 @@ cs_status cs_scene_set_background(cs_scene *scene, const float rgb_linear[3])
     cs_status st = cs__check_colour(rgb_linear);
     if (st != CS_OK)
         return st;
-    copy3(scene->background, rgb_linear);
+    cs__copy3(scene->background, rgb_linear);
     scene->has_background = true;
     return CS_OK;
 }
@@ -130,13 +123,13 @@ cs_status cs_scene_set_lights(cs_scene *scene, const float front[3], const float
     cs_status st = cs__check_lights(front, back);
     if (st != CS_OK)
         return st;
-    copy3(scene->stack_front, front);
-    copy3(scene->stack_back, back);
+    cs__copy3(scene->stack_front, front);
+    cs__copy3(scene->stack_back, back);
     /* A cel without its own front light stores the stack's: keep it current,
      * so the store does not depend on whether lights or cels came first. */
     for (uint32_t i = 0; i < scene->cel_count; i++)
         if (!scene->cels[i].has_front)
-            copy3(scene->cels[i].front, front);
+            cs__copy3(scene->cels[i].front, front);
     return CS_OK;
 }
 
@@ -173,8 +166,8 @@ cs_status cs_scene_add_cel(cs_scene *scene, const cs_affine *transform, const fl
     c->transform.f = transform->f;
     c->has_front = front != 0;
     static const float black[3] = {0.0f, 0.0f, 0.0f};
-    copy3(c->front, front ? front : scene->stack_front);
-    copy3(c->back, back ? back : black);
+    cs__copy3(c->front, front ? front : scene->stack_front);
+    cs__copy3(c->back, back ? back : black);
     return CS_OK;
 }
 
@@ -189,8 +182,8 @@ cs_status cs__check_paint(const cs_paint *p)
 
 void cs__copy_paint(cs_paint *dst, const cs_paint *src)
 {
-    copy3(dst->pigment, src->pigment);
-    copy3(dst->medium, src->medium);
+    cs__copy3(dst->pigment, src->pigment);
+    cs__copy3(dst->medium, src->medium);
     dst->beta = src->beta;
 }
 
@@ -459,7 +452,7 @@ cs_status cs_scene_set_region_func(cs_scene *scene, cs_paint_field field, const 
     for (int i = 0; i < CS_CFG_MAX_STOPS; i++) {
         const cs_stop *s = &fn->stops[i < fn->stop_count ? i : fn->stop_count - 1];
         d->stops[i].offset = s->offset;
-        copy3(d->stops[i].value, s->value);
+        cs__copy3(d->stops[i].value, s->value);
     }
     return CS_OK;
 }
