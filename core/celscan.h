@@ -490,6 +490,7 @@ typedef struct cs_workspace {
     float region_T[CS_CFG_MAX_REGIONS][3];
     float area[CS_CFG_MAX_WIDTH + 2];     /* partial coverage of the region, per pixel */
     float cover[CS_CFG_MAX_WIDTH + 2];    /* coverage deltas, prefix-summed */
+    uint32_t touched[(CS_CFG_MAX_WIDTH + 2 + 31) / 32]; /* area/cover entries written */
     float used[CS_CFG_MAX_WIDTH];         /* coverage claimed in the cel so far */
     float cel_E[CS_CFG_MAX_WIDTH * 3];
     float cel_A[CS_CFG_MAX_WIDTH * 3];    /* 1 - T of the cel */

@@ -364,7 +364,7 @@ static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c, 
         return;
     cs_workspace *ws = cx->ws;
     if (c < 0) { /* left of the screen: all of it is to the right */
-        ws->cover[0] += sign * dy;
+        cs__acc_cover(ws, 0, sign * dy);
         touch(cx, 0, 1);
         return;
     }
@@ -375,8 +375,8 @@ static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c, 
     float fc = (float)c;
     float m = s->degree == 1 ? (0.5f * (x0 + x1) - fc) * dy : arc_moment(s, u0, u1, fc);
     m = cs__clampf(m, 0.0f, dy);
-    ws->area[c] += sign * (dy - m);
-    ws->cover[c + 1] += sign * dy;
+    cs__acc_area(ws, c, sign * (dy - m));
+    cs__acc_cover(ws, c + 1, sign * dy);
     touch(cx, c, c + 2);
 }
 
@@ -420,7 +420,7 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
     cs_workspace *ws = cx->ws;
     const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
     if (e->xmax <= 0.0f) {
-        ws->cover[0] += sign * (yb - ya);
+        cs__acc_cover(ws, 0, sign * (yb - ya));
         touch(cx, 0, 1);
         return;
     }

@@ -295,6 +295,23 @@ static inline float cs__encode(float linear)
     return cs__srgb_encode(linear);
 }
 
+/* ---- coverage accumulators of the region being scan-converted
+ *
+ * Every write to ws->area / ws->cover goes through these two, which also
+ * mark the pixel in ws->touched: the line code then visits only marked
+ * pixels (in x order) instead of scanning the region's whole x range. */
+static inline void cs__acc_area(cs_workspace *ws, int32_t x, float v)
+{
+    ws->area[x] += v;
+    ws->touched[(uint32_t)x >> 5] |= 1u << ((uint32_t)x & 31u);
+}
+
+static inline void cs__acc_cover(cs_workspace *ws, int32_t x, float v)
+{
+    ws->cover[x] += v;
+    ws->touched[(uint32_t)x >> 5] |= 1u << ((uint32_t)x & 31u);
+}
+
 /* ---- line pipeline (cs_line.c), shared with the cache builder */
 
 /* Composites line y of every live cel (and the cache) into r->stack_E and ws->stack_T. */

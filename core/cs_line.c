@@ -41,21 +41,21 @@
 #include "cs_internal.h"
 
 /* Adds span [xa, xb) with weight w to the accumulators (xa, xb in [0, W]). */
-static void add_span(float *area, float *cover, float xa, float xb, float w)
+static void add_span(cs_workspace *ws, float xa, float xb, float w)
 {
     int32_t ia = cs__floori(xa), ib = cs__floori(xb);
     if (ia == ib) {
-        area[ia] += w * (xb - xa);
+        cs__acc_area(ws, ia, w * (xb - xa));
         return;
     }
-    area[ia] += w * ((float)(ia + 1) - xa);
-    cover[ia + 1] += w;
-    cover[ib] -= w;
-    area[ib] += w * (xb - (float)ib);
+    cs__acc_area(ws, ia, w * ((float)(ia + 1) - xa));
+    cs__acc_cover(ws, ia + 1, w);
+    cs__acc_cover(ws, ib, -w);
+    cs__acc_area(ws, ib, w * (xb - (float)ib));
 }
 
 /* Pixel-centre sampling: pixels i with xa <= i + 0.5 < xb. */
-static void add_span_centres(float *cover, float xa, float xb)
+static void add_span_centres(cs_workspace *ws, float xa, float xb)
 {
     int32_t i0 = cs__floori(xa - 0.5f);
     if ((float)i0 + 0.5f < xa)
@@ -64,8 +64,8 @@ static void add_span_centres(float *cover, float xa, float xb)
     if ((float)i1 + 0.5f < xb)
         i1++;
     if (i1 > i0) {
-        cover[i0] += 1.0f;
-        cover[i1] -= 1.0f;
+        cs__acc_cover(ws, i0, 1.0f);
+        cs__acc_cover(ws, i1, -1.0f);
     }
 }
 
@@ -162,9 +162,9 @@ static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *re
         if (!inside || !(xb > xa))
             continue;
         if (centres)
-            add_span_centres(ws->cover, xa, xb);
+            add_span_centres(ws, xa, xb);
         else
-            add_span(ws->area, ws->cover, xa, xb, weight);
+            add_span(ws, xa, xb, weight);
         int32_t a = cs__floori(xa), b = cs__floori(xb) + 1;
         if (a < *lo)
             *lo = a;
