@@ -470,9 +470,7 @@ typedef struct cs_exact_piece {
 } cs_exact_piece;
 
 /*
- * Per-render scratch memory. Contents are private to the core. The emitted
- * light of the stack has no buffer here: it accumulates in the caller's
- * output line (see cs_render_line), which saves 12 bytes per pixel.
+ * Per-render scratch memory. Contents are private to the core.
  */
 typedef struct cs_workspace {
     cs_segment segments[CS_CFG_MAX_SEGMENTS];
@@ -491,22 +489,20 @@ typedef struct cs_workspace {
     float area[CS_CFG_MAX_WIDTH + 2];     /* partial coverage of the region, per pixel */
     float cover[CS_CFG_MAX_WIDTH + 2];    /* coverage deltas, prefix-summed */
     uint32_t touched[(CS_CFG_MAX_WIDTH + 2 + 31) / 32]; /* area/cover entries written */
+    /* The line as runs (cs_runs.h): run_end and the values below are read
+     * at run starts only, which run_starts marks. */
+    uint32_t run_starts[(CS_CFG_MAX_WIDTH + 32) / 32];
+    uint16_t run_end[CS_CFG_MAX_WIDTH + 1]; /* x fits 16 bits: see below */
     float used[CS_CFG_MAX_WIDTH];         /* coverage claimed in the cel so far */
     float cel_E[CS_CFG_MAX_WIDTH * 3];
     float cel_A[CS_CFG_MAX_WIDTH * 3];    /* 1 - T of the cel */
+    float stack_E[CS_CFG_MAX_WIDTH * 3];  /* the stack: emitted light, then the pixel */
     float stack_T[CS_CFG_MAX_WIDTH * 3];
-#if CS_CFG_CACHE
-    float cache_E[CS_CFG_MAX_WIDTH * 3];  /* the stack's E while building a cache */
-#endif
-    /* Opaque record of the line: opaque_next[x] == x while the stack still
-     * transmits at x; once T is 0 on every channel it points further right
-     * (a union-find "next clear pixel" with path compression). */
-    uint16_t opaque_next[CS_CFG_MAX_WIDTH + 1]; /* x fits 16 bits: see below */
     float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
     cs_point anim_points[CS_CFG_MAX_ANIM_POINTS]; /* one animated contour at frame time */
 } cs_workspace;
 
-/* Pixel positions are kept in 16 bits (opaque_next). */
+/* Pixel positions are kept in 16 bits (run_end). */
 typedef char cs__width_fits_[CS_CFG_MAX_WIDTH < 65535 ? 1 : -1];
 
 /* Indices must be able to count every piece and segment. */
@@ -544,7 +540,8 @@ typedef struct cs_renderer {
     cs_error sticky;     /* first capacity error met while rendering lines */
     uint32_t cel_begin, cel_end;  /* cels rendered live: [begin, end) minus the cache's */
     const cs_cache *cache;        /* pre-combined cels composited in their place, or NULL */
-    float *stack_E;               /* the stack's emitted light: the line being rendered */
+    uint32_t opaque_px;           /* pixels of the line whose stack is opaque */
+    bool record;                  /* the early-out is on: opaque runs are skipped */
 } cs_renderer;
 
 /*
@@ -641,6 +638,29 @@ void cs_pixfmt_convert(cs_pixfmt fmt, const float *rgb_linear, int width, uint8_
  */
 void cs_pixfmt_convert_dither(cs_pixfmt fmt, const float *rgb_linear, int width, int y,
                               uint8_t *out);
+
+/*
+ * Renders line y into the renderer's own run list, without writing pixels:
+ * the line is then read with cs_line_pixels or cs_line_run until the next
+ * line is rendered. Same ordering rules and errors as cs_render_line, which
+ * is this followed by expanding the runs into floats.
+ */
+cs_status cs_render_line_runs(cs_renderer *r, int y);
+
+/* The rendered line in pixel format `fmt` (width * bytes-per-pixel bytes
+ * of `out`): the bytes cs_pixfmt_convert would make of cs_render_line's
+ * floats, converted once per run of equal pixels. */
+void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out);
+
+/* cs_render_line_runs, then cs_line_pixels. */
+cs_status cs_render_line_px(cs_renderer *r, int y, cs_pixfmt fmt, uint8_t *out);
+
+/*
+ * The run of the rendered line that starts at pixel x: its colour (linear
+ * light) in rgb_linear, and the pixel after it as the return value. Runs
+ * are walked from x = 0 to the width: for (x = 0; x < w; x = next) ...
+ */
+int cs_line_run(const cs_renderer *r, int x, float rgb_linear[3]);
 
 /* sRGB encoding of one linear value in 0..1, as a 16-bit code (0..65535). */
 uint16_t cs_srgb_encode16(float linear);

@@ -22,7 +22,7 @@
  *   uint32_t line_first[height + 1]   index of each line's first run
  *   cs_cache_run runs[]               in line order, x increasing
  */
-#include "cs_internal.h"
+#include "cs_runs.h"
 
 #if CS_CFG_CACHE
 static bool same_map(const cs_cache_run *run, const float *E, const float *T)
@@ -68,7 +68,6 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
     cs_status st = cs__frame_prepare(&r, ws, scene, opts, cel_first, cel_first + cel_count, 0, err);
     if (st != CS_OK)
         return st;
-    r.stack_E = ws->cache_E; /* cs_render_line would use the caller's line */
 
     /* Carve the buffer: the line index first, then the runs. */
     uintptr_t base = (uintptr_t)buffer;
@@ -90,15 +89,19 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
         if (line_first)
             line_first[y] = (uint32_t)count;
         /* The open run is built here and stored when it closes, so that the
-         * count (and bytes_needed) is exact even when nothing fits. */
+         * count (and bytes_needed) is exact even when nothing fits. The
+         * line's own runs may split pixels of one map; they are joined. */
         cs_cache_run cur;
         bool open = false;
-        for (int x = 0; x <= width; x++) {
-            const float *E = &ws->cache_E[3 * x], *T = &ws->stack_T[3 * x];
-            bool clear = x == width || (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f &&
-                                        T[0] == 1.0f && T[1] == 1.0f && T[2] == 1.0f);
+        for (uint32_t x = 0; x <= (uint32_t)width;) {
+            uint32_t end = x < (uint32_t)width ? ws->run_end[x] : x + 1u;
+            const float *E = &ws->stack_E[3 * x], *T = &ws->stack_T[3 * x];
+            bool clear = x == (uint32_t)width ||
+                         (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f && T[0] == 1.0f &&
+                          T[1] == 1.0f && T[2] == 1.0f);
             if (open && !clear && same_map(&cur, E, T)) {
-                cur.len++;
+                cur.len = (uint16_t)(cur.len + (end - x));
+                x = end;
                 continue;
             }
             if (open) {
@@ -114,15 +117,16 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
                 count++;
                 open = false;
             }
-            if (clear)
-                continue; /* the gap between runs says so */
-            open = true;
-            cur.x = (uint16_t)x;
-            cur.len = 1;
-            for (int ch = 0; ch < 3; ch++) {
-                cur.E[ch] = E[ch];
-                cur.T[ch] = T[ch];
+            if (!clear) {
+                open = true;
+                cur.x = (uint16_t)x;
+                cur.len = (uint16_t)(end - x);
+                for (int ch = 0; ch < 3; ch++) {
+                    cur.E[ch] = E[ch];
+                    cur.T[ch] = T[ch];
+                }
             }
+            x = end;
         }
     }
     if (line_first)
@@ -148,42 +152,47 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
 #endif
 }
 
-void cs__cache_composite(const cs_cache *cache, cs_workspace *ws, float *stack_E, int y,
-                         bool record)
+void cs__cache_composite(cs_renderer *r, int y)
 {
-    uint16_t *next = ws->opaque_next;
-    float *stack_T = ws->stack_T;
+    const cs_cache *cache = r->cache;
+    cs_workspace *ws = r->ws;
+    uint32_t s = 0; /* a run start left of the cached run */
     for (uint32_t k = cache->line_first[y]; k < cache->line_first[y + 1]; k++) {
         const cs_cache_run *run = &cache->runs[k];
-        uint32_t end = (uint32_t)run->x + run->len;
+        uint32_t a = run->x, b = (uint32_t)run->x + run->len;
         float E0 = run->E[0], E1 = run->E[1], E2 = run->E[2];
         float T0 = run->T[0], T1 = run->T[1], T2 = run->T[2];
-        /* An opaque run leaves T = 0 behind it (finite T times 0), so its
-         * pixels join the record without a test. */
+        /* An opaque run leaves T = 0 behind it (finite T times 0). */
         bool opaque = T0 == 0.0f && T1 == 0.0f && T2 == 0.0f;
-        /* Pixels of the run in order; an opaque stretch of the record is
-         * jumped in one step (the record only grows behind x here). */
-        for (uint32_t x = run->x; x < end; x++) {
-            if (next[x] != x) {
-                x = cs__clear_from(next, x);
-                if (x >= end)
-                    break;
+        s = cs__run_seek(ws, s, a);
+        for (;;) {
+            uint32_t e = ws->run_end[s];
+            if (!cs__run_opaque(r, s)) {
+                if (s < a) {
+                    cs__run_split(ws, s, a);
+                    s = a;
+                }
+                if (e > b) {
+                    cs__run_split(ws, s, b);
+                    e = b;
+                }
+                float *se = &ws->stack_E[3 * s], *st = &ws->stack_T[3 * s];
+                se[0] += st[0] * E0;
+                se[1] += st[1] * E1;
+                se[2] += st[2] * E2;
+                if (opaque) {
+                    st[0] = st[1] = st[2] = 0.0f;
+                } else {
+                    st[0] *= T0;
+                    st[1] *= T1;
+                    st[2] *= T2;
+                }
+                if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
+                    r->opaque_px += e - s;
             }
-            float *se = &stack_E[3 * x], *st = &stack_T[3 * x];
-            se[0] += st[0] * E0;
-            se[1] += st[1] * E1;
-            se[2] += st[2] * E2;
-            if (opaque) {
-                st[0] = st[1] = st[2] = 0.0f;
-                if (record)
-                    next[x] = (uint16_t)(x + 1);
-                continue;
-            }
-            st[0] *= T0;
-            st[1] *= T1;
-            st[2] *= T2;
-            if (record && ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f)))
-                next[x] = (uint16_t)(x + 1);
+            if (e >= b)
+                break;
+            s = e;
         }
     }
 }

@@ -280,14 +280,12 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         return CS_ERR_RANGE;
     }
     /* The line code clears what it touches; start from a clean slate in case
-     * an earlier frame was abandoned part way through a line. */
+     * an earlier frame was abandoned part way through a line. The runs are
+     * set up afresh by every line. */
     for (int x = 0; x < opts->width + 2; x++)
         ws->area[x] = ws->cover[x] = 0.0f;
-    for (int x = 0; x < opts->width; x++) {
-        ws->used[x] = 0.0f;
-        for (int ch = 0; ch < 3; ch++)
-            ws->cel_E[3 * x + ch] = ws->cel_A[3 * x + ch] = 0.0f;
-    }
+    for (uint32_t w = 0; w < sizeof ws->touched / sizeof ws->touched[0]; w++)
+        ws->touched[w] = 0u;
     const float t = opts->time;
     float stack[6], bg[3];
     cs__copy3(stack, scene->stack_front);

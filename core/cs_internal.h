@@ -262,20 +262,6 @@ static inline float cs__srgb_encode(float linear)
  */
 #define CS__T_ZERO (1.0f / 1048576.0f)
 
-/* First pixel at or right of x whose stack still transmits (width if none). */
-static inline uint32_t cs__clear_from(uint16_t *next, uint32_t x)
-{
-    uint32_t root = x;
-    while (next[root] != root)
-        root = next[root];
-    while (next[x] != root) { /* path compression: later queries are O(1) */
-        uint32_t n = next[x];
-        next[x] = (uint16_t)root;
-        x = n;
-    }
-    return root;
-}
-
 /* ---- functional paints (cs_paint.c) */
 
 /*
@@ -314,7 +300,8 @@ static inline void cs__acc_cover(cs_workspace *ws, int32_t x, float v)
 
 /* ---- line pipeline (cs_line.c), shared with the cache builder */
 
-/* Composites line y of every live cel (and the cache) into r->stack_E and ws->stack_T. */
+/* Composites line y of every live cel (and the cache) into the line's runs
+ * (ws->stack_E, ws->stack_T at run starts; see cs_runs.h). */
 void cs__line_stack(cs_renderer *r, int y);
 
 /* Prepares the frame for cels [cel_begin, cel_end), skipping `cache`'s range. */
@@ -323,8 +310,11 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                             const cs_cache *cache, cs_error *err);
 
 /* Composites the cached runs of line y into the stack (cs_cache.c). */
-void cs__cache_composite(const cs_cache *cache, cs_workspace *ws, float *stack_E, int y,
-                         bool record);
+void cs__cache_composite(cs_renderer *r, int y);
+
+/* Writes pixels [x0, x1) of `out`, all of linear colour rgb, in `fmt`: the
+ * bytes cs_pixfmt_convert makes of them, converted once (cs_pixfmt.c). */
+void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1, uint8_t *out);
 
 
 /*

@@ -38,7 +38,7 @@
  * line stops when every pixel is opaque. A pre-combined cel range (the
  * cache) is composited from its runs at its place in the stack.
  */
-#include "cs_internal.h"
+#include "cs_runs.h"
 
 /* Adds span [xa, xb) with weight w to the accumulators (xa, xb in [0, W]). */
 static void add_span(cs_workspace *ws, float xa, float xb, float w)
@@ -270,89 +270,137 @@ static void paint_at(const cs_renderer *r, const cs_region *region, const float 
     }
 }
 
+/* What a region adds to the runs: its paint, or how to evaluate it. */
+typedef struct fold_paint {
+    const cs_renderer *r;
+    const cs_region *region;
+    const cs_cel *cel;
+    const float *front;
+    float E[3], A[3]; /* the constant map (c = 1) when not functional */
+    float py;         /* pixel-centre y, for functional paints */
+    bool functional;
+} fold_paint;
+
+/* Adds coverage c of paint (E, A) to the cel at the run starting at s,
+ * within what the regions in front of it left (`used`). */
+static inline void accumulate(cs_workspace *ws, uint32_t s, float c, const float *E, const float *A)
+{
+    float room = 1.0f - ws->used[s];
+    if (c > room)
+        c = room;
+    if (!(c > 0.0f))
+        return;
+    ws->used[s] += c;
+    float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
+    for (int ch = 0; ch < 3; ch++) {
+        ce[ch] += c * E[ch];
+        ca[ch] += c * A[ch];
+    }
+}
+
 /*
- * Folds the region's coverage over [lo, hi) into the cel accumulators and
- * clears the coverage accumulators behind it. Pixels where the stack is
- * already opaque are cleared but not accumulated: nothing there can show.
+ * Folds coverage c over pixels [a, b) into the runs, splitting them at a
+ * and b; opaque runs are passed over whole. `s` is a run start at or left
+ * of a; returns the start of the last run visited (at or left of b - 1),
+ * from which the region's next coverage run, further right, is sought.
+ */
+static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uint32_t a,
+                         uint32_t b, float c)
+{
+    s = cs__run_seek(ws, s, a);
+    for (;;) {
+        uint32_t e = ws->run_end[s];
+        if (!cs__run_opaque(fp->r, s)) {
+            if (s < a) {
+                cs__run_split(ws, s, a);
+                s = a;
+            }
+            if (e > b) {
+                cs__run_split(ws, s, b);
+                e = b;
+            }
+            if (!fp->functional) {
+                accumulate(ws, s, c, fp->E, fp->A);
+            } else {
+                /* The paint varies along x: a run per pixel. */
+                for (uint32_t x = s;; x++) {
+                    if (x + 1u < e)
+                        cs__run_split(ws, x, x + 1u);
+                    float E[3], A[3];
+                    paint_at(fp->r, fp->region, fp->front, fp->cel->back, (float)x + 0.5f,
+                             fp->py, E, A);
+                    accumulate(ws, x, c, E, A);
+                    if (x + 1u >= e)
+                        break;
+                }
+            }
+        }
+        if (e >= b)
+            return s;
+        s = e;
+    }
+}
+
+/*
+ * Folds the region's coverage into the cel's share of the runs and clears
+ * the coverage accumulators behind it. Only the accumulator entries the
+ * region wrote (ws->touched) are visited, in x order: pixel x gets
+ * clamp(area[x] + running cover), and the pixels up to the next entry
+ * share clamp(running cover), so they are folded as one run. The sums are
+ * those a pass over every pixel of [lo, hi) makes, in the same order.
  */
 static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi)
 {
     cs_workspace *ws = r->ws;
-    const cs_region *region = &r->scene->regions[reg];
-    uint16_t *next = ws->opaque_next;
-    bool functional = (region->func[0] | region->func[1] | region->func[2]) != 0;
-    const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];
-    const float *front = cel->has_front ? cel->front : r->scene->stack_front;
+    fold_paint fp;
+    fp.r = r;
+    fp.region = &r->scene->regions[reg];
+    fp.cel = &r->scene->cels[ws->region_cel[reg]];
+    fp.front = fp.cel->has_front ? fp.cel->front : r->scene->stack_front;
+    fp.functional = (fp.region->func[0] | fp.region->func[1] | fp.region->func[2]) != 0;
     const float *E = ws->region_E[reg], *T = ws->region_T[reg];
-    float A[3] = {1.0f - T[0], 1.0f - T[1], 1.0f - T[2]};
-    float fE[3], fA[3];
-    float py = (float)y + 0.5f;
+    for (int ch = 0; ch < 3; ch++) {
+        fp.E[ch] = E[ch];
+        fp.A[ch] = 1.0f - T[ch];
+    }
+    fp.py = (float)y + 0.5f;
+    uint32_t width = (uint32_t)r->opts.width;
+    uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
+    uint32_t cursor = 0;
     float run = 0.0f;
-    /* Opaque constant paint (T exactly 0): see the solid run below. */
-    bool solid = !functional && T[0] == 0.0f && T[1] == 0.0f && T[2] == 0.0f;
-    bool record = !r->opts.no_early_out;
-    float *stack_E = r->stack_E, *stack_T = ws->stack_T;
-    for (int32_t x = lo; x < hi; x++) {
-        /* Between a region's spans nothing was accumulated and the running
-         * cover is zero: such a pixel would get c = 0, so skip it cheaply
-         * (a hairline's region spans the line but touches a few pixels). */
-        if (run == 0.0f && ws->cover[x] == 0.0f && ws->area[x] == 0.0f)
-            continue;
-        run += ws->cover[x];
-        float c = cs__clampf(ws->area[x] + run, 0.0f, 1.0f);
-        ws->area[x] = 0.0f;
-        ws->cover[x] = 0.0f;
-        if (next[x] != (uint32_t)x)
-            continue;
-        float room = 1.0f - ws->used[x];
-        if (c > room)
-            c = room;
-        if (!(c > 0.0f))
-            continue;
-        if (solid && c == 1.0f && ws->used[x] == 0.0f) {
-            /* The whole pixel, untouched by the cel so far: the cel's map here
-             * is exactly (E, 0) whatever lies behind in the cel, so it joins
-             * the stack now (E_s += T_s E, T_s = 0), as composite_cel would
-             * do bit for bit. used = 1 hides the regions behind; the record
-             * tells composite_cel that the pixel is done (without the record
-             * it composites the zero map left in cel_E/cel_A: no change). */
-            for (;;) {
-                float *se = &stack_E[3 * x], *st = &stack_T[3 * x];
-                se[0] += st[0] * E[0];
-                se[1] += st[1] * E[1];
-                se[2] += st[2] * E[2];
-                st[0] = st[1] = st[2] = 0.0f;
-                ws->used[x] = 1.0f;
-                if (record)
-                    next[x] = (uint16_t)(x + 1);
-                /* The run goes on while nothing new was accumulated and the
-                 * running cover alone is full (then c = clamp(0 + run) = 1;
-                 * a pixel can be full through its own area with run < 1),
-                 * and the next pixel is as untouched. */
-                int32_t n = x + 1;
-                if (!(n < hi && run >= 1.0f && ws->cover[n] == 0.0f && ws->area[n] == 0.0f &&
-                      next[n] == (uint32_t)n && ws->used[n] == 0.0f))
-                    break;
-                x = n;
+    uint32_t gap = 0; /* pixels from `gap` on share clamp(run) until the next entry */
+    bool first = true;
+    for (uint32_t w = (uint32_t)lo >> 5; w <= width >> 5 && w <= (end + 1u) >> 5; w++) {
+        uint32_t bits = ws->touched[w];
+        ws->touched[w] = 0u;
+        while (bits) {
+            uint32_t x = (w << 5) + cs__low_bit(bits);
+            bits &= bits - 1u;
+            float cv = ws->cover[x], ar = ws->area[x];
+            ws->cover[x] = ws->area[x] = 0.0f;
+            if (x >= end)
+                continue; /* deltas past the right end sum to zero */
+            if (first) {
+                cursor = cs__run_start(ws, x);
+                first = false;
+            } else if (gap < x) {
+                float cg = cs__clampf(run, 0.0f, 1.0f);
+                if (cg > 0.0f)
+                    cursor = fold_run(ws, &fp, cursor, gap, x, cg);
             }
-            continue;
-        }
-        ws->used[x] += c;
-        const float *e = E, *a = A;
-        if (functional) {
-            paint_at(r, region, front, cel->back, (float)x + 0.5f, py, fE, fA);
-            e = fE;
-            a = fA;
-        }
-        float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
-        for (int ch = 0; ch < 3; ch++) {
-            ce[ch] += c * e[ch];
-            ca[ch] += c * a[ch];
+            run += cv;
+            float c = cs__clampf(ar + run, 0.0f, 1.0f);
+            if (c > 0.0f)
+                cursor = fold_run(ws, &fp, cursor, x, x + 1u, c);
+            gap = x + 1u;
         }
     }
-    /* Deltas at and just past the right end may remain; they sum to zero. */
-    ws->area[hi] = ws->cover[hi] = 0.0f;
-    ws->area[hi + 1] = ws->cover[hi + 1] = 0.0f;
+    /* Rounding may leave the running cover a hair from zero up to hi. */
+    if (!first && gap < end) {
+        float cg = cs__clampf(run, 0.0f, 1.0f);
+        if (cg > 0.0f)
+            fold_run(ws, &fp, cursor, gap, end, cg);
+    }
 }
 
 /*
@@ -363,6 +411,8 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
  */
 static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
 {
+    if (!r->record || r->opaque_px == 0u)
+        return false;
     cs_workspace *ws = r->ws;
     float lo = (float)r->opts.width, hi = 0.0f;
     for (uint32_t i = 0; i < n; i++) {
@@ -375,17 +425,20 @@ static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
         a = 0;
     if (b > r->opts.width)
         b = r->opts.width;
-    return a >= b || cs__clear_from(ws->opaque_next, (uint32_t)a) >= (uint32_t)b;
+    if (a >= b)
+        return true;
+    for (uint32_t s = cs__run_start(ws, (uint32_t)a); s < (uint32_t)b; s = ws->run_end[s])
+        if (!cs__run_opaque(r, s))
+            return false;
+    return true;
 }
 
 /*
  * Whether the region can make a pixel of its cel opaque on its own: T = 0
  * on every channel (or a functional medium or beta that may reach it).
  * The cel's T at a pixel is 1 - sum c_i (1 - T_i) with sum c_i <= 1, so it
- * can only vanish where such regions cover it. Cels without one need
- * neither the snapping of T nor the opaque record (stacks that become
- * opaque only through several translucent cels are simply not recorded:
- * that forgoes a skip, never changes a pixel).
+ * can only vanish where such regions cover it. Only such cels snap T to 0
+ * (below CS__T_ZERO), so that a stack covered by them turns opaque.
  */
 static bool region_may_hide(const cs_renderer *r, uint32_t reg)
 {
@@ -396,49 +449,38 @@ static bool region_may_hide(const cs_renderer *r, uint32_t reg)
 }
 
 /*
- * Composites the accumulated cel behind the stack and clears it. Only pixels
- * the cel covers (used[x] > 0) change the stack: elsewhere E_cel = 0 and
- * T_cel = 1, which leave E and T as they are, so they are skipped. Pixels in
- * the opaque record have no coverage (fold_region does not accumulate there)
- * except those fold_region composited itself (solid runs), which only need
- * their claim cleared. If the cel may hide (`snap`), T is
- * snapped to 0 below CS__T_ZERO; with `record` as well, pixels whose stack
- * T reaches 0 on every channel join the record, so no later cel visits
- * them. Snapping depends on the cel alone, never on `record`, so turning
- * the early-out off changes no bit of the result.
+ * Composites the runs of [lo, hi) that the cel covers (used > 0) behind
+ * the stack and clears the cel's share of them. Elsewhere the cel's map is
+ * (0, 1), which leaves the stack as it is. If the cel may hide (`snap`), T
+ * is snapped to 0 below CS__T_ZERO. Snapping depends on the cel alone,
+ * never on the early-out, so turning the early-out off changes no bit.
  */
-static void composite_cel(cs_workspace *ws, float *stack_E, int32_t lo, int32_t hi, bool snap,
-                          bool record)
+static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
 {
-    uint16_t *next = ws->opaque_next;
-    const float *used = ws->used;
-    for (uint32_t x = (uint32_t)lo; x < (uint32_t)hi; x++) {
-        if (used[x] == 0.0f)
+    cs_workspace *ws = r->ws;
+    for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s]) {
+        if (ws->used[s] == 0.0f)
             continue;
-        if (next[x] != x) { /* a solid pixel fold_region composited already */
-            ws->used[x] = 0.0f;
-            continue;
-        }
-        float *ce = &ws->cel_E[3 * x], *ca = &ws->cel_A[3 * x];
-        float *se = &stack_E[3 * x], *st = &ws->stack_T[3 * x];
+        float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
+        float *se = &ws->stack_E[3 * s], *st = &ws->stack_T[3 * s];
         float t0 = 1.0f - ca[0], t1 = 1.0f - ca[1], t2 = 1.0f - ca[2];
         se[0] += st[0] * ce[0];
         se[1] += st[1] * ce[1];
         se[2] += st[2] * ce[2];
         ce[0] = ce[1] = ce[2] = 0.0f;
         ca[0] = ca[1] = ca[2] = 0.0f;
-        ws->used[x] = 0.0f;
+        ws->used[s] = 0.0f;
         if (!snap) {
             st[0] *= t0;
             st[1] *= t1;
             st[2] *= t2;
-            continue;
+        } else {
+            st[0] *= t0 < CS__T_ZERO ? 0.0f : t0;
+            st[1] *= t1 < CS__T_ZERO ? 0.0f : t1;
+            st[2] *= t2 < CS__T_ZERO ? 0.0f : t2;
         }
-        st[0] *= t0 < CS__T_ZERO ? 0.0f : t0;
-        st[1] *= t1 < CS__T_ZERO ? 0.0f : t1;
-        st[2] *= t2 < CS__T_ZERO ? 0.0f : t2;
-        if (record && ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f)))
-            next[x] = (uint16_t)(x + 1);
+        if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
+            r->opaque_px += ws->run_end[s] - s;
     }
 }
 
@@ -545,27 +587,31 @@ static void ranges_add(cel_ranges *s, int32_t lo, int32_t hi)
     s->n = n;
 }
 
-static void composite_ranges(cs_workspace *ws, float *stack_E, cel_ranges *s, bool snap,
-                             bool record)
+static void composite_ranges(cs_renderer *r, cel_ranges *s, bool snap)
 {
     for (uint32_t k = 0; k < s->n; k++)
-        composite_cel(ws, stack_E, s->lo[k], s->hi[k], snap, record);
+        composite_cel(r, (uint32_t)s->lo[k], (uint32_t)s->hi[k], snap);
     s->n = 0;
 }
 
 void cs__line_stack(cs_renderer *r, int y)
 {
     cs_workspace *ws = r->ws;
-    int width = r->opts.width;
+    uint32_t width = (uint32_t)r->opts.width;
     update_active(r, y);
-    for (int i = 0; i < 3 * width; i++) {
-        r->stack_E[i] = 0.0f;
-        ws->stack_T[i] = 1.0f;
+    /* One clear run: E = 0, T = 1, nothing of a cel. */
+    for (uint32_t w = 0; w <= width >> 5; w++)
+        ws->run_starts[w] = 0u;
+    ws->run_starts[0] = 1u;
+    ws->run_end[0] = (uint16_t)width;
+    ws->used[0] = 0.0f;
+    for (int ch = 0; ch < 3; ch++) {
+        ws->stack_E[ch] = ws->cel_E[ch] = ws->cel_A[ch] = 0.0f;
+        ws->stack_T[ch] = 1.0f;
     }
-    for (int x = 0; x <= width; x++)
-        ws->opaque_next[x] = (uint16_t)x;
+    r->opaque_px = 0;
     /* Without the record nothing is ever opaque, so nothing is skipped. */
-    bool record = !r->opts.no_early_out;
+    r->record = !r->opts.no_early_out;
     uint32_t cache_end = r->cache ? r->cache->cel_first + r->cache->cel_count : 0;
     bool cache_pending = r->cache != 0;
     uint32_t i = 0;
@@ -580,15 +626,15 @@ void cs__line_stack(cs_renderer *r, int y)
             j++;
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel) {
-            composite_ranges(ws, r->stack_E, &ranges, cel_hides, record);
+            composite_ranges(r, &ranges, cel_hides);
             cel_hides = false;
             if (cache_pending && cel >= cache_end) {
-                cs__cache_composite(r->cache, ws, r->stack_E, y, record);
+                cs__cache_composite(r, y);
                 cache_pending = false;
             }
             current_cel = cel;
             /* Front to back: once the whole line is opaque nothing behind shows. */
-            if (cs__clear_from(ws->opaque_next, 0) >= (uint32_t)width)
+            if (r->record && r->opaque_px >= width)
                 break;
         }
         if (!region_hidden(r, &ws->active[i], j - i)) {
@@ -602,32 +648,102 @@ void cs__line_stack(cs_renderer *r, int y)
         }
         i = j;
     }
-    composite_ranges(ws, r->stack_E, &ranges, cel_hides, record);
+    composite_ranges(r, &ranges, cel_hides);
     if (cache_pending)
-        cs__cache_composite(r->cache, ws, r->stack_E, y, record);
+        cs__cache_composite(r, y);
+}
+
+/*
+ * Turns the stack of each run into its pixel, E + T L clamped to [0, 1]
+ * (decoded to linear light under sRGB blending), in place in stack_E, and
+ * joins neighbouring runs whose pixels came out equal.
+ */
+static void finish_line(cs_renderer *r)
+{
+    cs_workspace *ws = r->ws;
+    uint32_t width = (uint32_t)r->opts.width;
+    float L0 = r->behind[0], L1 = r->behind[1], L2 = r->behind[2];
+    bool srgb = r->opts.blend == CS_BLEND_SRGB;
+    uint32_t prev = UINT32_MAX;
+    for (uint32_t s = 0; s < width;) {
+        float *E = &ws->stack_E[3 * s];
+        const float *T = &ws->stack_T[3 * s];
+        E[0] = cs__clampf(E[0] + T[0] * L0, 0.0f, 1.0f);
+        E[1] = cs__clampf(E[1] + T[1] * L1, 0.0f, 1.0f);
+        E[2] = cs__clampf(E[2] + T[2] * L2, 0.0f, 1.0f);
+        /* sRGB blending composited encoded values; hand back linear light. */
+        if (srgb)
+            for (int ch = 0; ch < 3; ch++)
+                E[ch] = cs_srgb_decode(E[ch]);
+        uint32_t e = ws->run_end[s];
+        if (prev != UINT32_MAX) {
+            const float *P = &ws->stack_E[3 * prev];
+            if (P[0] == E[0] && P[1] == E[1] && P[2] == E[2]) {
+                ws->run_end[prev] = (uint16_t)e; /* same pixels: one run */
+                s = e;
+                continue;
+            }
+        }
+        prev = s;
+        s = e;
+    }
+}
+
+cs_status cs_render_line_runs(cs_renderer *r, int y)
+{
+    if (!r || !r->ws || y < 0 || y >= r->opts.height)
+        return CS_ERR_ARG;
+    cs__line_stack(r, y);
+    finish_line(r);
+    return CS_OK;
+}
+
+int cs_line_run(const cs_renderer *r, int x, float rgb_linear[3])
+{
+    const cs_workspace *ws = r->ws;
+    for (int ch = 0; ch < 3; ch++)
+        rgb_linear[ch] = ws->stack_E[3 * x + ch];
+    return ws->run_end[x];
+}
+
+void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out)
+{
+    const cs_workspace *ws = r->ws;
+    uint32_t width = (uint32_t)r->opts.width;
+    for (uint32_t s = 0; s < width; s = ws->run_end[s])
+        cs__pixfmt_fill(fmt, &ws->stack_E[3 * s], s, ws->run_end[s], out);
 }
 
 cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
 {
-    if (!r || !r->ws || !rgb_linear || y < 0 || y >= r->opts.height)
+    if (!rgb_linear)
         return CS_ERR_ARG;
-    /* The stack's emitted light accumulates in the caller's line, which then
-     * becomes the pixel in place: one line buffer less in the workspace. */
-    r->stack_E = rgb_linear;
-    cs__line_stack(r, y);
-    float L0 = r->behind[0], L1 = r->behind[1], L2 = r->behind[2];
-    const float *E = rgb_linear, *T = r->ws->stack_T;
-    int n = 3 * r->opts.width;
-    for (int i = 0; i < n; i += 3) {
-        rgb_linear[i] = cs__clampf(E[i] + T[i] * L0, 0.0f, 1.0f);
-        rgb_linear[i + 1] = cs__clampf(E[i + 1] + T[i + 1] * L1, 0.0f, 1.0f);
-        rgb_linear[i + 2] = cs__clampf(E[i + 2] + T[i + 2] * L2, 0.0f, 1.0f);
+    cs_status st = cs_render_line_runs(r, y);
+    if (st != CS_OK)
+        return st;
+    const cs_workspace *ws = r->ws;
+    uint32_t width = (uint32_t)r->opts.width;
+    for (uint32_t s = 0; s < width;) {
+        uint32_t e = ws->run_end[s];
+        float c0 = ws->stack_E[3 * s], c1 = ws->stack_E[3 * s + 1], c2 = ws->stack_E[3 * s + 2];
+        for (uint32_t x = s; x < e; x++) {
+            rgb_linear[3 * x] = c0;
+            rgb_linear[3 * x + 1] = c1;
+            rgb_linear[3 * x + 2] = c2;
+        }
+        s = e;
     }
-    /* sRGB blending composited encoded values; hand back linear light. */
-    if (r->opts.blend == CS_BLEND_SRGB)
-        for (int i = 0; i < n; i++)
-            rgb_linear[i] = cs_srgb_decode(rgb_linear[i]);
     return CS_OK;
+}
+
+cs_status cs_render_line_px(cs_renderer *r, int y, cs_pixfmt fmt, uint8_t *out)
+{
+    if (!out)
+        return CS_ERR_ARG;
+    cs_status st = cs_render_line_runs(r, y);
+    if (st == CS_OK)
+        cs_line_pixels(r, fmt, out);
+    return st;
 }
 
 cs_error cs_frame_error(const cs_renderer *r)

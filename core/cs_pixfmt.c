@@ -191,3 +191,22 @@ void cs_pixfmt_convert_dither(cs_pixfmt fmt, const float *rgb, int width, int y,
 {
     convert(fmt, rgb, width, y < 0 ? 0 : y, out);
 }
+
+void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1, uint8_t *out)
+{
+    uint8_t one[6];
+    convert(fmt, rgb, 1, -1, one);
+    size_t bpp = cs_pixfmt_bytes_per_pixel(fmt);
+    uint8_t *p = out + (size_t)x0 * bpp;
+    if (bpp == 3) {
+        for (uint32_t x = x0; x < x1; x++, p += 3) {
+            p[0] = one[0];
+            p[1] = one[1];
+            p[2] = one[2];
+        }
+        return;
+    }
+    for (uint32_t x = x0; x < x1; x++)
+        for (size_t k = 0; k < bpp; k++)
+            *p++ = one[k];
+}

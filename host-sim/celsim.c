@@ -343,7 +343,6 @@ typedef struct sim_state {
     cs_scene *scene;
     cs_workspace *ws;
     uint8_t *image;
-    float *line;
     uint8_t *bytes;
     uint8_t *panel;
     double *times;
@@ -354,7 +353,6 @@ static void free_state(sim_state *s)
     free(s->scene);
     free(s->ws);
     free(s->image);
-    free(s->line);
     free(s->bytes);
     free(s->panel);
     free(s->times);
@@ -396,13 +394,12 @@ static int render(const options *o, sim_state *s)
     size_t image_bytes = sim_display_image_bytes(&cfg);
     size_t line_bytes = image_bytes / (size_t)ro.height;
     s->image = malloc(image_bytes);
-    s->line = malloc((size_t)ro.width * 3 * sizeof *s->line);
     s->bytes = malloc(line_bytes);
     if (o->crc)
         s->panel = malloc((size_t)ro.width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT));
     int runs = o->repeat > 0 ? o->repeat : 1;
     s->times = malloc((size_t)runs * sizeof *s->times);
-    if (!s->image || !s->line || !s->bytes || (o->crc && !s->panel) || !s->times) {
+    if (!s->image || !s->bytes || (o->crc && !s->panel) || !s->times) {
         fprintf(stderr, "celsim: out of memory for a %dx%d frame\n", ro.width, ro.height);
         return EXIT_LOAD;
     }
@@ -411,7 +408,7 @@ static int render(const options *o, sim_state *s)
         return EXIT_LOAD;
     }
 
-    frame_drive d = {.dev = &dev, .line = s->line, .bytes = s->bytes, .panel = NULL};
+    frame_drive d = {.dev = &dev, .bytes = s->bytes, .panel = NULL};
     cs_renderer r;
     int rc = FRAME_DRIVE_OK;
     uint32_t crc = 0;

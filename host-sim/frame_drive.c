@@ -8,14 +8,14 @@
 
 #include "frame_drive.h"
 
-static cs_status drive_line(void *user, int y, const float *rgb_linear, int width)
+/* Line y, already rendered into the renderer's runs, to the display. */
+static cs_status drive_line(frame_drive *d, const cs_renderer *r, int y)
 {
-    frame_drive *d = user;
-    cs_pixfmt_convert(d->geo.pixfmt, rgb_linear, width, d->bytes);
+    cs_line_pixels(r, d->geo.pixfmt, d->bytes);
     if (d->panel != NULL) {
-        cs_pixfmt_convert(CS_PANEL_PIXFMT, rgb_linear, width, d->panel);
+        cs_line_pixels(r, CS_PANEL_PIXFMT, d->panel);
         d->crc = cs_crc32(d->crc, d->panel,
-                          (size_t)width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT));
+                          (size_t)d->geo.width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT));
     }
     int rc = hal_display_line_out(d->dev, y, d->bytes, d->geo.line_bytes);
     if (rc != 0) {
@@ -53,7 +53,15 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
         d->hal_rc = rc;
         return FRAME_DRIVE_HAL;
     }
-    st = cs_render_frame(r, d->line, drive_line, d);
+    /* Lines go from the core's runs straight to display bytes: each run of
+     * equal pixels is converted once (cs_line_pixels). */
+    for (int y = 0; y < opts->height && st == CS_OK; y++) {
+        st = cs_render_line_runs(r, y);
+        if (st == CS_OK)
+            st = drive_line(d, r, y);
+    }
+    if (st == CS_OK)
+        st = cs_frame_error(r).status;
     if (d->hal_rc != 0)
         return FRAME_DRIVE_HAL;
     rc = hal_display_end_frame(d->dev);

@@ -2,8 +2,8 @@
  * frame_drive.h - rendering one frame into a display through the HAL.
  *
  * This is the seam DESIGN.md draws between the core and the display: the
- * core hands finished lines of linear-light floats to a cs_line_sink, the
- * sink converts each line to the display's pixel format and sends it with
+ * core renders each line into its runs of equal pixels, which become the
+ * display's pixel format (cs_line_pixels) and go out with
  * hal_display_line_out. It knows nothing of any backend, so the same driver
  * serves the simulator and a Linux board with a real panel.
  *
@@ -21,7 +21,6 @@
 typedef struct frame_drive {
     /* Set by the caller. */
     const hal_display *dev;
-    float *line;      /* 3 * width floats: the core's line buffer */
     uint8_t *bytes;   /* geometry.line_bytes: one line in the display's format */
     uint8_t *panel;   /* NULL, or width * bytes-per-pixel of CS_PANEL_PIXFMT to hash the frame */
 

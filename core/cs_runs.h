@@ -1,0 +1,96 @@
+/*
+ * cs_runs.h - a line as runs of pixels that share one state.
+ *
+ * The stack of a line (its emitted light E and transmittance T per
+ * channel) and the cel being folded into it (claimed coverage `used`, the
+ * cel's summed E and 1 - T) are piecewise constant along x: they change
+ * only where some region has an edge. So the line is kept as runs of
+ * pixels [s, run_end[s]) that share all of these values, stored once, at
+ * the run's first pixel s, in the workspace's per-pixel arrays (entries at
+ * other pixels are stale and never read). A bit per pixel in run_starts
+ * marks the starts, so the run holding any x is found by a backward bit
+ * scan, and a run is split in O(1) by copying its values to the new start.
+ *
+ * Work is then per run, not per pixel: a region's coverage is folded into
+ * the runs it meets, a cel composites run by run, and the finished line is
+ * converted to pixels once per run. Runs are whole pixels, so there are at
+ * most `width` of them and the memory stays O(width). The arithmetic on
+ * each run is the per-pixel arithmetic of the pixels it stands for, in the
+ * same order, so the result is the same bits as computing every pixel.
+ *
+ * A run whose stack transmits nothing (T = 0 on every channel) is opaque:
+ * nothing behind it can show, so later cels skip it and it is never split
+ * again. With the early-out off (cs_render_opts.no_early_out) nothing is
+ * treated as opaque, which changes no bit, only the work.
+ */
+#ifndef CS_RUNS_H
+#define CS_RUNS_H
+
+#include "cs_internal.h"
+
+/* Highest set bit of v != 0, by de Bruijn multiplication: an integer table
+ * lookup that needs no compiler builtin (on RV32 without Zbb a builtin
+ * would call into libgcc, which the freestanding core may not). */
+static inline uint32_t cs__high_bit(uint32_t v)
+{
+    static const uint8_t table[32] = {0,  9,  1,  10, 13, 21, 2,  29, 11, 14, 16,
+                                      18, 22, 25, 3,  30, 8,  12, 20, 28, 15, 17,
+                                      24, 7,  19, 27, 23, 6,  26, 5,  4,  31};
+    v |= v >> 1;
+    v |= v >> 2;
+    v |= v >> 4;
+    v |= v >> 8;
+    v |= v >> 16;
+    return table[(v * 0x07C4ACDDu) >> 27];
+}
+
+/* Lowest set bit of v != 0. */
+static inline uint32_t cs__low_bit(uint32_t v)
+{
+    static const uint8_t table[32] = {0,  1,  28, 2,  29, 14, 24, 3,  30, 22, 20,
+                                      15, 25, 17, 4,  8,  31, 27, 13, 23, 21, 19,
+                                      16, 7,  26, 12, 18, 6,  11, 5,  10, 9};
+    return table[((v & (0u - v)) * 0x077CB531u) >> 27];
+}
+
+/* The start of the run holding pixel x. Pixel 0 always starts a run. */
+static inline uint32_t cs__run_start(const cs_workspace *ws, uint32_t x)
+{
+    uint32_t w = x >> 5;
+    uint32_t bits = ws->run_starts[w] & (0xFFFFFFFFu >> (31u - (x & 31u)));
+    while (bits == 0u)
+        bits = ws->run_starts[--w];
+    return (w << 5) + cs__high_bit(bits);
+}
+
+/* Splits the run starting at s at pixel x (s < x < run_end[s]). */
+static inline void cs__run_split(cs_workspace *ws, uint32_t s, uint32_t x)
+{
+    ws->run_end[x] = ws->run_end[s];
+    ws->run_end[s] = (uint16_t)x;
+    ws->run_starts[x >> 5] |= 1u << (x & 31u);
+    ws->used[x] = ws->used[s];
+    for (int ch = 0; ch < 3; ch++) {
+        ws->stack_E[3 * x + ch] = ws->stack_E[3 * s + ch];
+        ws->stack_T[3 * x + ch] = ws->stack_T[3 * s + ch];
+        ws->cel_E[3 * x + ch] = ws->cel_E[3 * s + ch];
+        ws->cel_A[3 * x + ch] = ws->cel_A[3 * s + ch];
+    }
+}
+
+/* Whether the stack of the run at s is opaque (and the early-out is on). */
+static inline bool cs__run_opaque(const cs_renderer *r, uint32_t s)
+{
+    const float *t = &r->ws->stack_T[3 * s];
+    return r->record && t[0] == 0.0f && t[1] == 0.0f && t[2] == 0.0f;
+}
+
+/* The start of the run holding pixel a, walking right from run start s <= a. */
+static inline uint32_t cs__run_seek(const cs_workspace *ws, uint32_t s, uint32_t a)
+{
+    while (ws->run_end[s] <= a)
+        s = ws->run_end[s];
+    return s;
+}
+
+#endif /* CS_RUNS_H */
