@@ -652,6 +652,13 @@ cs_status cs_render_line_runs(cs_renderer *r, int y);
  * floats, converted once per run of equal pixels. */
 void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out);
 
+/*
+ * As cs_line_pixels, into memory of the workspace that is idle between
+ * lines (the cel accumulators), so that a board needs no line buffer of its
+ * own. The pointer is valid until the next line is rendered.
+ */
+const uint8_t *cs_line_pixels_scratch(cs_renderer *r, cs_pixfmt fmt);
+
 /* cs_render_line_runs, then cs_line_pixels. */
 cs_status cs_render_line_px(cs_renderer *r, int y, cs_pixfmt fmt, uint8_t *out);
 

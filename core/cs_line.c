@@ -714,6 +714,15 @@ void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out)
         cs__pixfmt_fill(fmt, &ws->stack_E[3 * s], s, ws->run_end[s], out);
 }
 
+const uint8_t *cs_line_pixels_scratch(cs_renderer *r, cs_pixfmt fmt)
+{
+    /* Between lines only run starts' cel values are ever read, and the next
+     * line sets those before reading them; 12 bytes a pixel hold any format. */
+    uint8_t *out = (uint8_t *)(void *)r->ws->cel_E;
+    cs_line_pixels(r, fmt, out);
+    return out;
+}
+
 cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
 {
     if (!rgb_linear)

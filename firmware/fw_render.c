@@ -20,9 +20,6 @@
 #include "fw_print.h"
 #include "mcu_display.h"
 
-#define PANEL_BPP 2 /* CS_PANEL_PIXFMT is RGB565 */
-typedef char panel_bpp_check_[CS_PANEL_PIXFMT == CS_PIX_RGB565_SRGB ? 1 : -1];
-
 /* The staging store costs no RAM of its own only while the workspace is
  * the larger of the two. */
 _Static_assert(sizeof(cs_workspace) >= sizeof(cs_scene),
@@ -33,11 +30,9 @@ static union {
     cs_scene staging;
 } work __attribute__((section(".noinit.work")));
 static cs_renderer renderer;
-/* The line of linear-light floats; once the sink has taken its float CRC,
- * the panel pixels are converted into the same memory (cs_pixfmt_convert
- * allows that), so there is no separate line of panel pixels. */
-static float line[3 * CS_CFG_MAX_WIDTH];
-typedef char panel_fits_line_[PANEL_BPP <= 3 * sizeof(float) ? 1 : -1];
+/* No line buffer: each line is rendered into the core's runs and converted
+ * to panel pixels in workspace memory that is idle between lines
+ * (cs_line_pixels_scratch). */
 static mcu_display display;
 
 /* Markers for the instruction-count plugin: distinct, never inlined or
@@ -57,14 +52,34 @@ FW_MARK(fw_mark_frame_end)
 static bool float_crc_on;
 static uint32_t float_crc;
 
-static cs_status sink(void *user, int y, const float *rgb_linear, int width)
+/* The floats of the line, as cs_render_line would give them, hashed run by run. */
+static uint32_t crc_line_floats(uint32_t crc, const cs_renderer *r, int width)
 {
-    if (float_crc_on)
-        float_crc = cs_crc32(float_crc, rgb_linear, (size_t)width * 3u * sizeof(float));
-    fw_mark_line_rendered();
-    cs_status st = mcu_display_line(user, y, rgb_linear, width);
-    fw_mark_line_out();
-    return st;
+    for (int x = 0; x < width;) {
+        float rgb[3];
+        int next = cs_line_run(r, x, rgb);
+        for (; x < next; x++)
+            crc = cs_crc32(crc, rgb, sizeof rgb);
+    }
+    return crc;
+}
+
+static cs_status render_lines(const cs_render_opts *opts)
+{
+    for (int y = 0; y < opts->height; y++) {
+        cs_status st = cs_render_line_runs(&renderer, y);
+        if (st != CS_OK)
+            return st;
+        if (float_crc_on)
+            float_crc = crc_line_floats(float_crc, &renderer, opts->width);
+        fw_mark_line_rendered();
+        st = mcu_display_line_px(&display, y,
+                                 cs_line_pixels_scratch(&renderer, CS_PANEL_PIXFMT));
+        fw_mark_line_out();
+        if (st != CS_OK)
+            return st;
+    }
+    return cs_frame_error(&renderer).status;
 }
 
 void fw_render_init(bool want_float_crc)
@@ -73,7 +88,7 @@ void fw_render_init(bool want_float_crc)
     for (uint32_t i = 0; i < sizeof work / 4u; i++)
         w[i] = 0xFFFFFFFFu; /* a NaN as a float, UINT32_MAX as an index */
     float_crc_on = want_float_crc;
-    mcu_display_init(&display, board_panel(), (uint8_t *)line);
+    mcu_display_init(&display, board_panel(), NULL);
 }
 
 cs_scene *fw_render_staging(void)
@@ -114,7 +129,7 @@ int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *lab
     float_crc = 0;
     st = mcu_display_begin(&display, opts->width, opts->height);
     if (st == CS_OK)
-        st = cs_render_frame(&renderer, line, sink, &display);
+        st = render_lines(opts);
     uint32_t crc = mcu_display_end(&display);
     fw_mark_frame_end();
     uint64_t t1 = board_time_us();

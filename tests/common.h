@@ -197,7 +197,7 @@ static TL_UNUSED cs_status tc_render_rgb(const cs_scene *sc, int W, int H, cs_aa
                                          float *rgb /* 3*W*H */)
 {
     cs_renderer r;
-    cs_render_opts o = {W, H, aa, nsub, 0.0f};
+    cs_render_opts o = {.width = W, .height = H, .aa = aa, .subscanlines = nsub};
     cs_error err;
     cs_status st = cs_frame_begin(&r, tc_workspace(), sc, &o, &err);
     if (!CHECK(st == CS_OK, "cs_frame_begin(%dx%d, aa %d/%d) gave %s (cel %d region %d contour %d item %d)",

@@ -38,12 +38,21 @@ cs_status mcu_display_line(void *user, int y, const float *rgb_linear, int width
     mcu_display *d = user;
     if (width != d->width || y < 0 || y >= d->height)
         return CS_ERR_ARG;
-    size_t bytes = (size_t)width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
+    if (!d->pixels)
+        return CS_ERR_ARG;
     cs_pixfmt_convert(CS_PANEL_PIXFMT, rgb_linear, width, d->pixels);
-    d->crc = cs_crc32(d->crc, d->pixels, bytes);
+    return mcu_display_line_px(d, y, d->pixels);
+}
+
+cs_status mcu_display_line_px(mcu_display *d, int y, const uint8_t *pixels)
+{
+    if (y < 0 || y >= d->height || !pixels)
+        return CS_ERR_ARG;
+    size_t bytes = (size_t)d->width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
+    d->crc = cs_crc32(d->crc, pixels, bytes);
     const mcu_panel *p = d->panel;
     if (p && d->panel_error == 0)
-        d->panel_error = p->api->line_out(p->ctx, y, d->pixels, bytes);
+        d->panel_error = p->api->line_out(p->ctx, y, pixels, bytes);
     return CS_OK;
 }
 

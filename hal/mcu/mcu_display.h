@@ -47,13 +47,18 @@ typedef struct mcu_display {
     int panel_error;         /* first non-zero result of the panel this frame */
 } mcu_display;
 
-/* `pixels` must hold a line of the widest frame in the panel format. */
+/* `pixels` must hold a line of the widest frame in the panel format; it may
+ * be NULL if only mcu_display_line_px is used. */
 void mcu_display_init(mcu_display *d, const mcu_panel *panel, uint8_t *pixels);
 
 cs_status mcu_display_begin(mcu_display *d, int width, int height);
 
 /* The cs_line_sink: `user` is the mcu_display. */
 cs_status mcu_display_line(void *user, int y, const float *rgb_linear, int width);
+
+/* Line y already in CS_PANEL_PIXFMT (d->width pixels), e.g. from
+ * cs_line_pixels_scratch: hashed and sent as mcu_display_line does. */
+cs_status mcu_display_line_px(mcu_display *d, int y, const uint8_t *pixels);
 
 /* Ends the frame and returns its CRC-32. */
 uint32_t mcu_display_end(mcu_display *d);
