@@ -8,7 +8,7 @@
  *
  * For each reference scene (BENCHMARKS.md) the same geometry is rendered by
  *
- *   celscan   cs_frame_begin, then cs_render_line and cs_pixfmt_convert
+ *   celscan   cs_frame_begin, then cs_render_line_runs and cs_line_pixels
  *             (8-bit sRGB) for every line: what celsim and a board do;
  *   cairo     an ARGB32 image surface, default antialias and tolerance;
  *   FreeType  FT_Outline_Render (smooth, direct spans) with a span compositor;
@@ -219,8 +219,8 @@ __attribute__((noinline)) static double celscan_frame(cs_target *t, const cs_ren
     if (st != CS_OK)
         die("cs_frame_begin: %s", cs_status_str(st));
     for (int y = 0; y < t->h; y++) {
-        cs_render_line(&r, y, t->line);
-        cs_pixfmt_convert(CS_PIX_RGB888_SRGB, t->line, t->w, t->image + (size_t)y * t->w * 3);
+        cs_render_line_runs(&r, y);
+        cs_line_pixels(&r, CS_PIX_RGB888_SRGB, t->image + (size_t)y * t->w * 3);
     }
     double dt = bench_now() - t0;
     if (cs_frame_error(&r).status != CS_OK)
@@ -564,8 +564,8 @@ static void beam_measure(int w, int h, cs_aa_mode aa, int n, int runs, beam_resu
             prep[k - 1] = t1 - t0;
         for (int y = 0; y < h; y++) {
             double a = bench_now();
-            cs_render_line(&r, y, line);
-            cs_pixfmt_convert(CS_PIX_RGB888_SRGB, line, w, px);
+            cs_render_line_runs(&r, y);
+            cs_line_pixels(&r, CS_PIX_RGB888_SRGB, px);
             double b = bench_now();
             if (k)
                 s[(size_t)y * runs + k - 1] = b - a;

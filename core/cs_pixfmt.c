@@ -192,21 +192,39 @@ void cs_pixfmt_convert_dither(cs_pixfmt fmt, const float *rgb, int width, int y,
     convert(fmt, rgb, width, y < 0 ? 0 : y, out);
 }
 
+/* Four bytes at p, least significant first: byte stores the compiler may
+ * merge into one word store where the target allows unaligned words. */
+static inline void put32(uint8_t *p, uint32_t w)
+{
+    p[0] = (uint8_t)w;
+    p[1] = (uint8_t)(w >> 8);
+    p[2] = (uint8_t)(w >> 16);
+    p[3] = (uint8_t)(w >> 24);
+}
+
+/* A run of equal pixels: converted once, then written 12 bytes (a whole
+ * number of pixels in every format) at a time. */
 void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1, uint8_t *out)
 {
     uint8_t one[6];
     convert(fmt, rgb, 1, -1, one);
-    size_t bpp = cs_pixfmt_bytes_per_pixel(fmt);
-    uint8_t *p = out + (size_t)x0 * bpp;
-    if (bpp == 3) {
-        for (uint32_t x = x0; x < x1; x++, p += 3) {
-            p[0] = one[0];
-            p[1] = one[1];
-            p[2] = one[2];
-        }
+    uint32_t bpp = (uint32_t)cs_pixfmt_bytes_per_pixel(fmt);
+    if (bpp == 0u)
         return;
+    uint8_t pat[12];
+    for (uint32_t k = 0, j = 0; k < 12u; k++, j = j + 1u == bpp ? 0u : j + 1u)
+        pat[k] = one[j];
+    uint32_t w[3];
+    for (int k = 0; k < 3; k++)
+        w[k] = (uint32_t)pat[4 * k] | (uint32_t)pat[4 * k + 1] << 8 |
+               (uint32_t)pat[4 * k + 2] << 16 | (uint32_t)pat[4 * k + 3] << 24;
+    uint8_t *p = out + (size_t)x0 * bpp;
+    size_t bytes = (size_t)(x1 - x0) * bpp;
+    for (; bytes >= 12u; bytes -= 12u, p += 12) {
+        put32(p, w[0]);
+        put32(p + 4, w[1]);
+        put32(p + 8, w[2]);
     }
-    for (uint32_t x = x0; x < x1; x++)
-        for (size_t k = 0; k < bpp; k++)
-            *p++ = one[k];
+    for (size_t k = 0; k < bytes; k++)
+        p[k] = pat[k];
 }
