@@ -211,6 +211,13 @@ void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1
     uint32_t bpp = (uint32_t)cs_pixfmt_bytes_per_pixel(fmt);
     if (bpp == 0u)
         return;
+    uint8_t *p = out + (size_t)x0 * bpp;
+    size_t bytes = (size_t)(x1 - x0) * bpp;
+    if (bytes < 24u) { /* edge pixels: most runs are short */
+        for (size_t k = 0, j = 0; k < bytes; k++, j = j + 1u == bpp ? 0u : j + 1u)
+            p[k] = one[j];
+        return;
+    }
     uint8_t pat[12];
     for (uint32_t k = 0, j = 0; k < 12u; k++, j = j + 1u == bpp ? 0u : j + 1u)
         pat[k] = one[j];
@@ -218,8 +225,6 @@ void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1
     for (int k = 0; k < 3; k++)
         w[k] = (uint32_t)pat[4 * k] | (uint32_t)pat[4 * k + 1] << 8 |
                (uint32_t)pat[4 * k + 2] << 16 | (uint32_t)pat[4 * k + 3] << 24;
-    uint8_t *p = out + (size_t)x0 * bpp;
-    size_t bytes = (size_t)(x1 - x0) * bpp;
     for (; bytes >= 12u; bytes -= 12u, p += 12) {
         put32(p, w[0]);
         put32(p + 4, w[1]);
