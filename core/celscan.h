@@ -580,8 +580,9 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
 
 /*
  * Renders line y (0 = top) into rgb_linear (3*width floats, linear light).
- * The line doubles as the renderer's accumulator for emitted light while
- * the line is built, so its contents on entry do not matter.
+ * The line is built as runs of equal pixels in the workspace and expanded
+ * into rgb_linear at the end; a display is better served by
+ * cs_render_line_runs and cs_line_pixels, which convert once per run.
  * Lines must be requested in increasing order (the active list only moves
  * forward); skipping lines is allowed. A capacity overflow on the line is
  * recorded in r->sticky and the line is still produced, with the overflowing

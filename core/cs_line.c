@@ -20,23 +20,29 @@
  * FreeType's cells: `area` holds the partial coverage of the pixels where a
  * span starts or ends, `cover` holds +w/-w deltas whose running sum is the
  * coverage of the pixels fully inside. A span costs O(1) however long it
- * is, and the region costs one pass over the pixels it touched.
+ * is, and the entries it wrote are marked (ws->touched).
  *
+ * Everything after that is per run of pixels, not per pixel (cs_runs.h):
+ * the line is a list of runs that share one stack and one cel state. The
+ * marked entries are visited in x order; pixel x gets clamp(area + running
+ * cover), and the pixels up to the next marked entry share clamp(running
+ * cover), so a region's coverage is a handful of runs however wide it is.
  * Coverage c turns a region's paint map (E, T) into (c E, 1 - c (1 - T)).
  * Within a cel the regions' maps are summed, so two regions sharing an
  * edge leave no seam; each region may only claim the coverage the regions
  * in front of it left (`used`), so a region hidden behind another in the
  * same cel stays hidden. The cel then joins the stack front to back:
  * E += T_stack E_cel, T_stack *= T_cel, and the pixel is E + T_stack L.
+ * The finished runs become pixels once per run, in the display's format
+ * (cs_line_pixels) or as floats (cs_render_line).
  *
  * Front to back pays off where the stack turns opaque. Where T_stack is 0
  * on every channel, E += 0 * E_cel and T_stack *= T_cel leave the pixel
  * exactly as it is, so later cels may be skipped there without changing a
- * bit. The line keeps a record of such pixels (a "next clear pixel"
- * union-find, O(width)); compositing and paint evaluation skip them, a
- * region whose whole x range is opaque is not intersected at all, and the
- * line stops when every pixel is opaque. A pre-combined cel range (the
- * cache) is composited from its runs at its place in the stack.
+ * bit: opaque runs are passed over, a region whose whole x range is opaque
+ * is not intersected at all, and the line stops when every pixel is
+ * opaque. A pre-combined cel range (the cache) is composited from its runs
+ * at its place in the stack.
  */
 #include "cs_runs.h"
 
