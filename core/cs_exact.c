@@ -243,7 +243,11 @@ static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb)
 static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, bool by_xmin)
 {
     static const uint32_t gaps[] = {57, 23, 10, 4, 1};
-    for (unsigned g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {
+    /* Gaps past the length are no-ops: start at the first that is not. */
+    unsigned g0 = 0;
+    while (g0 + 1 < sizeof gaps / sizeof gaps[0] && gaps[g0] >= m)
+        g0++;
+    for (unsigned g = g0; g < sizeof gaps / sizeof gaps[0]; g++) {
         uint32_t gap = gaps[g];
         for (uint32_t i = gap; i < m; i++) {
             uint32_t t = ord[i];
@@ -300,23 +304,26 @@ static void touch(exact_ctx *cx, int32_t a, int32_t b)
         cx->hi = b;
 }
 
+static const float gl3_t[3] = {-0.77459666924148338f, 0.0f, 0.77459666924148338f};
+static const float gl3_w[3] = {0.55555555555555556f, 0.88888888888888889f, 0.55555555555555556f};
 static const float gl5_t[5] = {-0.90617984593866399f, -0.53846931010568309f, 0.0f,
                                0.53846931010568309f, 0.90617984593866399f};
 static const float gl5_w[5] = {0.23692688505618909f, 0.47862867049936647f, 0.56888888888888889f,
                                0.47862867049936647f, 0.23692688505618909f};
 
-/* Gauss-Legendre sum (5 nodes) of (x(u) - c) y'(u) over [a, b]. */
-static float gauss5(const cs_segment *s, float a, float b, float c)
+/* Gauss-Legendre sum (3 or 5 nodes) of (x(u) - c) y'(u) over [a, b]. */
+static float gauss(const cs_segment *s, int nodes, float a, float b, float c)
 {
     int p = s->degree;
+    const float *nt = nodes == 5 ? gl5_t : gl3_t, *nw = nodes == 5 ? gl5_w : gl3_w;
     float mid = 0.5f * (a + b), half = 0.5f * (b - a), sum = 0.0f;
-    for (int k = 0; k < 5; k++) {
-        float u = mid + half * gl5_t[k];
+    for (int k = 0; k < nodes; k++) {
+        float u = mid + half * nt[k];
         float dW, W = cs__horner_d(s->w, p, u, &dW);
         float dY, Y = cs__horner_d(s->y, p, u, &dY);
         float xr = cs__horner(s->x, p, u) / W - c;
         float yd = (dY * W - Y * dW) / (W * W);
-        sum += gl5_w[k] * (xr * yd);
+        sum += nw[k] * (xr * yd);
     }
     return half * sum;
 }
@@ -360,6 +367,15 @@ static void bernstein(const float *c, int p, float a, float h, float *b)
  * pass as a single panel.
  */
 #define WEIGHT_SPREAD 1.25f
+/*
+ * Where W varies less still, fewer nodes do. With Bernstein coefficients
+ * within w(1 +- e), W = w (1 + sum e_j B_j(t)) cannot vanish where
+ * (|t| + |1 - t|)^p e < 1, i.e. inside the ellipse of rho ~ 2 e^(-1/p).
+ * For a conic (p = 2; the integrand's numerator then has degree 4, which
+ * 3 nodes integrate exactly) a spread of 1.05 gives rho ~ 13 and 3 nodes
+ * are good to rho^-6 ~ 2e-7: the usual case, a conic's arc within a pixel.
+ */
+#define CONIC_SPREAD_3 1.05f
 #define MAX_PANEL_DEPTH 12
 static float rational_moment(const cs_segment *s, float u0, float u1, float c)
 {
@@ -373,7 +389,7 @@ static float rational_moment(const cs_segment *s, float u0, float u1, float c)
     float sum = 0.0f;
     while (top >= 0) {
         float a = lo[top], b = hi[top];
-        int d = depth[top--];
+        int d = depth[top--], nodes = 5;
         if (d < MAX_PANEL_DEPTH) {
             float bw[4];
             bernstein(s->w, p, cs__minf(a, b), cs__absf(b - a), bw);
@@ -392,8 +408,10 @@ static float rational_moment(const cs_segment *s, float u0, float u1, float c)
                 depth[top] = d + 1;
                 continue;
             }
+            if (p == 2 && wmax <= CONIC_SPREAD_3 * wmin)
+                nodes = 3;
         }
-        sum += gauss5(s, a, b, c);
+        sum += gauss(s, nodes, a, b, c);
     }
     return sum;
 }
@@ -464,7 +482,10 @@ static void cut_at_x(const cs_segment *s, const cs_exact_end *a, float ya, const
                      float yb, float k, cs_exact_end *out, float *y_out)
 {
     float ua = a->u, ub = b->u, slope;
-    float guess = ua + (k - a->x) / (b->x - a->x) * (ub - ua);
+    /* Newton's first step from a (the cut before, a column away), or the chord. */
+    float guess = a->dx != 0.0f ? ua + (k - a->x) / a->dx : ua;
+    if (!(guess > cs__minf(ua, ub) && guess < cs__maxf(ua, ub)))
+        guess = ua + (k - a->x) / (b->x - a->x) * (ub - ua);
     bool rising = (b->x > a->x) == (ub > ua);
     float u = cs__solve_level_from(s->x, s->w, s->degree, k, cs__minf(ua, ub), cs__maxf(ua, ub),
                                    guess, rising, &slope);
