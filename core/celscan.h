@@ -463,7 +463,7 @@ typedef struct cs_crossing {
 typedef struct cs_exact_end {
     float u, x;
     float dx, dy;         /* x'(u), y'(u) */
-    float dwr;            /* W'(u) / W(u): 0 for polynomial segments */
+    float w, dwr;         /* W(u), and W'(u) / W(u): 0 for polynomial segments */
 } cs_exact_end;
 
 /* Where one active piece is within the current band of a pixel row, for

@@ -121,12 +121,14 @@ static void eval_end(const cs_segment *s, float u, float y, cs_exact_end *e)
         e->x = X / W;
         e->dx = dX * inv;
         e->dy = dY * inv;
+        e->w = W;
         e->dwr = 0.0f;
     } else {
         float dW, W = cs__horner_d(s->w, p, u, &dW), inv = 1.0f / W;
         e->x = X / W;
         e->dx = (dX - e->x * dW) * inv;
         e->dy = (dY - y * dW) * inv;
+        e->w = W;
         e->dwr = dW * inv;
     }
 }
@@ -149,9 +151,13 @@ static float level_u(const cs_segment *s, const cs_piece *pc, float yv, float a,
         return top_u(pc);
     if (yv == pc->y_bot)
         return bot_u(pc);
-    float slope;
-    return cs__solve_level_from(s->y, s->w, s->degree, yv, cs__minf(a, b), cs__maxf(a, b), guess,
-                                pc->dir > 0, &slope);
+    float lo = cs__minf(a, b), hi = cs__maxf(a, b), slope;
+    if (s->degree == 1) { /* Y - yv W is linear: its root directly */
+        float u = (yv * s->w[0] - s->y[0]) / (s->y[1] - yv * s->w[1]);
+        if (u >= lo && u <= hi)
+            return u;
+    }
+    return cs__solve_level_from(s->y, s->w, s->degree, yv, lo, hi, guess, pc->dir > 0, &slope);
 }
 
 /* u between ua (at height ya) and ub (at yb) where y is yv, on the chord. */
@@ -377,8 +383,10 @@ static void bernstein(const float *c, int p, float a, float h, float *b)
  */
 #define CONIC_SPREAD_3 1.05f
 #define MAX_PANEL_DEPTH 12
-static float rational_moment(const cs_segment *s, float u0, float u1, float c)
+static float rational_moment(const cs_segment *s, const cs_exact_end *e0, const cs_exact_end *e1,
+                             float c)
 {
+    float u0 = e0->u, u1 = e1->u;
     int p = s->degree;
     /* Panels depth first, left to right, so the sum's order is fixed. */
     float lo[MAX_PANEL_DEPTH + 1], hi[MAX_PANEL_DEPTH + 1];
@@ -392,7 +400,15 @@ static float rational_moment(const cs_segment *s, float u0, float u1, float c)
         int d = depth[top--], nodes = 5;
         if (d < MAX_PANEL_DEPTH) {
             float bw[4];
-            bernstein(s->w, p, cs__minf(a, b), cs__absf(b - a), bw);
+            if (d == 0) { /* the whole arc: W's coefficients from its ends */
+                float t = (u1 - u0) * (p == 3 ? 1.0f / 3.0f : 0.5f);
+                bw[0] = e0->w;
+                bw[1] = e0->w * (1.0f + t * e0->dwr);
+                bw[2] = p == 3 ? e1->w * (1.0f - t * e1->dwr) : e1->w;
+                bw[3] = e1->w;
+            } else {
+                bernstein(s->w, p, cs__minf(a, b), cs__absf(b - a), bw);
+            }
             float wmin = bw[0], wmax = bw[0];
             for (int j = 1; j <= p; j++) {
                 wmin = cs__minf(wmin, bw[j]);
@@ -469,7 +485,7 @@ static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c,
     else if (polynomial(s))
         m = poly_moment(s, a, y0, b, y1, fc);
     else
-        m = rational_moment(s, a->u, b->u, fc);
+        m = rational_moment(s, a, b, fc);
     m = cs__clampf(m, 0.0f, dy);
     cs__acc_area(ws, c, sign * (dy - m));
     cs__acc_cover(ws, c + 1, sign * dy);
