@@ -222,27 +222,23 @@ static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb)
     if (k == 0)
         return; /* a straight line, whatever its weights */
     float slope = (x1 - x0) / (yb - ya);
-    px[k] = x1;
-    float prev = x0;
-    int sense = 0;
     /* The end control points are the arc's ends, x_top and x_bot: their d
      * is 0 by definition, which keeps rounding out of touching vertices. */
-    for (int j = 0; j <= k; j++) {
-        if (j < k) {
-            float d = px[j] - (x0 + (py[j] - ya) * slope);
-            e->dmin = cs__minf(e->dmin, d);
-            e->dmax = cs__maxf(e->dmax, d);
-            e->xmin = cs__minf(e->xmin, px[j]);
-            e->xmax = cs__maxf(e->xmax, px[j]);
-        }
-        int step = px[j] > prev ? 1 : (px[j] < prev ? -1 : 0);
-        if (step != 0) {
-            if (sense != 0 && step != sense)
-                e->monotone = false;
-            sense = step;
-        }
+    bool up = false, down = false;
+    float prev = x0;
+    for (int j = 0; j < k; j++) {
+        float d = px[j] - (x0 + (py[j] - ya) * slope);
+        e->dmin = cs__minf(e->dmin, d);
+        e->dmax = cs__maxf(e->dmax, d);
+        e->xmin = cs__minf(e->xmin, px[j]);
+        e->xmax = cs__maxf(e->xmax, px[j]);
+        up = up || px[j] > prev;
+        down = down || px[j] < prev;
         prev = px[j];
     }
+    up = up || x1 > prev;
+    down = down || x1 < prev;
+    e->monotone = !(up && down);
 }
 
 /* Shell sort of ord[0..m) by key (or by xmin); they arrive nearly sorted. */
