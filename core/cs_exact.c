@@ -10,17 +10,31 @@
  *
  * Per pixel row [y, y+1) and per region:
  *
- * 1. Bands. The row is cut at every y_top / y_bot of the region's active
- *    y-monotone pieces. Between two cuts (a band) the set of pieces is
- *    fixed, and each piece is one arc from u_top to u_bot.
+ * 0. Arcs and clusters. Each active piece's arc across the row is placed
+ *    once: u where it enters the row (Newton from the chord of the piece)
+ *    and where it leaves (Newton from the entry's tangent), with x, x',
+ *    y' and W'/W at both ends. Those give the arc's inner Bezier control
+ *    points directly (P(a) + h/p P'(a) in homogeneous form), hence its x
+ *    range. Pieces in order of xmin fall into clusters whose x ranges
+ *    overlap; no curve passes between two clusters, so the winding across
+ *    each is the same at every height of the row, and each cluster is
+ *    banded and ordered on its own. A lone piece, the usual case, is one
+ *    band with nothing to order. One exception: a horizontal segment has
+ *    no piece, yet joins the ends of two that may be far apart. A cluster
+ *    whose winding changes inside the row (its inner ends' height tags do
+ *    not cancel, or, if they do, its bands disagree) takes in the next
+ *    cluster until the changes cancel; the whole row always qualifies.
+ *
+ * 1. Bands. A cluster's part of the row is cut at every y_top / y_bot of
+ *    its pieces. Between two cuts (a band) the set of pieces is fixed, and
+ *    each piece is one arc from u_top to u_bot.
  *
  * 2. Order. If no two arcs cross inside a band, their left-to-right order
  *    is the same at every height of it, and the fill rule can be applied
  *    once per band instead of once per sample. That the order holds is
- *    proved, not sampled: each arc is converted to Bernstein form over its
- *    band, and since weights are positive the arc lies in the convex hull
- *    of its control points, so within a strip [dmin, dmax] around its
- *    chord. Walking the arcs in chord order, an arc whose strip may reach
+ *    proved, not sampled: each arc's Bezier control points over its band
+ *    come from its ends, and since weights are positive the arc lies in
+ *    their convex hull, so within a strip [dmin, dmax] around its chord. Walking the arcs in chord order, an arc whose strip may reach
  *    left of the strips before it (the test is linear in y, so checking
  *    both band ends is enough) may cross them; the band is then cut where
  *    the two chords cross (exact for straight edges), or in the middle,
@@ -44,11 +58,13 @@
  *    the height it spans, for every pixel further right. The arc is cut at
  *    its x-extrema (roots of X'W - XW') and at integer x (X - kW = 0, a
  *    bracketed solve on an x-monotone arc); over each sub-arc in column c
- *    it adds (y1-y0) - Int (x - c) dy. That integral is Int (x(u) - c) y'(u)
- *    du, by Gauss-Legendre: 3 nodes are exact for polynomial segments
- *    (integrand of degree <= 5); rational ones use 5 nodes per panel, with
+ *    it adds (y1-y0) - Int (x - c) dy. For polynomial segments that is a
+ *    closed form in the sub-arc's control points, again from its ends'
+ *    derivatives (exact, like the 3-node Gauss rule it replaced). Rational
+ *    ones use Int (x(u) - c) y'(u) du by Gauss-Legendre, 5 nodes per panel,
  *    panels cut until W varies little enough on each that the error is
- *    about 1e-6 of the value (see arc_moment). Straight pieces use the
+ *    about 1e-6 of the value (3 nodes for a conic whose W is nearly
+ *    constant on the panel; see rational_moment). Straight pieces use the
  *    exact trapezoid and find their integer-x cuts by interpolation. The
  *    common case, an arc whose control polygon stays in one column, needs
  *    no solve beyond the two that place it in its band.
