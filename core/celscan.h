@@ -457,16 +457,26 @@ typedef struct cs_crossing {
     uint16_t operand; /* which winding counter of the region it moves (CSG) */
 } cs_crossing;
 
+/* One end of an arc within a band, for exact-area coverage (cs_exact.c):
+ * the point's parameter and x, and the derivatives that place the arc's
+ * inner Bezier control points without another evaluation. */
+typedef struct cs_exact_end {
+    float u, x;
+    float dx, dy;         /* x'(u), y'(u) */
+    float w, dwr;         /* W(u), and W'(u) / W(u): 0 for polynomial segments */
+} cs_exact_end;
+
 /* Where one active piece is within the current band of a pixel row, for
  * exact-area coverage (cs_exact.c). */
 typedef struct cs_exact_piece {
-    float u_top, x_top;   /* parameter and x at the band's top */
-    float u_bot, x_bot;   /* and at its bottom */
+    cs_exact_end top, bot; /* the arc's ends at the band's top and bottom */
+    float u_row;          /* u where the piece leaves the row (its end, or the row's bottom) */
     float dmin, dmax;     /* the arc lies within [dmin, dmax] of its chord, horizontally */
     float xmin, xmax;     /* x range of the arc's control polygon */
     float key;            /* x order within the band: x_top + x_bot */
     uint32_t piece;
     bool monotone;        /* control polygon x-monotone, so the arc is */
+    bool row_arc;         /* top, bot and the bounds are those of the whole row's arc */
 } cs_exact_piece;
 
 /*

@@ -10,17 +10,31 @@
  *
  * Per pixel row [y, y+1) and per region:
  *
- * 1. Bands. The row is cut at every y_top / y_bot of the region's active
- *    y-monotone pieces. Between two cuts (a band) the set of pieces is
- *    fixed, and each piece is one arc from u_top to u_bot.
+ * 0. Arcs and clusters. Each active piece's arc across the row is placed
+ *    once: u where it enters the row (Newton from the chord of the piece)
+ *    and where it leaves (Newton from the entry's tangent), with x, x',
+ *    y' and W'/W at both ends. Those give the arc's inner Bezier control
+ *    points directly (P(a) + h/p P'(a) in homogeneous form), hence its x
+ *    range. Pieces in order of xmin fall into clusters whose x ranges
+ *    overlap; no curve passes between two clusters, so the winding across
+ *    each is the same at every height of the row, and each cluster is
+ *    banded and ordered on its own. A lone piece, the usual case, is one
+ *    band with nothing to order. One exception: a horizontal segment has
+ *    no piece, yet joins the ends of two that may be far apart. A cluster
+ *    whose winding changes inside the row (its inner ends' height tags do
+ *    not cancel, or, if they do, its bands disagree) takes in the next
+ *    cluster until the changes cancel; the whole row always qualifies.
+ *
+ * 1. Bands. A cluster's part of the row is cut at every y_top / y_bot of
+ *    its pieces. Between two cuts (a band) the set of pieces is fixed, and
+ *    each piece is one arc from u_top to u_bot.
  *
  * 2. Order. If no two arcs cross inside a band, their left-to-right order
  *    is the same at every height of it, and the fill rule can be applied
  *    once per band instead of once per sample. That the order holds is
- *    proved, not sampled: each arc is converted to Bernstein form over its
- *    band, and since weights are positive the arc lies in the convex hull
- *    of its control points, so within a strip [dmin, dmax] around its
- *    chord. Walking the arcs in chord order, an arc whose strip may reach
+ *    proved, not sampled: each arc's Bezier control points over its band
+ *    come from its ends, and since weights are positive the arc lies in
+ *    their convex hull, so within a strip [dmin, dmax] around its chord. Walking the arcs in chord order, an arc whose strip may reach
  *    left of the strips before it (the test is linear in y, so checking
  *    both band ends is enough) may cross them; the band is then cut where
  *    the two chords cross (exact for straight edges), or in the middle,
@@ -44,11 +58,13 @@
  *    the height it spans, for every pixel further right. The arc is cut at
  *    its x-extrema (roots of X'W - XW') and at integer x (X - kW = 0, a
  *    bracketed solve on an x-monotone arc); over each sub-arc in column c
- *    it adds (y1-y0) - Int (x - c) dy. That integral is Int (x(u) - c) y'(u)
- *    du, by Gauss-Legendre: 3 nodes are exact for polynomial segments
- *    (integrand of degree <= 5); rational ones use 5 nodes per panel, with
+ *    it adds (y1-y0) - Int (x - c) dy. For polynomial segments that is a
+ *    closed form in the sub-arc's control points, again from its ends'
+ *    derivatives (exact, like the 3-node Gauss rule it replaced). Rational
+ *    ones use Int (x(u) - c) y'(u) du by Gauss-Legendre, 5 nodes per panel,
  *    panels cut until W varies little enough on each that the error is
- *    about 1e-6 of the value (see arc_moment). Straight pieces use the
+ *    about 1e-6 of the value (3 nodes for a conic whose W is nearly
+ *    constant on the panel; see rational_moment). Straight pieces use the
  *    exact trapezoid and find their integer-x cuts by interpolation. The
  *    common case, an arc whose control polygon stays in one column, needs
  *    no solve beyond the two that place it in its band.
@@ -73,56 +89,261 @@
 /* Stands for "no bound": a hull that could not be formed. */
 #define HUGE_X 1.0e30f
 
+/* Neighbouring pieces closer than this (px) share one band sweep. */
+#define CLUSTER_GAP (1.0f / 16.0f)
+
 typedef struct exact_ctx {
     cs_workspace *ws;
     const cs_region *region;
-    uint32_t n;          /* ws->exact[0..n): the region's active pieces */
+    float row_top, row_bot;
     int32_t width;
     int32_t lo, hi;      /* accumulator entries written: [lo, hi) */
     uint32_t bands_left; /* CS_CFG_EXACT_MAX_BANDS countdown */
     bool overflow;
 } exact_ctx;
 
-static float seg_x(const cs_segment *s, float u)
-{
-    return cs__poly_eval(s->x, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
-}
-
-static float seg_y(const cs_segment *s, float u)
-{
-    return cs__poly_eval(s->y, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
-}
-
 static float top_u(const cs_piece *pc) { return pc->dir > 0 ? pc->u0 : pc->u1; }
 static float bot_u(const cs_piece *pc) { return pc->dir > 0 ? pc->u1 : pc->u0; }
 
-/* u where piece pc is at height yv, searched between a and b. The ends
- * are taken as they are: their y values are the ones shared exactly with
- * the neighbouring pieces. */
-static float level_u(const cs_segment *s, const cs_piece *pc, float yv, float a, float b)
+static bool polynomial(const cs_segment *s)
+{
+    return s->w[1] == 0.0f && s->w[2] == 0.0f && s->w[3] == 0.0f;
+}
+
+/* The part of the row the piece spans. */
+static float row_top(const exact_ctx *cx, const cs_piece *pc)
+{
+    return cs__maxf(pc->y_top, cx->row_top);
+}
+static float row_end(const exact_ctx *cx, const cs_piece *pc)
+{
+    return cs__minf(pc->y_bot, cx->row_bot);
+}
+
+/*
+ * The end at u: x, and x', y' and W'/W for the control points. `y` is the
+ * point's y, known to the caller (a band's level, or computed at a cut);
+ * with it the rational derivative y' needs no evaluation of Y.
+ */
+static void eval_end(const cs_segment *s, float u, float y, cs_exact_end *e)
+{
+    int p = s->degree;
+    float dX, X = cs__horner_d(s->x, p, u, &dX);
+    float dY;
+    (void)cs__horner_d(s->y, p, u, &dY);
+    e->u = u;
+    if (polynomial(s)) {
+        float W = s->w[0], inv = 1.0f / W;
+        e->x = X / W;
+        e->dx = dX * inv;
+        e->dy = dY * inv;
+        e->w = W;
+        e->dwr = 0.0f;
+    } else {
+        float dW, W = cs__horner_d(s->w, p, u, &dW), inv = 1.0f / W;
+        e->x = X / W;
+        e->dx = (dX - e->x * dW) * inv;
+        e->dy = (dY - y * dW) * inv;
+        e->w = W;
+        e->dwr = dW * inv;
+    }
+}
+
+/* y of s at u (for points placed by x). */
+static float seg_y(const cs_segment *s, float u)
+{
+    return cs__horner(s->y, s->degree, u) / cs__horner(s->w, s->degree, u);
+}
+
+/*
+ * u where piece pc is at height yv, searched between a and b (either
+ * order), starting from `guess`. The ends are taken as they are: their y
+ * values are the ones shared exactly with the neighbouring pieces.
+ */
+static float level_u(const cs_segment *s, const cs_piece *pc, float yv, float a, float b,
+                     float guess)
 {
     if (yv == pc->y_top)
         return top_u(pc);
     if (yv == pc->y_bot)
         return bot_u(pc);
-    return cs__solve_level(s->y, s->w, s->degree, yv, cs__minf(a, b), cs__maxf(a, b));
+    float lo = cs__minf(a, b), hi = cs__maxf(a, b), slope;
+    if (s->degree == 1) { /* Y - yv W is linear: its root directly */
+        float u = (yv * s->w[0] - s->y[0]) / (s->y[1] - yv * s->w[1]);
+        if (u >= lo && u <= hi)
+            return u;
+    }
+    return cs__solve_level_from(s->y, s->w, s->degree, yv, lo, hi, guess, pc->dir > 0, &slope);
 }
 
-static void set_top(cs_workspace *ws, cs_exact_piece *e, float yv)
+/* u between ua (at height ya) and ub (at yb) where y is yv, on the chord. */
+static float chord_u(float ua, float ya, float ub, float yb, float yv)
 {
-    const cs_piece *pc = &ws->pieces[e->piece];
-    const cs_segment *s = &ws->segments[pc->segment];
-    e->u_top = level_u(s, pc, yv, pc->u0, pc->u1);
-    e->x_top = seg_x(s, e->u_top);
+    return ua + (yv - ya) / (yb - ya) * (ub - ua);
 }
 
-/* `narrow`: the bottom moves up from its current place, so search above it. */
-static void set_bot(cs_workspace *ws, cs_exact_piece *e, float yv, bool narrow)
+/*
+ * Inner control points of the arc from end a to end b (parameter step
+ * h = b.u - a.u, either sign), y running from ya to yb: in homogeneous
+ * form b1 = P(a) + h/p P'(a) and b(p-1) = P(b) - h/p P'(b), which in the
+ * plane is the end plus t P' / (1 + t W'/W) with t = +-h/p. Returns the
+ * number written (p - 1), or -1 if a weight is not positive (it cannot
+ * be for positive segment weights, but rounding is not trusted).
+ */
+static int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
+                          const cs_exact_end *b, float yb, float *px, float *py)
 {
-    const cs_piece *pc = &ws->pieces[e->piece];
-    const cs_segment *s = &ws->segments[pc->segment];
-    e->u_bot = level_u(s, pc, yv, e->u_top, narrow ? e->u_bot : bot_u(pc));
-    e->x_bot = seg_x(s, e->u_bot);
+    int p = s->degree;
+    if (p < 2)
+        return 0;
+    float t = (b->u - a->u) / (float)p;
+    float q = 1.0f + t * a->dwr;
+    if (!(q > 0.0f))
+        return -1;
+    float f = t / q;
+    px[0] = a->x + f * a->dx;
+    py[0] = ya + f * a->dy;
+    if (p == 3) {
+        q = 1.0f - t * b->dwr;
+        if (!(q > 0.0f))
+            return -1;
+        f = t / q;
+        px[1] = b->x - f * b->dx;
+        py[1] = yb - f * b->dy;
+    }
+    return p - 1;
+}
+
+/*
+ * Bounds of the arc of e over the band [ya, yb]: its strip around the
+ * chord, its x range and whether it is x-monotone (variation diminishing:
+ * a control polygon monotone in x makes the curve so).
+ */
+static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb)
+{
+    float x0 = e->top.x, x1 = e->bot.x;
+    e->key = x0 + x1;
+    e->dmin = e->dmax = 0.0f;
+    e->xmin = cs__minf(x0, x1);
+    e->xmax = cs__maxf(x0, x1);
+    e->monotone = true;
+    float px[3], py[2];
+    int k = control_points(s, &e->top, ya, &e->bot, yb, px, py);
+    if (k < 0) {
+        e->dmin = e->xmin = -HUGE_X;
+        e->dmax = e->xmax = HUGE_X;
+        e->monotone = false;
+        return;
+    }
+    if (k == 0)
+        return; /* a straight line, whatever its weights */
+    float slope = (x1 - x0) / (yb - ya);
+    /* The end control points are the arc's ends, x_top and x_bot: their d
+     * is 0 by definition, which keeps rounding out of touching vertices. */
+    bool up = false, down = false;
+    float prev = x0;
+    for (int j = 0; j < k; j++) {
+        float d = px[j] - (x0 + (py[j] - ya) * slope);
+        e->dmin = cs__minf(e->dmin, d);
+        e->dmax = cs__maxf(e->dmax, d);
+        e->xmin = cs__minf(e->xmin, px[j]);
+        e->xmax = cs__maxf(e->xmax, px[j]);
+        up = up || px[j] > prev;
+        down = down || px[j] < prev;
+        prev = px[j];
+    }
+    up = up || x1 > prev;
+    down = down || x1 < prev;
+    e->monotone = !(up && down);
+}
+
+/* Shell sort of ord[0..m) by key (or by xmin); they arrive nearly sorted. */
+static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, bool by_xmin)
+{
+    static const uint32_t gaps[] = {57, 23, 10, 4, 1};
+    /* Gaps past the length are no-ops: start at the first that is not. */
+    unsigned g0 = 0;
+    while (g0 + 1 < sizeof gaps / sizeof gaps[0] && gaps[g0] >= m)
+        g0++;
+    for (unsigned g = g0; g < sizeof gaps / sizeof gaps[0]; g++) {
+        uint32_t gap = gaps[g];
+        for (uint32_t i = gap; i < m; i++) {
+            uint32_t t = ord[i];
+            float kt = by_xmin ? ex[t].xmin : ex[t].key;
+            uint32_t j = i;
+            while (j >= gap && (by_xmin ? ex[ord[j - gap]].xmin : ex[ord[j - gap]].key) > kt) {
+                ord[j] = ord[j - gap];
+                j -= gap;
+            }
+            ord[j] = t;
+        }
+    }
+}
+
+/*
+ * Whether the order by key provably holds over [ya, yb], up to BAND_TOL.
+ * If not, *cut is where to split the band.
+ */
+static bool band_ordered(const cs_exact_piece *ex, const uint32_t *ord, uint32_t m, float ya,
+                         float yb, float *cut)
+{
+    float reach_top = -HUGE_X, reach_bot = -HUGE_X, overlap = 0.0f;
+    uint32_t first = 0;
+    for (uint32_t k = 0; k < m; k++) {
+        const cs_exact_piece *e = &ex[ord[k]];
+        float g = cs__maxf(reach_top - (e->top.x + e->dmin), reach_bot - (e->bot.x + e->dmin));
+        if (g > 0.0f) {
+            if (overlap == 0.0f)
+                first = k;
+            overlap += g;
+        }
+        reach_top = cs__maxf(reach_top, e->top.x + e->dmax);
+        reach_bot = cs__maxf(reach_bot, e->bot.x + e->dmax);
+    }
+    float h = yb - ya;
+    if (!(overlap * h > BAND_TOL))
+        return true;
+    float t = 0.5f;
+    if (first > 0) {
+        const cs_exact_piece *p = &ex[ord[first - 1]], *q = &ex[ord[first]];
+        float dt = q->top.x - p->top.x, db = q->bot.x - p->bot.x;
+        if ((dt < 0.0f && db > 0.0f) || (dt > 0.0f && db < 0.0f))
+            t = cs__clampf(dt / (dt - db), 1.0f / 64.0f, 63.0f / 64.0f);
+    }
+    *cut = ya + t * h;
+    return false;
+}
+
+static void touch(exact_ctx *cx, int32_t a, int32_t b)
+{
+    if (a < cx->lo)
+        cx->lo = a;
+    if (b > cx->hi)
+        cx->hi = b;
+}
+
+static const float gl3_t[3] = {-0.77459666924148338f, 0.0f, 0.77459666924148338f};
+static const float gl3_w[3] = {0.55555555555555556f, 0.88888888888888889f, 0.55555555555555556f};
+static const float gl5_t[5] = {-0.90617984593866399f, -0.53846931010568309f, 0.0f,
+                               0.53846931010568309f, 0.90617984593866399f};
+static const float gl5_w[5] = {0.23692688505618909f, 0.47862867049936647f, 0.56888888888888889f,
+                               0.47862867049936647f, 0.23692688505618909f};
+
+/* Gauss-Legendre sum (3 or 5 nodes) of (x(u) - c) y'(u) over [a, b]. */
+static float gauss(const cs_segment *s, int nodes, float a, float b, float c)
+{
+    int p = s->degree;
+    const float *nt = nodes == 5 ? gl5_t : gl3_t, *nw = nodes == 5 ? gl5_w : gl3_w;
+    float mid = 0.5f * (a + b), half = 0.5f * (b - a), sum = 0.0f;
+    for (int k = 0; k < nodes; k++) {
+        float u = mid + half * nt[k];
+        float dW, W = cs__horner_d(s->w, p, u, &dW);
+        float dY, Y = cs__horner_d(s->y, p, u, &dY);
+        float xr = cs__horner(s->x, p, u) / W - c;
+        float yd = (dY * W - Y * dW) / (W * W);
+        sum += nw[k] * (xr * yd);
+    }
+    return half * sum;
 }
 
 /* Bernstein coefficients over u in [a, a+h] of the degree-p power-basis c. */
@@ -152,174 +373,33 @@ static void bernstein(const float *c, int p, float a, float h, float *b)
 }
 
 /*
- * Bounds of the arc of e over the band [ya, yb]: its strip around the
- * chord, its x range and whether it is x-monotone (variation diminishing:
- * a control polygon monotone in x makes the curve so).
- */
-static void hull(cs_workspace *ws, cs_exact_piece *e, float ya, float yb)
-{
-    const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
-    int p = s->degree;
-    float x0 = e->x_top, x1 = e->x_bot;
-    e->key = x0 + x1;
-    e->dmin = e->dmax = 0.0f;
-    e->xmin = cs__minf(x0, x1);
-    e->xmax = cs__maxf(x0, x1);
-    e->monotone = true;
-    if (p == 1)
-        return; /* a straight line, whatever its weights */
-    float a = cs__minf(e->u_top, e->u_bot), h = cs__absf(e->u_bot - e->u_top);
-    float bx[4], by[4], bw[4];
-    bernstein(s->x, p, a, h, bx);
-    bernstein(s->y, p, a, h, by);
-    bernstein(s->w, p, a, h, bw);
-    bool from_top = e->u_top <= e->u_bot;
-    float slope = (x1 - x0) / (yb - ya);
-    float prev = x0;
-    int sense = 0;
-    /* The end control points are the arc's ends, x_top and x_bot: their d
-     * is 0 by definition, which keeps rounding out of touching vertices. */
-    for (int j = 1; j <= p; j++) {
-        float px;
-        if (j < p) {
-            int jj = from_top ? j : p - j;
-            if (!(bw[jj] > 0.0f)) { /* cannot happen for positive weights */
-                e->dmin = e->xmin = -HUGE_X;
-                e->dmax = e->xmax = HUGE_X;
-                e->monotone = false;
-                return;
-            }
-            px = bx[jj] / bw[jj];
-            float d = px - (x0 + (by[jj] / bw[jj] - ya) * slope);
-            e->dmin = cs__minf(e->dmin, d);
-            e->dmax = cs__maxf(e->dmax, d);
-            e->xmin = cs__minf(e->xmin, px);
-            e->xmax = cs__maxf(e->xmax, px);
-        } else {
-            px = x1;
-        }
-        int step = px > prev ? 1 : (px < prev ? -1 : 0);
-        if (step != 0) {
-            if (sense != 0 && step != sense)
-                e->monotone = false;
-            sense = step;
-        }
-        prev = px;
-    }
-}
-
-/* Shell sort of the band's pieces by key; they arrive nearly sorted. */
-static void sort_by_key(const cs_exact_piece *ex, uint32_t *ord, uint32_t m)
-{
-    static const uint32_t gaps[] = {57, 23, 10, 4, 1};
-    for (unsigned g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {
-        uint32_t gap = gaps[g];
-        for (uint32_t i = gap; i < m; i++) {
-            uint32_t t = ord[i];
-            float kt = ex[t].key;
-            uint32_t j = i;
-            while (j >= gap && ex[ord[j - gap]].key > kt) {
-                ord[j] = ord[j - gap];
-                j -= gap;
-            }
-            ord[j] = t;
-        }
-    }
-}
-
-/*
- * Whether the order by key provably holds over [ya, yb], up to BAND_TOL.
- * If not, *cut is where to split the band.
- */
-static bool band_ordered(const cs_workspace *ws, uint32_t m, float ya, float yb, float *cut)
-{
-    const cs_exact_piece *ex = ws->exact;
-    const uint32_t *ord = ws->exact_order;
-    float reach_top = -HUGE_X, reach_bot = -HUGE_X, overlap = 0.0f;
-    uint32_t first = 0;
-    for (uint32_t k = 0; k < m; k++) {
-        const cs_exact_piece *e = &ex[ord[k]];
-        float g = cs__maxf(reach_top - (e->x_top + e->dmin), reach_bot - (e->x_bot + e->dmin));
-        if (g > 0.0f) {
-            if (overlap == 0.0f)
-                first = k;
-            overlap += g;
-        }
-        reach_top = cs__maxf(reach_top, e->x_top + e->dmax);
-        reach_bot = cs__maxf(reach_bot, e->x_bot + e->dmax);
-    }
-    float h = yb - ya;
-    if (!(overlap * h > BAND_TOL))
-        return true;
-    float t = 0.5f;
-    if (first > 0) {
-        const cs_exact_piece *p = &ex[ord[first - 1]], *q = &ex[ord[first]];
-        float dt = q->x_top - p->x_top, db = q->x_bot - p->x_bot;
-        if ((dt < 0.0f && db > 0.0f) || (dt > 0.0f && db < 0.0f))
-            t = cs__clampf(dt / (dt - db), 1.0f / 64.0f, 63.0f / 64.0f);
-    }
-    *cut = ya + t * h;
-    return false;
-}
-
-static void touch(exact_ctx *cx, int32_t a, int32_t b)
-{
-    if (a < cx->lo)
-        cx->lo = a;
-    if (b > cx->hi)
-        cx->hi = b;
-}
-
-static const float gl3_t[3] = {-0.77459666924148338f, 0.0f, 0.77459666924148338f};
-static const float gl3_w[3] = {0.55555555555555556f, 0.88888888888888889f, 0.55555555555555556f};
-static const float gl5_t[5] = {-0.90617984593866399f, -0.53846931010568309f, 0.0f,
-                               0.53846931010568309f, 0.90617984593866399f};
-static const float gl5_w[5] = {0.23692688505618909f, 0.47862867049936647f, 0.56888888888888889f,
-                               0.47862867049936647f, 0.23692688505618909f};
-
-/* Gauss-Legendre sum of (x(u) - c) y'(u) over [a, b], with `nodes` nodes. */
-static float gauss(const cs_segment *s, const float *dy, const float *dw, int nodes, float a,
-                   float b, float c)
-{
-    int p = s->degree;
-    const float *nt = nodes == 5 ? gl5_t : gl3_t, *nw = nodes == 5 ? gl5_w : gl3_w;
-    float mid = 0.5f * (a + b), half = 0.5f * (b - a), sum = 0.0f;
-    for (int k = 0; k < nodes; k++) {
-        float u = mid + half * nt[k];
-        float W = cs__poly_eval(s->w, p, u);
-        float Y = cs__poly_eval(s->y, p, u);
-        float xr = cs__poly_eval(s->x, p, u) / W - c;
-        float yd = (cs__poly_eval(dy, p - 1, u) * W - Y * cs__poly_eval(dw, p - 1, u)) / (W * W);
-        sum += nw[k] * (xr * yd);
-    }
-    return half * sum;
-}
-
-/*
- * Int (x - c) dy along the arc from u0 to u1 (its sign follows y).
+ * Int (x - c) dy along a rational arc from u0 to u1 (its sign follows y).
  *
- * The integrand is X (Y'W - YW') / W^3. With W constant it is a polynomial
- * of degree <= 5 and 3 nodes are exact. Otherwise its poles are the zeros
- * of W, which strong weights can put just outside the arc (weight 0.2
- * next to 3.6 puts one 3% of the arc's length away, and 5 nodes then miss
- * by 6%). So the arc is cut into panels on which W's Bernstein
- * coefficients stay within a ratio of WEIGHT_SPREAD: W then has no zero
- * inside the Bernstein ellipse of rho ~ 3.9 around the panel, and 5 nodes
- * are good to about rho^-10 ~ 1e-6 of the panel's value. Arcs of conics
- * and mild weights pass as a single panel.
+ * The integrand is X (Y'W - YW') / W^3. Its poles are the zeros of W,
+ * which strong weights can put just outside the arc (weight 0.2 next to
+ * 3.6 puts one 3% of the arc's length away, and 5 nodes then miss by 6%).
+ * So the arc is cut into panels on which W's Bernstein coefficients stay
+ * within a ratio of WEIGHT_SPREAD: W then has no zero inside the Bernstein
+ * ellipse of rho ~ 3.9 around the panel, and 5 nodes are good to about
+ * rho^-10 ~ 1e-6 of the panel's value. Arcs of conics and mild weights
+ * pass as a single panel.
  */
 #define WEIGHT_SPREAD 1.25f
+/*
+ * Where W varies less still, fewer nodes do. With Bernstein coefficients
+ * within w(1 +- e), W = w (1 + sum e_j B_j(t)) cannot vanish where
+ * (|t| + |1 - t|)^p e < 1, i.e. inside the ellipse of rho ~ 2 e^(-1/p).
+ * For a conic (p = 2; the integrand's numerator then has degree 4, which
+ * 3 nodes integrate exactly) a spread of 1.05 gives rho ~ 13 and 3 nodes
+ * are good to rho^-6 ~ 2e-7: the usual case, a conic's arc within a pixel.
+ */
+#define CONIC_SPREAD_3 1.05f
 #define MAX_PANEL_DEPTH 12
-static float arc_moment(const cs_segment *s, float u0, float u1, float c)
+static float rational_moment(const cs_segment *s, const cs_exact_end *e0, const cs_exact_end *e1,
+                             float c)
 {
+    float u0 = e0->u, u1 = e1->u;
     int p = s->degree;
-    float dy[3] = {0.0f, 0.0f, 0.0f}, dw[3] = {0.0f, 0.0f, 0.0f};
-    for (int i = 1; i <= p; i++) {
-        dy[i - 1] = (float)i * s->y[i];
-        dw[i - 1] = (float)i * s->w[i];
-    }
-    if (s->w[1] == 0.0f && s->w[2] == 0.0f && s->w[3] == 0.0f)
-        return gauss(s, dy, dw, 3, u0, u1, c);
     /* Panels depth first, left to right, so the sum's order is fixed. */
     float lo[MAX_PANEL_DEPTH + 1], hi[MAX_PANEL_DEPTH + 1];
     int depth[MAX_PANEL_DEPTH + 1], top = 0;
@@ -329,10 +409,18 @@ static float arc_moment(const cs_segment *s, float u0, float u1, float c)
     float sum = 0.0f;
     while (top >= 0) {
         float a = lo[top], b = hi[top];
-        int d = depth[top--];
+        int d = depth[top--], nodes = 5;
         if (d < MAX_PANEL_DEPTH) {
             float bw[4];
-            bernstein(s->w, p, cs__minf(a, b), cs__absf(b - a), bw);
+            if (d == 0) { /* the whole arc: W's coefficients from its ends */
+                float t = (u1 - u0) * (p == 3 ? 1.0f / 3.0f : 0.5f);
+                bw[0] = e0->w;
+                bw[1] = e0->w * (1.0f + t * e0->dwr);
+                bw[2] = p == 3 ? e1->w * (1.0f - t * e1->dwr) : e1->w;
+                bw[3] = e1->w;
+            } else {
+                bernstein(s->w, p, cs__minf(a, b), cs__absf(b - a), bw);
+            }
             float wmin = bw[0], wmax = bw[0];
             for (int j = 1; j <= p; j++) {
                 wmin = cs__minf(wmin, bw[j]);
@@ -348,16 +436,47 @@ static float arc_moment(const cs_segment *s, float u0, float u1, float c)
                 depth[top] = d + 1;
                 continue;
             }
+            if (p == 2 && wmax <= CONIC_SPREAD_3 * wmin)
+                nodes = 3;
         }
-        sum += gauss(s, dy, dw, 5, a, b, c);
+        sum += gauss(s, nodes, a, b, c);
     }
     return sum;
 }
 
-/* Sub-arc u0..u1 (y0 < y1) lying in column c: the part of the column right
+/*
+ * Int (x - c) dy along a polynomial arc from a (at y0) to b (at y1), in
+ * closed form from its Bezier control points P0..Pp:
+ * sum_ij K_ij (x_i - c) (y_(j+1) - y_j), K_ij = Int B_i^p (p B_j^(p-1))
+ * = C(p,i) C(p-1,j) / (2 C(2p-1,i+j)). Exact, like the 3-node Gauss rule
+ * it replaces, but with no evaluation of the segment.
+ */
+static float poly_moment(const cs_segment *s, const cs_exact_end *a, float y0,
+                         const cs_exact_end *b, float y1, float c)
+{
+    float px[3], py[2];
+    int k = control_points(s, a, y0, b, y1, px, py);
+    float x0 = a->x - c, x3 = b->x - c;
+    if (k == 1) { /* quadratic */
+        float x1 = px[0] - c;
+        float d0 = py[0] - y0, d1 = y1 - py[0];
+        return (0.5f * x0 + (1.0f / 3.0f) * x1 + (1.0f / 6.0f) * x3) * d0 +
+               ((1.0f / 6.0f) * x0 + (1.0f / 3.0f) * x1 + 0.5f * x3) * d1;
+    }
+    if (k == 2) { /* cubic */
+        float x1 = px[0] - c, x2 = px[1] - c;
+        float d0 = py[0] - y0, d1 = py[1] - py[0], d2 = y1 - py[1];
+        return (0.5f * x0 + 0.3f * x1 + 0.15f * x2 + 0.05f * x3) * d0 +
+               (0.2f * x0 + 0.3f * x1 + 0.3f * x2 + 0.2f * x3) * d1 +
+               (0.05f * x0 + 0.15f * x1 + 0.3f * x2 + 0.5f * x3) * d2;
+    }
+    return 0.5f * (x0 + x3) * (y1 - y0);
+}
+
+/* Sub-arc a..b (y0 < y1) lying in column c: the part of the column right
  * of it is inside (sign +1) or outside (-1) from here on. */
-static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c, float u0, float x0,
-                     float y0, float u1, float x1, float y1)
+static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c,
+                     const cs_exact_end *a, float y0, const cs_exact_end *b, float y1)
 {
     float dy = y1 - y0;
     if (!(dy > 0.0f))
@@ -372,46 +491,81 @@ static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c, 
         touch(cx, cx->width, cx->width + 1);
         return;
     }
-    float fc = (float)c;
-    float m = s->degree == 1 ? (0.5f * (x0 + x1) - fc) * dy : arc_moment(s, u0, u1, fc);
+    float fc = (float)c, m;
+    if (s->degree == 1)
+        m = (0.5f * (a->x + b->x) - fc) * dy;
+    else if (polynomial(s))
+        m = poly_moment(s, a, y0, b, y1, fc);
+    else
+        m = rational_moment(s, a, b, fc);
     m = cs__clampf(m, 0.0f, dy);
     cs__acc_area(ws, c, sign * (dy - m));
     cs__acc_cover(ws, c + 1, sign * dy);
     touch(cx, c, c + 2);
 }
 
+/* The point of an x-monotone sub-arc from a (at ya) to b (at yb) where x
+ * is k, with y clamped to the sub-arc's range. */
+static void cut_at_x(const cs_segment *s, const cs_exact_end *a, float ya, const cs_exact_end *b,
+                     float yb, float k, cs_exact_end *out, float *y_out)
+{
+    float ua = a->u, ub = b->u, slope;
+    /* Newton's first step from a (the cut before, a column away), or the chord. */
+    float guess = a->dx != 0.0f ? ua + (k - a->x) / a->dx : ua;
+    if (!(guess > cs__minf(ua, ub) && guess < cs__maxf(ua, ub)))
+        guess = ua + (k - a->x) / (b->x - a->x) * (ub - ua);
+    bool rising = (b->x > a->x) == (ub > ua);
+    float u = cs__solve_level_from(s->x, s->w, s->degree, k, cs__minf(ua, ub), cs__maxf(ua, ub),
+                                   guess, rising, &slope);
+    float y = cs__clampf(seg_y(s, u), ya, yb);
+    eval_end(s, u, y, out);
+    out->x = k;
+    *y_out = y;
+}
+
 /* An x-monotone sub-arc, top (y0) to bottom (y1): cut at integer x. Only
  * cuts inside [0, width] matter; beyond them whole columns do not. */
-static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, float u0, float x0,
-                         float y0, float u1, float x1, float y1)
+static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, const cs_exact_end *top,
+                         float y0, const cs_exact_end *bot, float y1)
 {
     float width = (float)cx->width;
-    float ulo = cs__minf(u0, u1), uhi = cs__maxf(u0, u1);
+    cs_exact_end a = *top, k_end;
+    float x0 = a.x, x1 = bot->x;
     /* A straight piece needs no solve: y is linear in x along it. */
     bool line = s->degree == 1;
     float ys = y0, dydx = line && x1 != x0 ? (y1 - y0) / (x1 - x0) : 0.0f, xs = x0;
     if (x1 > x0) {
         float k = (float)(cs__floori(x0) + 1);
         for (k = cs__maxf(k, 0.0f); k < x1 && k <= width; k += 1.0f) {
-            float uk = line ? 0.0f : cs__solve_level(s->x, s->w, s->degree, k, ulo, uhi);
-            float yk = cs__clampf(line ? ys + (k - xs) * dydx : seg_y(s, uk), y0, y1);
-            add_cell(cx, s, sign, cs__floori(x0), u0, x0, y0, uk, k, yk);
-            u0 = uk;
-            x0 = k;
+            float yk;
+            if (line) {
+                yk = cs__clampf(ys + (k - xs) * dydx, y0, y1);
+                k_end = a;
+                k_end.x = k;
+            } else {
+                cut_at_x(s, &a, y0, bot, y1, k, &k_end, &yk);
+            }
+            add_cell(cx, s, sign, cs__floori(a.x), &a, y0, &k_end, yk);
+            a = k_end;
             y0 = yk;
         }
     } else if (x1 < x0) {
         float k = (float)(-cs__floori(-x0) - 1);
         for (k = cs__minf(k, width); k > x1 && k >= 0.0f; k -= 1.0f) {
-            float uk = line ? 0.0f : cs__solve_level(s->x, s->w, s->degree, k, ulo, uhi);
-            float yk = cs__clampf(line ? ys + (k - xs) * dydx : seg_y(s, uk), y0, y1);
-            add_cell(cx, s, sign, cs__floori(k), u0, x0, y0, uk, k, yk);
-            u0 = uk;
-            x0 = k;
+            float yk;
+            if (line) {
+                yk = cs__clampf(ys + (k - xs) * dydx, y0, y1);
+                k_end = a;
+                k_end.x = k;
+            } else {
+                cut_at_x(s, &a, y0, bot, y1, k, &k_end, &yk);
+            }
+            add_cell(cx, s, sign, cs__floori(k), &a, y0, &k_end, yk);
+            a = k_end;
             y0 = yk;
         }
     }
-    add_cell(cx, s, sign, cs__floori(cs__minf(x0, x1)), u0, x0, y0, u1, x1, y1);
+    add_cell(cx, s, sign, cs__floori(cs__minf(a.x, x1)), &a, y0, bot, y1);
 }
 
 /* Effective edge e over the band [ya, yb]: sign +1 where the region begins. */
@@ -431,104 +585,261 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
     if (e->xmax - e->xmin < 1.0f) { /* the usual case: one column, no solve */
         int32_t c = cs__floori(e->xmin);
         if (e->xmax <= (float)c + 1.0f) {
-            add_cell(cx, s, sign, c, e->u_top, e->x_top, ya, e->u_bot, e->x_bot, yb);
+            add_cell(cx, s, sign, c, &e->top, ya, &e->bot, yb);
             return;
         }
     }
-    /* Points from the band's top to its bottom, x-monotone in between. */
-    float pu[6], px[6], py[6];
-    int np = 0;
-    pu[np] = e->u_top;
-    px[np] = e->x_top;
-    py[np++] = ya;
-    if (!e->monotone) {
-        float t[4];
-        int nt = cs__turns(s->x, s->w, s->degree, cs__minf(e->u_top, e->u_bot),
-                           cs__maxf(e->u_top, e->u_bot), t);
-        bool up = e->u_top <= e->u_bot;
-        for (int k = 0; k < nt; k++) {
-            float u = up ? t[k] : t[nt - 1 - k];
-            pu[np] = u;
-            px[np] = seg_x(s, u);
-            py[np] = cs__clampf(seg_y(s, u), py[np - 1], yb);
-            np++;
-        }
+    if (e->monotone) {
+        add_monotone(cx, s, sign, &e->top, ya, &e->bot, yb);
+        return;
     }
-    pu[np] = e->u_bot;
-    px[np] = e->x_bot;
-    py[np++] = yb;
-    for (int k = 0; k + 1 < np; k++)
-        add_monotone(cx, s, sign, pu[k], px[k], py[k], pu[k + 1], px[k + 1], py[k + 1]);
+    /* Cut at the x-extrema: points from the band's top to its bottom,
+     * x-monotone in between. */
+    float t[4];
+    int nt = cs__turns(s->x, s->w, s->degree, cs__minf(e->top.u, e->bot.u),
+                       cs__maxf(e->top.u, e->bot.u), t);
+    bool up = e->top.u <= e->bot.u;
+    cs_exact_end a = e->top, b;
+    float y0 = ya;
+    for (int k = 0; k < nt; k++) {
+        float u = up ? t[k] : t[nt - 1 - k];
+        float y = cs__clampf(seg_y(s, u), y0, yb);
+        eval_end(s, u, y, &b);
+        add_monotone(cx, s, sign, &a, y0, &b, y);
+        a = b;
+        y0 = y;
+    }
+    add_monotone(cx, s, sign, &a, y0, &e->bot, yb);
 }
 
-/* Applies the fill rule along the band's arcs, in x order. */
-static void emit_band(exact_ctx *cx, uint32_t m, float ya, float yb)
+/* Applies the fill rule along the band's arcs ord[0..m), in x order, from
+ * the winding `w` (updated) met left of them. */
+static bool emit_band(exact_ctx *cx, const uint32_t *ord, uint32_t m, float ya, float yb,
+                      int32_t *w, bool inside)
 {
     cs_workspace *ws = cx->ws;
-    int32_t winding[CS_CFG_MAX_OPERANDS];
-    for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) /* a loop: `= {0}` may call memset */
-        winding[k] = 0;
-    bool inside = false;
     for (uint32_t k = 0; k < m; k++) {
-        const cs_exact_piece *e = &ws->exact[ws->exact_order[k]];
+        const cs_exact_piece *e = &ws->exact[ord[k]];
         const cs_piece *pc = &ws->pieces[e->piece];
-        winding[pc->operand] += pc->dir;
-        bool now = cs__region_inside(cx->region, winding);
+        w[pc->operand] += pc->dir;
+        bool now = cs__region_inside(cx->region, w);
         if (now != inside) {
             add_edge(cx, e, now ? 1.0f : -1.0f, ya, yb);
             inside = now;
         }
     }
+    return inside;
 }
 
-/* The band [ya, yb] between two consecutive piece ends, cut further until
- * its order is proved. On return every piece in it has its top at yb. */
-static void run_band(exact_ctx *cx, float ya, float yb)
+/* Moves e's bottom to height yb, searching from its top towards the known
+ * point (uref at yref) below yb. */
+static void set_bot(exact_ctx *cx, cs_exact_piece *e, float ya, float yb, float uref, float yref)
+{
+    cs_workspace *ws = cx->ws;
+    const cs_piece *pc = &ws->pieces[e->piece];
+    const cs_segment *s = &ws->segments[pc->segment];
+    e->row_arc = false;
+    float u = yb == yref ? uref
+                         : level_u(s, pc, yb, e->top.u, uref, chord_u(e->top.u, ya, uref, yref, yb));
+    eval_end(s, u, yb, &e->bot);
+}
+
+/*
+ * The band [ya, yb] of the cluster cl[0..nc) between two consecutive ends
+ * of its pieces, cut further until its order is proved; `w` is the winding
+ * left of the cluster. On return every piece in it has its top at yb.
+ * Returns how many pieces the band had; w_out gets the winding right of
+ * them, if any.
+ */
+static uint32_t run_band(exact_ctx *cx, uint32_t *cl, uint32_t nc, float ya, float yb,
+                         const int32_t *w, bool inside, int32_t *w_out)
 {
     cs_workspace *ws = cx->ws;
     cs_exact_piece *ex = ws->exact;
-    uint32_t *ord = ws->exact_order;
+    /* The band's pieces to the front of cl. */
     uint32_t m = 0;
-    for (uint32_t i = 0; i < cx->n; i++) {
-        const cs_piece *pc = &ws->pieces[ex[i].piece];
-        if (pc->y_top <= ya && pc->y_bot >= yb)
-            ord[m++] = i;
+    for (uint32_t i = 0; i < nc; i++) {
+        const cs_piece *pc = &ws->pieces[ex[cl[i]].piece];
+        if (row_top(cx, pc) <= ya && row_end(cx, pc) >= yb) {
+            uint32_t t = cl[m];
+            cl[m++] = cl[i];
+            cl[i] = t;
+        }
     }
     if (m == 0)
-        return;
-    for (uint32_t k = 0; k < m; k++)
-        set_bot(ws, &ex[ord[k]], yb, false);
+        return 0;
+    for (uint32_t k = 0; k < m; k++) {
+        cs_exact_piece *e = &ex[cl[k]];
+        const cs_piece *pc = &ws->pieces[e->piece];
+        if (!(e->row_arc && yb == row_end(cx, pc)))
+            set_bot(cx, e, ya, yb, e->u_row, row_end(cx, pc));
+    }
     float pending[MAX_DEPTH];
     int depth = 0;
+    bool first = true;
     for (;;) {
-        for (uint32_t k = 0; k < m; k++)
-            hull(ws, &ex[ord[k]], ya, yb);
-        sort_by_key(ex, ord, m);
+        for (uint32_t k = 0; k < m; k++) {
+            cs_exact_piece *e = &ex[cl[k]];
+            if (!e->row_arc)
+                hull(&ws->segments[ws->pieces[e->piece].segment], e, ya, yb);
+        }
+        sort_pieces(ex, cl, m, false);
         float cut = 0.0f;
-        if (m > 1 && !band_ordered(ws, m, ya, yb, &cut) && cut > ya && cut < yb &&
+        if (m > 1 && !band_ordered(ex, cl, m, ya, yb, &cut) && cut > ya && cut < yb &&
             depth < MAX_DEPTH) {
             if (cx->bands_left > 0) {
                 cx->bands_left--;
                 pending[depth++] = yb;
+                for (uint32_t k = 0; k < m; k++) {
+                    cs_exact_piece *e = &ex[cl[k]];
+                    set_bot(cx, e, ya, cut, e->bot.u, yb);
+                }
                 yb = cut;
-                for (uint32_t k = 0; k < m; k++)
-                    set_bot(ws, &ex[ord[k]], yb, true);
                 continue;
             }
             cx->overflow = true; /* accepted unproved: a crossing may be misplaced */
         }
-        emit_band(cx, m, ya, yb);
+        int32_t wb[CS_CFG_MAX_OPERANDS];
+        for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
+            wb[k] = w[k];
+        emit_band(cx, cl, m, ya, yb, wb, inside);
+        if (first) {
+            for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
+                w_out[k] = wb[k];
+            first = false;
+        }
         for (uint32_t k = 0; k < m; k++) {
-            ex[ord[k]].u_top = ex[ord[k]].u_bot;
-            ex[ord[k]].x_top = ex[ord[k]].x_bot;
+            ex[cl[k]].top = ex[cl[k]].bot;
+            ex[cl[k]].row_arc = false;
         }
         if (depth == 0)
             break;
         ya = yb;
         yb = pending[--depth];
-        for (uint32_t k = 0; k < m; k++)
-            set_bot(ws, &ex[ord[k]], yb, false);
+        for (uint32_t k = 0; k < m; k++) {
+            cs_exact_piece *e = &ex[cl[k]];
+            const cs_piece *pc = &ws->pieces[e->piece];
+            set_bot(cx, e, ya, yb, e->u_row, row_end(cx, pc));
+        }
     }
+    return m;
+}
+
+/*
+ * The pieces cl[0..nc) of one cluster, band by band down the row. No
+ * curve passes between two clusters (see cluster_closed), so the winding
+ * to the right of this one is the same at every height: any band's arcs
+ * give it.
+ */
+static bool run_cluster(exact_ctx *cx, uint32_t *cl, uint32_t nc, int32_t *w, bool inside)
+{
+    cs_workspace *ws = cx->ws;
+    int32_t w_out[CS_CFG_MAX_OPERANDS];
+    bool got = false;
+    float ya = cx->row_top;
+    while (ya < cx->row_bot) {
+        float yb = cx->row_bot;
+        for (uint32_t i = 0; i < nc; i++) {
+            const cs_piece *pc = &ws->pieces[ws->exact[cl[i]].piece];
+            float t = row_top(cx, pc), b = row_end(cx, pc);
+            if (t > ya && t < yb)
+                yb = t;
+            if (b > ya && b < yb)
+                yb = b;
+        }
+        int32_t wb[CS_CFG_MAX_OPERANDS];
+        if (run_band(cx, cl, nc, ya, yb, w, inside, wb) > 0 && !got) {
+            for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
+                w_out[k] = wb[k];
+            got = true;
+        }
+        ya = yb;
+    }
+    if (got)
+        for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
+            w[k] = w_out[k];
+    return cs__region_inside(cx->region, w);
+}
+
+/* A bijective mix of 32 bits (the MurmurHash3 finaliser). */
+static uint32_t mix32(uint32_t v)
+{
+    v ^= v >> 16;
+    v *= 0x85ebca6bu;
+    v ^= v >> 13;
+    v *= 0xc2b2ae35u;
+    v ^= v >> 16;
+    return v;
+}
+
+static uint32_t height_tag(float h, uint32_t operand)
+{
+    union {
+        float f;
+        uint32_t u;
+    } b;
+    b.f = h;
+    return mix32(b.u ^ (operand * 0x9e3779b9u));
+}
+
+/*
+ * Where piece pc starts or ends inside the row, the winding across its
+ * cluster changes unless another piece of the cluster starts or ends at
+ * the same height. Returns the sum of dir * tag(height) over its inner
+ * ends (wrapping), so that a cluster whose changes all cancel sums to 0.
+ */
+static uint32_t end_tags(const exact_ctx *cx, const cs_piece *pc, bool *inner)
+{
+    uint32_t t = 0;
+    if (pc->y_top > cx->row_top) {
+        uint32_t v = height_tag(pc->y_top, pc->operand);
+        t = pc->dir > 0 ? t + v : t - v;
+        *inner = true;
+    }
+    if (pc->y_bot < cx->row_bot) {
+        uint32_t v = height_tag(pc->y_bot, pc->operand);
+        t = pc->dir > 0 ? t - v : t + v;
+        *inner = true;
+    }
+    return t;
+}
+
+/* Whether the winding across the pieces cl[0..nc) is the same at every
+ * height of the row (every band of theirs, empty ones included). */
+static bool winding_constant(const exact_ctx *cx, const uint32_t *cl, uint32_t nc)
+{
+    const cs_workspace *ws = cx->ws;
+    int32_t d0[CS_CFG_MAX_OPERANDS];
+    float ya = cx->row_top;
+    bool first = true;
+    while (ya < cx->row_bot) {
+        float yb = cx->row_bot;
+        for (uint32_t i = 0; i < nc; i++) {
+            const cs_piece *pc = &ws->pieces[ws->exact[cl[i]].piece];
+            float t = row_top(cx, pc), b = row_end(cx, pc);
+            if (t > ya && t < yb)
+                yb = t;
+            if (b > ya && b < yb)
+                yb = b;
+        }
+        int32_t d[CS_CFG_MAX_OPERANDS];
+        for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
+            d[k] = 0;
+        for (uint32_t i = 0; i < nc; i++) {
+            const cs_piece *pc = &ws->pieces[ws->exact[cl[i]].piece];
+            if (row_top(cx, pc) <= ya && row_end(cx, pc) >= yb)
+                d[pc->operand] += pc->dir;
+        }
+        for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) {
+            if (first)
+                d0[k] = d[k];
+            else if (d[k] != d0[k])
+                return false;
+        }
+        first = false;
+        ya = yb;
+    }
+    return true;
 }
 
 cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_index *act,
@@ -540,32 +851,76 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     exact_ctx cx;
     cx.ws = ws;
     cx.region = region;
-    cx.n = n;
+    cx.row_top = (float)y;
+    cx.row_bot = (float)(y + 1);
     cx.width = r->opts.width;
     cx.lo = INT32_MAX;
     cx.hi = INT32_MIN;
     cx.bands_left = CS_CFG_EXACT_MAX_BANDS;
     cx.overflow = false;
-    float ya = (float)y, row_bot = (float)(y + 1);
+    cs_exact_piece *ex = ws->exact;
+    uint32_t *ord = ws->exact_order;
+    /* Each piece's arc across the row, and its bounds. */
     for (uint32_t i = 0; i < n; i++) {
-        ws->exact[i].piece = act[i];
-        if (ws->pieces[act[i]].y_top <= ya)
-            set_top(ws, &ws->exact[i], ya);
+        cs_exact_piece *e = &ex[i];
+        const cs_piece *pc = &ws->pieces[act[i]];
+        const cs_segment *s = &ws->segments[pc->segment];
+        float ya = row_top(&cx, pc), yb = row_end(&cx, pc);
+        float ut = top_u(pc), ub = bot_u(pc);
+        e->piece = act[i];
+        float u = level_u(s, pc, ya, ut, ub, chord_u(ut, pc->y_top, ub, pc->y_bot, ya));
+        eval_end(s, u, ya, &e->top);
+        /* The bottom from the top's tangent, or failing that its chord. */
+        float guess = e->top.dy != 0.0f ? u + (yb - ya) / e->top.dy : u;
+        if (!(guess > cs__minf(u, ub) && guess < cs__maxf(u, ub)))
+            guess = chord_u(u, ya, ub, pc->y_bot, yb);
+        e->u_row = level_u(s, pc, yb, u, ub, guess);
+        eval_end(s, e->u_row, yb, &e->bot);
+        hull(s, e, ya, yb);
+        e->row_arc = true;
+        ord[i] = i;
     }
-    while (ya < row_bot) {
-        float yb = row_bot;
-        for (uint32_t i = 0; i < n; i++) {
-            const cs_piece *pc = &ws->pieces[act[i]];
-            if (pc->y_top > ya && pc->y_top < yb)
-                yb = pc->y_top;
-            if (pc->y_bot > ya && pc->y_bot < yb)
-                yb = pc->y_bot;
+    /*
+     * Clusters: runs of pieces in xmin order whose x ranges overlap, so
+     * that no curve passes between two of them. A horizontal segment has
+     * no piece, yet joins the ends of two that may lie far apart; a
+     * cluster whose winding changes inside the row (found by its end tags,
+     * and confirmed band by band) therefore takes in the next one until
+     * the changes cancel. The whole row always qualifies.
+     */
+    sort_pieces(ex, ord, n, true);
+    int32_t w[CS_CFG_MAX_OPERANDS];
+    for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) /* a loop: `= {0}` may call memset */
+        w[k] = 0;
+    bool inside = false;
+    for (uint32_t i = 0; i < n;) {
+        float reach = ex[ord[i]].xmax;
+        uint32_t j = i, tags = 0;
+        bool inner = false;
+        for (;;) {
+            reach = cs__maxf(reach, ex[ord[j]].xmax);
+            tags += end_tags(&cx, &ws->pieces[ex[ord[j]].piece], &inner);
+            j++;
+            if (j == n)
+                break;
+            if (ex[ord[j]].xmin <= reach + CLUSTER_GAP)
+                continue;
+            if (!inner || (tags == 0 && winding_constant(&cx, &ord[i], j - i)))
+                break;
         }
-        run_band(&cx, ya, yb);
-        ya = yb;
-        for (uint32_t i = 0; i < n; i++)
-            if (ws->pieces[act[i]].y_top == ya)
-                set_top(ws, &ws->exact[i], ya);
+        if (j == i + 1) { /* alone: one band, nothing to order */
+            const cs_exact_piece *e = &ex[ord[i]];
+            const cs_piece *pc = &ws->pieces[e->piece];
+            w[pc->operand] += pc->dir;
+            bool now = cs__region_inside(region, w);
+            if (now != inside) {
+                add_edge(&cx, e, now ? 1.0f : -1.0f, row_top(&cx, pc), row_end(&cx, pc));
+                inside = now;
+            }
+        } else {
+            inside = run_cluster(&cx, &ord[i], j - i, w, inside);
+        }
+        i = j;
     }
     if (cx.lo < *lo)
         *lo = cx.lo;

@@ -135,6 +135,34 @@ static inline float cs__horner(const float *c, int degree, float u)
     }
 }
 
+/* Value of c at u, and its derivative in *d, by Horner's scheme (unrolled). */
+static inline float cs__horner_d(const float *c, int degree, float u, float *d)
+{
+    switch (degree) {
+    case 1:
+        *d = c[1];
+        return c[1] * u + c[0];
+    case 2:
+        *d = c[2] * u + (c[2] * u + c[1]);
+        return (c[2] * u + c[1]) * u + c[0];
+    case 3: {
+        float v2 = c[3] * u + c[2];
+        float v1 = v2 * u + c[1];
+        *d = (c[3] * u + v2) * u + v1;
+        return v1 * u + c[0];
+    }
+    default: {
+        float v = c[degree], dv = 0.0f;
+        for (int i = degree - 1; i >= 0; i--) {
+            dv = dv * u + v;
+            v = v * u + c[i];
+        }
+        *d = dv;
+        return v;
+    }
+    }
+}
+
 /*
  * Real roots of the polynomial c (degree <= 4) strictly inside (lo, hi), in
  * increasing order, written to roots[]; returns how many (at most degree).

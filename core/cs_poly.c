@@ -100,31 +100,6 @@ int cs__poly_roots(const float *c, int degree, float lo, float hi, float *roots)
     return n;
 }
 
-/* Value of c at u, and its derivative in *d, by Horner's scheme (unrolled). */
-static inline float horner_d(const float *c, int degree, float u, float *d)
-{
-    switch (degree) {
-    case 2:
-        *d = c[2] * u + (c[2] * u + c[1]);
-        return (c[2] * u + c[1]) * u + c[0];
-    case 3: {
-        float v2 = c[3] * u + c[2];
-        float v1 = v2 * u + c[1];
-        *d = (c[3] * u + v2) * u + v1;
-        return v1 * u + c[0];
-    }
-    default: {
-        float v = c[degree], dv = 0.0f;
-        for (int i = degree - 1; i >= 0; i--) {
-            dv = dv * u + v;
-            v = v * u + c[i];
-        }
-        *d = dv;
-        return v;
-    }
-    }
-}
-
 /*
  * Root of g in [a, b] (fa, fb of opposite signs) by Newton's method from
  * `guess`, keeping the bracket: every evaluation moves one end of it, and a
@@ -137,7 +112,7 @@ static float newton(const float *g, int degree, float a, float b, float fa, floa
     if (!(u > a && u < b))
         return illinois(g, degree, a, b, fa, fb);
     for (int it = 0; it < NEWTON_MAX_ITER; it++) {
-        float d, f = horner_d(g, degree, u, &d);
+        float d, f = cs__horner_d(g, degree, u, &d);
         if (f == 0.0f)
             return u;
         if ((f < 0.0f) == (fa < 0.0f)) {
@@ -203,7 +178,7 @@ float cs__solve_level_from(const float *num, const float *den, int degree, float
         return cs__solve_level(num, den, degree, level, lo, hi);
     float a = lo, b = hi, u = guess;
     for (int it = 0; it < NEWTON_MAX_ITER; it++) {
-        float d, f = horner_d(g, degree, u, &d);
+        float d, f = cs__horner_d(g, degree, u, &d);
         if (f == 0.0f) {
             *slope = d;
             return u;

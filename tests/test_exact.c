@@ -520,6 +520,30 @@ static void scene_coincident(void)
     compare_scene(t);
 }
 
+/* Horizontal edges have no y-monotone piece, yet join two far apart: a
+ * row cut into independent clusters of pieces must not lose them. Small
+ * contours sit between the sides of each horizontal edge, on its row. */
+static void scene_horizontal(void)
+{
+    for (int evenodd = 0; evenodd < 2; evenodd++) {
+        tscene *t = new_scene(evenodd ? "horizontal evenodd" : "horizontal nonzero", 128, 96,
+                              128, 96);
+        t->reg[0].evenodd = evenodd;
+        const double rect[8] = {10.3, 20.4, 100.7, 20.4, 100.7, 60.6, 10.3, 60.6};
+        polygon(&t->reg[0], rect, 4);
+        /* a staircase: three horizontal edges in one row, and a notch */
+        const double stairs[16] = {20.2, 70.3, 40.6, 70.3, 40.6, 70.7, 70.1, 70.7,
+                                   70.1, 80.5, 50.5, 80.5, 50.5, 75.2, 20.2, 75.2};
+        polygon(&t->reg[0], stairs, 8);
+        circle(&t->reg[0], 30.3, 20.5, 0.3, 0);   /* inside one row, across the top edge */
+        circle(&t->reg[0], 55.2, 20.9, 0.4, 1);   /* reversed, across two rows */
+        circle(&t->reg[0], 80.6, 60.3, 1.2, 0);   /* across the bottom edge */
+        circle(&t->reg[0], 45.1, 70.5, 0.15, 0);  /* between the stairs' risers */
+        circle(&t->reg[0], 60.4, 80.45, 0.25, 1); /* on the notch's floor */
+        compare_scene(t);
+    }
+}
+
 /* Scribbles: random closed curves of every degree, weights from 0.2 to 5,
  * crossing themselves and each other many times, random fill rule. */
 static void scene_random(int count)
@@ -706,6 +730,7 @@ int main(void)
     scene_coincident();
     scene_far();
     scene_near_cusp();
+    scene_horizontal();
     scene_random(getenv("EXACT_RANDOM") ? atoi(getenv("EXACT_RANDOM")) : 12);
     printf("largest exact-mode error over all scenes: %.4f/255 (limit %.1f/255)\n",
            g_worst_exact * 255.0, TOL_EXACT * 255.0);
