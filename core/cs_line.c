@@ -276,6 +276,21 @@ static void paint_at(const cs_renderer *r, const cs_region *region, const float 
     }
 }
 
+/*
+ * Whether the region can make a pixel of its cel opaque on its own: T = 0
+ * on every channel (or a functional medium or beta that may reach it).
+ * The cel's T at a pixel is 1 - sum c_i (1 - T_i) with sum c_i <= 1, so it
+ * can only vanish where such regions cover it. Only such cels snap T to 0
+ * (below CS__T_ZERO), so that a stack covered by them turns opaque.
+ */
+static bool region_may_hide(const cs_renderer *r, uint32_t reg)
+{
+    const cs_region *region = &r->scene->regions[reg];
+    const float *T = r->ws->region_T[reg];
+    return (T[0] < CS__T_ZERO && T[1] < CS__T_ZERO && T[2] < CS__T_ZERO) ||
+           region->func[CS_FIELD_MEDIUM] || region->func[CS_FIELD_BETA];
+}
+
 /* What a region adds to the runs: its paint, or how to evaluate it. */
 typedef struct fold_paint {
     const cs_renderer *r;
@@ -285,6 +300,8 @@ typedef struct fold_paint {
     float E[3], A[3]; /* the constant map (c = 1) when not functional */
     float py;         /* pixel-centre y, for functional paints */
     bool functional;
+    bool direct;      /* the cel's only region on this line: straight into the stack */
+    bool snap;        /* with direct: the cel may hide (see region_may_hide) */
 } fold_paint;
 
 /* Adds coverage c of paint (E, A) to the cel at the run starting at s,
@@ -305,6 +322,27 @@ static inline void accumulate(cs_workspace *ws, uint32_t s, float c, const float
 }
 
 /*
+ * The region alone in its cel on this line: its cel map at the run is just
+ * (c E, 1 - c A), so it joins the stack at once. These are the operations
+ * accumulate and composite_cel would do on a cel with one region (room is
+ * 1, 0 + v is v), so the bits are the same, without the round trip through
+ * the cel's share of the runs.
+ */
+static inline void composite_direct(cs_renderer *r, uint32_t s, uint32_t e, float c,
+                                    const float *E, const float *A, bool snap)
+{
+    cs_workspace *ws = r->ws;
+    float *se = &ws->stack_E[3 * s], *st = &ws->stack_T[3 * s];
+    for (int ch = 0; ch < 3; ch++) {
+        float t = 1.0f - c * A[ch];
+        se[ch] += st[ch] * (c * E[ch]);
+        st[ch] *= snap && t < CS__T_ZERO ? 0.0f : t;
+    }
+    if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
+        r->opaque_px += e - s;
+}
+
+/*
  * Folds coverage c over pixels [a, b) into the runs, splitting them at a
  * and b; opaque runs are passed over whole. `s` is a run start at or left
  * of a; returns the start of the last run visited (at or left of b - 1),
@@ -313,6 +351,7 @@ static inline void accumulate(cs_workspace *ws, uint32_t s, float c, const float
 static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uint32_t a,
                          uint32_t b, float c)
 {
+    cs_renderer *r = (cs_renderer *)fp->r; /* the direct path writes the opaque count */
     s = cs__run_seek(ws, s, a);
     for (;;) {
         uint32_t e = ws->run_end[s];
@@ -326,7 +365,10 @@ static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uin
                 e = b;
             }
             if (!fp->functional) {
-                accumulate(ws, s, c, fp->E, fp->A);
+                if (fp->direct)
+                    composite_direct(r, s, e, c, fp->E, fp->A, fp->snap);
+                else
+                    accumulate(ws, s, c, fp->E, fp->A);
             } else {
                 /* The paint varies along x: a run per pixel. */
                 for (uint32_t x = s;; x++) {
@@ -335,7 +377,10 @@ static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uin
                     float E[3], A[3];
                     paint_at(fp->r, fp->region, fp->front, fp->cel->back, (float)x + 0.5f,
                              fp->py, E, A);
-                    accumulate(ws, x, c, E, A);
+                    if (fp->direct)
+                        composite_direct(r, x, x + 1u, c, E, A, fp->snap);
+                    else
+                        accumulate(ws, x, c, E, A);
                     if (x + 1u >= e)
                         break;
                 }
@@ -355,7 +400,7 @@ static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uin
  * share clamp(running cover), so they are folded as one run. The sums are
  * those a pass over every pixel of [lo, hi) makes, in the same order.
  */
-static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi)
+static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi, bool direct)
 {
     cs_workspace *ws = r->ws;
     fold_paint fp;
@@ -370,6 +415,8 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
         fp.A[ch] = 1.0f - T[ch];
     }
     fp.py = (float)y + 0.5f;
+    fp.direct = direct;
+    fp.snap = direct && region_may_hide(r, reg);
     uint32_t width = (uint32_t)r->opts.width;
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
     uint32_t cursor = 0;
@@ -437,21 +484,6 @@ static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
         if (!cs__run_opaque(r, s))
             return false;
     return true;
-}
-
-/*
- * Whether the region can make a pixel of its cel opaque on its own: T = 0
- * on every channel (or a functional medium or beta that may reach it).
- * The cel's T at a pixel is 1 - sum c_i (1 - T_i) with sum c_i <= 1, so it
- * can only vanish where such regions cover it. Only such cels snap T to 0
- * (below CS__T_ZERO), so that a stack covered by them turns opaque.
- */
-static bool region_may_hide(const cs_renderer *r, uint32_t reg)
-{
-    const cs_region *region = &r->scene->regions[reg];
-    const float *T = r->ws->region_T[reg];
-    return (T[0] < CS__T_ZERO && T[1] < CS__T_ZERO && T[2] < CS__T_ZERO) ||
-           region->func[CS_FIELD_MEDIUM] || region->func[CS_FIELD_BETA];
 }
 
 /*
@@ -625,6 +657,7 @@ void cs__line_stack(cs_renderer *r, int y)
     ranges.n = 0;
     uint32_t current_cel = UINT32_MAX;
     bool cel_hides = false;
+    bool cel_folded = false; /* a region of the current cel was folded on this line */
     while (i < r->active_count) {
         uint32_t reg = ws->pieces[ws->active[i]].region;
         uint32_t j = i + 1;
@@ -634,6 +667,7 @@ void cs__line_stack(cs_renderer *r, int y)
         if (cel != current_cel) {
             composite_ranges(r, &ranges, cel_hides);
             cel_hides = false;
+            cel_folded = false;
             if (cache_pending && cel >= cache_end) {
                 cs__cache_composite(r, y);
                 cache_pending = false;
@@ -647,9 +681,17 @@ void cs__line_stack(cs_renderer *r, int y)
             int32_t lo, hi;
             region_coverage(r, reg, &ws->active[i], j - i, y, &lo, &hi);
             if (lo < hi) {
-                fold_region(r, reg, y, lo, hi);
-                ranges_add(&ranges, lo, hi);
-                cel_hides = cel_hides || region_may_hide(r, reg);
+                /* A cel's only region on the line goes straight into the
+                 * stack; otherwise the cel's regions are summed first. */
+                bool alone = ranges.n == 0 && !cel_folded &&
+                             (j == r->active_count ||
+                              ws->region_cel[ws->pieces[ws->active[j]].region] != cel);
+                fold_region(r, reg, y, lo, hi, alone);
+                if (!alone) {
+                    ranges_add(&ranges, lo, hi);
+                    cel_hides = cel_hides || region_may_hide(r, reg);
+                }
+                cel_folded = true;
             }
         }
         i = j;
