@@ -207,12 +207,25 @@ static inline void put32(uint8_t *p, uint32_t w)
 void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1, uint8_t *out)
 {
     uint8_t one[6];
-    convert(fmt, rgb, 1, -1, one);
+    if (fmt == CS_PIX_RGB888_SRGB) { /* convert() on one pixel, without its loop */
+        for (int ch = 0; ch < 3; ch++)
+            one[ch] = (uint8_t)code(cs__srgb_encode(rgb[ch]), 255.0f, 0.5f);
+    } else {
+        convert(fmt, rgb, 1, -1, one);
+    }
     uint32_t bpp = (uint32_t)cs_pixfmt_bytes_per_pixel(fmt);
     if (bpp == 0u)
         return;
     uint8_t *p = out + (size_t)x0 * bpp;
     size_t bytes = (size_t)(x1 - x0) * bpp;
+    if (bpp == 3u && bytes < 24u) {
+        for (uint32_t x = x0; x < x1; x++, p += 3) {
+            p[0] = one[0];
+            p[1] = one[1];
+            p[2] = one[2];
+        }
+        return;
+    }
     if (bytes < 24u) { /* edge pixels: most runs are short */
         for (size_t k = 0, j = 0; k < bytes; k++, j = j + 1u == bpp ? 0u : j + 1u)
             p[k] = one[j];
