@@ -168,14 +168,7 @@ void cs__cache_composite(cs_renderer *r, int y)
         for (;;) {
             uint32_t e = ws->run_end[s];
             if (!cs__run_opaque(r, s)) {
-                if (s < a) {
-                    cs__run_split(ws, s, a);
-                    s = a;
-                }
-                if (e > b) {
-                    cs__run_split(ws, s, b);
-                    e = b;
-                }
+                e = cs__run_clip(ws, &s, a, b);
                 float *se = &ws->stack_E[3 * s], *st = &ws->stack_T[3 * s];
                 se[0] += st[0] * E0;
                 se[1] += st[1] * E1;

@@ -725,6 +725,23 @@ static uint32_t run_band(exact_ctx *cx, uint32_t *cl, uint32_t nc, float ya, flo
     return m;
 }
 
+
+/* The next height below ya (at most the row's bottom) where a piece of
+ * cl[0..nc) starts or ends: the bottom of the band that starts at ya. */
+static float next_cut(const exact_ctx *cx, const uint32_t *cl, uint32_t nc, float ya)
+{
+    const cs_workspace *ws = cx->ws;
+    float yb = cx->row_bot;
+    for (uint32_t i = 0; i < nc; i++) {
+        const cs_piece *pc = &ws->pieces[ws->exact[cl[i]].piece];
+        float t = row_top(cx, pc), b = row_end(cx, pc);
+        if (t > ya && t < yb)
+            yb = t;
+        if (b > ya && b < yb)
+            yb = b;
+    }
+    return yb;
+}
 /*
  * The pieces cl[0..nc) of one cluster, band by band down the row. No
  * curve passes between two clusters (see cluster_closed), so the winding
@@ -733,20 +750,11 @@ static uint32_t run_band(exact_ctx *cx, uint32_t *cl, uint32_t nc, float ya, flo
  */
 static bool run_cluster(exact_ctx *cx, uint32_t *cl, uint32_t nc, int32_t *w, bool inside)
 {
-    cs_workspace *ws = cx->ws;
     int32_t w_out[CS_CFG_MAX_OPERANDS];
     bool got = false;
     float ya = cx->row_top;
     while (ya < cx->row_bot) {
-        float yb = cx->row_bot;
-        for (uint32_t i = 0; i < nc; i++) {
-            const cs_piece *pc = &ws->pieces[ws->exact[cl[i]].piece];
-            float t = row_top(cx, pc), b = row_end(cx, pc);
-            if (t > ya && t < yb)
-                yb = t;
-            if (b > ya && b < yb)
-                yb = b;
-        }
+        float yb = next_cut(cx, cl, nc, ya);
         int32_t wb[CS_CFG_MAX_OPERANDS];
         if (run_band(cx, cl, nc, ya, yb, w, inside, wb) > 0 && !got) {
             for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
@@ -813,15 +821,7 @@ static bool winding_constant(const exact_ctx *cx, const uint32_t *cl, uint32_t n
     float ya = cx->row_top;
     bool first = true;
     while (ya < cx->row_bot) {
-        float yb = cx->row_bot;
-        for (uint32_t i = 0; i < nc; i++) {
-            const cs_piece *pc = &ws->pieces[ws->exact[cl[i]].piece];
-            float t = row_top(cx, pc), b = row_end(cx, pc);
-            if (t > ya && t < yb)
-                yb = t;
-            if (b > ya && b < yb)
-                yb = b;
-        }
+        float yb = next_cut(cx, cl, nc, ya);
         int32_t d[CS_CFG_MAX_OPERANDS];
         for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
             d[k] = 0;

@@ -356,14 +356,7 @@ static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uin
     for (;;) {
         uint32_t e = ws->run_end[s];
         if (!cs__run_opaque(fp->r, s)) {
-            if (s < a) {
-                cs__run_split(ws, s, a);
-                s = a;
-            }
-            if (e > b) {
-                cs__run_split(ws, s, b);
-                e = b;
-            }
+            e = cs__run_clip(ws, &s, a, b);
             if (!fp->functional) {
                 if (fp->direct)
                     composite_direct(r, s, e, c, fp->E, fp->A, fp->snap);

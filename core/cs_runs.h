@@ -93,4 +93,20 @@ static inline uint32_t cs__run_seek(const cs_workspace *ws, uint32_t s, uint32_t
     return s;
 }
 
+/* Splits the run at *s, which meets [a, b), so that it lies within [a, b);
+ * *s becomes its start and the return value its end. */
+static inline uint32_t cs__run_clip(cs_workspace *ws, uint32_t *s, uint32_t a, uint32_t b)
+{
+    uint32_t e = ws->run_end[*s];
+    if (*s < a) {
+        cs__run_split(ws, *s, a);
+        *s = a;
+    }
+    if (e > b) {
+        cs__run_split(ws, *s, b);
+        e = b;
+    }
+    return e;
+}
+
 #endif /* CS_RUNS_H */
