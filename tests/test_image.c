@@ -354,7 +354,7 @@ static void test_render_frame_and_lines(void)
     tc_render_rgb(sc, W, H, CS_AA_SUBSCAN, 5, by_line);
 
     cs_renderer r;
-    cs_render_opts o = {W, H, CS_AA_SUBSCAN, 5, 0};
+    cs_render_opts o = {.width = W, .height = H, .aa = CS_AA_SUBSCAN, .subscanlines = 5};
     cs_error err;
     sink_ctx ctx = {by_frame, W, H, 0, 0, 0, -1};
     CHECK_STATUS(cs_frame_begin(&r, tc_workspace(), sc, &o, &err), CS_OK, "frame_begin");
@@ -389,7 +389,7 @@ static void test_render_frame_and_lines(void)
           "rendering the same frame twice gave different bits");
 
     /* A frame abandoned half way (wider, other mode) leaves nothing behind in the workspace. */
-    cs_render_opts wide = {W + 30, H, CS_AA_SUBSCAN, 16, 0};
+    cs_render_opts wide = {.width = W + 30, .height = H, .aa = CS_AA_SUBSCAN, .subscanlines = 16};
     float *wline = tl_calloc((size_t)3 * (W + 30), sizeof(float));
     cs_frame_begin(&r, tc_workspace(), sc, &wide, &err);
     for (int y = 0; y < H / 2; y++)

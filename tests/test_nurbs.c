@@ -54,7 +54,7 @@ static void check_shape(const char *name, const tc_shape *s, const cs_affine *xf
             spans[ns++] = j;
 
     cs_renderer r;
-    cs_render_opts o = {W, H, CS_AA_SUBSCAN, 4, 0.0f};
+    cs_render_opts o = {.width = W, .height = H, .aa = CS_AA_SUBSCAN, .subscanlines = 4};
     cs_error err;
     cs_status st = cs_frame_begin(&r, tc_workspace(), sc, &o, &err);
     if (CHECK(st == CS_OK, "%s: cs_frame_begin gave %s", name, tl_status_name(st)) &&
@@ -124,7 +124,7 @@ static void test_degree1(void)
     tc_add(s, 1, 3, tri, NULL);
     if (tc_scene_one(sc, 100, 100, NULL, s) == CS_OK) {
         cs_renderer r;
-        cs_render_opts o = {100, 100, CS_AA_NONE, 1, 0.0f};
+        cs_render_opts o = {.width = 100, .height = 100, .aa = CS_AA_NONE, .subscanlines = 1};
         cs_error err;
         if (cs_frame_begin(&r, tc_workspace(), sc, &o, &err) == CS_OK && r.segment_count == 3) {
             long double p[2];
@@ -155,7 +155,7 @@ static void test_circle_on_circle(void)
             check_shape(name, s, NULL, 128, 128, 128, 128);
             if (tc_scene_one(sc, 128, 128, NULL, s) == CS_OK) {
                 cs_renderer r;
-                cs_render_opts o = {128, 128, CS_AA_SUBSCAN, 4, 0.0f};
+                cs_render_opts o = {.width = 128, .height = 128, .aa = CS_AA_SUBSCAN, .subscanlines = 4};
                 cs_error err;
                 cs_status st = cs_frame_begin(&r, tc_workspace(), sc, &o, &err);
                 if (CHECK(st == CS_OK, "%s: frame_begin %s", name, tl_status_name(st)) &&
@@ -294,7 +294,7 @@ static void test_regions_and_counts(void)
     CHECK_EQ_INT(sc->contour_count, 3, "scene contour_count");
     CHECK_EQ_INT(sc->point_count, 11, "scene point_count");
     cs_renderer r;
-    cs_render_opts o = {100, 100, CS_AA_NONE, 1, 0.0f};
+    cs_render_opts o = {.width = 100, .height = 100, .aa = CS_AA_NONE, .subscanlines = 1};
     st = cs_frame_begin(&r, tc_workspace(), sc, &o, &err);
     CHECK_STATUS(st, CS_OK, "cs_frame_begin");
     CHECK_EQ_INT(r.segment_count, 3 + 3 + 4, "segment count over all contours");

@@ -84,7 +84,7 @@ static void comb_case(int teeth, cs_fill_rule rule, cs_aa_mode aa, int nsub)
     if (tc_scene_one(sc, (float)W, H, NULL, s) != CS_OK)
         goto out;
     cs_renderer r;
-    cs_render_opts o = {W, H, aa, nsub, 0};
+    cs_render_opts o = {.width = W, .height = H, .aa = aa, .subscanlines = nsub};
     cs_error err;
     cs_status st = cs_frame_begin(&r, tc_workspace(), sc, &o, &err);
     if (!CHECK(st == CS_OK, "%s: cs_frame_begin gave %s", what, tl_status_name(st)))
