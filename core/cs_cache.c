@@ -160,28 +160,13 @@ void cs__cache_composite(cs_renderer *r, int y)
     for (uint32_t k = cache->line_first[y]; k < cache->line_first[y + 1]; k++) {
         const cs_cache_run *run = &cache->runs[k];
         uint32_t a = run->x, b = (uint32_t)run->x + run->len;
-        float E0 = run->E[0], E1 = run->E[1], E2 = run->E[2];
-        float T0 = run->T[0], T1 = run->T[1], T2 = run->T[2];
-        /* An opaque run leaves T = 0 behind it (finite T times 0). */
-        bool opaque = T0 == 0.0f && T1 == 0.0f && T2 == 0.0f;
         s = cs__run_seek(ws, s, a);
         for (;;) {
             uint32_t e = ws->run_end[s];
             if (!cs__run_opaque(r, s)) {
                 e = cs__run_clip(ws, &s, a, b);
-                float *se = &ws->stack_E[3 * s], *st = &ws->stack_T[3 * s];
-                se[0] += st[0] * E0;
-                se[1] += st[1] * E1;
-                se[2] += st[2] * E2;
-                if (opaque) {
-                    st[0] = st[1] = st[2] = 0.0f;
-                } else {
-                    st[0] *= T0;
-                    st[1] *= T1;
-                    st[2] *= T2;
-                }
-                if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
-                    r->opaque_px += e - s;
+                /* An opaque run's T is 0: finite T_s times 0 leaves 0 behind it. */
+                cs__run_join(r, s, e, run->E, run->T);
             }
             if (e >= b)
                 break;

@@ -293,7 +293,7 @@ static bool region_may_hide(const cs_renderer *r, uint32_t reg)
 
 /* What a region adds to the runs: its paint, or how to evaluate it. */
 typedef struct fold_paint {
-    const cs_renderer *r;
+    cs_renderer *r; /* the direct path counts opaque pixels in it */
     const cs_region *region;
     const cs_cel *cel;
     const float *front;
@@ -331,15 +331,14 @@ static inline void accumulate(cs_workspace *ws, uint32_t s, float c, const float
 static inline void composite_direct(cs_renderer *r, uint32_t s, uint32_t e, float c,
                                     const float *E, const float *A, bool snap)
 {
-    cs_workspace *ws = r->ws;
-    float *se = &ws->stack_E[3 * s], *st = &ws->stack_T[3 * s];
+    float cE[3], t[3];
     for (int ch = 0; ch < 3; ch++) {
-        float t = 1.0f - c * A[ch];
-        se[ch] += st[ch] * (c * E[ch]);
-        st[ch] *= snap && t < CS__T_ZERO ? 0.0f : t;
+        cE[ch] = c * E[ch];
+        t[ch] = 1.0f - c * A[ch];
+        if (snap && t[ch] < CS__T_ZERO)
+            t[ch] = 0.0f;
     }
-    if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
-        r->opaque_px += e - s;
+    cs__run_join(r, s, e, cE, t);
 }
 
 /*
@@ -351,7 +350,6 @@ static inline void composite_direct(cs_renderer *r, uint32_t s, uint32_t e, floa
 static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uint32_t a,
                          uint32_t b, float c)
 {
-    cs_renderer *r = (cs_renderer *)fp->r; /* the direct path writes the opaque count */
     s = cs__run_seek(ws, s, a);
     for (;;) {
         uint32_t e = ws->run_end[s];
@@ -359,7 +357,7 @@ static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uin
             e = cs__run_clip(ws, &s, a, b);
             if (!fp->functional) {
                 if (fp->direct)
-                    composite_direct(r, s, e, c, fp->E, fp->A, fp->snap);
+                    composite_direct(fp->r, s, e, c, fp->E, fp->A, fp->snap);
                 else
                     accumulate(ws, s, c, fp->E, fp->A);
             } else {
@@ -371,7 +369,7 @@ static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uin
                     paint_at(fp->r, fp->region, fp->front, fp->cel->back, (float)x + 0.5f,
                              fp->py, E, A);
                     if (fp->direct)
-                        composite_direct(r, x, x + 1u, c, E, A, fp->snap);
+                        composite_direct(fp->r, x, x + 1u, c, E, A, fp->snap);
                     else
                         accumulate(ws, x, c, E, A);
                     if (x + 1u >= e)
@@ -493,25 +491,16 @@ static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
         if (ws->used[s] == 0.0f)
             continue;
         float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
-        float *se = &ws->stack_E[3 * s], *st = &ws->stack_T[3 * s];
-        float t0 = 1.0f - ca[0], t1 = 1.0f - ca[1], t2 = 1.0f - ca[2];
-        se[0] += st[0] * ce[0];
-        se[1] += st[1] * ce[1];
-        se[2] += st[2] * ce[2];
+        float t[3];
+        for (int ch = 0; ch < 3; ch++) {
+            t[ch] = 1.0f - ca[ch];
+            if (snap && t[ch] < CS__T_ZERO)
+                t[ch] = 0.0f;
+        }
+        cs__run_join(r, s, ws->run_end[s], ce, t);
         ce[0] = ce[1] = ce[2] = 0.0f;
         ca[0] = ca[1] = ca[2] = 0.0f;
         ws->used[s] = 0.0f;
-        if (!snap) {
-            st[0] *= t0;
-            st[1] *= t1;
-            st[2] *= t2;
-        } else {
-            st[0] *= t0 < CS__T_ZERO ? 0.0f : t0;
-            st[1] *= t1 < CS__T_ZERO ? 0.0f : t1;
-            st[2] *= t2 < CS__T_ZERO ? 0.0f : t2;
-        }
-        if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
-            r->opaque_px += ws->run_end[s] - s;
     }
 }
 

@@ -93,6 +93,21 @@ static inline uint32_t cs__run_seek(const cs_workspace *ws, uint32_t s, uint32_t
     return s;
 }
 
+/* Puts a map (E, t) behind the stack of the run [s, e): E_s += T_s E,
+ * T_s *= t; the run is counted opaque once T_s is 0 on every channel.
+ * Every way into the stack (a cel, a lone region, the cache) ends here. */
+static inline void cs__run_join(cs_renderer *r, uint32_t s, uint32_t e, const float E[3],
+                                const float t[3])
+{
+    float *se = &r->ws->stack_E[3 * s], *st = &r->ws->stack_T[3 * s];
+    for (int ch = 0; ch < 3; ch++) {
+        se[ch] += st[ch] * E[ch];
+        st[ch] *= t[ch];
+    }
+    if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
+        r->opaque_px += e - s;
+}
+
 /* Splits the run at *s, which meets [a, b), so that it lies within [a, b);
  * *s becomes its start and the return value its end. */
 static inline uint32_t cs__run_clip(cs_workspace *ws, uint32_t *s, uint32_t a, uint32_t b)
