@@ -343,6 +343,9 @@ void cs__cache_composite(cs_renderer *r, int y);
 /* Writes pixels [x0, x1) of `out`, all of linear colour rgb, in `fmt`: the
  * bytes cs_pixfmt_convert makes of them, converted once (cs_pixfmt.c). */
 void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1, uint8_t *out);
+/* A line of runs [s, run_end[s]) from s = 0 to width, values at rgb[3 s]. */
+void cs__pixfmt_runs(cs_pixfmt fmt, const float *rgb, const uint16_t *run_end, uint32_t width,
+                     uint8_t *out);
 
 
 /*

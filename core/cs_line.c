@@ -739,9 +739,7 @@ int cs_line_run(const cs_renderer *r, int x, float rgb_linear[3])
 void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out)
 {
     const cs_workspace *ws = r->ws;
-    uint32_t width = (uint32_t)r->opts.width;
-    for (uint32_t s = 0; s < width; s = ws->run_end[s])
-        cs__pixfmt_fill(fmt, &ws->stack_E[3 * s], s, ws->run_end[s], out);
+    cs__pixfmt_runs(fmt, ws->stack_E, ws->run_end, (uint32_t)r->opts.width, out);
 }
 
 const uint8_t *cs_line_pixels_scratch(cs_renderer *r, cs_pixfmt fmt)
