@@ -412,7 +412,12 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
     uint32_t cursor = 0;
     float run = 0.0f;
-    uint32_t gap = 0; /* pixels from `gap` on share clamp(run) until the next entry */
+    /* Coverage waits in [pa, pb) at pc until a different value comes, so a
+     * pixel with the coverage of the pixels after it (an entry that only
+     * holds a cover delta, as at the inner side of an edge) joins them:
+     * fewer, longer runs, and every pixel gets the value it would alone. */
+    uint32_t pa = 0, pb = 0;
+    float pc = 0.0f;
     bool first = true;
     for (uint32_t w = (uint32_t)lo >> 5; w <= width >> 5 && w <= (end + 1u) >> 5; w++) {
         uint32_t bits = ws->touched[w];
@@ -427,24 +432,43 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
             if (first) {
                 cursor = cs__run_start(ws, x);
                 first = false;
-            } else if (gap < x) {
+                pa = pb = x;
+            } else if (pb < x) { /* the gap [pb, x) has the running cover */
                 float cg = cs__clampf(run, 0.0f, 1.0f);
-                if (cg > 0.0f)
-                    cursor = fold_run(ws, &fp, cursor, gap, x, cg);
+                if (cg != pc) {
+                    if (pc > 0.0f)
+                        cursor = fold_run(ws, &fp, cursor, pa, pb, pc);
+                    pa = pb;
+                    pc = cg;
+                }
+                pb = x;
             }
             run += cv;
             float c = cs__clampf(ar + run, 0.0f, 1.0f);
-            if (c > 0.0f)
-                cursor = fold_run(ws, &fp, cursor, x, x + 1u, c);
-            gap = x + 1u;
+            if (c != pc) {
+                if (pc > 0.0f)
+                    cursor = fold_run(ws, &fp, cursor, pa, pb, pc);
+                pa = x;
+                pc = c;
+            }
+            pb = x + 1u;
         }
     }
+    if (first)
+        return;
     /* Rounding may leave the running cover a hair from zero up to hi. */
-    if (!first && gap < end) {
+    if (pb < end) {
         float cg = cs__clampf(run, 0.0f, 1.0f);
-        if (cg > 0.0f)
-            fold_run(ws, &fp, cursor, gap, end, cg);
+        if (cg != pc) {
+            if (pc > 0.0f)
+                cursor = fold_run(ws, &fp, cursor, pa, pb, pc);
+            pa = pb;
+            pc = cg;
+        }
+        pb = end;
     }
+    if (pc > 0.0f)
+        fold_run(ws, &fp, cursor, pa, pb, pc);
 }
 
 /*
