@@ -477,6 +477,7 @@ typedef struct cs_exact_piece {
     uint32_t piece;
     bool monotone;        /* control polygon x-monotone, so the arc is */
     bool row_arc;         /* top, bot and the bounds are those of the whole row's arc */
+    bool hidden;          /* behind opaque pixels: only its height counts (cs_exact.c) */
 } cs_exact_piece;
 
 /*

@@ -78,7 +78,7 @@
  * the compositing are shared by every AA mode. Line state is the region's
  * active pieces plus the O(width) accumulators; memory is fixed.
  */
-#include "cs_internal.h"
+#include "cs_runs.h"
 
 #if CS_CFG_EXACT /* the whole file: see cs_config.h */
 
@@ -573,6 +573,12 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
 {
     cs_workspace *ws = cx->ws;
     const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
+    if (e->hidden) { /* only what it adds right of its opaque pixels matters */
+        int32_t c = (int32_t)e->xmin;
+        cs__acc_cover(ws, c, sign * (yb - ya));
+        touch(cx, c, c + 1);
+        return;
+    }
     if (e->xmax <= 0.0f) {
         cs__acc_cover(ws, 0, sign * (yb - ya));
         touch(cx, 0, 1);
@@ -638,6 +644,8 @@ static void set_bot(exact_ctx *cx, cs_exact_piece *e, float ya, float yb, float 
     cs_workspace *ws = cx->ws;
     const cs_piece *pc = &ws->pieces[e->piece];
     const cs_segment *s = &ws->segments[pc->segment];
+    if (e->hidden)
+        return; /* it stays where it was put */
     e->row_arc = false;
     float u = yb == yref ? uref
                          : level_u(s, pc, yb, e->top.u, uref, chord_u(e->top.u, ya, uref, yref, yb));
@@ -680,7 +688,7 @@ static uint32_t run_band(exact_ctx *cx, uint32_t *cl, uint32_t nc, float ya, flo
     for (;;) {
         for (uint32_t k = 0; k < m; k++) {
             cs_exact_piece *e = &ex[cl[k]];
-            if (!e->row_arc)
+            if (!e->row_arc && !e->hidden)
                 hull(&ws->segments[ws->pieces[e->piece].segment], e, ya, yb);
         }
         sort_pieces(ex, cl, m, false);
@@ -842,6 +850,36 @@ static bool winding_constant(const exact_ctx *cx, const uint32_t *cl, uint32_t n
     return true;
 }
 
+/*
+ * A piece whose every possible pixel (its segment's hull) is already
+ * opaque. Those pixels will show nothing of the region, so the arc need
+ * not be placed: it becomes a vertical stand-in at the hull's left edge
+ * pa, and as an effective edge it adds only its height, to the cover of
+ * every pixel from pa on (add_edge). Pixels right of the opaque stretch
+ * get the same total; the stand-in changes the x order only within the
+ * stretch, and the fill rule's effective edges there sum to the same
+ * change of "inside" across it whatever their order. A cluster holds
+ * stand-ins and real arcs only where their hulls are apart, so their
+ * order is right. The only difference right of the stretch is the order
+ * in which the cover deltas are summed: a last-bit one at most.
+ */
+static void hide(cs_exact_piece *e, int32_t pa, float ut, float ub)
+{
+    cs_exact_end at;
+    at.u = ut;
+    at.x = (float)pa;
+    at.dx = at.dy = at.dwr = 0.0f;
+    at.w = 1.0f;
+    e->top = at;
+    at.u = ub;
+    e->bot = at;
+    e->u_row = ub;
+    e->dmin = e->dmax = 0.0f;
+    e->xmin = e->xmax = (float)pa;
+    e->key = 2.0f * (float)pa;
+    e->monotone = true;
+}
+
 cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_index *act,
                            uint32_t n, int y, int32_t *lo, int32_t *hi)
 {
@@ -868,6 +906,15 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
         float ya = row_top(&cx, pc), yb = row_end(&cx, pc);
         float ut = top_u(pc), ub = bot_u(pc);
         e->piece = act[i];
+        e->row_arc = true;
+        ord[i] = i;
+        int32_t pa, pb;
+        cs__hull_pixels(r, s->x_lo, s->x_hi, &pa, &pb);
+        e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
+        if (e->hidden) {
+            hide(e, pa, ut, ub);
+            continue;
+        }
         float u = level_u(s, pc, ya, ut, ub, chord_u(ut, pc->y_top, ub, pc->y_bot, ya));
         eval_end(s, u, ya, &e->top);
         /* The bottom from the top's tangent, or failing that its chord. */
@@ -877,8 +924,6 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
         e->u_row = level_u(s, pc, yb, u, ub, guess);
         eval_end(s, e->u_row, yb, &e->bot);
         hull(s, e, ya, yb);
-        e->row_arc = true;
-        ord[i] = i;
     }
     /*
      * Clusters: runs of pieces in xmin order whose x ranges overlap, so

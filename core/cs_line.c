@@ -472,10 +472,9 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
 }
 
 /*
- * Whether every pixel the region's pieces could touch on this line is
- * already opaque. The bounds are the segments' Bezier hulls, widened by
- * half a pixel so that a crossing rounded just past its hull still counts:
- * a skipped region provably changes no pixel.
+ * Whether every pixel the region's pieces could touch on this line (the
+ * segments' hulls, cs__hull_pixels) is already opaque: a skipped region
+ * then provably changes no pixel.
  */
 static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
 {
@@ -488,17 +487,9 @@ static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
         lo = cs__minf(lo, s->x_lo);
         hi = cs__maxf(hi, s->x_hi);
     }
-    int32_t a = cs__floori(lo - 0.5f), b = cs__floori(hi + 0.5f) + 1;
-    if (a < 0)
-        a = 0;
-    if (b > r->opts.width)
-        b = r->opts.width;
-    if (a >= b)
-        return true;
-    for (uint32_t s = cs__run_start(ws, (uint32_t)a); s < (uint32_t)b; s = ws->run_end[s])
-        if (!cs__run_opaque(r, s))
-            return false;
-    return true;
+    int32_t a, b;
+    cs__hull_pixels(r, lo, hi, &a, &b);
+    return a >= b || cs__span_opaque(r, (uint32_t)a, (uint32_t)b);
 }
 
 /*

@@ -21,7 +21,8 @@
  * A run whose stack transmits nothing (T = 0 on every channel) is opaque:
  * nothing behind it can show, so later cels skip it and it is never split
  * again. With the early-out off (cs_render_opts.no_early_out) nothing is
- * treated as opaque, which changes no bit, only the work.
+ * treated as opaque, which changes no bit, only the work (in exact mode, a
+ * last bit at most: see hide() in cs_exact.c).
  */
 #ifndef CS_RUNS_H
 #define CS_RUNS_H
@@ -83,6 +84,29 @@ static inline bool cs__run_opaque(const cs_renderer *r, uint32_t s)
 {
     const float *t = &r->ws->stack_T[3 * s];
     return r->record && t[0] == 0.0f && t[1] == 0.0f && t[2] == 0.0f;
+}
+
+/* Whether every pixel of [a, b) is opaque (a < b). */
+static inline bool cs__span_opaque(const cs_renderer *r, uint32_t a, uint32_t b)
+{
+    const cs_workspace *ws = r->ws;
+    if (!r->record || r->opaque_px == 0u)
+        return false;
+    for (uint32_t s = cs__run_start(ws, a); s < b; s = ws->run_end[s])
+        if (!cs__run_opaque(r, s))
+            return false;
+    return true;
+}
+
+/* The pixels [*a, *b) that curves within x_lo <= x <= x_hi can touch,
+ * widened by half a pixel so that a crossing rounded just past a segment's
+ * Bezier hull still counts. */
+static inline void cs__hull_pixels(const cs_renderer *r, float x_lo, float x_hi, int32_t *a,
+                                   int32_t *b)
+{
+    int32_t lo = cs__floori(x_lo - 0.5f), hi = cs__floori(x_hi + 0.5f) + 1;
+    *a = lo < 0 ? 0 : lo;
+    *b = hi > r->opts.width ? r->opts.width : hi;
 }
 
 /* The start of the run holding pixel a, walking right from run start s <= a. */

@@ -16,7 +16,9 @@
  * check the ways out of the line: cs_render_line's floats, the runs read
  * with cs_line_run, cs_line_pixels in every pixel format against
  * cs_pixfmt_convert of the floats, and the early-out on and off, which
- * must agree bit for bit.
+ * must agree bit for bit, but in exact mode: there an arc behind opaque
+ * pixels is stood in for by its height (cs_exact.c, hide), which sums the
+ * cover deltas right of it in another order, so a last bit may differ.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -196,7 +198,19 @@ static const cs_pixfmt all_formats[] = {CS_PIX_RGB888_SRGB, CS_PIX_RGB888_LINEAR
                                         CS_PIX_RGB565_SRGB, CS_PIX_RGB444_SRGB,
                                         CS_PIX_RGB332_SRGB, CS_PIX_RGB16_LINEAR};
 
-/* The ways out of a line agree, and the early-out changes no bit. */
+/* Largest difference between two renders. */
+static double max_diff(const float *a, const float *b, size_t n)
+{
+    double worst = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double d = a[i] > b[i] ? a[i] - b[i] : b[i] - a[i];
+        worst = d > worst ? d : worst;
+    }
+    return worst;
+}
+
+/* The ways out of a line agree, and the early-out changes no bit (exact
+ * mode: none beyond float rounding). */
 static void check_outputs(int W, int H, cs_aa_mode aa, int nsub, const char *mode)
 {
     rnd_scene rs;
@@ -209,8 +223,12 @@ static void check_outputs(int W, int H, cs_aa_mode aa, int nsub, const char *mod
     bool ok = build_rich(sc, &rs, W, H) == CS_OK && render(sc, W, H, aa, nsub, true, a) == CS_OK &&
               render(sc, W, H, aa, nsub, false, b) == CS_OK;
     CHECK(ok, "%s %dx%d: the rich scene did not render", mode, W, H);
-    CHECK(!ok || memcmp(a, b, 3 * n * sizeof *a) == 0,
-          "%s %dx%d: early-out on and off differ", mode, W, H);
+    if (aa == CS_AA_EXACT)
+        CHECK(!ok || max_diff(a, b, 3 * n) <= 1e-6, "%s %dx%d: early-out on and off differ by %g",
+              mode, W, H, max_diff(a, b, 3 * n));
+    else
+        CHECK(!ok || memcmp(a, b, 3 * n * sizeof *a) == 0,
+              "%s %dx%d: early-out on and off differ", mode, W, H);
     int bad_runs = 0, bad_px = 0, bad_walk = 0;
     cs_renderer r;
     cs_render_opts o = {.width = W, .height = H, .aa = aa, .subscanlines = nsub};
