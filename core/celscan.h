@@ -503,6 +503,7 @@ typedef struct cs_workspace {
     /* The line as runs (cs_runs.h): run_end and the values below are read
      * at run starts only, which run_starts marks. */
     uint32_t run_starts[(CS_CFG_MAX_WIDTH + 32) / 32];
+    uint32_t opaque_bits[(CS_CFG_MAX_WIDTH + 32) / 32]; /* pixels whose stack is opaque */
     uint16_t run_end[CS_CFG_MAX_WIDTH + 1]; /* x fits 16 bits: see below */
     float used[CS_CFG_MAX_WIDTH];         /* coverage claimed in the cel so far */
     float cel_E[CS_CFG_MAX_WIDTH * 3];

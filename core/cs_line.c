@@ -636,7 +636,7 @@ void cs__line_stack(cs_renderer *r, int y)
     update_active(r, y);
     /* One clear run: E = 0, T = 1, nothing of a cel. */
     for (uint32_t w = 0; w <= width >> 5; w++)
-        ws->run_starts[w] = 0u;
+        ws->run_starts[w] = ws->opaque_bits[w] = 0u;
     ws->run_starts[0] = 1u;
     ws->run_end[0] = (uint16_t)width;
     ws->used[0] = 0.0f;

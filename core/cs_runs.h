@@ -86,16 +86,46 @@ static inline bool cs__run_opaque(const cs_renderer *r, uint32_t s)
     return r->record && t[0] == 0.0f && t[1] == 0.0f && t[2] == 0.0f;
 }
 
-/* Whether every pixel of [a, b) is opaque (a < b). */
+/* Bits a..b-1 of a word, 0 <= a < b <= 32. */
+static inline uint32_t cs__bit_range(uint32_t a, uint32_t b)
+{
+    return (0xFFFFFFFFu << a) & (0xFFFFFFFFu >> (32u - b));
+}
+
+/* Whether every pixel of [a, b) is opaque (a < b): a test of the bits
+ * cs__run_join set, a word (32 pixels) at a time. */
 static inline bool cs__span_opaque(const cs_renderer *r, uint32_t a, uint32_t b)
 {
-    const cs_workspace *ws = r->ws;
     if (!r->record || r->opaque_px == 0u)
         return false;
-    for (uint32_t s = cs__run_start(ws, a); s < b; s = ws->run_end[s])
-        if (!cs__run_opaque(r, s))
+    const uint32_t *bits = r->ws->opaque_bits;
+    uint32_t wa = a >> 5, wb = (b - 1u) >> 5;
+    if (wa == wb) {
+        uint32_t m = cs__bit_range(a & 31u, ((b - 1u) & 31u) + 1u);
+        return (bits[wa] & m) == m;
+    }
+    uint32_t m = cs__bit_range(a & 31u, 32u);
+    if ((bits[wa] & m) != m)
+        return false;
+    for (uint32_t w = wa + 1u; w < wb; w++)
+        if (bits[w] != 0xFFFFFFFFu)
             return false;
-    return true;
+    m = cs__bit_range(0u, ((b - 1u) & 31u) + 1u);
+    return (bits[wb] & m) == m;
+}
+
+/* Marks pixels [a, b) opaque (a < b). */
+static inline void cs__mark_opaque(cs_workspace *ws, uint32_t a, uint32_t b)
+{
+    uint32_t wa = a >> 5, wb = (b - 1u) >> 5;
+    if (wa == wb) {
+        ws->opaque_bits[wa] |= cs__bit_range(a & 31u, ((b - 1u) & 31u) + 1u);
+        return;
+    }
+    ws->opaque_bits[wa] |= cs__bit_range(a & 31u, 32u);
+    for (uint32_t w = wa + 1u; w < wb; w++)
+        ws->opaque_bits[w] = 0xFFFFFFFFu;
+    ws->opaque_bits[wb] |= cs__bit_range(0u, ((b - 1u) & 31u) + 1u);
 }
 
 /* The pixels [*a, *b) that curves within x_lo <= x <= x_hi can touch,
@@ -128,8 +158,10 @@ static inline void cs__run_join(cs_renderer *r, uint32_t s, uint32_t e, const fl
         se[ch] += st[ch] * E[ch];
         st[ch] *= t[ch];
     }
-    if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f))
+    if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f)) {
         r->opaque_px += e - s;
+        cs__mark_opaque(r->ws, s, e);
+    }
 }
 
 /* Splits the run at *s, which meets [a, b), so that it lies within [a, b);
