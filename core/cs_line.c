@@ -313,12 +313,19 @@ static inline void accumulate(cs_workspace *ws, uint32_t s, float c, const float
         c = room;
     if (!(c > 0.0f))
         return;
-    ws->used[s] += c;
     float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
-    for (int ch = 0; ch < 3; ch++) {
-        ce[ch] += c * E[ch];
-        ca[ch] += c * A[ch];
+    if (ws->used[s] == 0.0f) { /* the first region here: what is stored is stale */
+        for (int ch = 0; ch < 3; ch++) {
+            ce[ch] = c * E[ch];
+            ca[ch] = c * A[ch];
+        }
+    } else {
+        for (int ch = 0; ch < 3; ch++) {
+            ce[ch] += c * E[ch];
+            ca[ch] += c * A[ch];
+        }
     }
+    ws->used[s] += c;
 }
 
 /*
@@ -513,8 +520,6 @@ static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
                 t[ch] = 0.0f;
         }
         cs__run_join(r, s, ws->run_end[s], ce, t);
-        ce[0] = ce[1] = ce[2] = 0.0f;
-        ca[0] = ca[1] = ca[2] = 0.0f;
         ws->used[s] = 0.0f;
     }
 }
@@ -641,7 +646,7 @@ void cs__line_stack(cs_renderer *r, int y)
     ws->run_end[0] = (uint16_t)width;
     ws->used[0] = 0.0f;
     for (int ch = 0; ch < 3; ch++) {
-        ws->stack_E[ch] = ws->cel_E[ch] = ws->cel_A[ch] = 0.0f;
+        ws->stack_E[ch] = 0.0f;
         ws->stack_T[ch] = 1.0f;
     }
     r->opaque_px = 0;
@@ -759,8 +764,9 @@ void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out)
 
 const uint8_t *cs_line_pixels_scratch(cs_renderer *r, cs_pixfmt fmt)
 {
-    /* Between lines only run starts' cel values are ever read, and the next
-     * line sets those before reading them; 12 bytes a pixel hold any format. */
+    /* A cel value is read only where the line has set `used`, after it
+     * wrote the value: between lines the memory is free. 12 bytes a pixel
+     * hold any format. */
     uint8_t *out = (uint8_t *)(void *)r->ws->cel_E;
     cs_line_pixels(r, fmt, out);
     return out;

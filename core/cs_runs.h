@@ -7,7 +7,9 @@
  * only where some region has an edge. So the line is kept as runs of
  * pixels [s, run_end[s]) that share all of these values, stored once, at
  * the run's first pixel s, in the workspace's per-pixel arrays (entries at
- * other pixels are stale and never read). A bit per pixel in run_starts
+ * other pixels are stale and never read). The cel's E and 1 - T of a run
+ * mean something only where its claimed coverage `used` is not 0: a cel
+ * starts every run at zero by setting `used` alone. A bit per pixel in run_starts
  * marks the starts, so the run holding any x is found by a backward bit
  * scan, and a run is split in O(1) by copying its values to the new start.
  *
@@ -70,13 +72,17 @@ static inline void cs__run_split(cs_workspace *ws, uint32_t s, uint32_t x)
     ws->run_end[x] = ws->run_end[s];
     ws->run_end[s] = (uint16_t)x;
     ws->run_starts[x >> 5] |= 1u << (x & 31u);
-    ws->used[x] = ws->used[s];
     for (int ch = 0; ch < 3; ch++) {
         ws->stack_E[3 * x + ch] = ws->stack_E[3 * s + ch];
         ws->stack_T[3 * x + ch] = ws->stack_T[3 * s + ch];
-        ws->cel_E[3 * x + ch] = ws->cel_E[3 * s + ch];
-        ws->cel_A[3 * x + ch] = ws->cel_A[3 * s + ch];
     }
+    float used = ws->used[s];
+    ws->used[x] = used;
+    if (used != 0.0f) /* a run the cel has not reached holds no cel values */
+        for (int ch = 0; ch < 3; ch++) {
+            ws->cel_E[3 * x + ch] = ws->cel_E[3 * s + ch];
+            ws->cel_A[3 * x + ch] = ws->cel_A[3 * s + ch];
+        }
 }
 
 /* Whether the stack of the run at s is opaque (and the early-out is on). */
