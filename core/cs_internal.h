@@ -282,6 +282,23 @@ static inline float cs__srgb_encode(float linear)
     float a = cs__srgb_by_sqrt[i], b = cs__srgb_by_sqrt[i + 1];
     return a + (b - a) * (pos - (float)i);
 }
+/* The 8-bit code of the encoding, round(255 * cs__srgb_encode(v)), from
+ * two tables in which the core's own arithmetic was run on every float
+ * (tools/gen_srgb8_table.c): a comparison instead of an interpolation. */
+extern const uint8_t cs__srgb8_base[1024];
+extern const float cs__srgb8_step[1024];
+static inline uint32_t cs__srgb8(float linear)
+{
+    if (!(linear > 0.0f))
+        return 0u;
+    if (linear >= 1.0f)
+        return 255u;
+    int32_t i = (int32_t)(cs__sqrtf(linear) * 1024.0f);
+    if (i >= 1024)
+        return 255u;
+    return cs__srgb8_base[i] + (linear >= cs__srgb8_step[i] ? 1u : 0u);
+}
+
 /*
  * Stack transmittance below this counts as zero. Summed coverages of a
  * pixel fully inside land within a few ulps of 1, not on it; calling

@@ -18,6 +18,10 @@
  * lies exactly on an output level is left alone. The plain conversion is
  * untouched by it: the firmware's frame CRCs are defined on that one.
  *
+ * Rounded 8-bit sRGB, the commonest output, takes its codes from a table
+ * made by running this very arithmetic on every float (cs__srgb8): the
+ * same bytes for a comparison in place of an interpolation.
+ *
  * Flat artwork makes long runs of bit-identical pixels, and the encoding
  * (a square root and a table interpolation per channel) costs more than the
  * rest of a flat pixel's rendering, so the undithered conversions reuse the
@@ -145,7 +149,8 @@ static void convert(cs_pixfmt fmt, const float *rgb, int width, int y, uint8_t *
             float r = px[0], g = px[1], b = px[2];
             if (y >= 0 || r != last[0] || g != last[1] || b != last[2]) {
                 for (int ch = 0; ch < 3; ch++)
-                    code8[ch] = (uint8_t)code(cs__srgb_encode(px[ch]), 255.0f, BIAS(x));
+                    code8[ch] = (uint8_t)(y < 0 ? cs__srgb8(px[ch])
+                                                : code(cs__srgb_encode(px[ch]), 255.0f, BIAS(x)));
                 last[0] = r;
                 last[1] = g;
                 last[2] = b;
@@ -209,7 +214,7 @@ void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1
     uint8_t one[6];
     if (fmt == CS_PIX_RGB888_SRGB) { /* convert() on one pixel, without its loop */
         for (int ch = 0; ch < 3; ch++)
-            one[ch] = (uint8_t)code(cs__srgb_encode(rgb[ch]), 255.0f, 0.5f);
+            one[ch] = (uint8_t)cs__srgb8(rgb[ch]);
     } else {
         convert(fmt, rgb, 1, -1, one);
     }
@@ -258,9 +263,7 @@ static void runs_rgb888(const float *rgb, const uint16_t *run_end, uint32_t widt
     for (uint32_t s = 0; s < width;) {
         uint32_t e = run_end[s], n = e - s;
         const float *v = &rgb[3 * s];
-        uint32_t c0 = code(cs__srgb_encode(v[0]), 255.0f, 0.5f);
-        uint32_t c1 = code(cs__srgb_encode(v[1]), 255.0f, 0.5f);
-        uint32_t c2 = code(cs__srgb_encode(v[2]), 255.0f, 0.5f);
+        uint32_t c0 = cs__srgb8(v[0]), c1 = cs__srgb8(v[1]), c2 = cs__srgb8(v[2]);
         uint8_t *p = out + 3u * s;
         if (n >= 8u) {
             uint32_t w0 = c0 | c1 << 8 | c2 << 16 | c0 << 24;

@@ -10,8 +10,15 @@
  * and lay out their bytes as documented: RGB565 little-endian with red in the
  * top five bits, RGB16 big-endian (PNG order). CRC-32 is checked against the
  * published check values and a bitwise reference.
+ *
+ * Rounded 8-bit sRGB comes from tables (cs__srgb8) that must give exactly
+ * the code of the interpolating encoder: checked at both floats around
+ * every step and cell boundary of the tables, and on a sweep of floats.
  */
+#include <string.h>
+
 #include "common.h"
+#include "cs_internal.h"
 
 static double srgb_exact(double v)
 {
@@ -234,10 +241,64 @@ static void test_crc32(void)
     CHECK(bad == 0, "crc32 differs from the bitwise reference on %d random buffers", bad);
 }
 
+static uint32_t srgb8_interpolated(float v)
+{
+    uint32_t c = (uint32_t)(cs__srgb_encode(v) * 255.0f + 0.5f);
+    return c > 255u ? 255u : c;
+}
+
+static float float_at(uint32_t bits)
+{
+    float v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
+static uint32_t bits_of(float v)
+{
+    uint32_t b;
+    memcpy(&b, &v, sizeof b);
+    return b;
+}
+
+static void test_srgb8_table(void)
+{
+    int bad = 0, checked = 0;
+    float first_bad = 0.0f;
+    for (int i = 0; i <= 1024; i++) {
+        /* Around the cell boundary (i / 1024)^2 and the cell's step. */
+        float edge = (float)((double)i / 1024.0 * ((double)i / 1024.0));
+        float points[2] = {edge, i < 1024 ? cs__srgb8_step[i] : 1.0f};
+        for (int p = 0; p < 2; p++) {
+            uint32_t b = bits_of(points[p]);
+            for (uint32_t d = b < 4u ? 0u : b - 4u; d <= b + 4u; d++) {
+                float v = float_at(d);
+                checked++;
+                if (cs__srgb8(v) != srgb8_interpolated(v) && bad++ == 0)
+                    first_bad = v;
+            }
+        }
+    }
+    for (uint32_t b = 1u; b < 0x3F800000u; b += 97u) { /* a sweep of (0, 1) */
+        float v = float_at(b);
+        checked++;
+        if (cs__srgb8(v) != srgb8_interpolated(v) && bad++ == 0)
+            first_bad = v;
+    }
+    CHECK(bad == 0, "8-bit sRGB table differs from the encoder at %d of %d floats (first %a)", bad,
+          checked, (double)first_bad);
+    const float odd[] = {0.0f, -0.0f, -1.0f, 1.0f, 2.0f, 1e-40f, NAN, INFINITY, -INFINITY,
+                         0.99999994f};
+    for (size_t k = 0; k < sizeof odd / sizeof odd[0]; k++)
+        CHECK(cs__srgb8(odd[k]) == srgb8_interpolated(odd[k]), "srgb8(%g): %u, not %u",
+              (double)odd[k], cs__srgb8(odd[k]), srgb8_interpolated(odd[k]));
+}
+
 int main(int argc, char **argv)
 {
     (void)argc;
     TL_RUN(test_srgb_encode16);
+    TL_RUN(test_srgb8_table);
     TL_RUN(test_packed_formats);
     TL_RUN(test_in_place);
     TL_RUN(test_crc32);
