@@ -391,6 +391,31 @@ static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uin
 }
 
 /*
+ * Coverage waiting to be folded: pixels [a, b) at c. It waits until a
+ * different value comes, so that a pixel with the coverage of the pixels
+ * after it (an entry that only holds a cover delta, as at the inner side
+ * of an edge) joins them: fewer, longer runs, and every pixel gets the
+ * value it would alone. `cursor` is where fold_run seeks from.
+ */
+typedef struct pending {
+    uint32_t a, b, cursor;
+    float c;
+} pending;
+
+/* Pixels [p->b, b) at coverage c. */
+static inline void pending_extend(cs_workspace *ws, const fold_paint *fp, pending *p, uint32_t b,
+                                  float c)
+{
+    if (c != p->c) {
+        if (p->c > 0.0f)
+            p->cursor = fold_run(ws, fp, p->cursor, p->a, p->b, p->c);
+        p->a = p->b;
+        p->c = c;
+    }
+    p->b = b;
+}
+
+/*
  * Folds the region's coverage into the cel's share of the runs and clears
  * the coverage accumulators behind it. Only the accumulator entries the
  * region wrote (ws->touched) are visited, in x order: pixel x gets
@@ -417,14 +442,10 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
     fp.snap = direct && region_may_hide(r, reg);
     uint32_t width = (uint32_t)r->opts.width;
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
-    uint32_t cursor = 0;
     float run = 0.0f;
-    /* Coverage waits in [pa, pb) at pc until a different value comes, so a
-     * pixel with the coverage of the pixels after it (an entry that only
-     * holds a cover delta, as at the inner side of an edge) joins them:
-     * fewer, longer runs, and every pixel gets the value it would alone. */
-    uint32_t pa = 0, pb = 0;
-    float pc = 0.0f;
+    pending p;
+    p.a = p.b = p.cursor = 0;
+    p.c = 0.0f;
     bool first = true;
     for (uint32_t w = (uint32_t)lo >> 5; w <= width >> 5 && w <= (end + 1u) >> 5; w++) {
         uint32_t bits = ws->touched[w];
@@ -437,45 +458,23 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
             if (x >= end)
                 continue; /* deltas past the right end sum to zero */
             if (first) {
-                cursor = cs__run_start(ws, x);
+                p.cursor = cs__run_start(ws, x);
+                p.a = p.b = x;
                 first = false;
-                pa = pb = x;
-            } else if (pb < x) { /* the gap [pb, x) has the running cover */
-                float cg = cs__clampf(run, 0.0f, 1.0f);
-                if (cg != pc) {
-                    if (pc > 0.0f)
-                        cursor = fold_run(ws, &fp, cursor, pa, pb, pc);
-                    pa = pb;
-                    pc = cg;
-                }
-                pb = x;
+            } else if (p.b < x) { /* the gap up to x has the running cover */
+                pending_extend(ws, &fp, &p, x, cs__clampf(run, 0.0f, 1.0f));
             }
             run += cv;
-            float c = cs__clampf(ar + run, 0.0f, 1.0f);
-            if (c != pc) {
-                if (pc > 0.0f)
-                    cursor = fold_run(ws, &fp, cursor, pa, pb, pc);
-                pa = x;
-                pc = c;
-            }
-            pb = x + 1u;
+            pending_extend(ws, &fp, &p, x + 1u, cs__clampf(ar + run, 0.0f, 1.0f));
         }
     }
     if (first)
         return;
     /* Rounding may leave the running cover a hair from zero up to hi. */
-    if (pb < end) {
-        float cg = cs__clampf(run, 0.0f, 1.0f);
-        if (cg != pc) {
-            if (pc > 0.0f)
-                cursor = fold_run(ws, &fp, cursor, pa, pb, pc);
-            pa = pb;
-            pc = cg;
-        }
-        pb = end;
-    }
-    if (pc > 0.0f)
-        fold_run(ws, &fp, cursor, pa, pb, pc);
+    if (p.b < end)
+        pending_extend(ws, &fp, &p, end, cs__clampf(run, 0.0f, 1.0f));
+    if (p.c > 0.0f)
+        fold_run(ws, &fp, p.cursor, p.a, p.b, p.c);
 }
 
 /*
