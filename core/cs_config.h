@@ -91,6 +91,14 @@
 #ifndef CS_CFG_EXACT
 #define CS_CFG_EXACT 1
 #endif
+/*
+ * Rounded 8-bit sRGB output (PNGs, GUD bridges) by a 5 KB table instead of
+ * an interpolation per channel: the same bytes, faster. A board that sends
+ * other formats, or is short of flash, leaves it out.
+ */
+#ifndef CS_CFG_SRGB8_TABLE
+#define CS_CFG_SRGB8_TABLE 1
+#endif
 /* --aa exact: bands one region's pixel row may be cut into where its curves
  * cross or crowd each other (about one per crossing, a few per vertex). */
 #ifndef CS_CFG_EXACT_MAX_BANDS

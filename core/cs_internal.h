@@ -289,6 +289,7 @@ extern const uint8_t cs__srgb8_base[1024];
 extern const float cs__srgb8_step[1024];
 static inline uint32_t cs__srgb8(float linear)
 {
+#if CS_CFG_SRGB8_TABLE
     if (!(linear > 0.0f))
         return 0u;
     if (linear >= 1.0f)
@@ -297,6 +298,10 @@ static inline uint32_t cs__srgb8(float linear)
     if (i >= 1024)
         return 255u;
     return cs__srgb8_base[i] + (linear >= cs__srgb8_step[i] ? 1u : 0u);
+#else
+    uint32_t c = (uint32_t)(cs__srgb_encode(linear) * 255.0f + 0.5f);
+    return c > 255u ? 255u : c;
+#endif
 }
 
 /*

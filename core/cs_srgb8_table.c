@@ -7,6 +7,8 @@
  */
 #include "cs_internal.h"
 
+#if CS_CFG_SRGB8_TABLE
+
 const uint8_t cs__srgb8_base[1024] = {
     0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1,
     1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3,
@@ -332,3 +334,5 @@ const float cs__srgb8_step[1024] = {
     0x1p+1f, 0x1.f92cdcp-1f, 0x1p+1f, 0x1p+1f,
     0x1p+1f, 0x1.fdb816p-1f, 0x1p+1f, 0x1p+1f,
 };
+
+#endif /* CS_CFG_SRGB8_TABLE */

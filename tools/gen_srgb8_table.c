@@ -66,13 +66,13 @@ int main(void)
            " * tools/gen_srgb8_table.c from the core's own encoding arithmetic. Do not edit.\n"
            " *\n * For linear v in (0, 1) with i = (int)(sqrt(v) * 1024) < 1024, the code\n"
            " * round(255 * cs__srgb_encode(v)) is cs__srgb8_base[i] + (v >= cs__srgb8_step[i]).\n"
-           " */\n#include \"cs_internal.h\"\n\n");
+           " */\n#include \"cs_internal.h\"\n\n#if CS_CFG_SRGB8_TABLE\n\n");
     printf("const uint8_t cs__srgb8_base[%d] = {\n", CELLS);
     for (int i = 0; i < CELLS; i++)
         printf("%s%d,%s", i % 16 == 0 ? "    " : "", base[i], i % 16 == 15 ? "\n" : " ");
     printf("};\n\nconst float cs__srgb8_step[%d] = {\n", CELLS);
     for (int i = 0; i < CELLS; i++)
         printf("%s%af,%s", i % 4 == 0 ? "    " : "", (double)step[i], i % 4 == 3 ? "\n" : " ");
-    printf("};\n");
+    printf("};\n\n#endif /* CS_CFG_SRGB8_TABLE */\n");
     return 0;
 }

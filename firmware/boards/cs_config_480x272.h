@@ -51,6 +51,8 @@
 #define CS_CFG_STREAM_MAX_TXN (16u * 1024u)
 /* Sub-scanline anti-aliasing only: no exact-area band state. */
 #define CS_CFG_EXACT 0
+/* The panel is RGB565: the 5 KB table for 8-bit sRGB would only cost flash. */
+#define CS_CFG_SRGB8_TABLE 0
 /* No pre-combined cache: it needs more RAM than the whole board has. */
 #define CS_CFG_CACHE 0
 
