@@ -446,15 +446,16 @@ typedef struct cs_piece {
     float y_top, y_bot;
     cs_index segment;
     uint16_t region;   /* copied from the segment: spares an indirection per line */
-    uint16_t warm;     /* the line's last root, 1 + 65534 (u - u0) / (u1 - u0); 0: none yet */
     uint8_t operand;   /* winding counter it moves: always 0 without CSG */
     int8_t dir;        /* +1 if y grows with u, -1 if it falls */
 } cs_piece;
 
 typedef struct cs_crossing {
     float x;
-    int16_t dir;
-    uint16_t operand; /* which winding counter of the region it moves (CSG) */
+    float guess;      /* where the piece's root on the next sub-scanline is sought */
+    uint16_t piece;   /* the piece's place in its region's active list (cs_line.c) */
+    int8_t dir;
+    uint8_t operand;  /* which winding counter of the region it moves (CSG) */
 } cs_crossing;
 
 /* One end of an arc within a band, for exact-area coverage (cs_exact.c):
@@ -520,6 +521,8 @@ typedef char cs__width_fits_[CS_CFG_MAX_WIDTH < 65535 ? 1 : -1];
 /* Indices must be able to count every piece and segment. */
 typedef char cs__index_fits_[(CS_CFG_MAX_PIECES <= (cs_index)-1 &&
                               CS_CFG_MAX_SEGMENTS <= (cs_index)-1) ? 1 : -1];
+/* A region's active pieces are numbered in 16 bits (cs_crossing.piece). */
+typedef char cs__piece_fits_[CS_CFG_MAX_PIECES <= 65536 ? 1 : -1];
 /*
  * A cel range pre-combined into run-length (E, T) maps per line (the
  * paper's "static background rendered once"). Lives in a caller's buffer;

@@ -97,7 +97,6 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t
             pc->segment = (cs_index)si;
             pc->region = s->region;
             pc->operand = operand;
-            pc->warm = 0;
         }
         ya = yb;
     }

@@ -106,72 +106,165 @@ static void sort_crossings(cs_crossing *c, uint32_t n)
     }
 }
 
+/* Insertion sort by x, for crossings listed in the previous sub-scanline's
+ * x order: 1/N of a pixel lower few have changed places, so this is one
+ * comparison per crossing plus one move per swap. */
+static void sort_nearly_sorted(cs_crossing *c, uint32_t n)
+{
+    for (uint32_t i = 1; i < n; i++) {
+        if (!(c[i - 1].x > c[i].x))
+            continue;
+        cs_crossing t = c[i];
+        uint32_t j = i;
+        do {
+            c[j] = c[j - 1];
+            j--;
+        } while (j > 0 && c[j - 1].x > t.x);
+        c[j] = t;
+    }
+}
+
+/* u where a straight piece (degree 1) meets level ys: the closed form of
+ * cs__solve_level, g = Y - ys W being linear, without its bracket checks
+ * (an active piece meets the level inside [u0, u1] up to rounding, and the
+ * clamp keeps it there). */
+static inline float straight_root(const cs_segment *s, const cs_piece *pc, float ys)
+{
+    float g0 = s->y[0] - ys * s->w[0], g1 = s->y[1] - ys * s->w[1];
+    if (g1 == 0.0f) /* level along the piece: the solver picks the end */
+        return cs__solve_level(s->y, s->w, 1, ys, pc->u0, pc->u1);
+    return cs__clampf(-g0 / g1, pc->u0, pc->u1);
+}
+
 /*
- * Crossings of the active pieces act[0..n) with scanline ys, sorted by x
- * and clamped to [0, width]. Returns the count, or -1 if they do not fit.
+ * The crossing of piece pc with scanline ys, which it spans: x clamped to
+ * [0, width], and the guess for the next sub-scanline's root. A curved
+ * piece's root is sought by Newton's iteration from `guess` when `warm`,
+ * by the full bracketed solve on its first sub-scanline of the line.
  */
-static int32_t crossings_at(cs_renderer *r, const cs_index *act, uint32_t n, float ys, float step)
+static inline void piece_crossing(const cs_workspace *ws, const cs_piece *pc, float ys,
+                                  float step, float width, bool warm, float guess,
+                                  cs_crossing *c)
+{
+    const cs_segment *s = &ws->segments[pc->segment];
+    float u, w, slope = 0.0f;
+    if (s->degree == 1) { /* closed form: no guess needed */
+        u = straight_root(s, pc, ys);
+        w = cs__horner(s->w, 1, u);
+        c->guess = u;
+    } else {
+        if (warm)
+            u = cs__solve_level_from(s->y, s->w, s->degree, ys, pc->u0, pc->u1, guess,
+                                     pc->dir > 0, &slope);
+        else
+            u = cs__solve_level(s->y, s->w, s->degree, ys, pc->u0, pc->u1);
+        w = cs__horner(s->w, s->degree, u);
+        /* This root moved along the level by one step (du/dlevel = W / g'),
+         * or the root itself. */
+        c->guess = slope != 0.0f ? cs__clampf(u + step * w / slope, pc->u0, pc->u1) : u;
+    }
+    float x = cs__horner(s->x, s->degree, u) / w;
+    c->x = cs__clampf(x, 0.0f, width);
+    c->dir = pc->dir;
+    c->operand = pc->operand;
+}
+
+/*
+ * The crossings of a region's active pieces act[] with the line's next
+ * sub-scanline ys, sorted by x. Returns their count, or -1 if they do not
+ * fit in ws->crossings.
+ *
+ * The previous sub-scanline's `live` crossings, still in ws->crossings in
+ * x order, say which pieces crossed it and where to seek their roots now:
+ * they are redone in that order (those that end above ys dropped), so they
+ * come nearly sorted. Pieces that did not cross it yet wait in
+ * ord[0..*idle) (indices into act); those reaching ys join at the end with
+ * a full solve. Nothing of this outlives the line: its first sub-scanline
+ * starts with every piece waiting.
+ */
+static int32_t crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, uint32_t *idle,
+                            uint32_t live, float ys, float step)
 {
     cs_workspace *ws = r->ws;
     float width = (float)r->opts.width;
-    uint32_t count = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        cs_piece *pc = &ws->pieces[act[i]];
-        if (!(pc->y_top <= ys && ys < pc->y_bot))
-            continue;
-        if (count >= CS_CFG_MAX_CROSSINGS)
-            return -1;
-        const cs_segment *s = &ws->segments[pc->segment];
-        float u, w, slope = 0.0f;
-        if (s->degree == 1) { /* closed form: no guess needed */
-            u = cs__solve_level(s->y, s->w, 1, ys, pc->u0, pc->u1);
-            w = cs__horner(s->w, 1, u);
+    uint32_t count = 0, kept = 0, waiting = 0, total = live + *idle;
+    /* One loop over both lists, so that piece_crossing is made once. */
+    for (uint32_t j = 0; j < total; j++) {
+        bool warm = j < live;
+        float guess = 0.0f;
+        cs_index k;
+        const cs_piece *pc;
+        if (warm) { /* count <= j: rewritten in place */
+            guess = ws->crossings[j].guess;
+            k = ws->crossings[j].piece;
+            pc = &ws->pieces[act[k]];
         } else {
-            float span = pc->u1 - pc->u0;
-            if (pc->warm) {
-                float guess = pc->u0 + (float)(pc->warm - 1u) * (1.0f / 65534.0f) * span;
-                u = cs__solve_level_from(s->y, s->w, s->degree, ys, pc->u0, pc->u1, guess,
-                                         pc->dir > 0, &slope);
-            } else {
-                u = cs__solve_level(s->y, s->w, s->degree, ys, pc->u0, pc->u1);
+            if (j == live)
+                kept = count;
+            k = ord[j - live];
+            pc = &ws->pieces[act[k]];
+            if (ys < pc->y_top) {
+                ord[waiting++] = k; /* waiting <= j - live: only entries already read */
+                continue;
             }
-            w = cs__horner(s->w, s->degree, u);
-            /* The next sub-scanline's guess: this root moved along the level
-             * by one step (du/dlevel = W / g'), or the root itself. */
-            float next = slope != 0.0f ? u + step * w / slope : u;
-            pc->warm = (uint16_t)(1u + (uint32_t)(cs__clampf((next - pc->u0) / span, 0.0f, 1.0f) *
-                                                      65534.0f +
-                                                  0.5f));
+            if (count >= CS_CFG_MAX_CROSSINGS)
+                return -1;
         }
-        float x = cs__horner(s->x, s->degree, u) / w;
-        ws->crossings[count].x = cs__clampf(x, 0.0f, width);
-        ws->crossings[count].dir = pc->dir;
-        ws->crossings[count].operand = pc->operand;
-        count++;
+        if (!(ys < pc->y_bot))
+            continue; /* ended, or passed between two sub-scanlines */
+        cs_crossing *c = &ws->crossings[count++];
+        piece_crossing(ws, pc, ys, step, width, warm, guess, c);
+        c->piece = (uint16_t)k;
     }
-    sort_crossings(ws->crossings, count);
+    if (live == total)
+        kept = count;
+    *idle = waiting;
+    /* Many newcomers (the line's first sub-scanline) come in piece order. */
+    if (count - kept > 4u)
+        sort_crossings(ws->crossings, count);
+    else
+        sort_nearly_sorted(ws->crossings, count);
     return (int32_t)count;
 }
 
-/* Turns sorted crossings into spans under the fill rule and accumulates. */
+/* Turns sorted crossings into spans under the fill rule and accumulates.
+ * The spans come in x order, so the first and the last set the pixel
+ * range. A region without CSG keeps one winding count and no stack. */
 static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *region, float weight,
                              bool centres, int32_t *lo, int32_t *hi)
 {
     cs_workspace *ws = r->ws;
+    const cs_crossing *c = ws->crossings;
     int32_t winding[CS_CFG_MAX_OPERANDS];
     for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) /* a loop: `= {0}` may call memset */
         winding[k] = 0;
+    bool csg = region->csg_len != 0, evenodd = region->fill_rule == CS_FILL_EVENODD;
+    int32_t wind = 0;
+    float first = 0.0f, last = 0.0f;
+    bool any = false;
     for (uint32_t i = 0; i + 1 < count; i++) {
-        winding[ws->crossings[i].operand] += ws->crossings[i].dir;
-        bool inside = cs__region_inside(region, winding);
-        float xa = ws->crossings[i].x, xb = ws->crossings[i + 1].x;
+        bool inside;
+        if (csg) {
+            winding[c[i].operand] += c[i].dir;
+            inside = cs__region_inside(region, winding);
+        } else {
+            wind += c[i].dir;
+            inside = evenodd ? (wind & 1) != 0 : wind != 0;
+        }
+        float xa = c[i].x, xb = c[i + 1].x;
         if (!inside || !(xb > xa))
             continue;
         if (centres)
             add_span_centres(ws, xa, xb);
         else
             add_span(ws, xa, xb, weight);
-        int32_t a = cs__floori(xa), b = cs__floori(xb) + 1;
+        if (!any)
+            first = xa;
+        any = true;
+        last = xb;
+    }
+    if (any) {
+        int32_t a = cs__floori(first), b = cs__floori(last) + 1;
         if (a < *lo)
             *lo = a;
         if (b > *hi)
@@ -204,8 +297,6 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
     }
     float weight = samples > 0 ? 1.0f / (float)samples : 0.0f;
     int32_t lo = INT32_MAX, hi = INT32_MIN;
-    for (uint32_t i = 0; i < n; i++) /* no root carries over from another line */
-        ws->pieces[act[i]].warm = 0;
 #if CS_CFG_EXACT
     if (r->opts.aa == CS_AA_EXACT) {
         cs_status st = cs__exact_region(r, region, act, n, y, &lo, &hi);
@@ -216,18 +307,31 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
         }
     }
 #endif
+    /* Every piece waits for its first crossing: no root carries over from
+     * another line. ws->scratch is free once update_active is done. */
+    cs_index *ord = ws->scratch;
+    uint32_t idle = 0, live = 0;
     for (int k = 0; k < samples; k++) {
+        if (k == 0)
+            for (idle = 0; idle < n; idle++)
+                ord[idle] = (cs_index)idle;
         float ys = (float)y + ((float)k + 0.5f) * weight;
-        int32_t count = crossings_at(r, act, n, ys, weight);
+        int32_t count = crossings_at(r, act, ord, &idle, live, ys, weight);
         if (count < 0) {
             if (r->sticky.status == CS_OK) {
                 const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];
                 cs__error(&r->sticky, CS_ERR_CAP_CROSSINGS, ws->region_cel[reg],
                           (int32_t)(reg - cel->first_region), -1, y);
             }
-            continue; /* the region is left out of this sample: visible, never unsafe */
+            /* The region is left out of this sample (visible, never
+             * unsafe); the next one starts afresh. */
+            for (idle = 0; idle < n; idle++)
+                ord[idle] = (cs_index)idle;
+            live = 0;
+            continue;
         }
-        accumulate_spans(r, (uint32_t)count, region, weight, centres, &lo, &hi);
+        live = (uint32_t)count;
+        accumulate_spans(r, live, region, weight, centres, &lo, &hi);
     }
     if (hi > r->opts.width)
         hi = r->opts.width;
