@@ -123,6 +123,8 @@ static float newton(const float *g, int degree, float a, float b, float fa, floa
             fb = f;
         }
         float next = u - f / d;
+        if (next == u) /* converged (see cs__solve_level_from) */
+            return u;
         if (!(next > a && next < b))
             break;
         if (cs__absf(next - u) <= 1.0e-7f)
@@ -188,6 +190,13 @@ float cs__solve_level_from(const float *num, const float *den, int degree, float
         else
             b = u;
         float next = u - f / d;
+        /* A step below u's last bit: converged. u may have just become an
+         * end of the bracket, which the test below would take for a step
+         * out of it, and hand a found root to the full solve. */
+        if (next == u) {
+            *slope = d;
+            return u;
+        }
         if (!(next > a && next < b))
             break;
         /* Newton leaves an error of about K s^2 after a step s (K = g''/2g'),
