@@ -8,10 +8,11 @@
  * out the same whichever lines were rendered before it. Within a line, a
  * piece's root on one sub-scanline starts the Newton solve on the next,
  * 1/N of a pixel lower, which converges in two or three steps where a solve
- * over the whole piece needs several more. The root is kept in 16 bits in
- * the piece (the padding of cs_piece on a 32-bit MCU), as a starting guess
- * only: the result is the solver's, from a guess that is the same on every
- * target.
+ * over the whole piece needs several more. The guess travels with the
+ * crossing (cs_crossing.guess) to the next sub-scanline, whose crossings
+ * are taken in the previous one's x order and so come nearly sorted; it is
+ * a starting point only, the same on every target, and the result is the
+ * solver's.
  *
  * Pieces are kept in scene order, which groups them by region and regions
  * by cel, front-most first. For one region the crossings of a scanline,
