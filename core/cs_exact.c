@@ -156,24 +156,105 @@ static float seg_y(const cs_segment *s, float u)
 }
 
 /*
- * u where piece pc is at height yv, searched between a and b (either
- * order), starting from `guess`. The ends are taken as they are: their y
- * values are the ones shared exactly with the neighbouring pieces.
+ * Value, first and second derivative at u of the cubic c (c[3] and c[2]
+ * are 0 for lower degrees: cs_nurbs.c clears them).
  */
-static float level_u(const cs_segment *s, const cs_piece *pc, float yv, float a, float b,
-                     float guess)
+static inline float jet(const float *c, float u, float *d1, float *d2)
 {
-    if (yv == pc->y_top)
-        return top_u(pc);
-    if (yv == pc->y_bot)
-        return bot_u(pc);
-    float lo = cs__minf(a, b), hi = cs__maxf(a, b), slope;
-    if (s->degree == 1) { /* Y - yv W is linear: its root directly */
-        float u = (yv * s->w[0] - s->y[0]) / (s->y[1] - yv * s->w[1]);
-        if (u >= lo && u <= hi)
-            return u;
+    float t3 = c[3] * u, k3 = 3.0f * t3;
+    *d2 = 2.0f * (k3 + c[2]);
+    *d1 = (k3 + 2.0f * c[2]) * u + c[1];
+    return ((t3 + c[2]) * u + c[1]) * u + c[0];
+}
+
+/*
+ * Newton's step s from u leaves a residual of about g'' s^2 / 2 in
+ * g = Y - yv W, i.e. g'' s^2 / 2W in y. The end is accepted once that is
+ * below LEVEL_TOL px: its point is then exactly on the curve, at a height
+ * off by less than that, which moves the row's area by about as much.
+ */
+#define LEVEL_TOL (1.0f / 262144.0f)
+#define LEVEL_MAX_ITER 8
+
+/*
+ * The end of s at height yv, with u searched in [lo, hi] (on which y is
+ * monotone, growing with u if `rising`) by Newton's method from `u`.
+ * Also the plane y'' there, in *ypp, for guessing the next end. Every
+ * step keeps the bracket; a step that would leave it hands the narrowed
+ * bracket to the bounded solve of cs_poly.c.
+ */
+static void place_end(const cs_segment *s, bool poly, float yv, float lo, float hi, float u,
+                      bool rising, cs_exact_end *e, float *ypp)
+{
+    float g[4];
+    for (int i = 0; i < 4; i++)
+        g[i] = s->y[i] - yv * s->w[i];
+    float f, d, dd;
+    if (lo == hi) { /* a piece's end: its u is known exactly */
+        u = lo;
+        f = jet(g, u, &d, &dd);
+    } else if (s->degree == 1) { /* Y - yv W is linear: its root directly */
+        u = cs__clampf(-g[0] / g[1], lo, hi);
+        f = jet(g, u, &d, &dd);
+    } else {
+        float wt = poly ? s->w[0] : cs__horner(s->w, s->degree, u);
+        float tol = (2.0f * LEVEL_TOL) * wt;
+        bool done = false;
+        if (u > lo && u < hi) {
+            for (int it = 0; it < LEVEL_MAX_ITER; it++) {
+                f = jet(g, u, &d, &dd);
+                if (f == 0.0f) {
+                    done = true;
+                    break;
+                }
+                if ((f < 0.0f) == rising)
+                    lo = u;
+                else
+                    hi = u;
+                float st = -f / d, next = u + st;
+                if (cs__absf(dd) * (st * st) <= tol) {
+                    /* g', g'' at the accepted point: exact Taylor for a cubic */
+                    float g3 = 3.0f * g[3] * st;
+                    d += st * (dd + g3 * st);
+                    dd += 2.0f * g3;
+                    u = cs__clampf(next, lo, hi);
+                    done = true;
+                    break;
+                }
+                /* Chebyshev's correction (the root of the quadratic model)
+                 * makes the steps converge cubically where the model holds. */
+                float c = 0.5f * dd * st / d;
+                if (c > -0.5f && c < 0.5f)
+                    next -= c * st;
+                if (!(next > lo && next < hi))
+                    break;
+                u = next;
+            }
+        }
+        if (!done) {
+            u = cs__solve_level(s->y, s->w, s->degree, yv, lo, hi);
+            f = jet(g, u, &d, &dd);
+        }
     }
-    return cs__solve_level_from(s->y, s->w, s->degree, yv, lo, hi, guess, pc->dir > 0, &slope);
+    float dX, ddX, X = jet(s->x, u, &dX, &ddX);
+    e->u = u;
+    if (poly) {
+        float inv = 1.0f / s->w[0];
+        e->x = X * inv;
+        e->dx = dX * inv;
+        e->dy = d * inv;
+        e->w = s->w[0];
+        e->dwr = 0.0f;
+        *ypp = dd * inv;
+    } else {
+        float dW, ddW, W = jet(s->w, u, &dW, &ddW), inv = 1.0f / W;
+        e->x = X * inv;
+        e->dx = (dX - e->x * dW) * inv;
+        e->dy = d * inv;
+        e->w = W;
+        e->dwr = dW * inv;
+        *ypp = (dd - 2.0f * dW * e->dy) * inv;
+    }
 }
 
 /* u between ua (at height ya) and ub (at yb) where y is yv, on the chord. */
@@ -568,6 +649,164 @@ static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, const c
     add_cell(cx, s, sign, cs__floori(cs__minf(a.x, x1)), &a, y0, bot, y1);
 }
 
+/* A cell of an edge: height dy of it in column c, whose part right of
+ * the edge has area dy - m. */
+static void put_cell(exact_ctx *cx, float sign, int32_t c, float dy, float m)
+{
+    if (!(dy > 0.0f))
+        return;
+    cs_workspace *ws = cx->ws;
+    if (c < 0) { /* left of the screen: all of it is to the right */
+        cs__acc_cover(ws, 0, sign * dy);
+        touch(cx, 0, 1);
+        return;
+    }
+    if (c >= cx->width) {
+        touch(cx, cx->width, cx->width + 1);
+        return;
+    }
+    m = cs__clampf(m, 0.0f, dy);
+    cs__acc_area(ws, c, sign * (dy - m));
+    cs__acc_cover(ws, c + 1, sign * dy);
+    touch(cx, c, c + 2);
+}
+
+/* A straight edge from (x0, y0) to (x1, y1), y0 < y1: cut at integer x,
+ * where y is linear in x; each cell's moment is its trapezoid. */
+static void add_line(exact_ctx *cx, float sign, float x0, float y0, float x1, float y1)
+{
+    float width = (float)cx->width, xa = x0, ya = y0;
+    if (x1 > x0) {
+        float dydx = (y1 - y0) / (x1 - x0);
+        float k = cs__maxf((float)(cs__floori(x0) + 1), 0.0f);
+        for (; k < x1 && k <= width; k += 1.0f) {
+            float yk = cs__clampf(y0 + (k - x0) * dydx, ya, y1);
+            int32_t c = cs__floori(xa);
+            put_cell(cx, sign, c, yk - ya, (0.5f * (xa + k) - (float)c) * (yk - ya));
+            xa = k;
+            ya = yk;
+        }
+    } else if (x1 < x0) {
+        float dydx = (y1 - y0) / (x1 - x0);
+        float k = cs__minf((float)(-cs__floori(-x0) - 1), width);
+        for (; k > x1 && k >= 0.0f; k -= 1.0f) {
+            float yk = cs__clampf(y0 + (k - x0) * dydx, ya, y1);
+            put_cell(cx, sign, (int32_t)k, yk - ya, (0.5f * (xa + k) - k) * (yk - ya));
+            xa = k;
+            ya = yk;
+        }
+    }
+    int32_t c = cs__floori(cs__minf(xa, x1));
+    put_cell(cx, sign, c, y1 - ya, (0.5f * (xa + x1) - (float)c) * (y1 - ya));
+}
+
+/* The cut of an arc at x = x0 + r: h(t) = t (a1 + t (a2 + t a3)) - r,
+ * monotone on [lo, hi] (growing if `inc`), by Newton's method from t.
+ * A step s leaves about h'' s^2 / 2 of x; accepted once that is below
+ * CUT_TOL px, since a cut off by dx in x misplaces about dx times the
+ * height near it. A step that would leave the bracket bisects it. */
+#define CUT_TOL (1.0f / 262144.0f)
+#define CUT_MAX_ITER 24
+static float cut_t(const float *a, float r, float lo, float hi, float t, bool inc)
+{
+    for (int it = 0; it < CUT_MAX_ITER; it++) {
+        float a3t = a[3] * t;
+        float h = t * (a[1] + t * (a[2] + a3t)) - r;
+        if (h == 0.0f)
+            return t;
+        if ((h < 0.0f) == inc)
+            lo = t;
+        else
+            hi = t;
+        float dd = 2.0f * (a[2] + 3.0f * a3t);
+        float d = a[1] + t * (2.0f * a[2] + 3.0f * a3t);
+        float st = -h / d, next = t + st;
+        if (cs__absf(dd) * (st * st) <= 2.0f * CUT_TOL)
+            return cs__clampf(next, lo, hi);
+        float c = 0.5f * dd * st / d;
+        if (c > -0.5f && c < 0.5f)
+            next -= c * st;
+        if (!(next > lo && next < hi))
+            next = 0.5f * (lo + hi);
+        t = next;
+    }
+    return t;
+}
+
+/*
+ * An x-monotone polynomial arc given by its Bezier control points
+ * (bx, by)[0..p], by[0] < by[p]. With t the arc's own parameter,
+ * x - x0 = sum a_i t^i and y - y0 = sum b_i t^i, so that
+ * M(t) = Int_0^t (x - x0) y' dt is a polynomial of degree 2p. The cell of
+ * column c between two cuts then has moment M(t1) - M(t0) + (x0 - c)
+ * (y1 - y0): one solve for t per cut and no other evaluation. An arc in
+ * one column takes the moment from its control points directly.
+ */
+static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, const float *by)
+{
+    float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = (float)cx->width;
+    bool inc = x1 > x0;
+    float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
+                  : cs__minf((float)(-cs__floori(-x0) - 1), width);
+    if (inc ? !(k < x1 && k <= width) : !(k > x1 && k >= 0.0f)) { /* one column */
+        int32_t c = cs__floori(cs__minf(x0, x1));
+        float fc = (float)c, m;
+        float c0 = x0 - fc, c3 = x1 - fc, c1 = bx[1] - fc;
+        if (p == 3) {
+            float c2 = bx[2] - fc;
+            float d0 = by[1] - y0, d1 = by[2] - by[1], d2 = y1 - by[2];
+            m = (0.5f * c0 + 0.3f * c1 + 0.15f * c2 + 0.05f * c3) * d0 +
+                (0.2f * c0 + 0.3f * c1 + 0.3f * c2 + 0.2f * c3) * d1 +
+                (0.05f * c0 + 0.15f * c1 + 0.3f * c2 + 0.5f * c3) * d2;
+        } else {
+            float d0 = by[1] - y0, d1 = y1 - by[1];
+            m = (0.5f * c0 + (1.0f / 3.0f) * c1 + (1.0f / 6.0f) * c3) * d0 +
+                ((1.0f / 6.0f) * c0 + (1.0f / 3.0f) * c1 + 0.5f * c3) * d1;
+        }
+        put_cell(cx, sign, c, y1 - y0, m);
+        return;
+    }
+    float a[4], b[4];
+    a[0] = b[0] = 0.0f;
+    if (p == 3) {
+        a[1] = 3.0f * (bx[1] - x0);
+        a[2] = 3.0f * ((bx[2] - bx[1]) - (bx[1] - x0));
+        a[3] = (x1 - x0) - 3.0f * (bx[2] - bx[1]);
+        b[1] = 3.0f * (by[1] - y0);
+        b[2] = 3.0f * ((by[2] - by[1]) - (by[1] - y0));
+        b[3] = (y1 - y0) - 3.0f * (by[2] - by[1]);
+    } else {
+        a[1] = 2.0f * (bx[1] - x0);
+        a[2] = (x1 - bx[1]) - (bx[1] - x0);
+        a[3] = 0.0f;
+        b[1] = 2.0f * (by[1] - y0);
+        b[2] = (y1 - by[1]) - (by[1] - y0);
+        b[3] = 0.0f;
+    }
+    /* M = m2 t^2 + ... + m6 t^6 */
+    float m2 = 0.5f * a[1] * b[1];
+    float m3 = (2.0f * a[1] * b[2] + a[2] * b[1]) * (1.0f / 3.0f);
+    float m4 = (3.0f * a[1] * b[3] + 2.0f * a[2] * b[2] + a[3] * b[1]) * 0.25f;
+    float m5 = (3.0f * a[2] * b[3] + 2.0f * a[3] * b[2]) * 0.2f;
+    float m6 = 0.5f * a[3] * b[3];
+    float t = 0.0f, xa = x0, ya = y0, Ma = 0.0f;
+    for (; inc ? (k < x1 && k <= width) : (k > x1 && k >= 0.0f); k += inc ? 1.0f : -1.0f) {
+        /* from the chord of what is left of the arc */
+        float tk = cut_t(a, k - x0, t, 1.0f, t + (1.0f - t) * ((k - xa) / (x1 - xa)), inc);
+        float yk = cs__clampf(y0 + tk * (b[1] + tk * (b[2] + tk * b[3])), ya, y1);
+        float Mk = tk * tk * (m2 + tk * (m3 + tk * (m4 + tk * (m5 + tk * m6))));
+        int32_t c = cs__floori(inc ? xa : k);
+        put_cell(cx, sign, c, yk - ya, (Mk - Ma) + (x0 - (float)c) * (yk - ya));
+        t = tk;
+        xa = k;
+        ya = yk;
+        Ma = Mk;
+    }
+    int32_t c = cs__floori(cs__minf(xa, x1));
+    float M1 = m2 + (m3 + (m4 + (m5 + m6)));
+    put_cell(cx, sign, c, y1 - ya, (M1 - Ma) + (x0 - (float)c) * (y1 - ya));
+}
+
 /* Effective edge e over the band [ya, yb]: sign +1 where the region begins. */
 static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float ya, float yb)
 {
@@ -581,6 +820,22 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
     if (e->xmin >= (float)cx->width) {
         touch(cx, cx->width, cx->width + 1);
         return;
+    }
+    if (s->degree == 1) {
+        add_line(cx, sign, e->top.x, ya, e->bot.x, yb);
+        return;
+    }
+    if (e->monotone && polynomial(s)) {
+        float bx[4], by[4];
+        int k = control_points(s, &e->top, ya, &e->bot, yb, &bx[1], &by[1]);
+        if (k > 0) {
+            bx[0] = e->top.x;
+            by[0] = ya;
+            bx[k + 1] = e->bot.x;
+            by[k + 1] = yb;
+            add_poly_arc(cx, sign, k + 1, bx, by);
+            return;
+        }
     }
     if (e->xmax - e->xmin < 1.0f) { /* the usual case: one column, no solve */
         int32_t c = cs__floori(e->xmin);
@@ -639,9 +894,13 @@ static void set_bot(exact_ctx *cx, cs_exact_piece *e, float ya, float yb, float 
     const cs_piece *pc = &ws->pieces[e->piece];
     const cs_segment *s = &ws->segments[pc->segment];
     e->row_arc = false;
-    float u = yb == yref ? uref
-                         : level_u(s, pc, yb, e->top.u, uref, chord_u(e->top.u, ya, uref, yref, yb));
-    eval_end(s, u, yb, &e->bot);
+    float ypp;
+    if (yb == yref) {
+        place_end(s, polynomial(s), yb, uref, uref, uref, pc->dir > 0, &e->bot, &ypp);
+        return;
+    }
+    place_end(s, polynomial(s), yb, cs__minf(e->top.u, uref), cs__maxf(e->top.u, uref),
+              chord_u(e->top.u, ya, uref, yref, yb), pc->dir > 0, &e->bot, &ypp);
 }
 
 /*
@@ -867,15 +1126,30 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
         const cs_segment *s = &ws->segments[pc->segment];
         float ya = row_top(&cx, pc), yb = row_end(&cx, pc);
         float ut = top_u(pc), ub = bot_u(pc);
+        bool poly = polynomial(s), rising = pc->dir > 0;
         e->piece = act[i];
-        float u = level_u(s, pc, ya, ut, ub, chord_u(ut, pc->y_top, ub, pc->y_bot, ya));
-        eval_end(s, u, ya, &e->top);
-        /* The bottom from the top's tangent, or failing that its chord. */
-        float guess = e->top.dy != 0.0f ? u + (yb - ya) / e->top.dy : u;
-        if (!(guess > cs__minf(u, ub) && guess < cs__maxf(u, ub)))
-            guess = chord_u(u, ya, ub, pc->y_bot, yb);
-        e->u_row = level_u(s, pc, yb, u, ub, guess);
-        eval_end(s, e->u_row, yb, &e->bot);
+        float ypp, u = ut;
+        if (ya == pc->y_top) /* the piece's own end: its u is exact */
+            place_end(s, poly, ya, ut, ut, ut, rising, &e->top, &ypp);
+        else
+            place_end(s, poly, ya, cs__minf(ut, ub), cs__maxf(ut, ub),
+                      chord_u(ut, pc->y_top, ub, pc->y_bot, ya), rising, &e->top, &ypp);
+        u = e->top.u;
+        if (yb == pc->y_bot) {
+            place_end(s, poly, yb, ub, ub, ub, rising, &e->bot, &ypp);
+        } else {
+            /* The bottom from the top's second-order inverse Taylor
+             * series, or failing that the chord. */
+            float y1 = e->top.dy, guess = u;
+            if (y1 != 0.0f) {
+                float du = (yb - ya) / y1;
+                guess = u + du * (1.0f - 0.5f * ypp * du / y1);
+            }
+            if (!(guess > cs__minf(u, ub) && guess < cs__maxf(u, ub)))
+                guess = chord_u(u, ya, ub, pc->y_bot, yb);
+            place_end(s, poly, yb, cs__minf(u, ub), cs__maxf(u, ub), guess, rising, &e->bot, &ypp);
+        }
+        e->u_row = e->bot.u;
         hull(s, e, ya, yb);
         e->row_arc = true;
         ord[i] = i;
