@@ -257,6 +257,25 @@ static void place_end(const cs_segment *s, bool poly, float yv, float lo, float 
     }
 }
 
+/* The end of a straight segment at height yv: u in closed form (or
+ * `exact`, a piece's own end, if not negative), clamped to [ua, ub]
+ * (either order). */
+static void line_end(const cs_segment *s, float yv, float exact, float ua, float ub,
+                     cs_exact_end *e)
+{
+    float gy = s->y[1] - yv * s->w[1];
+    float u = exact >= 0.0f ? exact
+                            : cs__clampf((yv * s->w[0] - s->y[0]) / gy, cs__minf(ua, ub),
+                                         cs__maxf(ua, ub));
+    float W = s->w[1] * u + s->w[0], inv = 1.0f / W;
+    e->u = u;
+    e->x = (s->x[1] * u + s->x[0]) * inv;
+    e->dx = (s->x[1] - e->x * s->w[1]) * inv;
+    e->dy = gy * inv;
+    e->w = W;
+    e->dwr = s->w[1] * inv;
+}
+
 /* u between ua (at height ya) and ub (at yb) where y is yv, on the chord. */
 static float chord_u(float ua, float ya, float ub, float yb, float yv)
 {
@@ -278,6 +297,15 @@ static int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
     if (p < 2)
         return 0;
     float t = (b->u - a->u) / (float)p;
+    if (a->dwr == 0.0f && b->dwr == 0.0f) { /* polynomial: q = 1 */
+        px[0] = a->x + t * a->dx;
+        py[0] = ya + t * a->dy;
+        if (p == 3) {
+            px[1] = b->x - t * b->dx;
+            py[1] = yb - t * b->dy;
+        }
+        return p - 1;
+    }
     float q = 1.0f + t * a->dwr;
     if (!(q > 0.0f))
         return -1;
@@ -296,11 +324,12 @@ static int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
 }
 
 /*
- * Bounds of the arc of e over the band [ya, yb]: its strip around the
- * chord, its x range and whether it is x-monotone (variation diminishing:
- * a control polygon monotone in x makes the curve so).
+ * Bounds of the arc of e over the band [ya, yb]: its x range, whether it
+ * is x-monotone (variation diminishing: a control polygon monotone in x
+ * makes the curve so) and, if `strip`, its strip around the chord and its
+ * order key (only bands of more than one arc need those).
  */
-static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb)
+static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb, bool strip)
 {
     float x0 = e->top.x, x1 = e->bot.x;
     e->key = x0 + x1;
@@ -318,48 +347,123 @@ static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb)
     }
     if (k == 0)
         return; /* a straight line, whatever its weights */
-    float slope = (x1 - x0) / (yb - ya);
-    /* The end control points are the arc's ends, x_top and x_bot: their d
-     * is 0 by definition, which keeps rounding out of touching vertices. */
+    px[k] = x1;
     bool up = false, down = false;
     float prev = x0;
-    for (int j = 0; j < k; j++) {
-        float d = px[j] - (x0 + (py[j] - ya) * slope);
-        e->dmin = cs__minf(e->dmin, d);
-        e->dmax = cs__maxf(e->dmax, d);
+    for (int j = 0; j <= k; j++) {
         e->xmin = cs__minf(e->xmin, px[j]);
         e->xmax = cs__maxf(e->xmax, px[j]);
         up = up || px[j] > prev;
         down = down || px[j] < prev;
         prev = px[j];
     }
-    up = up || x1 > prev;
-    down = down || x1 < prev;
     e->monotone = !(up && down);
-}
-
-/* Shell sort of ord[0..m) by key (or by xmin); they arrive nearly sorted. */
-static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, bool by_xmin)
-{
-    static const uint32_t gaps[] = {57, 23, 10, 4, 1};
-    /* Gaps past the length are no-ops: start at the first that is not. */
-    unsigned g0 = 0;
-    while (g0 + 1 < sizeof gaps / sizeof gaps[0] && gaps[g0] >= m)
-        g0++;
-    for (unsigned g = g0; g < sizeof gaps / sizeof gaps[0]; g++) {
-        uint32_t gap = gaps[g];
-        for (uint32_t i = gap; i < m; i++) {
-            uint32_t t = ord[i];
-            float kt = by_xmin ? ex[t].xmin : ex[t].key;
-            uint32_t j = i;
-            while (j >= gap && (by_xmin ? ex[ord[j - gap]].xmin : ex[ord[j - gap]].key) > kt) {
-                ord[j] = ord[j - gap];
-                j -= gap;
-            }
-            ord[j] = t;
-        }
+    if (!strip)
+        return;
+    float slope = (x1 - x0) / (yb - ya);
+    /* The end control points are the arc's ends, x_top and x_bot: their d
+     * is 0 by definition, which keeps rounding out of touching vertices. */
+    for (int j = 0; j < k; j++) {
+        float d = px[j] - (x0 + (py[j] - ya) * slope);
+        e->dmin = cs__minf(e->dmin, d);
+        e->dmax = cs__maxf(e->dmax, d);
     }
 }
+
+/*
+ * The arc of piece `piece` across the row: its ends (u where it enters
+ * the row from the chord of the piece, where it leaves from the entry's
+ * second-order inverse series) and its x bounds.
+ */
+static void place_arc(const exact_ctx *cx, cs_exact_piece *e, cs_index piece)
+{
+    const cs_workspace *ws = cx->ws;
+    const cs_piece *pc = &ws->pieces[piece];
+    const cs_segment *s = &ws->segments[pc->segment];
+    float ya = row_top(cx, pc), yb = row_end(cx, pc);
+    float ut = top_u(pc), ub = bot_u(pc);
+    e->piece = piece;
+    if (s->degree == 1) {
+        line_end(s, ya, ya == pc->y_top ? ut : -1.0f, ut, ub, &e->top);
+        line_end(s, yb, yb == pc->y_bot ? ub : -1.0f, ut, ub, &e->bot);
+        e->u_row = e->bot.u;
+        e->key = e->top.x + e->bot.x;
+        e->dmin = e->dmax = 0.0f;
+        e->xmin = cs__minf(e->top.x, e->bot.x);
+        e->xmax = cs__maxf(e->top.x, e->bot.x);
+        e->monotone = true;
+        e->row_arc = true;
+        return;
+    }
+    bool poly = polynomial(s), rising = pc->dir > 0;
+    float ypp, u = ut;
+    if (ya == pc->y_top) /* the piece's own end: its u is exact */
+        place_end(s, poly, ya, ut, ut, ut, rising, &e->top, &ypp);
+    else
+        place_end(s, poly, ya, cs__minf(ut, ub), cs__maxf(ut, ub),
+                  chord_u(ut, pc->y_top, ub, pc->y_bot, ya), rising, &e->top, &ypp);
+    u = e->top.u;
+    if (yb == pc->y_bot) {
+        place_end(s, poly, yb, ub, ub, ub, rising, &e->bot, &ypp);
+    } else {
+        /* The bottom from the top's second-order inverse Taylor
+         * series, or failing that the chord. */
+        float y1 = e->top.dy, guess = u;
+        if (y1 != 0.0f) {
+            float du = (yb - ya) / y1;
+            guess = u + du * (1.0f - 0.5f * ypp * du / y1);
+        }
+        if (!(guess > cs__minf(u, ub) && guess < cs__maxf(u, ub)))
+            guess = chord_u(u, ya, ub, pc->y_bot, yb);
+        place_end(s, poly, yb, cs__minf(u, ub), cs__maxf(u, ub), guess, rising, &e->bot, &ypp);
+    }
+    e->u_row = e->bot.u;
+    hull(s, e, ya, yb, false);
+    e->row_arc = true;
+}
+
+/*
+ * Sorts ord[0..m) by xmin (by_xmin) or by key. They arrive nearly sorted,
+ * or in short runs: insertion sort, after a Shell pass when there are many
+ * (gaps 3^k-ish, no gap at or beyond m).
+ */
+#define SORT_BODY(KEY)                                                                    \
+    do {                                                                                  \
+        static const uint32_t gaps[] = {57, 23, 10, 4};                                  \
+        for (unsigned g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {                    \
+            uint32_t gap = gaps[g];                                                       \
+            for (uint32_t i = gap; i < m; i++) {                                          \
+                uint32_t t = ord[i];                                                      \
+                float kt = ex[t].KEY;                                                     \
+                uint32_t j = i;                                                           \
+                while (j >= gap && ex[ord[j - gap]].KEY > kt) {                           \
+                    ord[j] = ord[j - gap];                                                \
+                    j -= gap;                                                             \
+                }                                                                         \
+                ord[j] = t;                                                               \
+            }                                                                             \
+        }                                                                                 \
+        for (uint32_t i = 1; i < m; i++) {                                                \
+            uint32_t t = ord[i];                                                          \
+            float kt = ex[t].KEY;                                                         \
+            uint32_t j = i;                                                               \
+            for (float kp = ex[ord[j - 1]].KEY; kp > kt; kp = ex[ord[j - 1]].KEY) {       \
+                ord[j] = ord[j - 1];                                                      \
+                if (--j == 0)                                                             \
+                    break;                                                                \
+            }                                                                             \
+            ord[j] = t;                                                                   \
+        }                                                                                 \
+    } while (0)
+
+static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, bool by_xmin)
+{
+    if (by_xmin)
+        SORT_BODY(xmin);
+    else
+        SORT_BODY(key);
+}
+#undef SORT_BODY
 
 /*
  * Whether the order by key provably holds over [ya, yb], up to BAND_TOL.
@@ -651,7 +755,7 @@ static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, const c
 
 /* A cell of an edge: height dy of it in column c, whose part right of
  * the edge has area dy - m. */
-static void put_cell(exact_ctx *cx, float sign, int32_t c, float dy, float m)
+static inline void put_cell(exact_ctx *cx, float sign, int32_t c, float dy, float m)
 {
     if (!(dy > 0.0f))
         return;
@@ -939,8 +1043,7 @@ static uint32_t run_band(exact_ctx *cx, uint32_t *cl, uint32_t nc, float ya, flo
     for (;;) {
         for (uint32_t k = 0; k < m; k++) {
             cs_exact_piece *e = &ex[cl[k]];
-            if (!e->row_arc)
-                hull(&ws->segments[ws->pieces[e->piece].segment], e, ya, yb);
+            hull(&ws->segments[ws->pieces[e->piece].segment], e, ya, yb, true);
         }
         sort_pieces(ex, cl, m, false);
         float cut = 0.0f;
@@ -1121,37 +1224,7 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     uint32_t *ord = ws->exact_order;
     /* Each piece's arc across the row, and its bounds. */
     for (uint32_t i = 0; i < n; i++) {
-        cs_exact_piece *e = &ex[i];
-        const cs_piece *pc = &ws->pieces[act[i]];
-        const cs_segment *s = &ws->segments[pc->segment];
-        float ya = row_top(&cx, pc), yb = row_end(&cx, pc);
-        float ut = top_u(pc), ub = bot_u(pc);
-        bool poly = polynomial(s), rising = pc->dir > 0;
-        e->piece = act[i];
-        float ypp, u = ut;
-        if (ya == pc->y_top) /* the piece's own end: its u is exact */
-            place_end(s, poly, ya, ut, ut, ut, rising, &e->top, &ypp);
-        else
-            place_end(s, poly, ya, cs__minf(ut, ub), cs__maxf(ut, ub),
-                      chord_u(ut, pc->y_top, ub, pc->y_bot, ya), rising, &e->top, &ypp);
-        u = e->top.u;
-        if (yb == pc->y_bot) {
-            place_end(s, poly, yb, ub, ub, ub, rising, &e->bot, &ypp);
-        } else {
-            /* The bottom from the top's second-order inverse Taylor
-             * series, or failing that the chord. */
-            float y1 = e->top.dy, guess = u;
-            if (y1 != 0.0f) {
-                float du = (yb - ya) / y1;
-                guess = u + du * (1.0f - 0.5f * ypp * du / y1);
-            }
-            if (!(guess > cs__minf(u, ub) && guess < cs__maxf(u, ub)))
-                guess = chord_u(u, ya, ub, pc->y_bot, yb);
-            place_end(s, poly, yb, cs__minf(u, ub), cs__maxf(u, ub), guess, rising, &e->bot, &ypp);
-        }
-        e->u_row = e->bot.u;
-        hull(s, e, ya, yb);
-        e->row_arc = true;
+        place_arc(&cx, &ex[i], act[i]);
         ord[i] = i;
     }
     /*
