@@ -183,7 +183,7 @@ static inline float jet(const float *c, float u, float *d1, float *d2)
  * step keeps the bracket; a step that would leave it hands the narrowed
  * bracket to the bounded solve of cs_poly.c.
  */
-static void place_end(const cs_segment *s, bool poly, float yv, float lo, float hi, float u,
+static inline void place_end(const cs_segment *s, bool poly, float yv, float lo, float hi, float u,
                       bool rising, cs_exact_end *e, float *ypp)
 {
     float g[4];
@@ -290,7 +290,7 @@ static float chord_u(float ua, float ya, float ub, float yb, float yv)
  * number written (p - 1), or -1 if a weight is not positive (it cannot
  * be for positive segment weights, but rounding is not trusted).
  */
-static int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
+static inline int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
                           const cs_exact_end *b, float yb, float *px, float *py)
 {
     int p = s->degree;
@@ -329,7 +329,7 @@ static int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
  * makes the curve so) and, if `strip`, its strip around the chord and its
  * order key (only bands of more than one arc need those).
  */
-static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb, bool strip)
+static inline void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb, bool strip)
 {
     float x0 = e->top.x, x1 = e->bot.x;
     e->key = x0 + x1;
@@ -371,6 +371,118 @@ static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb, boo
 }
 
 /*
+ * u in [lo, hi] where the polynomial Y (degree <= 3, monotone there,
+ * growing if `rising`) equals `level`, by Newton's method from u, with
+ * Y' and Y'' there. The same iteration and acceptance as place_end, for
+ * the common case of constant weight, with nothing else to carry.
+ */
+static float poly_level(const float *Y, int p, float level, float lo, float hi, float u,
+                        bool rising, float tol, float *d1, float *d2)
+{
+    float g0 = Y[0] - level, y1 = Y[1], y2 = Y[2], y3 = Y[3];
+    float y2x2 = 2.0f * y2, y3x3 = 3.0f * y3;
+    if (u > lo && u < hi) {
+        for (int it = 0; it < LEVEL_MAX_ITER; it++) {
+            float f = ((y3 * u + y2) * u + y1) * u + g0;
+            float d = (y3x3 * u + y2x2) * u + y1;
+            float dd = 2.0f * (y3x3 * u + y2);
+            if (f == 0.0f) {
+                *d1 = d;
+                *d2 = dd;
+                return u;
+            }
+            if ((f < 0.0f) == rising)
+                lo = u;
+            else
+                hi = u;
+            float st = -f / d, next = u + st;
+            if (cs__absf(dd) * (st * st) <= tol) {
+                float g3 = y3x3 * st; /* g', g'' there: exact Taylor for a cubic */
+                *d1 = d + st * (dd + g3 * st);
+                *d2 = dd + 2.0f * g3;
+                return cs__clampf(next, lo, hi);
+            }
+            float c = 0.5f * dd * st / d;
+            if (c > -0.5f && c < 0.5f)
+                next -= c * st;
+            if (!(next > lo && next < hi))
+                break;
+            u = next;
+        }
+    }
+    float w[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+    u = cs__solve_level(Y, w, p, level, lo, hi);
+    *d1 = (y3x3 * u + y2x2) * u + y1;
+    *d2 = 2.0f * (y3x3 * u + y2);
+    return u;
+}
+
+/*
+ * place_arc for a polynomial segment (constant weight w0, degree 2 or 3):
+ * both ends and the x bounds, with the plane coordinates X/w0, Y/w0.
+ */
+static void place_poly(const cs_piece *pc, const cs_segment *s, float ya, float yb,
+                       cs_exact_piece *e)
+{
+    const float *X = s->x, *Y = s->y;
+    float w0 = s->w[0], inv = 1.0f / w0, tol = (2.0f * LEVEL_TOL) * w0;
+    float ut = top_u(pc), ub = bot_u(pc);
+    float x3x3 = 3.0f * X[3], x2x2 = 2.0f * X[2];
+    bool rising = pc->dir > 0;
+    int p = s->degree;
+    float d1, d2, u = ut;
+    if (ya == pc->y_top) { /* the piece's own end: its u is exact */
+        d1 = (3.0f * Y[3] * u + 2.0f * Y[2]) * u + Y[1];
+        d2 = 2.0f * (3.0f * Y[3] * u + Y[2]);
+    } else {
+        u = poly_level(Y, p, ya * w0, cs__minf(ut, ub), cs__maxf(ut, ub),
+                       chord_u(ut, pc->y_top, ub, pc->y_bot, ya), rising, tol, &d1, &d2);
+    }
+    float xt = (((X[3] * u + X[2]) * u + X[1]) * u + X[0]) * inv;
+    float dxt = ((x3x3 * u + x2x2) * u + X[1]) * inv, dyt = d1 * inv;
+    e->top.u = u;
+    e->top.x = xt;
+    e->top.dx = dxt;
+    e->top.dy = dyt;
+    e->top.w = w0;
+    e->top.dwr = 0.0f;
+    float v = ub;
+    if (yb == pc->y_bot) {
+        d1 = (3.0f * Y[3] * v + 2.0f * Y[2]) * v + Y[1];
+    } else {
+        /* from the top's second-order inverse Taylor series, or the chord */
+        float guess = u;
+        if (dyt != 0.0f) {
+            float du = (yb - ya) / dyt;
+            guess = u + du * (1.0f - 0.5f * (d2 * inv) * du / dyt);
+        }
+        float lo = cs__minf(u, ub), hi = cs__maxf(u, ub);
+        if (!(guess > lo && guess < hi))
+            guess = chord_u(u, ya, ub, pc->y_bot, yb);
+        v = poly_level(Y, p, yb * w0, lo, hi, guess, rising, tol, &d1, &d2);
+    }
+    float xb = (((X[3] * v + X[2]) * v + X[1]) * v + X[0]) * inv;
+    float dxb = ((x3x3 * v + x2x2) * v + X[1]) * inv;
+    e->bot.u = v;
+    e->bot.x = xb;
+    e->bot.dx = dxb;
+    e->bot.dy = d1 * inv;
+    e->bot.w = w0;
+    e->bot.dwr = 0.0f;
+    e->u_row = v;
+    /* x bounds from the control polygon (hull without the strip) */
+    float t = (v - u) / (float)p;
+    float c1 = xt + t * dxt, c2 = p == 3 ? xb - t * dxb : c1;
+    e->key = xt + xb;
+    e->dmin = e->dmax = 0.0f;
+    e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
+    e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
+    bool up = c1 > xt || c2 > c1 || xb > c2, down = c1 < xt || c2 < c1 || xb < c2;
+    e->monotone = !(up && down);
+    e->row_arc = true;
+}
+
+/*
  * The arc of piece `piece` across the row: its ends (u where it enters
  * the row from the chord of the piece, where it leaves from the entry's
  * second-order inverse series) and its x bounds.
@@ -396,6 +508,10 @@ static void place_arc(const exact_ctx *cx, cs_exact_piece *e, cs_index piece)
         return;
     }
     bool poly = polynomial(s), rising = pc->dir > 0;
+    if (poly) {
+        place_poly(pc, s, ya, yb, e);
+        return;
+    }
     float ypp, u = ut;
     if (ya == pc->y_top) /* the piece's own end: its u is exact */
         place_end(s, poly, ya, ut, ut, ut, rising, &e->top, &ypp);
