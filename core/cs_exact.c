@@ -923,9 +923,13 @@ static void add_line(exact_ctx *cx, float sign, float x0, float y0, float x1, fl
 /* The cut of an arc at x = x0 + r: h(t) = t (a1 + t (a2 + t a3)) - r,
  * monotone on [lo, hi] (growing if `inc`), by Newton's method from t.
  * A step s leaves about h'' s^2 / 2 of x; accepted once that is below
- * CUT_TOL px, since a cut off by dx in x misplaces about dx times the
- * height near it. A step that would leave the bracket bisects it. */
-#define CUT_TOL (1.0f / 262144.0f)
+ * CUT_TOL px. A cut off by dx hands the bit of arc between it and the
+ * true one, which lies within dx of the column edge, to the wrong
+ * column: its height is at most that of the cell, and its moment about
+ * either column differs from the true one by at most dx times it, so a
+ * pixel moves by at most dx. A step that would leave the bracket
+ * bisects it. */
+#define CUT_TOL (1.0f / 16384.0f)
 #define CUT_MAX_ITER 24
 static float cut_t(const float *a, float r, float lo, float hi, float t, bool inc)
 {
