@@ -12,8 +12,13 @@
  *
  * 0. Arcs and clusters. Each active piece's arc across the row is placed
  *    once: u where it enters the row (Newton from the chord of the piece)
- *    and where it leaves (Newton from the entry's tangent), with x, x',
- *    y' and W'/W at both ends. Those give the arc's inner Bezier control
+ *    and where it leaves (Newton from the entry's second-order inverse
+ *    series, which nearly always lands within one step), with x, x', y'
+ *    and W'/W at both ends. Nothing is kept from the line before: every
+ *    guess comes from the piece and the row alone. A straight piece is
+ *    placed in closed form, a polynomial one in plane coordinates; the
+ *    iteration stops once the residual of its last step, known exactly
+ *    for a cubic, is below 2^-18 px in y (place_end). Those give the arc's inner Bezier control
  *    points directly (P(a) + h/p P'(a) in homogeneous form), hence its x
  *    range. Pieces in order of xmin fall into clusters whose x ranges
  *    overlap; no curve passes between two clusters, so the winding across
@@ -59,8 +64,11 @@
  *    its x-extrema (roots of X'W - XW') and at integer x (X - kW = 0, a
  *    bracketed solve on an x-monotone arc); over each sub-arc in column c
  *    it adds (y1-y0) - Int (x - c) dy. For polynomial segments that is a
- *    closed form in the sub-arc's control points, again from its ends'
- *    derivatives (exact, like the 3-node Gauss rule it replaced). Rational
+ *    closed form in the arc's Bezier control points, again from its ends'
+ *    derivatives: in the arc's own parameter t, M(t) = Int (x - x0) y' dt
+ *    is a polynomial, so a column's share is a difference of M and the
+ *    cuts are roots of a cubic in t, with no evaluation of the segment
+ *    (add_poly_arc; exact, like the 3-node Gauss rule it replaced). Rational
  *    ones use Int (x(u) - c) y'(u) du by Gauss-Legendre, 5 nodes per panel,
  *    panels cut until W varies little enough on each that the error is
  *    about 1e-6 of the value (3 nodes for a conic whose W is nearly
