@@ -12,8 +12,13 @@
  *
  * 0. Arcs and clusters. Each active piece's arc across the row is placed
  *    once: u where it enters the row (Newton from the chord of the piece)
- *    and where it leaves (Newton from the entry's tangent), with x, x',
- *    y' and W'/W at both ends. Those give the arc's inner Bezier control
+ *    and where it leaves (Newton from the entry's second-order inverse
+ *    series, which nearly always lands within one step), with x, x', y'
+ *    and W'/W at both ends. Nothing is kept from the line before: every
+ *    guess comes from the piece and the row alone. A straight piece is
+ *    placed in closed form, a polynomial one in plane coordinates; the
+ *    iteration stops once the residual of its last step, known exactly
+ *    for a cubic, is below 2^-18 px in y (place_end). Those give the arc's inner Bezier control
  *    points directly (P(a) + h/p P'(a) in homogeneous form), hence its x
  *    range. Pieces in order of xmin fall into clusters whose x ranges
  *    overlap; no curve passes between two clusters, so the winding across
@@ -59,8 +64,11 @@
  *    its x-extrema (roots of X'W - XW') and at integer x (X - kW = 0, a
  *    bracketed solve on an x-monotone arc); over each sub-arc in column c
  *    it adds (y1-y0) - Int (x - c) dy. For polynomial segments that is a
- *    closed form in the sub-arc's control points, again from its ends'
- *    derivatives (exact, like the 3-node Gauss rule it replaced). Rational
+ *    closed form in the arc's Bezier control points, again from its ends'
+ *    derivatives: in the arc's own parameter t, M(t) = Int (x - x0) y' dt
+ *    is a polynomial, so a column's share is a difference of M and the
+ *    cuts are roots of a cubic in t, with no evaluation of the segment
+ *    (add_poly_arc; exact, like the 3-node Gauss rule it replaced). Rational
  *    ones use Int (x(u) - c) y'(u) du by Gauss-Legendre, 5 nodes per panel,
  *    panels cut until W varies little enough on each that the error is
  *    about 1e-6 of the value (3 nodes for a conic whose W is nearly
@@ -156,24 +164,128 @@ static float seg_y(const cs_segment *s, float u)
 }
 
 /*
- * u where piece pc is at height yv, searched between a and b (either
- * order), starting from `guess`. The ends are taken as they are: their y
- * values are the ones shared exactly with the neighbouring pieces.
+ * Value, first and second derivative at u of the cubic c (c[3] and c[2]
+ * are 0 for lower degrees: cs_nurbs.c clears them).
  */
-static float level_u(const cs_segment *s, const cs_piece *pc, float yv, float a, float b,
-                     float guess)
+static inline float jet(const float *c, float u, float *d1, float *d2)
 {
-    if (yv == pc->y_top)
-        return top_u(pc);
-    if (yv == pc->y_bot)
-        return bot_u(pc);
-    float lo = cs__minf(a, b), hi = cs__maxf(a, b), slope;
-    if (s->degree == 1) { /* Y - yv W is linear: its root directly */
-        float u = (yv * s->w[0] - s->y[0]) / (s->y[1] - yv * s->w[1]);
-        if (u >= lo && u <= hi)
-            return u;
+    float t3 = c[3] * u, k3 = 3.0f * t3;
+    *d2 = 2.0f * (k3 + c[2]);
+    *d1 = (k3 + 2.0f * c[2]) * u + c[1];
+    return ((t3 + c[2]) * u + c[1]) * u + c[0];
+}
+
+/*
+ * g = Y - yv W is a cubic, so Newton's step s from u leaves exactly
+ * (g''/2 + g3 s) s^2 of it: (g''/2 + g3 s) s^2 / W in y. The end is
+ * accepted once that is below LEVEL_TOL px: its point is then exactly on
+ * the curve, at a height off by less than that, which moves the row's
+ * area by about as much. (Dropping the g3 term let an inflection pass a
+ * 0.09/255 error in a random rational scene.)
+ */
+#define LEVEL_TOL (1.0f / 262144.0f)
+#define LEVEL_MAX_ITER 8
+
+/*
+ * The end of s at height yv, with u searched in [lo, hi] (on which y is
+ * monotone, growing with u if `rising`) by Newton's method from `u`.
+ * Also the plane y'' there, in *ypp, for guessing the next end. Every
+ * step keeps the bracket; a step that would leave it hands the narrowed
+ * bracket to the bounded solve of cs_poly.c.
+ */
+static inline void place_end(const cs_segment *s, bool poly, float yv, float lo, float hi, float u,
+                      bool rising, cs_exact_end *e, float *ypp)
+{
+    float g[4];
+    for (int i = 0; i < 4; i++)
+        g[i] = s->y[i] - yv * s->w[i];
+    float f, d, dd;
+    if (lo == hi) { /* a piece's end: its u is known exactly */
+        u = lo;
+        f = jet(g, u, &d, &dd);
+    } else if (s->degree == 1) { /* Y - yv W is linear: its root directly */
+        u = cs__clampf(-g[0] / g[1], lo, hi);
+        f = jet(g, u, &d, &dd);
+    } else {
+        float wt = poly ? s->w[0] : cs__horner(s->w, s->degree, u);
+        float tol = (2.0f * LEVEL_TOL) * wt;
+        bool done = false;
+        if (u > lo && u < hi) {
+            for (int it = 0; it < LEVEL_MAX_ITER; it++) {
+                f = jet(g, u, &d, &dd);
+                if (f == 0.0f) {
+                    done = true;
+                    break;
+                }
+                if ((f < 0.0f) == rising)
+                    lo = u;
+                else
+                    hi = u;
+                float st = -f / d, next = u + st;
+                /* g being a cubic, the step leaves exactly
+                 * (g''/2 + g3 s) s^2 of it */
+                if ((cs__absf(dd) + 2.0f * cs__absf(g[3] * st)) * (st * st) <= tol) {
+                    /* g', g'' at the accepted point: exact Taylor for a cubic */
+                    float g3 = 3.0f * g[3] * st;
+                    d += st * (dd + g3);
+                    dd += 2.0f * g3;
+                    u = cs__clampf(next, lo, hi);
+                    done = true;
+                    break;
+                }
+                /* Chebyshev's correction (the root of the quadratic model)
+                 * makes the steps converge cubically where the model holds. */
+                float c = 0.5f * dd * st / d;
+                if (c > -0.5f && c < 0.5f)
+                    next -= c * st;
+                if (!(next > lo && next < hi))
+                    break;
+                u = next;
+            }
+        }
+        if (!done) {
+            u = cs__solve_level(s->y, s->w, s->degree, yv, lo, hi);
+            f = jet(g, u, &d, &dd);
+        }
     }
-    return cs__solve_level_from(s->y, s->w, s->degree, yv, lo, hi, guess, pc->dir > 0, &slope);
+    float dX, ddX, X = jet(s->x, u, &dX, &ddX);
+    e->u = u;
+    if (poly) {
+        float inv = 1.0f / s->w[0];
+        e->x = X * inv;
+        e->dx = dX * inv;
+        e->dy = d * inv;
+        e->w = s->w[0];
+        e->dwr = 0.0f;
+        *ypp = dd * inv;
+    } else {
+        float dW, ddW, W = jet(s->w, u, &dW, &ddW), inv = 1.0f / W;
+        e->x = X * inv;
+        e->dx = (dX - e->x * dW) * inv;
+        e->dy = d * inv;
+        e->w = W;
+        e->dwr = dW * inv;
+        *ypp = (dd - 2.0f * dW * e->dy) * inv;
+    }
+}
+
+/* The end of a straight segment at height yv: u in closed form (or
+ * `exact`, a piece's own end, if not negative), clamped to [ua, ub]
+ * (either order). */
+static void line_end(const cs_segment *s, float yv, float exact, float ua, float ub,
+                     cs_exact_end *e)
+{
+    float gy = s->y[1] - yv * s->w[1];
+    float u = exact >= 0.0f ? exact
+                            : cs__clampf((yv * s->w[0] - s->y[0]) / gy, cs__minf(ua, ub),
+                                         cs__maxf(ua, ub));
+    float W = s->w[1] * u + s->w[0], inv = 1.0f / W;
+    e->u = u;
+    e->x = (s->x[1] * u + s->x[0]) * inv;
+    e->dx = (s->x[1] - e->x * s->w[1]) * inv;
+    e->dy = gy * inv;
+    e->w = W;
+    e->dwr = s->w[1] * inv;
 }
 
 /* u between ua (at height ya) and ub (at yb) where y is yv, on the chord. */
@@ -190,13 +302,22 @@ static float chord_u(float ua, float ya, float ub, float yb, float yv)
  * number written (p - 1), or -1 if a weight is not positive (it cannot
  * be for positive segment weights, but rounding is not trusted).
  */
-static int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
+static inline int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
                           const cs_exact_end *b, float yb, float *px, float *py)
 {
     int p = s->degree;
     if (p < 2)
         return 0;
     float t = (b->u - a->u) / (float)p;
+    if (a->dwr == 0.0f && b->dwr == 0.0f) { /* polynomial: q = 1 */
+        px[0] = a->x + t * a->dx;
+        py[0] = ya + t * a->dy;
+        if (p == 3) {
+            px[1] = b->x - t * b->dx;
+            py[1] = yb - t * b->dy;
+        }
+        return p - 1;
+    }
     float q = 1.0f + t * a->dwr;
     if (!(q > 0.0f))
         return -1;
@@ -215,11 +336,12 @@ static int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
 }
 
 /*
- * Bounds of the arc of e over the band [ya, yb]: its strip around the
- * chord, its x range and whether it is x-monotone (variation diminishing:
- * a control polygon monotone in x makes the curve so).
+ * Bounds of the arc of e over the band [ya, yb]: its x range, whether it
+ * is x-monotone (variation diminishing: a control polygon monotone in x
+ * makes the curve so) and, if `strip`, its strip around the chord and its
+ * order key (only bands of more than one arc need those).
  */
-static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb)
+static inline void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb, bool strip)
 {
     float x0 = e->top.x, x1 = e->bot.x;
     e->key = x0 + x1;
@@ -237,48 +359,239 @@ static void hull(const cs_segment *s, cs_exact_piece *e, float ya, float yb)
     }
     if (k == 0)
         return; /* a straight line, whatever its weights */
-    float slope = (x1 - x0) / (yb - ya);
-    /* The end control points are the arc's ends, x_top and x_bot: their d
-     * is 0 by definition, which keeps rounding out of touching vertices. */
+    px[k] = x1;
     bool up = false, down = false;
     float prev = x0;
-    for (int j = 0; j < k; j++) {
-        float d = px[j] - (x0 + (py[j] - ya) * slope);
-        e->dmin = cs__minf(e->dmin, d);
-        e->dmax = cs__maxf(e->dmax, d);
+    for (int j = 0; j <= k; j++) {
         e->xmin = cs__minf(e->xmin, px[j]);
         e->xmax = cs__maxf(e->xmax, px[j]);
         up = up || px[j] > prev;
         down = down || px[j] < prev;
         prev = px[j];
     }
-    up = up || x1 > prev;
-    down = down || x1 < prev;
     e->monotone = !(up && down);
-}
-
-/* Shell sort of ord[0..m) by key (or by xmin); they arrive nearly sorted. */
-static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, bool by_xmin)
-{
-    static const uint32_t gaps[] = {57, 23, 10, 4, 1};
-    /* Gaps past the length are no-ops: start at the first that is not. */
-    unsigned g0 = 0;
-    while (g0 + 1 < sizeof gaps / sizeof gaps[0] && gaps[g0] >= m)
-        g0++;
-    for (unsigned g = g0; g < sizeof gaps / sizeof gaps[0]; g++) {
-        uint32_t gap = gaps[g];
-        for (uint32_t i = gap; i < m; i++) {
-            uint32_t t = ord[i];
-            float kt = by_xmin ? ex[t].xmin : ex[t].key;
-            uint32_t j = i;
-            while (j >= gap && (by_xmin ? ex[ord[j - gap]].xmin : ex[ord[j - gap]].key) > kt) {
-                ord[j] = ord[j - gap];
-                j -= gap;
-            }
-            ord[j] = t;
-        }
+    if (!strip)
+        return;
+    float slope = (x1 - x0) / (yb - ya);
+    /* The end control points are the arc's ends, x_top and x_bot: their d
+     * is 0 by definition, which keeps rounding out of touching vertices. */
+    for (int j = 0; j < k; j++) {
+        float d = px[j] - (x0 + (py[j] - ya) * slope);
+        e->dmin = cs__minf(e->dmin, d);
+        e->dmax = cs__maxf(e->dmax, d);
     }
 }
+
+/*
+ * u in [lo, hi] where the polynomial Y (degree <= 3, monotone there,
+ * growing if `rising`) equals `level`, by Newton's method from u, with
+ * Y' and Y'' there. The same iteration and acceptance as place_end, for
+ * the common case of constant weight, with nothing else to carry.
+ */
+static float poly_level(const float *Y, int p, float level, float lo, float hi, float u,
+                        bool rising, float tol, float *d1, float *d2)
+{
+    float g0 = Y[0] - level, y1 = Y[1], y2 = Y[2], y3 = Y[3];
+    float y2x2 = 2.0f * y2, y3x3 = 3.0f * y3;
+    if (u > lo && u < hi) {
+        for (int it = 0; it < LEVEL_MAX_ITER; it++) {
+            float f = ((y3 * u + y2) * u + y1) * u + g0;
+            float d = (y3x3 * u + y2x2) * u + y1;
+            float dd = 2.0f * (y3x3 * u + y2);
+            if (f == 0.0f) {
+                *d1 = d;
+                *d2 = dd;
+                return u;
+            }
+            if ((f < 0.0f) == rising)
+                lo = u;
+            else
+                hi = u;
+            float st = -f / d, next = u + st;
+            if ((cs__absf(dd) + 2.0f * cs__absf(y3 * st)) * (st * st) <= tol) {
+                float g3 = y3x3 * st; /* g', g'' there: exact Taylor for a cubic */
+                *d1 = d + st * (dd + g3);
+                *d2 = dd + 2.0f * g3;
+                return cs__clampf(next, lo, hi);
+            }
+            float c = 0.5f * dd * st / d;
+            if (c > -0.5f && c < 0.5f)
+                next -= c * st;
+            if (!(next > lo && next < hi))
+                break;
+            u = next;
+        }
+    }
+    float w[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+    u = cs__solve_level(Y, w, p, level, lo, hi);
+    *d1 = (y3x3 * u + y2x2) * u + y1;
+    *d2 = 2.0f * (y3x3 * u + y2);
+    return u;
+}
+
+/*
+ * place_arc for a polynomial segment (constant weight w0, degree 2 or 3):
+ * both ends and the x bounds, with the plane coordinates X/w0, Y/w0.
+ */
+static void place_poly(const cs_piece *pc, const cs_segment *s, float ya, float yb,
+                       cs_exact_piece *e)
+{
+    const float *X = s->x, *Y = s->y;
+    float w0 = s->w[0], inv = 1.0f / w0, tol = (2.0f * LEVEL_TOL) * w0;
+    float ut = top_u(pc), ub = bot_u(pc);
+    float x3x3 = 3.0f * X[3], x2x2 = 2.0f * X[2];
+    bool rising = pc->dir > 0;
+    int p = s->degree;
+    float d1, d2, u = ut;
+    if (ya == pc->y_top) { /* the piece's own end: its u is exact */
+        d1 = (3.0f * Y[3] * u + 2.0f * Y[2]) * u + Y[1];
+        d2 = 2.0f * (3.0f * Y[3] * u + Y[2]);
+    } else {
+        u = poly_level(Y, p, ya * w0, cs__minf(ut, ub), cs__maxf(ut, ub),
+                       chord_u(ut, pc->y_top, ub, pc->y_bot, ya), rising, tol, &d1, &d2);
+    }
+    float xt = (((X[3] * u + X[2]) * u + X[1]) * u + X[0]) * inv;
+    float dxt = ((x3x3 * u + x2x2) * u + X[1]) * inv, dyt = d1 * inv;
+    e->top.u = u;
+    e->top.x = xt;
+    e->top.dx = dxt;
+    e->top.dy = dyt;
+    e->top.w = w0;
+    e->top.dwr = 0.0f;
+    float v = ub;
+    if (yb == pc->y_bot) {
+        d1 = (3.0f * Y[3] * v + 2.0f * Y[2]) * v + Y[1];
+    } else {
+        /* from the top's second-order inverse Taylor series, or the chord */
+        float guess = u;
+        if (dyt != 0.0f) {
+            float du = (yb - ya) / dyt;
+            guess = u + du * (1.0f - 0.5f * (d2 * inv) * du / dyt);
+        }
+        float lo = cs__minf(u, ub), hi = cs__maxf(u, ub);
+        if (!(guess > lo && guess < hi))
+            guess = chord_u(u, ya, ub, pc->y_bot, yb);
+        v = poly_level(Y, p, yb * w0, lo, hi, guess, rising, tol, &d1, &d2);
+    }
+    float xb = (((X[3] * v + X[2]) * v + X[1]) * v + X[0]) * inv;
+    float dxb = ((x3x3 * v + x2x2) * v + X[1]) * inv;
+    e->bot.u = v;
+    e->bot.x = xb;
+    e->bot.dx = dxb;
+    e->bot.dy = d1 * inv;
+    e->bot.w = w0;
+    e->bot.dwr = 0.0f;
+    e->u_row = v;
+    /* x bounds from the control polygon (hull without the strip) */
+    float t = (v - u) / (float)p;
+    float c1 = xt + t * dxt, c2 = p == 3 ? xb - t * dxb : c1;
+    e->key = xt + xb;
+    e->dmin = e->dmax = 0.0f;
+    e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
+    e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
+    bool up = c1 > xt || c2 > c1 || xb > c2, down = c1 < xt || c2 < c1 || xb < c2;
+    e->monotone = !(up && down);
+    e->row_arc = true;
+}
+
+/*
+ * The arc of piece `piece` across the row: its ends (u where it enters
+ * the row from the chord of the piece, where it leaves from the entry's
+ * second-order inverse series) and its x bounds.
+ */
+static void place_arc(const exact_ctx *cx, cs_exact_piece *e, cs_index piece)
+{
+    const cs_workspace *ws = cx->ws;
+    const cs_piece *pc = &ws->pieces[piece];
+    const cs_segment *s = &ws->segments[pc->segment];
+    float ya = row_top(cx, pc), yb = row_end(cx, pc);
+    float ut = top_u(pc), ub = bot_u(pc);
+    e->piece = piece;
+    if (s->degree == 1) {
+        line_end(s, ya, ya == pc->y_top ? ut : -1.0f, ut, ub, &e->top);
+        line_end(s, yb, yb == pc->y_bot ? ub : -1.0f, ut, ub, &e->bot);
+        e->u_row = e->bot.u;
+        e->key = e->top.x + e->bot.x;
+        e->dmin = e->dmax = 0.0f;
+        e->xmin = cs__minf(e->top.x, e->bot.x);
+        e->xmax = cs__maxf(e->top.x, e->bot.x);
+        e->monotone = true;
+        e->row_arc = true;
+        return;
+    }
+    bool poly = polynomial(s), rising = pc->dir > 0;
+    if (poly) {
+        place_poly(pc, s, ya, yb, e);
+        return;
+    }
+    float ypp, u = ut;
+    if (ya == pc->y_top) /* the piece's own end: its u is exact */
+        place_end(s, poly, ya, ut, ut, ut, rising, &e->top, &ypp);
+    else
+        place_end(s, poly, ya, cs__minf(ut, ub), cs__maxf(ut, ub),
+                  chord_u(ut, pc->y_top, ub, pc->y_bot, ya), rising, &e->top, &ypp);
+    u = e->top.u;
+    if (yb == pc->y_bot) {
+        place_end(s, poly, yb, ub, ub, ub, rising, &e->bot, &ypp);
+    } else {
+        /* The bottom from the top's second-order inverse Taylor
+         * series, or failing that the chord. */
+        float y1 = e->top.dy, guess = u;
+        if (y1 != 0.0f) {
+            float du = (yb - ya) / y1;
+            guess = u + du * (1.0f - 0.5f * ypp * du / y1);
+        }
+        if (!(guess > cs__minf(u, ub) && guess < cs__maxf(u, ub)))
+            guess = chord_u(u, ya, ub, pc->y_bot, yb);
+        place_end(s, poly, yb, cs__minf(u, ub), cs__maxf(u, ub), guess, rising, &e->bot, &ypp);
+    }
+    e->u_row = e->bot.u;
+    hull(s, e, ya, yb, false);
+    e->row_arc = true;
+}
+
+/*
+ * Sorts ord[0..m) by xmin (by_xmin) or by key. They arrive nearly sorted,
+ * or in short runs: insertion sort, after a Shell pass when there are many
+ * (gaps 3^k-ish, no gap at or beyond m).
+ */
+#define SORT_BODY(KEY)                                                                    \
+    do {                                                                                  \
+        static const uint32_t gaps[] = {57, 23, 10, 4};                                  \
+        for (unsigned g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {                    \
+            uint32_t gap = gaps[g];                                                       \
+            for (uint32_t i = gap; i < m; i++) {                                          \
+                uint32_t t = ord[i];                                                      \
+                float kt = ex[t].KEY;                                                     \
+                uint32_t j = i;                                                           \
+                while (j >= gap && ex[ord[j - gap]].KEY > kt) {                           \
+                    ord[j] = ord[j - gap];                                                \
+                    j -= gap;                                                             \
+                }                                                                         \
+                ord[j] = t;                                                               \
+            }                                                                             \
+        }                                                                                 \
+        for (uint32_t i = 1; i < m; i++) {                                                \
+            uint32_t t = ord[i];                                                          \
+            float kt = ex[t].KEY;                                                         \
+            uint32_t j = i;                                                               \
+            for (float kp = ex[ord[j - 1]].KEY; kp > kt; kp = ex[ord[j - 1]].KEY) {       \
+                ord[j] = ord[j - 1];                                                      \
+                if (--j == 0)                                                             \
+                    break;                                                                \
+            }                                                                             \
+            ord[j] = t;                                                                   \
+        }                                                                                 \
+    } while (0)
+
+static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, bool by_xmin)
+{
+    if (by_xmin)
+        SORT_BODY(xmin);
+    else
+        SORT_BODY(key);
+}
+#undef SORT_BODY
 
 /*
  * Whether the order by key provably holds over [ya, yb], up to BAND_TOL.
@@ -568,6 +881,168 @@ static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, const c
     add_cell(cx, s, sign, cs__floori(cs__minf(a.x, x1)), &a, y0, bot, y1);
 }
 
+/* A cell of an edge: height dy of it in column c, whose part right of
+ * the edge has area dy - m. */
+static inline void put_cell(exact_ctx *cx, float sign, int32_t c, float dy, float m)
+{
+    if (!(dy > 0.0f))
+        return;
+    cs_workspace *ws = cx->ws;
+    if (c < 0) { /* left of the screen: all of it is to the right */
+        cs__acc_cover(ws, 0, sign * dy);
+        touch(cx, 0, 1);
+        return;
+    }
+    if (c >= cx->width) {
+        touch(cx, cx->width, cx->width + 1);
+        return;
+    }
+    m = cs__clampf(m, 0.0f, dy);
+    cs__acc_area(ws, c, sign * (dy - m));
+    cs__acc_cover(ws, c + 1, sign * dy);
+    touch(cx, c, c + 2);
+}
+
+/* A straight edge from (x0, y0) to (x1, y1), y0 < y1: cut at integer x,
+ * where y is linear in x; each cell's moment is its trapezoid. */
+static void add_line(exact_ctx *cx, float sign, float x0, float y0, float x1, float y1)
+{
+    float width = (float)cx->width, xa = x0, ya = y0;
+    if (x1 > x0) {
+        float dydx = (y1 - y0) / (x1 - x0);
+        float k = cs__maxf((float)(cs__floori(x0) + 1), 0.0f);
+        for (; k < x1 && k <= width; k += 1.0f) {
+            float yk = cs__clampf(y0 + (k - x0) * dydx, ya, y1);
+            int32_t c = cs__floori(xa);
+            put_cell(cx, sign, c, yk - ya, (0.5f * (xa + k) - (float)c) * (yk - ya));
+            xa = k;
+            ya = yk;
+        }
+    } else if (x1 < x0) {
+        float dydx = (y1 - y0) / (x1 - x0);
+        float k = cs__minf((float)(-cs__floori(-x0) - 1), width);
+        for (; k > x1 && k >= 0.0f; k -= 1.0f) {
+            float yk = cs__clampf(y0 + (k - x0) * dydx, ya, y1);
+            put_cell(cx, sign, (int32_t)k, yk - ya, (0.5f * (xa + k) - k) * (yk - ya));
+            xa = k;
+            ya = yk;
+        }
+    }
+    int32_t c = cs__floori(cs__minf(xa, x1));
+    put_cell(cx, sign, c, y1 - ya, (0.5f * (xa + x1) - (float)c) * (y1 - ya));
+}
+
+/* The cut of an arc at x = x0 + r: h(t) = t (a1 + t (a2 + t a3)) - r,
+ * monotone on [lo, hi] (growing if `inc`), by Newton's method from t.
+ * A step s leaves (h''/2 + a3 s) s^2 of x; accepted once that is below
+ * CUT_TOL px. A cut off by dx hands the bit of arc between it and the
+ * true one, which lies within dx of the column edge, to the wrong
+ * column: its height is at most that of the cell, and its moment about
+ * either column differs from the true one by at most dx times it, so a
+ * pixel moves by at most dx. A step that would leave the bracket
+ * bisects it. */
+#define CUT_TOL (1.0f / 16384.0f)
+#define CUT_MAX_ITER 24
+static float cut_t(const float *a, float r, float lo, float hi, float t, bool inc)
+{
+    for (int it = 0; it < CUT_MAX_ITER; it++) {
+        float a3t = a[3] * t;
+        float h = t * (a[1] + t * (a[2] + a3t)) - r;
+        if (h == 0.0f)
+            return t;
+        if ((h < 0.0f) == inc)
+            lo = t;
+        else
+            hi = t;
+        float dd = 2.0f * (a[2] + 3.0f * a3t);
+        float d = a[1] + t * (2.0f * a[2] + 3.0f * a3t);
+        float st = -h / d, next = t + st;
+        if ((cs__absf(dd) + 2.0f * cs__absf(a[3] * st)) * (st * st) <= 2.0f * CUT_TOL)
+            return cs__clampf(next, lo, hi);
+        float c = 0.5f * dd * st / d;
+        if (c > -0.5f && c < 0.5f)
+            next -= c * st;
+        if (!(next > lo && next < hi))
+            next = 0.5f * (lo + hi);
+        t = next;
+    }
+    return t;
+}
+
+/*
+ * An x-monotone polynomial arc given by its Bezier control points
+ * (bx, by)[0..p], by[0] < by[p]. With t the arc's own parameter,
+ * x - x0 = sum a_i t^i and y - y0 = sum b_i t^i, so that
+ * M(t) = Int_0^t (x - x0) y' dt is a polynomial of degree 2p. The cell of
+ * column c between two cuts then has moment M(t1) - M(t0) + (x0 - c)
+ * (y1 - y0): one solve for t per cut and no other evaluation. An arc in
+ * one column takes the moment from its control points directly.
+ */
+static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, const float *by)
+{
+    float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = (float)cx->width;
+    bool inc = x1 > x0;
+    float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
+                  : cs__minf((float)(-cs__floori(-x0) - 1), width);
+    if (inc ? !(k < x1 && k <= width) : !(k > x1 && k >= 0.0f)) { /* one column */
+        int32_t c = cs__floori(cs__minf(x0, x1));
+        float fc = (float)c, m;
+        float c0 = x0 - fc, c3 = x1 - fc, c1 = bx[1] - fc;
+        if (p == 3) {
+            float c2 = bx[2] - fc;
+            float d0 = by[1] - y0, d1 = by[2] - by[1], d2 = y1 - by[2];
+            m = (0.5f * c0 + 0.3f * c1 + 0.15f * c2 + 0.05f * c3) * d0 +
+                (0.2f * c0 + 0.3f * c1 + 0.3f * c2 + 0.2f * c3) * d1 +
+                (0.05f * c0 + 0.15f * c1 + 0.3f * c2 + 0.5f * c3) * d2;
+        } else {
+            float d0 = by[1] - y0, d1 = y1 - by[1];
+            m = (0.5f * c0 + (1.0f / 3.0f) * c1 + (1.0f / 6.0f) * c3) * d0 +
+                ((1.0f / 6.0f) * c0 + (1.0f / 3.0f) * c1 + 0.5f * c3) * d1;
+        }
+        put_cell(cx, sign, c, y1 - y0, m);
+        return;
+    }
+    float a[4], b[4];
+    a[0] = b[0] = 0.0f;
+    if (p == 3) {
+        a[1] = 3.0f * (bx[1] - x0);
+        a[2] = 3.0f * ((bx[2] - bx[1]) - (bx[1] - x0));
+        a[3] = (x1 - x0) - 3.0f * (bx[2] - bx[1]);
+        b[1] = 3.0f * (by[1] - y0);
+        b[2] = 3.0f * ((by[2] - by[1]) - (by[1] - y0));
+        b[3] = (y1 - y0) - 3.0f * (by[2] - by[1]);
+    } else {
+        a[1] = 2.0f * (bx[1] - x0);
+        a[2] = (x1 - bx[1]) - (bx[1] - x0);
+        a[3] = 0.0f;
+        b[1] = 2.0f * (by[1] - y0);
+        b[2] = (y1 - by[1]) - (by[1] - y0);
+        b[3] = 0.0f;
+    }
+    /* M = m2 t^2 + ... + m6 t^6 */
+    float m2 = 0.5f * a[1] * b[1];
+    float m3 = (2.0f * a[1] * b[2] + a[2] * b[1]) * (1.0f / 3.0f);
+    float m4 = (3.0f * a[1] * b[3] + 2.0f * a[2] * b[2] + a[3] * b[1]) * 0.25f;
+    float m5 = (3.0f * a[2] * b[3] + 2.0f * a[3] * b[2]) * 0.2f;
+    float m6 = 0.5f * a[3] * b[3];
+    float t = 0.0f, xa = x0, ya = y0, Ma = 0.0f;
+    for (; inc ? (k < x1 && k <= width) : (k > x1 && k >= 0.0f); k += inc ? 1.0f : -1.0f) {
+        /* from the chord of what is left of the arc */
+        float tk = cut_t(a, k - x0, t, 1.0f, t + (1.0f - t) * ((k - xa) / (x1 - xa)), inc);
+        float yk = cs__clampf(y0 + tk * (b[1] + tk * (b[2] + tk * b[3])), ya, y1);
+        float Mk = tk * tk * (m2 + tk * (m3 + tk * (m4 + tk * (m5 + tk * m6))));
+        int32_t c = cs__floori(inc ? xa : k);
+        put_cell(cx, sign, c, yk - ya, (Mk - Ma) + (x0 - (float)c) * (yk - ya));
+        t = tk;
+        xa = k;
+        ya = yk;
+        Ma = Mk;
+    }
+    int32_t c = cs__floori(cs__minf(xa, x1));
+    float M1 = m2 + (m3 + (m4 + (m5 + m6)));
+    put_cell(cx, sign, c, y1 - ya, (M1 - Ma) + (x0 - (float)c) * (y1 - ya));
+}
+
 /* Effective edge e over the band [ya, yb]: sign +1 where the region begins. */
 static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float ya, float yb)
 {
@@ -587,6 +1062,22 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
     if (e->xmin >= (float)cx->width) {
         touch(cx, cx->width, cx->width + 1);
         return;
+    }
+    if (s->degree == 1) {
+        add_line(cx, sign, e->top.x, ya, e->bot.x, yb);
+        return;
+    }
+    if (e->monotone && polynomial(s)) {
+        float bx[4], by[4];
+        int k = control_points(s, &e->top, ya, &e->bot, yb, &bx[1], &by[1]);
+        if (k > 0) {
+            bx[0] = e->top.x;
+            by[0] = ya;
+            bx[k + 1] = e->bot.x;
+            by[k + 1] = yb;
+            add_poly_arc(cx, sign, k + 1, bx, by);
+            return;
+        }
     }
     if (e->xmax - e->xmin < 1.0f) { /* the usual case: one column, no solve */
         int32_t c = cs__floori(e->xmin);
@@ -647,9 +1138,13 @@ static void set_bot(exact_ctx *cx, cs_exact_piece *e, float ya, float yb, float 
     if (e->hidden)
         return; /* it stays where it was put */
     e->row_arc = false;
-    float u = yb == yref ? uref
-                         : level_u(s, pc, yb, e->top.u, uref, chord_u(e->top.u, ya, uref, yref, yb));
-    eval_end(s, u, yb, &e->bot);
+    float ypp;
+    if (yb == yref) {
+        place_end(s, polynomial(s), yb, uref, uref, uref, pc->dir > 0, &e->bot, &ypp);
+        return;
+    }
+    place_end(s, polynomial(s), yb, cs__minf(e->top.u, uref), cs__maxf(e->top.u, uref),
+              chord_u(e->top.u, ya, uref, yref, yb), pc->dir > 0, &e->bot, &ypp);
 }
 
 /*
@@ -688,8 +1183,8 @@ static uint32_t run_band(exact_ctx *cx, uint32_t *cl, uint32_t nc, float ya, flo
     for (;;) {
         for (uint32_t k = 0; k < m; k++) {
             cs_exact_piece *e = &ex[cl[k]];
-            if (!e->row_arc && !e->hidden)
-                hull(&ws->segments[ws->pieces[e->piece].segment], e, ya, yb);
+            if (!e->hidden) /* a stand-in keeps its place (hide) */
+                hull(&ws->segments[ws->pieces[e->piece].segment], e, ya, yb, true);
         }
         sort_pieces(ex, cl, m, false);
         float cut = 0.0f;
@@ -903,27 +1398,17 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
         cs_exact_piece *e = &ex[i];
         const cs_piece *pc = &ws->pieces[act[i]];
         const cs_segment *s = &ws->segments[pc->segment];
-        float ya = row_top(&cx, pc), yb = row_end(&cx, pc);
-        float ut = top_u(pc), ub = bot_u(pc);
-        e->piece = act[i];
-        e->row_arc = true;
-        ord[i] = i;
         int32_t pa, pb;
         cs__hull_pixels(r, s->x_lo, s->x_hi, &pa, &pb);
         e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
         if (e->hidden) {
-            hide(e, pa, ut, ub);
-            continue;
+            e->piece = act[i];
+            e->row_arc = true;
+            hide(e, pa, top_u(pc), bot_u(pc));
+        } else {
+            place_arc(&cx, e, act[i]);
         }
-        float u = level_u(s, pc, ya, ut, ub, chord_u(ut, pc->y_top, ub, pc->y_bot, ya));
-        eval_end(s, u, ya, &e->top);
-        /* The bottom from the top's tangent, or failing that its chord. */
-        float guess = e->top.dy != 0.0f ? u + (yb - ya) / e->top.dy : u;
-        if (!(guess > cs__minf(u, ub) && guess < cs__maxf(u, ub)))
-            guess = chord_u(u, ya, ub, pc->y_bot, yb);
-        e->u_row = level_u(s, pc, yb, u, ub, guess);
-        eval_end(s, e->u_row, yb, &e->bot);
-        hull(s, e, ya, yb);
+        ord[i] = i;
     }
     /*
      * Clusters: runs of pieces in xmin order whose x ranges overlap, so
