@@ -786,12 +786,10 @@ static float poly_moment(const cs_segment *s, const cs_exact_end *a, float y0,
     return 0.5f * (x0 + x3) * (y1 - y0);
 }
 
-/* Sub-arc a..b (y0 < y1) lying in column c: the part of the column right
- * of it is inside (sign +1) or outside (-1) from here on. */
-static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c,
-                     const cs_exact_end *a, float y0, const cs_exact_end *b, float y1)
+/* A cell of an edge: height dy of it in column c, whose part right of
+ * the edge has area dy - m. */
+static inline void put_cell(exact_ctx *cx, float sign, int32_t c, float dy, float m)
 {
-    float dy = y1 - y0;
     if (!(dy > 0.0f))
         return;
     cs_workspace *ws = cx->ws;
@@ -804,6 +802,22 @@ static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c,
         touch(cx, cx->width, cx->width + 1);
         return;
     }
+    m = cs__clampf(m, 0.0f, dy);
+    cs__acc_area(ws, c, sign * (dy - m));
+    cs__acc_cover(ws, c + 1, sign * dy);
+    touch(cx, c, c + 2);
+}
+
+/* Sub-arc a..b (y0 < y1) lying in column c: the part of the column right
+ * of it is inside (sign +1) or outside (-1) from here on. */
+static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c,
+                     const cs_exact_end *a, float y0, const cs_exact_end *b, float y1)
+{
+    float dy = y1 - y0;
+    if (!(dy > 0.0f) || c < 0 || c >= cx->width) { /* no moment needed */
+        put_cell(cx, sign, c, dy, 0.0f);
+        return;
+    }
     float fc = (float)c, m;
     if (s->degree == 1)
         m = (0.5f * (a->x + b->x) - fc) * dy;
@@ -811,10 +825,7 @@ static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c,
         m = poly_moment(s, a, y0, b, y1, fc);
     else
         m = rational_moment(s, a, b, fc);
-    m = cs__clampf(m, 0.0f, dy);
-    cs__acc_area(ws, c, sign * (dy - m));
-    cs__acc_cover(ws, c + 1, sign * dy);
-    touch(cx, c, c + 2);
+    put_cell(cx, sign, c, dy, m);
 }
 
 /* The point of an x-monotone sub-arc from a (at ya) to b (at yb) where x
@@ -881,27 +892,6 @@ static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, const c
     add_cell(cx, s, sign, cs__floori(cs__minf(a.x, x1)), &a, y0, bot, y1);
 }
 
-/* A cell of an edge: height dy of it in column c, whose part right of
- * the edge has area dy - m. */
-static inline void put_cell(exact_ctx *cx, float sign, int32_t c, float dy, float m)
-{
-    if (!(dy > 0.0f))
-        return;
-    cs_workspace *ws = cx->ws;
-    if (c < 0) { /* left of the screen: all of it is to the right */
-        cs__acc_cover(ws, 0, sign * dy);
-        touch(cx, 0, 1);
-        return;
-    }
-    if (c >= cx->width) {
-        touch(cx, cx->width, cx->width + 1);
-        return;
-    }
-    m = cs__clampf(m, 0.0f, dy);
-    cs__acc_area(ws, c, sign * (dy - m));
-    cs__acc_cover(ws, c + 1, sign * dy);
-    touch(cx, c, c + 2);
-}
 
 /* A straight edge from (x0, y0) to (x1, y1), y0 < y1: cut at integer x,
  * where y is linear in x; each cell's moment is its trapezoid. */
