@@ -239,7 +239,8 @@ static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *re
     int32_t winding[CS_CFG_MAX_OPERANDS];
     for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) /* a loop: `= {0}` may call memset */
         winding[k] = 0;
-    bool csg = region->csg_len != 0, evenodd = region->fill_rule == CS_FILL_EVENODD;
+    bool csg = region->csg_len != 0;
+    uint8_t rule = region->fill_rule; /* a local: a byte read may alias the float stores */
     int32_t wind = 0;
     float first = 0.0f, last = 0.0f;
     bool any = false;
@@ -250,7 +251,7 @@ static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *re
             inside = cs__region_inside(region, winding);
         } else {
             wind += c[i].dir;
-            inside = evenodd ? (wind & 1) != 0 : wind != 0;
+            inside = cs__fill(rule, wind);
         }
         float xa = c[i].x, xb = c[i + 1].x;
         if (!inside || !(xb > xa))

@@ -207,30 +207,60 @@ static inline void put32(uint8_t *p, uint32_t w)
     p[3] = (uint8_t)(w >> 24);
 }
 
+/* n pixels of the 8-bit codes c0 c1 c2 at p: most runs are a pixel or two
+ * of an edge, written byte by byte; long ones four pixels (three words) a
+ * step. */
+static inline void fill_rgb888(uint8_t *p, uint32_t n, uint32_t c0, uint32_t c1, uint32_t c2)
+{
+    if (n >= 8u) {
+        uint32_t w0 = c0 | c1 << 8 | c2 << 16 | c0 << 24;
+        uint32_t w1 = c1 | c2 << 8 | c0 << 16 | c1 << 24;
+        uint32_t w2 = c2 | c0 << 8 | c1 << 16 | c2 << 24;
+        for (; n >= 4u; n -= 4u, p += 12) {
+            put32(p, w0);
+            put32(p + 4, w1);
+            put32(p + 8, w2);
+        }
+    }
+    for (; n > 0u; n--, p += 3) {
+        p[0] = (uint8_t)c0;
+        p[1] = (uint8_t)c1;
+        p[2] = (uint8_t)c2;
+    }
+}
+
+/*
+ * A whole line of runs in 8-bit sRGB, the format of PNGs, GUD bridges and
+ * the bench: the common case, so it has a loop of its own rather than a
+ * call and a format switch per run.
+ */
+static void runs_rgb888(const float *rgb, const uint16_t *run_end, uint32_t width, uint8_t *out)
+{
+    for (uint32_t s = 0; s < width;) {
+        uint32_t e = run_end[s];
+        const float *v = &rgb[3 * s];
+        uint32_t c0 = cs__srgb8(v[0]), c1 = cs__srgb8(v[1]), c2 = cs__srgb8(v[2]);
+        fill_rgb888(out + 3u * s, e - s, c0, c1, c2);
+        s = e;
+    }
+}
+
 /* A run of equal pixels: converted once, then written 12 bytes (a whole
  * number of pixels in every format) at a time. */
 void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1, uint8_t *out)
 {
-    uint8_t one[6];
     if (fmt == CS_PIX_RGB888_SRGB) { /* convert() on one pixel, without its loop */
-        for (int ch = 0; ch < 3; ch++)
-            one[ch] = (uint8_t)cs__srgb8(rgb[ch]);
-    } else {
-        convert(fmt, rgb, 1, -1, one);
+        fill_rgb888(out + 3u * x0, x1 - x0, cs__srgb8(rgb[0]), cs__srgb8(rgb[1]),
+                    cs__srgb8(rgb[2]));
+        return;
     }
+    uint8_t one[6];
+    convert(fmt, rgb, 1, -1, one);
     uint32_t bpp = (uint32_t)cs_pixfmt_bytes_per_pixel(fmt);
     if (bpp == 0u)
         return;
     uint8_t *p = out + (size_t)x0 * bpp;
     size_t bytes = (size_t)(x1 - x0) * bpp;
-    if (bpp == 3u && bytes < 24u) {
-        for (uint32_t x = x0; x < x1; x++, p += 3) {
-            p[0] = one[0];
-            p[1] = one[1];
-            p[2] = one[2];
-        }
-        return;
-    }
     if (bytes < 24u) { /* edge pixels: most runs are short */
         for (size_t k = 0, j = 0; k < bytes; k++, j = j + 1u == bpp ? 0u : j + 1u)
             p[k] = one[j];
@@ -250,38 +280,6 @@ void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1
     }
     for (size_t k = 0; k < bytes; k++)
         p[k] = pat[k];
-}
-
-/*
- * A whole line of runs in 8-bit sRGB, the format of PNGs, GUD bridges and
- * the bench: the common case, so it has a loop of its own rather than a
- * call and a format switch per run. Most runs are a pixel or two of an
- * edge, written byte by byte; long ones four pixels (three words) a step.
- */
-static void runs_rgb888(const float *rgb, const uint16_t *run_end, uint32_t width, uint8_t *out)
-{
-    for (uint32_t s = 0; s < width;) {
-        uint32_t e = run_end[s], n = e - s;
-        const float *v = &rgb[3 * s];
-        uint32_t c0 = cs__srgb8(v[0]), c1 = cs__srgb8(v[1]), c2 = cs__srgb8(v[2]);
-        uint8_t *p = out + 3u * s;
-        if (n >= 8u) {
-            uint32_t w0 = c0 | c1 << 8 | c2 << 16 | c0 << 24;
-            uint32_t w1 = c1 | c2 << 8 | c0 << 16 | c1 << 24;
-            uint32_t w2 = c2 | c0 << 8 | c1 << 16 | c2 << 24;
-            for (; n >= 4u; n -= 4u, p += 12) {
-                put32(p, w0);
-                put32(p + 4, w1);
-                put32(p + 8, w2);
-            }
-        }
-        for (; n > 0u; n--, p += 3) {
-            p[0] = (uint8_t)c0;
-            p[1] = (uint8_t)c1;
-            p[2] = (uint8_t)c2;
-        }
-        s = e;
-    }
 }
 
 void cs__pixfmt_runs(cs_pixfmt fmt, const float *rgb, const uint16_t *run_end, uint32_t width,
