@@ -819,9 +819,7 @@ static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c,
         return;
     }
     float fc = (float)c, m;
-    if (s->degree == 1)
-        m = (0.5f * (a->x + b->x) - fc) * dy;
-    else if (polynomial(s))
+    if (polynomial(s))
         m = poly_moment(s, a, y0, b, y1, fc);
     else
         m = rational_moment(s, a, b, fc);
@@ -847,47 +845,24 @@ static void cut_at_x(const cs_segment *s, const cs_exact_end *a, float ya, const
     *y_out = y;
 }
 
-/* An x-monotone sub-arc, top (y0) to bottom (y1): cut at integer x. Only
- * cuts inside [0, width] matter; beyond them whole columns do not. */
+/* An x-monotone curved sub-arc, top (y0) to bottom (y1): cut at integer x
+ * (straight ones go to add_line). Only cuts inside [0, width] matter;
+ * beyond them whole columns do not. */
 static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, const cs_exact_end *top,
                          float y0, const cs_exact_end *bot, float y1)
 {
     float width = (float)cx->width;
     cs_exact_end a = *top, k_end;
     float x0 = a.x, x1 = bot->x;
-    /* A straight piece needs no solve: y is linear in x along it. */
-    bool line = s->degree == 1;
-    float ys = y0, dydx = line && x1 != x0 ? (y1 - y0) / (x1 - x0) : 0.0f, xs = x0;
-    if (x1 > x0) {
-        float k = (float)(cs__floori(x0) + 1);
-        for (k = cs__maxf(k, 0.0f); k < x1 && k <= width; k += 1.0f) {
-            float yk;
-            if (line) {
-                yk = cs__clampf(ys + (k - xs) * dydx, y0, y1);
-                k_end = a;
-                k_end.x = k;
-            } else {
-                cut_at_x(s, &a, y0, bot, y1, k, &k_end, &yk);
-            }
-            add_cell(cx, s, sign, cs__floori(a.x), &a, y0, &k_end, yk);
-            a = k_end;
-            y0 = yk;
-        }
-    } else if (x1 < x0) {
-        float k = (float)(-cs__floori(-x0) - 1);
-        for (k = cs__minf(k, width); k > x1 && k >= 0.0f; k -= 1.0f) {
-            float yk;
-            if (line) {
-                yk = cs__clampf(ys + (k - xs) * dydx, y0, y1);
-                k_end = a;
-                k_end.x = k;
-            } else {
-                cut_at_x(s, &a, y0, bot, y1, k, &k_end, &yk);
-            }
-            add_cell(cx, s, sign, cs__floori(k), &a, y0, &k_end, yk);
-            a = k_end;
-            y0 = yk;
-        }
+    bool inc = x1 > x0;
+    float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
+                  : cs__minf((float)(-cs__floori(-x0) - 1), width);
+    for (; inc ? (k < x1 && k <= width) : (k > x1 && k >= 0.0f); k += inc ? 1.0f : -1.0f) {
+        float yk;
+        cut_at_x(s, &a, y0, bot, y1, k, &k_end, &yk);
+        add_cell(cx, s, sign, cs__floori(inc ? a.x : k), &a, y0, &k_end, yk);
+        a = k_end;
+        y0 = yk;
     }
     add_cell(cx, s, sign, cs__floori(cs__minf(a.x, x1)), &a, y0, bot, y1);
 }
