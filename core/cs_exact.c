@@ -1335,9 +1335,12 @@ static bool winding_constant(const exact_ctx *cx, const uint32_t *cl, uint32_t n
  * order is right. The only difference right of the stretch is the order
  * in which the cover deltas are summed: a last-bit one at most.
  */
-static void hide(cs_exact_piece *e, int32_t pa, float ut, float ub)
+static void hide(cs_exact_piece *e, cs_index piece, const cs_piece *pc, int32_t pa)
 {
+    float ut = top_u(pc), ub = bot_u(pc);
     cs_exact_end at;
+    e->piece = piece;
+    e->row_arc = true;
     at.u = ut;
     at.x = (float)pa;
     at.dx = at.dy = at.dwr = 0.0f;
@@ -1378,13 +1381,10 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
         int32_t pa, pb;
         cs__hull_pixels(r, s->x_lo, s->x_hi, &pa, &pb);
         e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
-        if (e->hidden) {
-            e->piece = act[i];
-            e->row_arc = true;
-            hide(e, pa, top_u(pc), bot_u(pc));
-        } else {
+        if (e->hidden)
+            hide(e, act[i], pc, pa);
+        else
             place_arc(&cx, e, act[i]);
-        }
         ord[i] = i;
     }
     /*
