@@ -980,17 +980,23 @@ int main(int argc, char **argv)
         for (int i = 0; i < SCENE_COUNT; i++)
             if (strcmp(scene_defs[i].name, profile) == 0)
                 idx = i;
-        if (idx < 0)
-            die("unknown scene '%s'", profile);
-        load(&scene_defs[idx]);
-        anim *a = anim_load(scene_defs[idx].path, g_scene);
-        anim_apply(a, g_scene, 0.0);
+        anim *a = NULL;
+        if (strcmp(profile, "blobs64") == 0) { /* the segment-scaling scene, 8 segments */
+            blob_scene(8, 64);
+        } else {
+            if (idx < 0)
+                die("unknown scene '%s'", profile);
+            load(&scene_defs[idx]);
+            a = anim_load(scene_defs[idx].path, g_scene);
+            anim_apply(a, g_scene, 0.0);
+        }
         cs_target t;
         target_init(&t, cfg.width, cfg.height);
         cs_render_opts o = opts_for(cfg.width, cfg.height, prof_aa, prof_sub);
         if (prof_cache) /* the static background pre-combined, as the animation runs it */
-            celscan_cache(&t, &o, anim_static_from(a, g_scene));
-        anim_free(a);
+            celscan_cache(&t, &o, a ? anim_static_from(a, g_scene) : 0);
+        if (a)
+            anim_free(a);
         double *s = malloc((size_t)cfg.frames * sizeof *s);
         for (int f = 0; f < cfg.frames; f++)
             s[f] = celscan_frame(&t, &o);

@@ -467,6 +467,13 @@ typedef struct cs_exact_end {
     float w, dwr;         /* W(u), and W'(u) / W(u): 0 for polynomial segments */
 } cs_exact_end;
 
+/* A piece's end at the last row boundary placed, kept for the next row
+ * (cs_exact.c): y is that boundary, or -1 before any. */
+typedef struct cs_exact_level {
+    float y;
+    cs_exact_end end;
+} cs_exact_level;
+
 /* Where one active piece is within the current band of a pixel row, for
  * exact-area coverage (cs_exact.c). */
 typedef struct cs_exact_piece {
@@ -494,6 +501,7 @@ typedef struct cs_workspace {
 #if CS_CFG_EXACT
     cs_exact_piece exact[CS_CFG_MAX_CROSSINGS]; /* a region's pieces on one row (exact AA) */
     uint32_t exact_order[CS_CFG_MAX_CROSSINGS];  /* those in the band, in x order */
+    cs_exact_level level_memo[CS_CFG_MAX_PIECES]; /* per piece: its last row bottom */
 #endif
     uint16_t region_cel[CS_CFG_MAX_REGIONS];
     float region_E[CS_CFG_MAX_REGIONS][3];

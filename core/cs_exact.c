@@ -11,14 +11,15 @@
  * Per pixel row [y, y+1) and per region:
  *
  * 0. Arcs and clusters. Each active piece's arc across the row is placed
- *    once: u where it enters the row (Newton from the chord of the piece)
- *    and where it leaves (Newton from the entry's second-order inverse
- *    series, which nearly always lands within one step), with x, x', y'
- *    and W'/W at both ends. Nothing is kept from the line before: every
- *    guess comes from the piece and the row alone. A straight piece is
- *    placed in closed form, a polynomial one in plane coordinates; the
- *    iteration stops once the residual of its last step, known exactly
- *    for a cubic, is below 2^-18 px in y (place_end). Those give the arc's inner Bezier control
+ *    once: u where it enters the row and where it leaves (Newton from the
+ *    chord of the piece), with x, x', y' and W'/W at both ends. An end is
+ *    a pure function of the piece and the height, so the bottom end of a
+ *    row is kept (the level memo) and is the top end of the next: one
+ *    solve per row boundary, and the same bits whichever lines came
+ *    before, or none. A straight piece is placed in closed form, a
+ *    polynomial one in plane coordinates; the iteration stops once the
+ *    residual of its last step, known exactly for a cubic, is below
+ *    2^-18 px in y (place_end). Those give the arc's inner Bezier control
  *    points directly (P(a) + h/p P'(a) in homogeneous form), hence its x
  *    range. Pieces in order of xmin fall into clusters whose x ranges
  *    overlap; no curve passes between two clusters, so the winding across
@@ -189,12 +190,11 @@ static inline float jet(const float *c, float u, float *d1, float *d2)
 /*
  * The end of s at height yv, with u searched in [lo, hi] (on which y is
  * monotone, growing with u if `rising`) by Newton's method from `u`.
- * Also the plane y'' there, in *ypp, for guessing the next end. Every
- * step keeps the bracket; a step that would leave it hands the narrowed
+ * Every step keeps the bracket; a step that would leave it hands the narrowed
  * bracket to the bounded solve of cs_poly.c.
  */
 static inline void place_end(const cs_segment *s, bool poly, float yv, float lo, float hi, float u,
-                      bool rising, cs_exact_end *e, float *ypp)
+                      bool rising, cs_exact_end *e)
 {
     float g[4];
     for (int i = 0; i < 4; i++)
@@ -225,10 +225,8 @@ static inline void place_end(const cs_segment *s, bool poly, float yv, float lo,
                 /* g being a cubic, the step leaves exactly
                  * (g''/2 + g3 s) s^2 of it */
                 if ((cs__absf(dd) + 2.0f * cs__absf(g[3] * st)) * (st * st) <= tol) {
-                    /* g', g'' at the accepted point: exact Taylor for a cubic */
-                    float g3 = 3.0f * g[3] * st;
-                    d += st * (dd + g3);
-                    dd += 2.0f * g3;
+                    /* g' at the accepted point: exact Taylor for a cubic */
+                    d += st * (dd + 3.0f * g[3] * st);
                     u = cs__clampf(next, lo, hi);
                     done = true;
                     break;
@@ -257,7 +255,6 @@ static inline void place_end(const cs_segment *s, bool poly, float yv, float lo,
         e->dy = d * inv;
         e->w = s->w[0];
         e->dwr = 0.0f;
-        *ypp = dd * inv;
     } else {
         float dW, ddW, W = jet(s->w, u, &dW, &ddW), inv = 1.0f / W;
         e->x = X * inv;
@@ -265,7 +262,6 @@ static inline void place_end(const cs_segment *s, bool poly, float yv, float lo,
         e->dy = d * inv;
         e->w = W;
         e->dwr = dW * inv;
-        *ypp = (dd - 2.0f * dW * e->dy) * inv;
     }
 }
 
@@ -385,11 +381,11 @@ static inline void hull(const cs_segment *s, cs_exact_piece *e, float ya, float 
 /*
  * u in [lo, hi] where the polynomial Y (degree <= 3, monotone there,
  * growing if `rising`) equals `level`, by Newton's method from u, with
- * Y' and Y'' there. The same iteration and acceptance as place_end, for
+ * Y' there. The same iteration and acceptance as place_end, for
  * the common case of constant weight, with nothing else to carry.
  */
 static float poly_level(const float *Y, int p, float level, float lo, float hi, float u,
-                        bool rising, float tol, float *d1, float *d2)
+                        bool rising, float tol, float *d1)
 {
     float g0 = Y[0] - level, y1 = Y[1], y2 = Y[2], y3 = Y[3];
     float y2x2 = 2.0f * y2, y3x3 = 3.0f * y3;
@@ -400,7 +396,6 @@ static float poly_level(const float *Y, int p, float level, float lo, float hi, 
             float dd = 2.0f * (y3x3 * u + y2);
             if (f == 0.0f) {
                 *d1 = d;
-                *d2 = dd;
                 return u;
             }
             if ((f < 0.0f) == rising)
@@ -409,9 +404,8 @@ static float poly_level(const float *Y, int p, float level, float lo, float hi, 
                 hi = u;
             float st = -f / d, next = u + st;
             if ((cs__absf(dd) + 2.0f * cs__absf(y3 * st)) * (st * st) <= tol) {
-                float g3 = y3x3 * st; /* g', g'' there: exact Taylor for a cubic */
-                *d1 = d + st * (dd + g3);
-                *d2 = dd + 2.0f * g3;
+                /* g' there: exact Taylor for a cubic */
+                *d1 = d + st * (dd + y3x3 * st);
                 return cs__clampf(next, lo, hi);
             }
             float c = 0.5f * dd * st / d;
@@ -425,88 +419,83 @@ static float poly_level(const float *Y, int p, float level, float lo, float hi, 
     float w[4] = {1.0f, 0.0f, 0.0f, 0.0f};
     u = cs__solve_level(Y, w, p, level, lo, hi);
     *d1 = (y3x3 * u + y2x2) * u + y1;
-    *d2 = 2.0f * (y3x3 * u + y2);
     return u;
 }
 
 /*
- * place_arc for a polynomial segment (constant weight w0, degree 2 or 3):
- * both ends and the x bounds, with the plane coordinates X/w0, Y/w0.
+ * The end of polynomial piece pc (constant weight w0, degree 2 or 3) at
+ * height yv: its own end's u if yv is one, else Newton from the piece's
+ * chord over the whole piece. It depends on the piece and yv alone, never
+ * on the row asking, so the bottom of one row is the top of the next
+ * (see the level memo in place_arc).
  */
-static void place_poly(const cs_piece *pc, const cs_segment *s, float ya, float yb,
-                       cs_exact_piece *e)
+static void poly_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact_end *e)
 {
     const float *X = s->x, *Y = s->y;
-    float w0 = s->w[0], inv = 1.0f / w0, tol = (2.0f * LEVEL_TOL) * w0;
-    float ut = top_u(pc), ub = bot_u(pc);
-    float x3x3 = 3.0f * X[3], x2x2 = 2.0f * X[2];
-    bool rising = pc->dir > 0;
-    int p = s->degree;
-    float d1, d2, u = ut;
-    if (ya == pc->y_top) { /* the piece's own end: its u is exact */
+    float w0 = s->w[0], inv = 1.0f / w0;
+    float ut = top_u(pc), ub = bot_u(pc), u, d1;
+    if (yv == pc->y_top || yv == pc->y_bot) { /* the piece's own end: its u is exact */
+        u = yv == pc->y_top ? ut : ub;
         d1 = (3.0f * Y[3] * u + 2.0f * Y[2]) * u + Y[1];
-        d2 = 2.0f * (3.0f * Y[3] * u + Y[2]);
     } else {
-        u = poly_level(Y, p, ya * w0, cs__minf(ut, ub), cs__maxf(ut, ub),
-                       chord_u(ut, pc->y_top, ub, pc->y_bot, ya), rising, tol, &d1, &d2);
+        u = poly_level(Y, s->degree, yv * w0, cs__minf(ut, ub), cs__maxf(ut, ub),
+                       chord_u(ut, pc->y_top, ub, pc->y_bot, yv), pc->dir > 0,
+                       (2.0f * LEVEL_TOL) * w0, &d1);
     }
-    float xt = (((X[3] * u + X[2]) * u + X[1]) * u + X[0]) * inv;
-    float dxt = ((x3x3 * u + x2x2) * u + X[1]) * inv, dyt = d1 * inv;
-    e->top.u = u;
-    e->top.x = xt;
-    e->top.dx = dxt;
-    e->top.dy = dyt;
-    e->top.w = w0;
-    e->top.dwr = 0.0f;
-    float v = ub;
-    if (yb == pc->y_bot) {
-        d1 = (3.0f * Y[3] * v + 2.0f * Y[2]) * v + Y[1];
+    e->u = u;
+    e->x = (((X[3] * u + X[2]) * u + X[1]) * u + X[0]) * inv;
+    e->dx = ((3.0f * X[3] * u + 2.0f * X[2]) * u + X[1]) * inv;
+    e->dy = d1 * inv;
+    e->w = w0;
+    e->dwr = 0.0f;
+}
+
+/* The same for a rational piece (place_end from the chord, whole piece). */
+static void rational_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact_end *e)
+{
+    float ut = top_u(pc), ub = bot_u(pc);
+    if (yv == pc->y_top || yv == pc->y_bot) {
+        float u = yv == pc->y_top ? ut : ub;
+        place_end(s, false, yv, u, u, u, pc->dir > 0, e);
     } else {
-        /* from the top's second-order inverse Taylor series, or the chord */
-        float guess = u;
-        if (dyt != 0.0f) {
-            float du = (yb - ya) / dyt;
-            guess = u + du * (1.0f - 0.5f * (d2 * inv) * du / dyt);
-        }
-        float lo = cs__minf(u, ub), hi = cs__maxf(u, ub);
-        if (!(guess > lo && guess < hi))
-            guess = chord_u(u, ya, ub, pc->y_bot, yb);
-        v = poly_level(Y, p, yb * w0, lo, hi, guess, rising, tol, &d1, &d2);
+        place_end(s, false, yv, cs__minf(ut, ub), cs__maxf(ut, ub),
+                  chord_u(ut, pc->y_top, ub, pc->y_bot, yv), pc->dir > 0, e);
     }
-    float xb = (((X[3] * v + X[2]) * v + X[1]) * v + X[0]) * inv;
-    float dxb = ((x3x3 * v + x2x2) * v + X[1]) * inv;
-    e->bot.u = v;
-    e->bot.x = xb;
-    e->bot.dx = dxb;
-    e->bot.dy = d1 * inv;
-    e->bot.w = w0;
-    e->bot.dwr = 0.0f;
-    e->u_row = v;
-    /* x bounds from the control polygon (hull without the strip) */
-    float t = (v - u) / (float)p;
-    float c1 = xt + t * dxt, c2 = p == 3 ? xb - t * dxb : c1;
+}
+
+/*
+ * x bounds of a polynomial arc from its control polygon (hull without the
+ * strip): cheaper than hull(), which also serves rational arcs.
+ */
+static void poly_bounds(int p, cs_exact_piece *e)
+{
+    float xt = e->top.x, xb = e->bot.x;
+    float t = (e->bot.u - e->top.u) / (float)p;
+    float c1 = xt + t * e->top.dx, c2 = p == 3 ? xb - t * e->bot.dx : c1;
     e->key = xt + xb;
     e->dmin = e->dmax = 0.0f;
     e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
     e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
     bool up = c1 > xt || c2 > c1 || xb > c2, down = c1 < xt || c2 < c1 || xb < c2;
     e->monotone = !(up && down);
-    e->row_arc = true;
 }
 
 /*
- * The arc of piece `piece` across the row: its ends (u where it enters
- * the row from the chord of the piece, where it leaves from the entry's
- * second-order inverse series) and its x bounds.
+ * The arc of piece `piece` across the row: its ends and its x bounds. An
+ * end inside the piece is a pure function of the piece and the height
+ * (poly_end, rational_end), so the row's bottom end is kept in the level
+ * memo and serves as the next row's top: one solve per row boundary, and
+ * the same bits whichever lines were rendered before.
  */
 static void place_arc(const exact_ctx *cx, cs_exact_piece *e, cs_index piece)
 {
-    const cs_workspace *ws = cx->ws;
+    cs_workspace *ws = cx->ws;
     const cs_piece *pc = &ws->pieces[piece];
     const cs_segment *s = &ws->segments[pc->segment];
     float ya = row_top(cx, pc), yb = row_end(cx, pc);
     float ut = top_u(pc), ub = bot_u(pc);
     e->piece = piece;
+    e->row_arc = true;
     if (s->degree == 1) {
         line_end(s, ya, ya == pc->y_top ? ut : -1.0f, ut, ub, &e->top);
         line_end(s, yb, yb == pc->y_bot ? ub : -1.0f, ut, ub, &e->bot);
@@ -516,38 +505,29 @@ static void place_arc(const exact_ctx *cx, cs_exact_piece *e, cs_index piece)
         e->xmin = cs__minf(e->top.x, e->bot.x);
         e->xmax = cs__maxf(e->top.x, e->bot.x);
         e->monotone = true;
-        e->row_arc = true;
         return;
     }
-    bool poly = polynomial(s), rising = pc->dir > 0;
-    if (poly) {
-        place_poly(pc, s, ya, yb, e);
-        return;
-    }
-    float ypp, u = ut;
-    if (ya == pc->y_top) /* the piece's own end: its u is exact */
-        place_end(s, poly, ya, ut, ut, ut, rising, &e->top, &ypp);
+    bool poly = polynomial(s);
+    cs_exact_level *memo = &ws->level_memo[piece];
+    if (memo->y == ya)
+        e->top = memo->end;
+    else if (poly)
+        poly_end(pc, s, ya, &e->top);
     else
-        place_end(s, poly, ya, cs__minf(ut, ub), cs__maxf(ut, ub),
-                  chord_u(ut, pc->y_top, ub, pc->y_bot, ya), rising, &e->top, &ypp);
-    u = e->top.u;
-    if (yb == pc->y_bot) {
-        place_end(s, poly, yb, ub, ub, ub, rising, &e->bot, &ypp);
-    } else {
-        /* The bottom from the top's second-order inverse Taylor
-         * series, or failing that the chord. */
-        float y1 = e->top.dy, guess = u;
-        if (y1 != 0.0f) {
-            float du = (yb - ya) / y1;
-            guess = u + du * (1.0f - 0.5f * ypp * du / y1);
-        }
-        if (!(guess > cs__minf(u, ub) && guess < cs__maxf(u, ub)))
-            guess = chord_u(u, ya, ub, pc->y_bot, yb);
-        place_end(s, poly, yb, cs__minf(u, ub), cs__maxf(u, ub), guess, rising, &e->bot, &ypp);
+        rational_end(pc, s, ya, &e->top);
+    if (poly)
+        poly_end(pc, s, yb, &e->bot);
+    else
+        rational_end(pc, s, yb, &e->bot);
+    if (yb < pc->y_bot) {
+        memo->y = yb;
+        memo->end = e->bot;
     }
     e->u_row = e->bot.u;
-    hull(s, e, ya, yb, false);
-    e->row_arc = true;
+    if (poly)
+        poly_bounds(s->degree, e);
+    else
+        hull(s, e, ya, yb, false);
 }
 
 /*
@@ -1115,13 +1095,12 @@ static void set_bot(exact_ctx *cx, cs_exact_piece *e, float ya, float yb, float 
     if (e->hidden)
         return; /* it stays where it was put */
     e->row_arc = false;
-    float ypp;
     if (yb == yref) {
-        place_end(s, polynomial(s), yb, uref, uref, uref, pc->dir > 0, &e->bot, &ypp);
+        place_end(s, polynomial(s), yb, uref, uref, uref, pc->dir > 0, &e->bot);
         return;
     }
     place_end(s, polynomial(s), yb, cs__minf(e->top.u, uref), cs__maxf(e->top.u, uref),
-              chord_u(e->top.u, ya, uref, yref, yb), pc->dir > 0, &e->bot, &ypp);
+              chord_u(e->top.u, ya, uref, yref, yb), pc->dir > 0, &e->bot);
 }
 
 /*

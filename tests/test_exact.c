@@ -208,7 +208,9 @@ static cs_status render_core(const tscene *t, cs_aa_mode aa, int sub, double *ou
     cs_status st = build_core(t);
     if (st != CS_OK)
         return st;
-    cs_render_opts o = {t->width, t->height, aa, sub, 0.0f};
+    cs_render_opts o = cs_render_defaults(t->width, t->height);
+    o.aa = aa;
+    o.subscanlines = sub;
     cs_renderer r;
     cs_error err;
     st = cs_frame_begin(&r, g_ws, g_scene, &o, &err);
