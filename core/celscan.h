@@ -430,6 +430,7 @@ typedef struct cs_segment {
     float x_lo, x_hi;  /* bounds of x(u) over [0,1] (Bezier hull), set by the frame */
     uint16_t region;   /* index into scene regions */
     uint8_t degree;
+    bool rational;     /* W varies (w[1..3] not all 0): else x = X / w[0] */
 } cs_segment;
 
 /* Index of a segment or piece in the workspace (CS_CFG_INDEX_TYPE). */

@@ -114,10 +114,7 @@ typedef struct exact_ctx {
 static float top_u(const cs_piece *pc) { return pc->dir > 0 ? pc->u0 : pc->u1; }
 static float bot_u(const cs_piece *pc) { return pc->dir > 0 ? pc->u1 : pc->u0; }
 
-static bool polynomial(const cs_segment *s)
-{
-    return s->w[1] == 0.0f && s->w[2] == 0.0f && s->w[3] == 0.0f;
-}
+static bool polynomial(const cs_segment *s) { return !s->rational; }
 
 /* The part of the row the piece spans. */
 static float row_top(const exact_ctx *cx, const cs_piece *pc)
@@ -566,6 +563,14 @@ static void place_arc(const exact_ctx *cx, cs_exact_piece *e, cs_index piece)
 
 static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, bool by_xmin)
 {
+    if (m == 2u) { /* the usual row of a region: two arcs */
+        uint32_t a = ord[0], b = ord[1];
+        if (by_xmin ? ex[b].xmin < ex[a].xmin : ex[b].key < ex[a].key) {
+            ord[0] = b;
+            ord[1] = a;
+        }
+        return;
+    }
     if (by_xmin)
         SORT_BODY(xmin);
     else
@@ -994,11 +999,82 @@ static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, cons
  * add_poly_arc serves arcs across at most this many columns. A long,
  * shallow arc has a long control polygon, whose power-basis coefficients
  * are large and cancel in M(t): at 32 columns the bench's accuracy sample
- * showed pixels 0.5-0.8/255 off on the demo's ribbons. Longer arcs are
- * cut by add_monotone, which evaluates the curve afresh at every cut;
- * they are few, so this costs under 1 % of a Many-blobs frame.
+ * showed pixels 0.5-0.8/255 off on the demo's ribbons. A longer arc is
+ * cut into parts of about half as many columns, at equal steps of u, each
+ * part placed by its ends like any arc (add_poly_monotone).
  */
 #define POLY_ARC_COLUMNS 8.0f
+
+/* An x-monotone polynomial part from a (at ya) to b (at yb), if it is
+ * short enough for add_poly_arc and its control points can be formed. */
+static inline bool add_poly_part(exact_ctx *cx, const cs_segment *s, float sign, const cs_exact_end *a,
+                          float ya, const cs_exact_end *b, float yb)
+{
+    if (!(cs__absf(b->x - a->x) <= POLY_ARC_COLUMNS))
+        return false;
+    float bx[4], by[4];
+    int k = control_points(s, a, ya, b, yb, &bx[1], &by[1]);
+    if (k <= 0)
+        return false;
+    bx[0] = a->x;
+    by[0] = ya;
+    bx[k + 1] = b->x;
+    by[k + 1] = yb;
+    add_poly_arc(cx, sign, k + 1, bx, by);
+    return true;
+}
+
+/*
+ * An x-monotone polynomial sub-arc too long for add_poly_part, top (y0) to
+ * bottom (y1): in parts of equal u; a part still too long (x far from
+ * linear in u) is cut column by column (add_monotone). The parts are
+ * counted over the screen's width at most, so an arc reaching far off
+ * screen costs no more than one across it: its long parts off screen go
+ * to add_monotone, which passes over whole columns there.
+ */
+static void add_poly_parts(exact_ctx *cx, const cs_segment *s, float sign,
+                           const cs_exact_end *top, float y0, const cs_exact_end *bot, float y1)
+{
+    float span = cs__absf(bot->x - top->x);
+    int32_t n = 1;
+    if (span > POLY_ARC_COLUMNS)
+        n = (int32_t)(cs__minf(span, (float)cx->width + 2.0f) * (2.0f / POLY_ARC_COLUMNS)) + 1;
+    cs_exact_end a = *top, b;
+    float ya = y0;
+    for (int32_t i = 1; i <= n; i++) {
+        float yb = y1;
+        if (i < n) {
+            float u = top->u + (bot->u - top->u) * ((float)i / (float)n);
+            yb = cs__clampf(seg_y(s, u), ya, y1);
+            eval_end(s, u, yb, &b);
+        } else {
+            b = *bot;
+        }
+        if (!add_poly_part(cx, s, sign, &a, ya, &b, yb))
+            add_monotone(cx, s, sign, &a, ya, &b, yb);
+        a = b;
+        ya = yb;
+    }
+}
+
+/* An x-monotone polynomial sub-arc, whole if short enough, else in parts. */
+static inline void add_poly_monotone(exact_ctx *cx, const cs_segment *s, float sign,
+                                     const cs_exact_end *top, float y0, const cs_exact_end *bot,
+                                     float y1)
+{
+    if (!add_poly_part(cx, s, sign, top, y0, bot, y1))
+        add_poly_parts(cx, s, sign, top, y0, bot, y1);
+}
+
+/* An x-monotone sub-arc between two x-extrema of the arc. */
+static void add_x_monotone(exact_ctx *cx, const cs_segment *s, float sign, const cs_exact_end *top,
+                           float y0, const cs_exact_end *bot, float y1)
+{
+    if (polynomial(s))
+        add_poly_monotone(cx, s, sign, top, y0, bot, y1);
+    else
+        add_monotone(cx, s, sign, top, y0, bot, y1);
+}
 
 /* Effective edge e over the band [ya, yb]: sign +1 where the region begins. */
 static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float ya, float yb)
@@ -1024,17 +1100,10 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
         add_line(cx, sign, e->top.x, ya, e->bot.x, yb);
         return;
     }
-    if (e->monotone && polynomial(s) && cs__absf(e->bot.x - e->top.x) <= POLY_ARC_COLUMNS) {
-        float bx[4], by[4];
-        int k = control_points(s, &e->top, ya, &e->bot, yb, &bx[1], &by[1]);
-        if (k > 0) {
-            bx[0] = e->top.x;
-            by[0] = ya;
-            bx[k + 1] = e->bot.x;
-            by[k + 1] = yb;
-            add_poly_arc(cx, sign, k + 1, bx, by);
-            return;
-        }
+    bool poly = polynomial(s);
+    if (e->monotone && poly) {
+        add_poly_monotone(cx, s, sign, &e->top, ya, &e->bot, yb);
+        return;
     }
     if (e->xmax - e->xmin < 1.0f) { /* the usual case: one column, no solve */
         int32_t c = cs__floori(e->xmin);
@@ -1059,11 +1128,11 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
         float u = up ? t[k] : t[nt - 1 - k];
         float y = cs__clampf(seg_y(s, u), y0, yb);
         eval_end(s, u, y, &b);
-        add_monotone(cx, s, sign, &a, y0, &b, y);
+        add_x_monotone(cx, s, sign, &a, y0, &b, y);
         a = b;
         y0 = y;
     }
-    add_monotone(cx, s, sign, &a, y0, &e->bot, yb);
+    add_x_monotone(cx, s, sign, &a, y0, &e->bot, yb);
 }
 
 /* Applies the fill rule along the band's arcs ord[0..m), in x order, from

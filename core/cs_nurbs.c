@@ -132,6 +132,7 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
             }
         }
         s->degree = (uint8_t)degree;
+        s->rational = !(s->w[1] == 0.0f && s->w[2] == 0.0f && s->w[3] == 0.0f);
         s->region = region;
         n++;
     }

@@ -85,11 +85,12 @@ static inline void cs__run_split(cs_workspace *ws, uint32_t s, uint32_t x)
         }
 }
 
-/* Whether the stack of the run at s is opaque (and the early-out is on). */
+/* Whether the stack of the run at s is opaque (and the early-out is on):
+ * its bit in opaque_bits, which cs__run_join sets for the whole run when
+ * T reaches 0 on every channel (an opaque run is never split again). */
 static inline bool cs__run_opaque(const cs_renderer *r, uint32_t s)
 {
-    const float *t = &r->ws->stack_T[3 * s];
-    return r->record && t[0] == 0.0f && t[1] == 0.0f && t[2] == 0.0f;
+    return r->record && ((r->ws->opaque_bits[s >> 5] >> (s & 31u)) & 1u) != 0u;
 }
 
 /* Bits a..b-1 of a word, 0 <= a < b <= 32. */
