@@ -3,9 +3,11 @@
  *
  * For each line the active monotone pieces (those whose y range meets the
  * pixel row) are intersected afresh with each sample scanline: nothing is
- * carried from line to line but the list of which pieces are active, so
- * errors cannot accumulate, rows off screen cost nothing, and a line comes
- * out the same whichever lines were rendered before it. Within a line, a
+ * carried from line to line but the list of which pieces are active (and,
+ * in exact mode, each piece's end at the last row boundary, a pure
+ * function of the piece and the height: see cs_exact.c), so errors cannot
+ * accumulate, rows off screen cost nothing, and a line comes out the same
+ * whichever lines were rendered before it. Within a line, a
  * piece's root on one sub-scanline starts the Newton solve on the next,
  * 1/N of a pixel lower, which converges in two or three steps where a solve
  * over the whole piece needs several more. The guess travels with the
