@@ -447,9 +447,14 @@ static void poly_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact
     e->dwr = 0.0f;
 }
 
-/* The same for a rational piece (place_end from the chord, whole piece). */
-static void rational_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact_end *e)
+/* The end of any curved piece at height yv: poly_end, or for a rational
+ * piece place_end from the chord over the whole piece. */
+static void level_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact_end *e)
 {
+    if (polynomial(s)) {
+        poly_end(pc, s, yv, e);
+        return;
+    }
     float ut = top_u(pc), ub = bot_u(pc);
     if (yv == pc->y_top || yv == pc->y_bot) {
         float u = yv == pc->y_top ? ut : ub;
@@ -480,7 +485,7 @@ static void poly_bounds(int p, cs_exact_piece *e)
 /*
  * The arc of piece `piece` across the row: its ends and its x bounds. An
  * end inside the piece is a pure function of the piece and the height
- * (poly_end, rational_end), so the row's bottom end is kept in the level
+ * (level_end), so the row's bottom end is kept in the level
  * memo and serves as the next row's top: one solve per row boundary, and
  * the same bits whichever lines were rendered before.
  */
@@ -504,24 +509,18 @@ static void place_arc(const exact_ctx *cx, cs_exact_piece *e, cs_index piece)
         e->monotone = true;
         return;
     }
-    bool poly = polynomial(s);
     cs_exact_level *memo = &ws->level_memo[piece];
     if (memo->y == ya)
         e->top = memo->end;
-    else if (poly)
-        poly_end(pc, s, ya, &e->top);
     else
-        rational_end(pc, s, ya, &e->top);
-    if (poly)
-        poly_end(pc, s, yb, &e->bot);
-    else
-        rational_end(pc, s, yb, &e->bot);
+        level_end(pc, s, ya, &e->top);
+    level_end(pc, s, yb, &e->bot);
     if (yb < pc->y_bot) {
         memo->y = yb;
         memo->end = e->bot;
     }
     e->u_row = e->bot.u;
-    if (poly)
+    if (polynomial(s))
         poly_bounds(s->degree, e);
     else
         hull(s, e, ya, yb, false);

@@ -373,8 +373,9 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     }
     sort_by_top(ws, r->piece_count);
 #if CS_CFG_EXACT
-    for (uint32_t i = 0; i < r->piece_count; i++) /* no row placed yet (cs_exact.c) */
-        ws->level_memo[i].y = -1.0f;
+    if (opts->aa == CS_AA_EXACT) /* no row placed yet (cs_exact.c) */
+        for (uint32_t i = 0; i < r->piece_count; i++)
+            ws->level_memo[i].y = -1.0f;
 #endif
     return CS_OK;
 }

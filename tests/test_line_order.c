@@ -85,6 +85,22 @@ static void build(void)
     CHECK_STATUS(cs_scene_add_contour(&scene, 3, 7, nurbs, iv, &e), CS_OK, "nurbs");
 }
 
+/* Lines first, first + step, ... (while on screen) in one frame: how
+ * many differ from the same lines of `full`. */
+static int lines_differing(const cs_render_opts *o, const float *full, int first, int step)
+{
+    static float line[3 * W];
+    cs_renderer r;
+    cs_error e;
+    int differ = 0;
+    cs_frame_begin(&r, &ws, &scene, o, &e);
+    for (int y = first; y >= 0 && y < H; y += step) {
+        cs_render_line(&r, y, line);
+        differ += memcmp(line, &full[3 * W * y], sizeof line) != 0;
+    }
+    return differ;
+}
+
 static void check_mode(const char *what, cs_aa_mode aa, int sub)
 {
     cs_render_opts o = cs_render_defaults(W, H);
@@ -116,21 +132,11 @@ static void check_mode(const char *what, cs_aa_mode aa, int sub)
           differ, first);
 
     /* Every third line, in order but skipping: the same bytes again. */
-    differ = 0;
-    cs_frame_begin(&r, &ws, &scene, &o, &e);
-    for (int y = 1; y < H; y += 3) {
-        cs_render_line(&r, y, line);
-        differ += memcmp(line, &full[3 * W * y], sizeof line) != 0;
-    }
+    differ = lines_differing(&o, full, 1, 3);
     CHECK(differ == 0, "%s: %d lines differ when lines are skipped", what, differ);
 
     /* Bottom to top in one frame: whatever the line before left behind. */
-    differ = 0;
-    cs_frame_begin(&r, &ws, &scene, &o, &e);
-    for (int y = H - 1; y >= 0; y--) {
-        cs_render_line(&r, y, line);
-        differ += memcmp(line, &full[3 * W * y], sizeof line) != 0;
-    }
+    differ = lines_differing(&o, full, H - 1, -1);
     CHECK(differ == 0, "%s: %d lines differ when rendered bottom to top", what, differ);
 }
 
