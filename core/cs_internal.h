@@ -196,10 +196,70 @@ float cs__solve_level(const float *num, const float *den, int degree, float leve
  * deterministic for given arguments; it may differ from cs__solve_level's
  * in the last bits. *slope receives d(num - level den)/du near the root
  * (0 when unknown), from which the caller can predict the next root:
- * du/dlevel = den(u) / slope.
+ * du/dlevel = den(u) / slope. Inline, with cs__level_poly: it runs for
+ * every crossing of every sub-scanline, where the call cost as much as a
+ * Newton step.
  */
-float cs__solve_level_from(const float *num, const float *den, int degree, float level,
-                           float lo, float hi, float guess, bool rising, float *slope);
+#define CS__NEWTON_MAX_ITER 8
+#define CS__WARM_STEP_TOL 1.0e-5f
+
+/* g = num - level den. */
+static inline void cs__level_poly(const float *num, const float *den, int degree, float level,
+                                  float *g)
+{
+    g[0] = num[0] - level * den[0];
+    g[1] = num[1] - level * den[1];
+    g[2] = degree >= 2 ? num[2] - level * den[2] : 0.0f;
+    g[3] = degree >= 3 ? num[3] - level * den[3] : 0.0f;
+}
+
+/*
+ * With W > 0, g(u) = W(u) (y(u) - level) has the sign of y(u) - level, so
+ * on a monotone piece the side of the root is known from the sign of g at
+ * any u, without evaluating the ends: for a rising piece g < 0 before the
+ * root. Newton from the nearby root then needs no set-up at all; when it
+ * does not settle inside the piece, the full bracketed solve decides.
+ */
+static inline float cs__solve_level_from(const float *num, const float *den, int degree,
+                                         float level, float lo, float hi, float guess,
+                                         bool rising, float *slope)
+{
+    float g[4];
+    *slope = 0.0f;
+    cs__level_poly(num, den, degree, level, g);
+    if (degree == 1 || !(guess > lo && guess < hi))
+        return cs__solve_level(num, den, degree, level, lo, hi);
+    float a = lo, b = hi, u = guess;
+    for (int it = 0; it < CS__NEWTON_MAX_ITER; it++) {
+        float d, f = cs__horner_d(g, degree, u, &d);
+        if (f == 0.0f) {
+            *slope = d;
+            return u;
+        }
+        if ((f < 0.0f) == rising)
+            a = u;
+        else
+            b = u;
+        float next = u - f / d;
+        /* A step below u's last bit: converged. u may have just become an
+         * end of the bracket, which the test below would take for a step
+         * out of it, and hand a found root to the full solve. */
+        if (next == u) {
+            *slope = d;
+            return u;
+        }
+        if (!(next > a && next < b))
+            break;
+        /* Newton leaves an error of about K s^2 after a step s (K = g''/2g'),
+         * so a step of 1e-5 already lands within ~1e-10 K of the root. */
+        if (cs__absf(next - u) <= CS__WARM_STEP_TOL) {
+            *slope = d;
+            return next;
+        }
+        u = next;
+    }
+    return cs__solve_level(num, den, degree, level, lo, hi);
+}
 
 /*
  * Converts one closed periodic NURBS contour to rational polynomial segments

@@ -16,8 +16,6 @@
 #include "cs_internal.h"
 
 #define ILLINOIS_MAX_ITER 48
-#define NEWTON_MAX_ITER 8
-#define WARM_STEP_TOL 1.0e-5f
 
 float cs__poly_eval(const float *c, int degree, float u)
 {
@@ -111,7 +109,7 @@ static float newton(const float *g, int degree, float a, float b, float fa, floa
     float u = guess;
     if (!(u > a && u < b))
         return illinois(g, degree, a, b, fa, fb);
-    for (int it = 0; it < NEWTON_MAX_ITER; it++) {
+    for (int it = 0; it < CS__NEWTON_MAX_ITER; it++) {
         float d, f = cs__horner_d(g, degree, u, &d);
         if (f == 0.0f)
             return u;
@@ -134,21 +132,11 @@ static float newton(const float *g, int degree, float a, float b, float fa, floa
     return illinois(g, degree, a, b, fa, fb);
 }
 
-/* g = num - level den. */
-static inline void level_poly(const float *num, const float *den, int degree, float level,
-                              float *g)
-{
-    g[0] = num[0] - level * den[0];
-    g[1] = num[1] - level * den[1];
-    g[2] = degree >= 2 ? num[2] - level * den[2] : 0.0f;
-    g[3] = degree >= 3 ? num[3] - level * den[3] : 0.0f;
-}
-
 float cs__solve_level(const float *num, const float *den, int degree, float level, float lo,
                       float hi)
 {
     float g[4];
-    level_poly(num, den, degree, level, g);
+    cs__level_poly(num, den, degree, level, g);
     float flo = cs__horner(g, degree, lo);
     float fhi = cs__horner(g, degree, hi);
     if (flo == 0.0f)
@@ -161,53 +149,6 @@ float cs__solve_level(const float *num, const float *den, int degree, float leve
         return cs__clampf(-g[0] / g[1], lo, hi);
     /* Newton from the regula falsi point, the first guess Illinois would make. */
     return newton(g, degree, lo, hi, flo, fhi, (lo * fhi - hi * flo) / (fhi - flo));
-}
-
-/*
- * With W > 0, g(u) = W(u) (y(u) - level) has the sign of y(u) - level, so
- * on a monotone piece the side of the root is known from the sign of g at
- * any u, without evaluating the ends: for a rising piece g < 0 before the
- * root. Newton from the nearby root then needs no set-up at all; when it
- * does not settle inside the piece, the full bracketed solve decides.
- */
-float cs__solve_level_from(const float *num, const float *den, int degree, float level,
-                           float lo, float hi, float guess, bool rising, float *slope)
-{
-    float g[4];
-    *slope = 0.0f;
-    level_poly(num, den, degree, level, g);
-    if (degree == 1 || !(guess > lo && guess < hi))
-        return cs__solve_level(num, den, degree, level, lo, hi);
-    float a = lo, b = hi, u = guess;
-    for (int it = 0; it < NEWTON_MAX_ITER; it++) {
-        float d, f = cs__horner_d(g, degree, u, &d);
-        if (f == 0.0f) {
-            *slope = d;
-            return u;
-        }
-        if ((f < 0.0f) == rising)
-            a = u;
-        else
-            b = u;
-        float next = u - f / d;
-        /* A step below u's last bit: converged. u may have just become an
-         * end of the bracket, which the test below would take for a step
-         * out of it, and hand a found root to the full solve. */
-        if (next == u) {
-            *slope = d;
-            return u;
-        }
-        if (!(next > a && next < b))
-            break;
-        /* Newton leaves an error of about K s^2 after a step s (K = g''/2g'),
-         * so a step of 1e-5 already lands within ~1e-10 K of the root. */
-        if (cs__absf(next - u) <= WARM_STEP_TOL) {
-            *slope = d;
-            return next;
-        }
-        u = next;
-    }
-    return cs__solve_level(num, den, degree, level, lo, hi);
 }
 
 int cs__turns(const float *c, const float *w, int degree, float lo, float hi, float *roots)
