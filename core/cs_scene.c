@@ -83,13 +83,9 @@ cs_status cs__check_canvas(float canvas_w, float canvas_h)
 
 cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
 {
-    if (!scene)
-        return CS_ERR_ARG;
-    cs_status st = cs__check_canvas(canvas_w, canvas_h);
+    cs_status st = cs_scene_set_canvas(scene, canvas_w, canvas_h);
     if (st != CS_OK)
         return st;
-    scene->canvas_w = canvas_w;
-    scene->canvas_h = canvas_h;
     scene->has_background = false;
     scene->blend = CS_BLEND_LINEAR;
     for (int i = 0; i < 3; i++) {
