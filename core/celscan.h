@@ -451,9 +451,14 @@ typedef struct cs_piece {
     int8_t dir;        /* +1 if y grows with u, -1 if it falls */
 } cs_piece;
 
+/* A crossing of a piece with a sub-scanline. Aligned to
+ * CS_CFG_CROSSING_ALIGN (cs_config.h says why). */
 typedef struct cs_crossing {
-    float x;
-    float guess;      /* where the piece's root on the next sub-scanline is sought */
+    _Alignas(CS_CFG_CROSSING_ALIGN) float x;
+    float guess;      /* where the piece's root on the next sub-scanline is sought;
+                         interpolated, x on the line's first sub-scanline */
+    float a1, a2, a3; /* interpolated, x on sub-scanline k is guess + k (a1 + k (a2 + k a3));
+                         a3 is NaN when not (cs_line.c: interp_setup) */
     uint16_t piece;   /* the piece's place in its region's active list (cs_line.c) */
     int8_t dir;
     uint8_t operand;  /* which winding counter of the region it moves (CSG) */

@@ -45,6 +45,9 @@ static inline void cs__copy_track(cs_track *dst, const cs_track *src)
     dst->ease = src->ease;
 }
 
+/* A quiet NaN, as a constant (no libm). */
+#define CS__NAN (__builtin_nanf(""))
+
 /* Clamps v to [lo, hi]; NaN becomes lo, so no NaN reaches an integer cast. */
 static inline float cs__clampf(float v, float lo, float hi)
 {
@@ -272,6 +275,10 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
                                int degree, const cs_affine *to_device, uint16_t region,
                                cs_segment *out, uint32_t capacity, uint32_t *written,
                                int32_t *bad_point);
+
+/* Fewest sub-scanlines for which crossings are interpolated (cs_line.c):
+ * below it the extra solves and slopes cost about what they save. */
+#define CS__INTERP_MIN_SAMPLES 8
 
 /* Capacities the storage formats rely on. */
 _Static_assert(CS_CFG_MAX_CSG >= 1 && CS_CFG_MAX_CSG <= 32, "CSG bit stack holds 32 values");

@@ -14,7 +14,12 @@
  * crossing (cs_crossing.guess) to the next sub-scanline, whose crossings
  * are taken in the previous one's x order and so come nearly sorted; it is
  * a starting point only, the same on every target, and the result is the
- * solver's.
+ * solver's. With many sub-scanlines, most pieces cross all of them, and
+ * over one pixel of height x(y) is nearly a cubic: such a piece is solved
+ * on the first, middle and last sub-scanline only, and in between x is the
+ * cubic through the ends with the curve's slope there, kept only if it
+ * meets the middle root to 1/1024 px (interp_setup). A straight piece is
+ * exactly linear in y and needs its two ends alone.
  *
  * Pieces are kept in scene order, which groups them by region and regions
  * by cel, front-most first. For one region the crossings of a scanline,
@@ -127,6 +132,12 @@ static void sort_nearly_sorted(cs_crossing *c, uint32_t n)
     }
 }
 
+/* The level of sub-scanline k of line y, of N = 1 / step. */
+static inline float sample_y(int y, int k, float step)
+{
+    return (float)y + ((float)k + 0.5f) * step;
+}
+
 /* u where a straight piece (degree 1) meets level ys: the closed form of
  * cs__solve_level, g = Y - ys W being linear, without its bracket checks
  * (an active piece meets the level inside [u0, u1] up to rounding, and the
@@ -172,9 +183,77 @@ static inline void piece_crossing(const cs_workspace *ws, const cs_piece *pc, fl
     c->operand = pc->operand;
 }
 
+/* x of segment s at parameter u, where it meets level ys, and dx/dy there
+ * (the ratio of x' and y', each with the weight's derivative folded in). */
+static inline float x_and_slope(const cs_segment *s, float u, float ys, float *dxdy)
+{
+    float dX, dY, dW;
+    float X = cs__horner_d(s->x, s->degree, u, &dX);
+    float W = cs__horner_d(s->w, s->degree, u, &dW);
+    (void)cs__horner_d(s->y, s->degree, u, &dY);
+    float x = X / W;
+    *dxdy = (dX - x * dW) / (dY - ys * dW);
+    return x;
+}
+
+/* How far (px) the cubic may miss the middle root: below 1/4 of 1/255 of
+ * coverage, where --aa 16's own sampling error reaches ~8/255. */
+#define CS__INTERP_TOL (1.0f / 1024.0f)
+
 /*
- * The crossings of a region's active pieces act[] with the line's next
- * sub-scanline ys, sorted by x. Returns their count, or -1 if they do not
+ * Sets crossing c, just solved on the line's first sub-scanline ys0 (its
+ * root in c->guess), to follow x through the remaining ones by a formula,
+ * if piece pc reaches below the last, ys_last. A straight piece is linear
+ * in y. A curved one gets the cubic Hermite interpolant of x(y) from x and
+ * dx/dy at ys0 and ys_last, kept only if it meets the root on sub-scanline
+ * `mid` (at ys_mid) within CS__INTERP_TOL: a cubic's error over an interval
+ * is largest near its middle, so the check catches the curves too bent
+ * for it (they stay with Newton), though it is a check, not a bound.
+ */
+static void interp_setup(const cs_workspace *ws, const cs_piece *pc, float ys0, float ys_last,
+                         float ys_mid, int samples, int mid, cs_crossing *c)
+{
+    const cs_segment *s = &ws->segments[pc->segment];
+    float u0 = c->guess, n1 = (float)(samples - 1);
+    if (s->degree == 1) { /* exact, so no check */
+        float u1 = straight_root(s, pc, ys_last);
+        float x1 = cs__horner(s->x, 1, u1) / cs__horner(s->w, 1, u1);
+        float x0 = cs__horner(s->x, 1, u0) / cs__horner(s->w, 1, u0);
+        c->guess = x0;
+        c->a1 = (x1 - x0) / n1;
+        c->a2 = 0.0f;
+        c->a3 = 0.0f;
+        return;
+    }
+    float d0, d1, dY, dW, slope;
+    float x0 = x_and_slope(s, u0, ys0, &d0);
+    float w0 = cs__horner_d(s->w, s->degree, u0, &dW);
+    (void)cs__horner_d(s->y, s->degree, u0, &dY);
+    /* Newton's start on ys_last: du/dy = W / (Y' - y W') at u0. */
+    float guess = cs__clampf(u0 + (ys_last - ys0) * w0 / (dY - ys0 * dW), pc->u0, pc->u1);
+    bool rising = pc->dir > 0;
+    float u1 = cs__solve_level_from(s->y, s->w, s->degree, ys_last, pc->u0, pc->u1, guess,
+                                    rising, &slope);
+    float x1 = x_and_slope(s, u1, ys_last, &d1);
+    /* Hermite over t = k / n1 in [0, 1]: end slopes in x per unit t. */
+    float h = ys_last - ys0, m0 = d0 * h, m1 = d1 * h;
+    float c2 = 3.0f * (x1 - x0) - 2.0f * m0 - m1, c3 = 2.0f * (x0 - x1) + m0 + m1;
+    float t = (float)mid / n1;
+    float um = cs__solve_level_from(s->y, s->w, s->degree, ys_mid, pc->u0, pc->u1,
+                                    u0 + (u1 - u0) * t, rising, &slope);
+    float xm = cs__horner(s->x, s->degree, um) / cs__horner(s->w, s->degree, um);
+    /* NaN or infinite slopes fail this test too. */
+    if (!(cs__absf(x0 + t * (m0 + t * (c2 + t * c3)) - xm) <= CS__INTERP_TOL))
+        return;
+    c->guess = x0;
+    c->a1 = m0 / n1;
+    c->a2 = c2 / (n1 * n1);
+    c->a3 = c3 / (n1 * n1 * n1); /* a finite number, as the test above passed */
+}
+
+/*
+ * The crossings of a region's active pieces act[] with sub-scanline `sub`
+ * (of `samples`) of line y, sorted by x. Returns their count, or -1 if they do not
  * fit in ws->crossings.
  *
  * The previous sub-scanline's `live` crossings, still in ws->crossings in
@@ -182,14 +261,22 @@ static inline void piece_crossing(const cs_workspace *ws, const cs_piece *pc, fl
  * they are redone in that order (those that end above ys dropped), so they
  * come nearly sorted. Pieces that did not cross it yet wait in
  * ord[0..*idle) (indices into act); those reaching ys join at the end with
- * a full solve. Nothing of this outlives the line: its first sub-scanline
- * starts with every piece waiting.
+ * a full solve; an interpolated one (interp_setup) is only evaluated.
+ * Nothing of this outlives the line: its first sub-scanline starts with
+ * every piece waiting.
  */
 static int32_t crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, uint32_t *idle,
-                            uint32_t live, float ys, float step)
+                            uint32_t live, int y, int sub, int samples)
 {
     cs_workspace *ws = r->ws;
     float width = (float)r->opts.width;
+    float step = 1.0f / (float)samples, ys = sample_y(y, sub, step);
+    /* Pieces that cross every sub-scanline of the line are interpolated
+     * (interp_setup); the first sub-scanline sets them up. */
+    float at = (float)sub;
+    bool setup = sub == 0 && samples >= CS__INTERP_MIN_SAMPLES;
+    int mid = samples / 2;
+    float ys_last = sample_y(y, samples - 1, step), ys_mid = sample_y(y, mid, step);
     uint32_t count = 0, kept = 0, waiting = 0, total = live + *idle;
     /* One loop over both lists, so that piece_crossing is made once. */
     for (uint32_t j = 0; j < total; j++) {
@@ -198,6 +285,13 @@ static int32_t crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, 
         cs_index k;
         const cs_piece *pc;
         if (warm) { /* count <= j: rewritten in place */
+            if (ws->crossings[j].a3 == ws->crossings[j].a3) { /* interpolated */
+                cs_crossing *c = &ws->crossings[count++];
+                *c = ws->crossings[j];
+                float x = c->guess + at * (c->a1 + at * (c->a2 + at * c->a3));
+                c->x = cs__clampf(x, 0.0f, width);
+                continue;
+            }
             guess = ws->crossings[j].guess;
             k = ws->crossings[j].piece;
             pc = &ws->pieces[act[k]];
@@ -218,6 +312,9 @@ static int32_t crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, 
         cs_crossing *c = &ws->crossings[count++];
         piece_crossing(ws, pc, ys, step, width, warm, guess, c);
         c->piece = (uint16_t)k;
+        c->a3 = CS__NAN; /* not interpolated, unless: */
+        if (setup && ys_last < pc->y_bot)
+            interp_setup(ws, pc, ys, ys_last, ys_mid, samples, mid, c);
     }
     if (live == total)
         kept = count;
@@ -319,8 +416,7 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
         if (k == 0)
             for (idle = 0; idle < n; idle++)
                 ord[idle] = (cs_index)idle;
-        float ys = (float)y + ((float)k + 0.5f) * weight;
-        int32_t count = crossings_at(r, act, ord, &idle, live, ys, weight);
+        int32_t count = crossings_at(r, act, ord, &idle, live, y, k, samples);
         if (count < 0) {
             if (r->sticky.status == CS_OK) {
                 const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];

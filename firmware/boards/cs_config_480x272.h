@@ -5,25 +5,27 @@
  *
  * Where the RAM goes (bytes, Cortex-M4; tools/fw_budget.sh prints the
  * measured figures on every build):
- *   workspace      39,156: line buffers, 12 floats per pixel (area,
- *                  cover, claimed coverage, the cel's E and 1-T, the
- *                  stack's T) and the 16-bit opaque record: 24,018;
- *                  segment arena 120 segments x 60 + 176 pieces x (24 +
- *                  3 x 2 index): 12,480; per region 64 x 26 (paint maps,
- *                  cel): 1,664; crossings 64 x 8: 512; paint function
- *                  maps and one animated contour: 480
+ *   workspace      line buffers, 12 floats per pixel (area, cover,
+ *                  claimed coverage, the cel's E and 1-T, the stack's T)
+ *                  and the 16-bit opaque record: 24,018; segment arena
+ *                  120 segments x 60 + 160 pieces x (24 + 3 x 2 index):
+ *                  12,000; per region 64 x 26 (paint maps, cel): 1,664;
+ *                  crossings 64 x 24 (with the interpolated cubic,
+ *                  cs_line.c): 1,536; paint function maps and one
+ *                  animated contour: 480
  *   staging store  the decoder's back store shares the workspace's RAM
  *                  (firmware/fw_render.c: a union), so it costs nothing
  *   scene store    cs_scene with the capacities below: 16,388 (>= 16 KiB)
  *   float line     the stack's E, then the pixels: 5,760
- * which is 61,304 of 65,536, leaving 4,232 for the stack (2,048 + 32 guard;
- * 1,500 measured), the decoder (408), the semihosting command line (256)
- * and board state; 1,040 bytes stay free on mps2-an386.
+ * leaving the rest for the stack (2,048 + 32 guard; 1,500 measured), the
+ * decoder (408), the semihosting command line (256) and board state; 304
+ * bytes stay free on mps2-an386 (65,232 of 65,536 measured).
  *
  * Pieces: about one y-monotone piece per segment in practice (the built-in
  * scenes: 67 pieces for 73 segments; a horizontal edge gives none, a
  * segment whose y turns gives two or more, a wild rational cubic up to 5);
- * a frame that needs more than 208 reports CS_ERR_CAP_PIECES.
+ * a frame that needs more than 160 reports CS_ERR_CAP_PIECES. (176 until
+ * the crossings grew by 12 bytes each.)
  */
 #ifndef CS_CONFIG_480X272_H
 #define CS_CONFIG_480X272_H
@@ -35,8 +37,10 @@
 #define CS_CFG_MAX_CONTOURS 128
 #define CS_CFG_MAX_POINTS 520
 #define CS_CFG_MAX_SEGMENTS 120
-#define CS_CFG_MAX_PIECES 176
+#define CS_CFG_MAX_PIECES 160
 #define CS_CFG_MAX_CROSSINGS 64
+/* No data cache to straddle: crossings stay 24 bytes (cs_config.h). */
+#define CS_CFG_CROSSING_ALIGN 4
 #define CS_CFG_INDEX_TYPE uint16_t
 /* Functional paints and CSG are kept small: signage uses a few gradients. */
 #define CS_CFG_MAX_FUNCS 4
