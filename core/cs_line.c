@@ -183,17 +183,24 @@ static inline void piece_crossing(const cs_workspace *ws, const cs_piece *pc, fl
     c->operand = pc->operand;
 }
 
-/* x of segment s at parameter u, where it meets level ys, and dx/dy there
- * (the ratio of x' and y', each with the weight's derivative folded in). */
-static inline float x_and_slope(const cs_segment *s, float u, float ys, float *dxdy)
+/* Segment s at parameter u, where it meets level ys: x, dx/dy, W, and
+ * g' = Y' - ys W' (the level polynomial's derivative, so du/dy = W / g'). */
+typedef struct level_point {
+    float x, dxdy, w, g1;
+} level_point;
+
+static inline level_point level_point_at(const cs_segment *s, float u, float ys)
 {
     float dX, dY, dW;
     float X = cs__horner_d(s->x, s->degree, u, &dX);
     float W = cs__horner_d(s->w, s->degree, u, &dW);
     (void)cs__horner_d(s->y, s->degree, u, &dY);
-    float x = X / W;
-    *dxdy = (dX - x * dW) / (dY - ys * dW);
-    return x;
+    level_point p;
+    p.x = X / W;
+    p.w = W;
+    p.g1 = dY - ys * dW;
+    p.dxdy = (dX - p.x * dW) / p.g1;
+    return p;
 }
 
 /* How far (px) the cubic may miss the middle root: below 1/4 of 1/255 of
@@ -225,18 +232,18 @@ static void interp_setup(const cs_workspace *ws, const cs_piece *pc, float ys0, 
         c->a3 = 0.0f;
         return;
     }
-    float d0, d1, dY, dW, slope;
-    float x0 = x_and_slope(s, u0, ys0, &d0);
-    float w0 = cs__horner_d(s->w, s->degree, u0, &dW);
-    (void)cs__horner_d(s->y, s->degree, u0, &dY);
-    /* Newton's start on ys_last: du/dy = W / (Y' - y W') at u0. */
-    float guess = cs__clampf(u0 + (ys_last - ys0) * w0 / (dY - ys0 * dW), pc->u0, pc->u1);
+    float slope;
+    level_point p0 = level_point_at(s, u0, ys0);
+    float x0 = p0.x;
+    /* Newton's start on ys_last: du/dy = W / g' at u0. */
+    float guess = cs__clampf(u0 + (ys_last - ys0) * p0.w / p0.g1, pc->u0, pc->u1);
     bool rising = pc->dir > 0;
     float u1 = cs__solve_level_from(s->y, s->w, s->degree, ys_last, pc->u0, pc->u1, guess,
                                     rising, &slope);
-    float x1 = x_and_slope(s, u1, ys_last, &d1);
+    level_point p1 = level_point_at(s, u1, ys_last);
+    float x1 = p1.x;
     /* Hermite over t = k / n1 in [0, 1]: end slopes in x per unit t. */
-    float h = ys_last - ys0, m0 = d0 * h, m1 = d1 * h;
+    float h = ys_last - ys0, m0 = p0.dxdy * h, m1 = p1.dxdy * h;
     float c2 = 3.0f * (x1 - x0) - 2.0f * m0 - m1, c3 = 2.0f * (x0 - x1) + m0 + m1;
     float t = (float)mid / n1;
     float um = cs__solve_level_from(s->y, s->w, s->degree, ys_mid, pc->u0, pc->u1,
