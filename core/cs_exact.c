@@ -40,9 +40,11 @@
  *    once per band instead of once per sample. That the order holds is
  *    proved, not sampled: each arc's Bezier control points over its band
  *    come from its ends, and since weights are positive the arc lies in
- *    their convex hull, so within a strip [dmin, dmax] around its chord. Walking the arcs in chord order, an arc whose strip may reach
- *    left of the strips before it (the test is linear in y, so checking
- *    both band ends is enough) may cross them; the band is then cut where
+ *    their convex hull, so within a strip [dmin, dmax] around its chord,
+ *    and within the hull's x range. Walking the arcs in chord order, an
+ *    arc whose strip may reach left of the strips before it (the test is
+ *    linear in y, so checking both band ends is enough) and whose x range
+ *    begins left of where theirs end may cross them; the band is then cut where
  *    the two chords cross (exact for straight edges), or in the middle,
  *    and both halves are checked again. A band is accepted when the sum of
  *    possible overlaps times its height is below BAND_TOL (2^-15 px^2):
@@ -218,7 +220,7 @@ static inline void place_end(const cs_segment *s, bool poly, float yv, float lo,
                     lo = u;
                 else
                     hi = u;
-                float st = -f / d, next = u + st;
+                float rd = 1.0f / d, st = -f * rd, next = u + st;
                 /* g being a cubic, the step leaves exactly
                  * (g''/2 + g3 s) s^2 of it */
                 if ((cs__absf(dd) + 2.0f * cs__absf(g[3] * st)) * (st * st) <= tol) {
@@ -230,7 +232,7 @@ static inline void place_end(const cs_segment *s, bool poly, float yv, float lo,
                 }
                 /* Chebyshev's correction (the root of the quadratic model)
                  * makes the steps converge cubically where the model holds. */
-                float c = 0.5f * dd * st / d;
+                float c = 0.5f * dd * st * rd;
                 if (c > -0.5f && c < 0.5f)
                     next -= c * st;
                 if (!(next > lo && next < hi))
@@ -399,13 +401,13 @@ static float poly_level(const float *Y, int p, float level, float lo, float hi, 
                 lo = u;
             else
                 hi = u;
-            float st = -f / d, next = u + st;
+            float rd = 1.0f / d, st = -f * rd, next = u + st;
             if ((cs__absf(dd) + 2.0f * cs__absf(y3 * st)) * (st * st) <= tol) {
                 /* g' there: exact Taylor for a cubic */
                 *d1 = d + st * (dd + y3x3 * st);
                 return cs__clampf(next, lo, hi);
             }
-            float c = 0.5f * dd * st / d;
+            float c = 0.5f * dd * st * rd;
             if (c > -0.5f && c < 0.5f)
                 next -= c * st;
             if (!(next > lo && next < hi))
@@ -584,11 +586,17 @@ static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, boo
 static bool band_ordered(const cs_exact_piece *ex, const uint32_t *ord, uint32_t m, float ya,
                          float yb, float *cut)
 {
-    float reach_top = -HUGE_X, reach_bot = -HUGE_X, overlap = 0.0f;
+    float reach_top = -HUGE_X, reach_bot = -HUGE_X, reach_x = -HUGE_X, overlap = 0.0f;
     uint32_t first = 0;
     for (uint32_t k = 0; k < m; k++) {
         const cs_exact_piece *e = &ex[ord[k]];
         float g = cs__maxf(reach_top - (e->top.x + e->dmin), reach_bot - (e->bot.x + e->dmin));
+        /* Either bound caps the width of what could lie on the wrong
+         * side; the x ranges settle what the strips cannot near a
+         * vertical tangent, where a strip stays wide however thin the
+         * band (the top of a circle beside a steep edge took a dozen cuts). */
+        g = cs__minf(g, reach_x - e->xmin);
+        reach_x = cs__maxf(reach_x, e->xmax);
         if (g > 0.0f) {
             if (overlap == 0.0f)
                 first = k;
@@ -889,11 +897,14 @@ static void add_line(exact_ctx *cx, float sign, float x0, float y0, float x1, fl
  * column: its height is at most that of the cell, and its moment about
  * either column differs from the true one by at most dx times it, so a
  * pixel moves by at most dx. A step that would leave the bracket
- * bisects it. */
+ * bisects it. *rd_out gets 1/h' at the last iterate (0 if none was
+ * taken): the caller's guess for the next column's cut is one column's
+ * Newton step from this one, which spares the chord's division. */
 #define CUT_TOL (1.0f / 16384.0f)
 #define CUT_MAX_ITER 24
-static float cut_t(const float *a, float r, float lo, float hi, float t, bool inc)
+static float cut_t(const float *a, float r, float lo, float hi, float t, bool inc, float *rd_out)
 {
+    *rd_out = 0.0f;
     for (int it = 0; it < CUT_MAX_ITER; it++) {
         float a3t = a[3] * t;
         float h = t * (a[1] + t * (a[2] + a3t)) - r;
@@ -905,10 +916,11 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
             hi = t;
         float dd = 2.0f * (a[2] + 3.0f * a3t);
         float d = a[1] + t * (2.0f * a[2] + 3.0f * a3t);
-        float st = -h / d, next = t + st;
+        float rd = 1.0f / d, st = -h * rd, next = t + st;
+        *rd_out = rd;
         if ((cs__absf(dd) + 2.0f * cs__absf(a[3] * st)) * (st * st) <= 2.0f * CUT_TOL)
             return cs__clampf(next, lo, hi);
-        float c = 0.5f * dd * st / d;
+        float c = 0.5f * dd * st * rd;
         if (c > -0.5f && c < 0.5f)
             next -= c * st;
         if (!(next > lo && next < hi))
@@ -976,10 +988,14 @@ static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, cons
     float m4 = (3.0f * a[1] * b[3] + 2.0f * a[2] * b[2] + a[3] * b[1]) * 0.25f;
     float m5 = (3.0f * a[2] * b[3] + 2.0f * a[3] * b[2]) * 0.2f;
     float m6 = 0.5f * a[3] * b[3];
-    float t = 0.0f, xa = x0, ya = y0, Ma = 0.0f;
+    float t = 0.0f, xa = x0, ya = y0, Ma = 0.0f, rd = 0.0f;
     for (; inc ? (k < x1 && k <= width) : (k > x1 && k >= 0.0f); k += inc ? 1.0f : -1.0f) {
-        /* from the chord of what is left of the arc */
-        float tk = cut_t(a, k - x0, t, 1.0f, t + (1.0f - t) * ((k - xa) / (x1 - xa)), inc);
+        /* Newton's step from the last cut (1/x' there, a column away),
+         * or the chord of what is left of the arc */
+        float guess = t + (inc ? rd : -rd);
+        if (!(guess > t && guess < 1.0f))
+            guess = t + (1.0f - t) * ((k - xa) / (x1 - xa));
+        float tk = cut_t(a, k - x0, t, 1.0f, guess, inc, &rd);
         float yk = cs__clampf(y0 + tk * (b[1] + tk * (b[2] + tk * b[3])), ya, y1);
         float Mk = tk * tk * (m2 + tk * (m3 + tk * (m4 + tk * (m5 + tk * m6))));
         int32_t c = cs__floori(inc ? xa : k);

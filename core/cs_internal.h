@@ -48,10 +48,13 @@ static inline void cs__copy_track(cs_track *dst, const cs_track *src)
 /* A quiet NaN, as a constant (no libm). */
 #define CS__NAN (__builtin_nanf(""))
 
-/* Clamps v to [lo, hi]; NaN becomes lo, so no NaN reaches an integer cast. */
+/* Clamps v to [lo, hi] (lo <= hi); NaN becomes lo, so no NaN reaches an
+ * integer cast. Written as max then min, each the `a > b ? a : b` that
+ * SSE's maxss/minss compute, so that it compiles without branches: clamps
+ * sit in the inner loops, and whether they bite is data, not a pattern. */
 static inline float cs__clampf(float v, float lo, float hi)
 {
-    return !(v > lo) ? lo : (v > hi ? hi : v);
+    return cs__minf(cs__maxf(v, lo), hi);
 }
 
 /* True for every float that is neither NaN nor infinite. */
