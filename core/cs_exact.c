@@ -296,6 +296,12 @@ static float chord_u(float ua, float ya, float ub, float yb, float yv)
  * plane is the end plus t P' / (1 + t W'/W) with t = +-h/p. Returns the
  * number written (p - 1), or -1 if a weight is not positive (it cannot
  * be for positive segment weights, but rounding is not trusted).
+ *
+ * py is given as height below ya, not as y: near the bottom of a 1080-line
+ * screen a float y holds 2^-14 px, and an edge's cell in column c weighs
+ * its height by up to the arc's length in columns (add_poly_arc), which
+ * made long, shallow arcs 0.5/255 off pixel by pixel. Heights within the
+ * row keep 2^-24 of it.
  */
 static inline int control_points(const cs_segment *s, const cs_exact_end *a, float ya,
                           const cs_exact_end *b, float yb, float *px, float *py)
@@ -303,13 +309,13 @@ static inline int control_points(const cs_segment *s, const cs_exact_end *a, flo
     int p = s->degree;
     if (p < 2)
         return 0;
-    float t = (b->u - a->u) / (float)p;
+    float t = (b->u - a->u) / (float)p, h = yb - ya;
     if (a->dwr == 0.0f && b->dwr == 0.0f) { /* polynomial: q = 1 */
         px[0] = a->x + t * a->dx;
-        py[0] = ya + t * a->dy;
+        py[0] = t * a->dy;
         if (p == 3) {
             px[1] = b->x - t * b->dx;
-            py[1] = yb - t * b->dy;
+            py[1] = h - t * b->dy;
         }
         return p - 1;
     }
@@ -318,14 +324,14 @@ static inline int control_points(const cs_segment *s, const cs_exact_end *a, flo
         return -1;
     float f = t / q;
     px[0] = a->x + f * a->dx;
-    py[0] = ya + f * a->dy;
+    py[0] = f * a->dy;
     if (p == 3) {
         q = 1.0f - t * b->dwr;
         if (!(q > 0.0f))
             return -1;
         f = t / q;
         px[1] = b->x - f * b->dx;
-        py[1] = yb - f * b->dy;
+        py[1] = h - f * b->dy;
     }
     return p - 1;
 }
@@ -371,7 +377,7 @@ static inline void hull(const cs_segment *s, cs_exact_piece *e, float ya, float 
     /* The end control points are the arc's ends, x_top and x_bot: their d
      * is 0 by definition, which keeps rounding out of touching vertices. */
     for (int j = 0; j < k; j++) {
-        float d = px[j] - (x0 + (py[j] - ya) * slope);
+        float d = px[j] - (x0 + py[j] * slope);
         e->dmin = cs__minf(e->dmin, d);
         e->dmax = cs__maxf(e->dmax, d);
     }
@@ -762,6 +768,8 @@ static float poly_moment(const cs_segment *s, const cs_exact_end *a, float y0,
     float px[3], py[2];
     int k = control_points(s, a, y0, b, y1, px, py);
     float x0 = a->x - c, x3 = b->x - c;
+    y1 -= y0; /* heights below y0, as py */
+    y0 = 0.0f;
     if (k == 1) { /* quadratic */
         float x1 = px[0] - c;
         float d0 = py[0] - y0, d1 = y1 - py[0];
@@ -1011,14 +1019,18 @@ static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, cons
 }
 
 /*
- * add_poly_arc serves arcs across at most this many columns. A long,
- * shallow arc has a long control polygon, whose power-basis coefficients
- * are large and cancel in M(t): at 32 columns the bench's accuracy sample
- * showed pixels 0.5-0.8/255 off on the demo's ribbons. A longer arc is
- * cut into parts of about half as many columns, at equal steps of u, each
- * part placed by its ends like any arc (add_poly_monotone).
+ * add_poly_arc serves arcs across at most this many columns. Its
+ * power-basis coefficients grow with the arc's length L in columns, so
+ * the cuts and the cells' moments carry about L 2^-24 px of rounding:
+ * 4e-6 px at 64 columns, well below CUT_TOL. (The limit was 8, for errors
+ * of 0.5-0.8/255 on the demo's ribbons at 32 that were put down to the
+ * moment polynomial; they came from heights taken as absolute y, see
+ * control_points, and with heights within the row 64 and 256 columns
+ * measure the same as 8.) A longer arc is cut into parts of about half as
+ * many columns, at equal steps of u, each part placed by its ends like
+ * any arc (add_poly_monotone).
  */
-#define POLY_ARC_COLUMNS 8.0f
+#define POLY_ARC_COLUMNS 64.0f
 
 /* An x-monotone polynomial part from a (at ya) to b (at yb), if it is
  * short enough for add_poly_arc and its control points can be formed. */
@@ -1032,9 +1044,9 @@ static inline bool add_poly_part(exact_ctx *cx, const cs_segment *s, float sign,
     if (k <= 0)
         return false;
     bx[0] = a->x;
-    by[0] = ya;
+    by[0] = 0.0f; /* heights below ya (see control_points) */
     bx[k + 1] = b->x;
-    by[k + 1] = yb;
+    by[k + 1] = yb - ya;
     add_poly_arc(cx, sign, k + 1, bx, by);
     return true;
 }
@@ -1112,7 +1124,7 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
         return;
     }
     if (s->degree == 1) {
-        add_line(cx, sign, e->top.x, ya, e->bot.x, yb);
+        add_line(cx, sign, e->top.x, 0.0f, e->bot.x, yb - ya); /* heights in the band */
         return;
     }
     bool poly = polynomial(s);
