@@ -786,6 +786,20 @@ static float poly_moment(const cs_segment *s, const cs_exact_end *a, float y0,
     return 0.5f * (x0 + x3) * (y1 - y0);
 }
 
+/*
+ * A height within the row (0..1) rounded to a multiple of 2^-20 px: adding
+ * 8 leaves no bit below that, and subtracting it again is exact. An edge
+ * adds its cells' heights to `cover`, and a pixel inside a region must
+ * come out covered exactly 1, or it never counts as opaque and everything
+ * behind it is composited too. Heights on one grid make every partial sum
+ * exact, so an edge's cells add up to its band's height to the bit, as
+ * they did when heights were absolute y (multiples of its ulp).
+ */
+static inline float on_grid(float h)
+{
+    return (h + 8.0f) - 8.0f;
+}
+
 /* A cell of an edge: height dy of it in column c, whose part right of
  * the edge has area dy - m. */
 static inline void put_cell(exact_ctx *cx, float sign, int32_t c, float dy, float m)
@@ -877,7 +891,7 @@ static void add_line(exact_ctx *cx, float sign, float x0, float y0, float x1, fl
         float dydx = (y1 - y0) / (x1 - x0);
         float k = cs__maxf((float)(cs__floori(x0) + 1), 0.0f);
         for (; k < x1 && k <= width; k += 1.0f) {
-            float yk = cs__clampf(y0 + (k - x0) * dydx, ya, y1);
+            float yk = cs__clampf(on_grid(y0 + (k - x0) * dydx), ya, y1);
             int32_t c = cs__floori(xa);
             put_cell(cx, sign, c, yk - ya, (0.5f * (xa + k) - (float)c) * (yk - ya));
             xa = k;
@@ -887,7 +901,7 @@ static void add_line(exact_ctx *cx, float sign, float x0, float y0, float x1, fl
         float dydx = (y1 - y0) / (x1 - x0);
         float k = cs__minf((float)(-cs__floori(-x0) - 1), width);
         for (; k > x1 && k >= 0.0f; k -= 1.0f) {
-            float yk = cs__clampf(y0 + (k - x0) * dydx, ya, y1);
+            float yk = cs__clampf(on_grid(y0 + (k - x0) * dydx), ya, y1);
             put_cell(cx, sign, (int32_t)k, yk - ya, (0.5f * (xa + k) - k) * (yk - ya));
             xa = k;
             ya = yk;
@@ -1004,7 +1018,7 @@ static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, cons
         if (!(guess > t && guess < 1.0f))
             guess = t + (1.0f - t) * ((k - xa) / (x1 - xa));
         float tk = cut_t(a, k - x0, t, 1.0f, guess, inc, &rd);
-        float yk = cs__clampf(y0 + tk * (b[1] + tk * (b[2] + tk * b[3])), ya, y1);
+        float yk = cs__clampf(on_grid(y0 + tk * (b[1] + tk * (b[2] + tk * b[3]))), ya, y1);
         float Mk = tk * tk * (m2 + tk * (m3 + tk * (m4 + tk * (m5 + tk * m6))));
         int32_t c = cs__floori(inc ? xa : k);
         put_cell(cx, sign, c, yk - ya, (Mk - Ma) + (x0 - (float)c) * (yk - ya));

@@ -341,7 +341,7 @@ static double compare_scene(const tscene *t)
     st = render_core(t, CS_AA_SUBSCAN, 16, s16);
     CHECK(st == CS_OK, "%s: aa 16 render: %s", t->name, cs_status_str(st));
     double worst = 0.0, worst16 = 0.0, area_ref = 0.0, area_ex = 0.0, sum = 0.0;
-    long partial = 0;
+    long partial = 0, inner_off = 0;
     int wi = 0, wj = 0;
     for (size_t k = 0; k < np; k++) {
         double d = fabs(ex[k] - ref[k]);
@@ -354,6 +354,11 @@ static double compare_scene(const tscene *t)
             sum += d;
             partial++;
         }
+        /* A pixel wholly inside must be covered exactly 1, not to within
+         * rounding: only then is it opaque, and the early-out skips what
+         * lies behind it (an edge's cells must add up to its height). */
+        if (ref[k] == 1.0 && ex[k] != 1.0)
+            inner_off++;
         d = fabs(s16[k] - ref[k]);
         if (d > worst16)
             worst16 = d;
@@ -364,6 +369,8 @@ static double compare_scene(const tscene *t)
         g_worst_exact = worst;
     g_err_sum += sum;
     g_err_count += partial;
+    CHECK(inner_off == 0, "%s: %ld pixels wholly inside are not covered exactly 1", t->name,
+          inner_off);
     CHECK(worst <= TOL_EXACT, "%s: exact off by %.3f/255 at (%d, %d): %.6f vs %.6f", t->name,
           worst * 255.0, wi, wj, ex[wj * t->width + wi], ref[wj * t->width + wi]);
     printf("%-22s exact max err %.4f/255 at (%3d,%3d)   aa16 max err %6.2f/255   area %.4f vs %.4f\n",
