@@ -756,34 +756,55 @@ static float rational_moment(const cs_segment *s, const cs_exact_end *e0, const 
 }
 
 /*
- * Int (x - c) dy along a polynomial arc from a (at y0) to b (at y1), in
- * closed form from its Bezier control points P0..Pp:
+ * The control polygon (bx, by)[0..p] of the arc from end a (at ya) to end
+ * b (at yb), y as height below ya (see control_points). Returns its
+ * degree p, or less than 2 if it has none (a straight segment, or a
+ * weight that is not positive).
+ */
+static inline int arc_polygon(const cs_segment *s, const cs_exact_end *a, float ya,
+                              const cs_exact_end *b, float yb, float *bx, float *by)
+{
+    int k = control_points(s, a, ya, b, yb, &bx[1], &by[1]);
+    if (k <= 0)
+        return 0;
+    bx[0] = a->x;
+    by[0] = 0.0f;
+    bx[k + 1] = b->x;
+    by[k + 1] = yb - ya;
+    return k + 1;
+}
+
+/*
+ * Int (x - c) dy along a polynomial arc of degree p (2 or 3) in closed
+ * form from its Bezier control points (bx, by)[0..p]:
  * sum_ij K_ij (x_i - c) (y_(j+1) - y_j), K_ij = Int B_i^p (p B_j^(p-1))
  * = C(p,i) C(p-1,j) / (2 C(2p-1,i+j)). Exact, like the 3-node Gauss rule
- * it replaces, but with no evaluation of the segment.
+ * it replaced, but with no evaluation of the segment.
  */
-static float poly_moment(const cs_segment *s, const cs_exact_end *a, float y0,
-                         const cs_exact_end *b, float y1, float c)
+static inline float bezier_moment(int p, const float *bx, const float *by, float c)
 {
-    float px[3], py[2];
-    int k = control_points(s, a, y0, b, y1, px, py);
-    float x0 = a->x - c, x3 = b->x - c;
-    y1 -= y0; /* heights below y0, as py */
-    y0 = 0.0f;
-    if (k == 1) { /* quadratic */
-        float x1 = px[0] - c;
-        float d0 = py[0] - y0, d1 = y1 - py[0];
+    float x0 = bx[0] - c, x1 = bx[1] - c, x3 = bx[p] - c;
+    if (p == 2) {
+        float d0 = by[1] - by[0], d1 = by[2] - by[1];
         return (0.5f * x0 + (1.0f / 3.0f) * x1 + (1.0f / 6.0f) * x3) * d0 +
                ((1.0f / 6.0f) * x0 + (1.0f / 3.0f) * x1 + 0.5f * x3) * d1;
     }
-    if (k == 2) { /* cubic */
-        float x1 = px[0] - c, x2 = px[1] - c;
-        float d0 = py[0] - y0, d1 = py[1] - py[0], d2 = y1 - py[1];
-        return (0.5f * x0 + 0.3f * x1 + 0.15f * x2 + 0.05f * x3) * d0 +
-               (0.2f * x0 + 0.3f * x1 + 0.3f * x2 + 0.2f * x3) * d1 +
-               (0.05f * x0 + 0.15f * x1 + 0.3f * x2 + 0.5f * x3) * d2;
-    }
-    return 0.5f * (x0 + x3) * (y1 - y0);
+    float x2 = bx[2] - c;
+    float d0 = by[1] - by[0], d1 = by[2] - by[1], d2 = by[3] - by[2];
+    return (0.5f * x0 + 0.3f * x1 + 0.15f * x2 + 0.05f * x3) * d0 +
+           (0.2f * x0 + 0.3f * x1 + 0.3f * x2 + 0.2f * x3) * d1 +
+           (0.05f * x0 + 0.15f * x1 + 0.3f * x2 + 0.5f * x3) * d2;
+}
+
+/* Int (x - c) dy along a polynomial arc from a (at y0) to b (at y1). */
+static float poly_moment(const cs_segment *s, const cs_exact_end *a, float y0,
+                         const cs_exact_end *b, float y1, float c)
+{
+    float bx[4], by[4];
+    int p = arc_polygon(s, a, y0, b, y1, bx, by);
+    if (p < 2) /* no control polygon: the chord's trapezoid */
+        return 0.5f * ((a->x - c) + (b->x - c)) * (y1 - y0);
+    return bezier_moment(p, bx, by, c);
 }
 
 /*
@@ -961,8 +982,6 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
  * (y1 - y0): one solve for t per cut and no other evaluation. An arc in
  * one column takes the moment from its control points directly.
  */
-
-
 static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, const float *by)
 {
     float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = (float)cx->width;
@@ -971,20 +990,7 @@ static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, cons
                   : cs__minf((float)(-cs__floori(-x0) - 1), width);
     if (inc ? !(k < x1 && k <= width) : !(k > x1 && k >= 0.0f)) { /* one column */
         int32_t c = cs__floori(cs__minf(x0, x1));
-        float fc = (float)c, m;
-        float c0 = x0 - fc, c3 = x1 - fc, c1 = bx[1] - fc;
-        if (p == 3) {
-            float c2 = bx[2] - fc;
-            float d0 = by[1] - y0, d1 = by[2] - by[1], d2 = y1 - by[2];
-            m = (0.5f * c0 + 0.3f * c1 + 0.15f * c2 + 0.05f * c3) * d0 +
-                (0.2f * c0 + 0.3f * c1 + 0.3f * c2 + 0.2f * c3) * d1 +
-                (0.05f * c0 + 0.15f * c1 + 0.3f * c2 + 0.5f * c3) * d2;
-        } else {
-            float d0 = by[1] - y0, d1 = y1 - by[1];
-            m = (0.5f * c0 + (1.0f / 3.0f) * c1 + (1.0f / 6.0f) * c3) * d0 +
-                ((1.0f / 6.0f) * c0 + (1.0f / 3.0f) * c1 + 0.5f * c3) * d1;
-        }
-        put_cell(cx, sign, c, y1 - y0, m);
+        put_cell(cx, sign, c, y1 - y0, bezier_moment(p, bx, by, (float)c));
         return;
     }
     float a[4], b[4];
@@ -1054,14 +1060,10 @@ static inline bool add_poly_part(exact_ctx *cx, const cs_segment *s, float sign,
     if (!(cs__absf(b->x - a->x) <= POLY_ARC_COLUMNS))
         return false;
     float bx[4], by[4];
-    int k = control_points(s, a, ya, b, yb, &bx[1], &by[1]);
-    if (k <= 0)
+    int p = arc_polygon(s, a, ya, b, yb, bx, by);
+    if (p < 2)
         return false;
-    bx[0] = a->x;
-    by[0] = 0.0f; /* heights below ya (see control_points) */
-    bx[k + 1] = b->x;
-    by[k + 1] = yb - ya;
-    add_poly_arc(cx, sign, k + 1, bx, by);
+    add_poly_arc(cx, sign, p, bx, by);
     return true;
 }
 
