@@ -35,6 +35,22 @@ HOST_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Wmissing-p
         -Icore -Ihal -Ihost-sim -Itools -D_POSIX_C_SOURCE=200809L -MMD -MP
 CORE_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) $(WARN) $(CORE_FREESTANDING) -Icore -MMD -MP
 
+# Objects also depend on a record of the flags they are compiled with,
+# build/flags/NAME, which is rewritten (so newer) only when the flags
+# change: `make OPT=-O0`, an edited flag or a file moved between the
+# firmware's size- and speed-optimised lists rebuilds what it affects,
+# where the sources alone would leave stale objects that link silently.
+# $(eval $(call flags_record,NAME,FLAGS)) writes it when make reads this.
+FLAGS_DIR := $(BUILD)/flags
+define flags_record
+$$(shell mkdir -p $(FLAGS_DIR))
+ifneq ($$(file <$(FLAGS_DIR)/$(1)),$(strip $(2)))
+$$(file >$(FLAGS_DIR)/$(1),$(strip $(2)))
+endif
+endef
+# A record removed while make runs (make clean) only forces a rebuild.
+$(FLAGS_DIR)/%: ;
+
 .PHONY: all deps demo demo-all test test-all check-core clean
 # The default goal; its prerequisites are listed after the fragments.
 all:
@@ -53,7 +69,8 @@ demo:
 	$(Q)$(MAKE) --no-print-directory demo-all
 
 # ------------------------------------------------------------------ core
-$(HOST)/core/%.o: core/%.c $(CORE_HDR)
+$(eval $(call flags_record,host-core,$(CC) $(CORE_CFLAGS)))
+$(HOST)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/host-core
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CORE_CFLAGS) -c $< -o $@
 
@@ -68,10 +85,12 @@ ARM_CORE_FLAGS := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
         -ffunction-sections -fdata-sections
 RISCV_CC := riscv64-unknown-elf-gcc
 RISCV_CORE_FLAGS := -march=rv32imafc -mabi=ilp32f -mcmodel=medany
-$(BUILD)/check-arm/%.o: core/%.c $(CORE_HDR)
+$(eval $(call flags_record,check-arm,$(ARM_CC) $(ARM_CORE_FLAGS) $(CORE_CFLAGS)))
+$(eval $(call flags_record,check-riscv,$(RISCV_CC) $(RISCV_CORE_FLAGS) $(CORE_CFLAGS)))
+$(BUILD)/check-arm/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/check-arm
 	@mkdir -p $(dir $@)
 	$(Q)$(ARM_CC) $(ARM_CORE_FLAGS) $(CORE_CFLAGS) -Werror -c $< -o $@
-$(BUILD)/check-riscv/%.o: core/%.c $(CORE_HDR)
+$(BUILD)/check-riscv/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/check-riscv
 	@mkdir -p $(dir $@)
 	$(Q)$(RISCV_CC) $(RISCV_CORE_FLAGS) $(CORE_CFLAGS) -Werror -c $< -o $@
 
@@ -86,7 +105,8 @@ check-core: $(CORE_OBJ) $(patsubst core/%.c,$(BUILD)/check-arm/%.o,$(CORE_SRC)) 
 		$(patsubst core/%.c,$(BUILD)/check-arm/%.o,$(CORE_SRC)) | tail -1
 
 # ------------------------------------------------------------- host code
-$(HOST)/obj/%.o: %.c
+$(eval $(call flags_record,host-obj,$(CC) $(HOST_CFLAGS) $(PKG_CFLAGS)))
+$(HOST)/obj/%.o: %.c $(FLAGS_DIR)/host-obj
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) $(PKG_CFLAGS) -c $< -o $@
 

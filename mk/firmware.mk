@@ -64,7 +64,9 @@ FW_INC_$(1) := -Icore -Ifirmware -Ifirmware/scenes -Ifirmware/boards -Ifirmware/
         -Ifirmware/boards/$(1) -Ihal/mcu -DCS_CFG_FILE='"cs_board_config.h"'
 FW_OBJ_$(1) := $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(CORE_SRC) $(FW_COMMON_SRC) $$(BOARD_SRC))
 
-$(BUILD)/$(1)/obj/%.o: %.c
+$$(eval $$(call flags_record,fw-$(1),$(ARM_CC) $$(FW_CPU_$(1)) $(OPT) -Os $(FW_CFLAGS) \
+        $$(FW_INC_$(1)) cold: $(FW_COLD_SRC)))
+$(BUILD)/$(1)/obj/%.o: %.c $(FLAGS_DIR)/fw-$(1)
 	@mkdir -p $$(dir $$@)
 	$(Q)$(ARM_CC) $$(FW_CPU_$(1)) $$(FW_OPT) $(FW_CFLAGS) $$(FW_INC_$(1)) -c $$< -o $$@
 $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(FW_COLD_SRC)): FW_OPT := -Os
