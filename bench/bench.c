@@ -4,6 +4,7 @@
  *   bench [--sections speed,accuracy,beam,scaling] [--scenes blobs,signage,...]
  *         [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]
  *   bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]
+ *   bench --profile SCENE --peer cairo|cairo-fine|freetype [--size WxH] [--frames N]
  *   bench --selftest
  *
  * For each reference scene (BENCHMARKS.md) the same geometry is rendered by
@@ -904,6 +905,45 @@ static int selftest(void)
     return failed != 0;
 }
 
+/* ------------------------------------------------------------- profile */
+
+/* One whole frame of a peer, for callgrind's --toggle-collect=peer_frame:
+ * the same call the speed section times. */
+__attribute__((noinline)) static double peer_frame(peers *p, int which)
+{
+    double t0 = bench_now();
+    if (which == V_CAIRO)
+        peer_cairo_frame(p->cairo, &p->set, 0, p->set.region_count, false);
+    else if (which == V_CAIRO_FINE)
+        peer_cairo_frame(p->cairo_fine, &p->set, 0, p->set.region_count, false);
+    else
+        peer_ft_frame(p->ft, &p->set, 0, p->set.region_count, false);
+    return bench_now() - t0;
+}
+
+/* --profile SCENE --peer NAME: frames of one peer on the loaded scene, so
+ * that its instructions per frame can be counted as celscan's are. */
+static void profile_peer(const char *name, int w, int h, int frames)
+{
+    int which = strcmp(name, "cairo") == 0        ? V_CAIRO
+                : strcmp(name, "cairo-fine") == 0 ? V_CAIRO_FINE
+                : strcmp(name, "freetype") == 0   ? V_FT
+                                                  : -1;
+    if (which < 0)
+        die("unknown peer '%s' (cairo, cairo-fine, freetype)", name);
+    peers p;
+    peers_init(&p, w, h);
+    peers_prepare(&p, w, h);
+    double *s = malloc((size_t)frames * sizeof *s);
+    if (!s)
+        die("out of memory");
+    for (int f = 0; f < frames; f++)
+        s[f] = peer_frame(&p, which);
+    printf("%.3f ms/frame\n", 1e3 * bench_median(s, frames));
+    free(s);
+    peers_free(&p);
+}
+
 /* --------------------------------------------------------------- main */
 
 static void usage(void)
@@ -912,6 +952,7 @@ static void usage(void)
           "rational,anim]\n"
           "             [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]\n"
           "       bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]\n"
+          "       bench --profile SCENE --peer cairo|cairo-fine|freetype [--size WxH] [--frames N]\n"
           "       bench --selftest\n",
           stderr);
     exit(2);
@@ -941,7 +982,7 @@ int main(int argc, char **argv)
         cfg.sections[i] = true;
     for (int i = 0; i < SCENE_COUNT; i++)
         cfg.scenes[i] = true;
-    const char *profile = NULL;
+    const char *profile = NULL, *prof_peer = NULL;
     cs_aa_mode prof_aa = CS_AA_SUBSCAN;
     int prof_sub = 16;
     bool self = false, prof_cache = false;
@@ -983,6 +1024,9 @@ int main(int argc, char **argv)
             else
                 prof_sub = atoi(v);
             i++;
+        } else if (strcmp(a, "--peer") == 0 && v) {
+            prof_peer = v;
+            i++;
         } else if (strcmp(a, "--cache") == 0) {
             prof_cache = true;
         } else if (strcmp(a, "--selftest") == 0) {
@@ -1014,6 +1058,11 @@ int main(int argc, char **argv)
             load(&scene_defs[idx]);
             a = anim_load(scene_defs[idx].path, g_scene);
             anim_apply(a, g_scene, 0.0);
+        }
+        if (prof_peer) {
+            anim_free(a);
+            profile_peer(prof_peer, cfg.width, cfg.height, cfg.frames);
+            return 0;
         }
         cs_target t;
         target_init(&t, cfg.width, cfg.height);

@@ -71,6 +71,30 @@ cat "$res/celsim.txt"
     echo "(tools/cg_functions.py), one frame of Many-blobs at --aa 16:"
     echo
     python3 tools/cg_functions.py "$tmp/callgrind-blobs-16.out" 16
+
+    # The same count for the peers (bench --profile SCENE --peer NAME runs the
+    # call the speed section times): a ratio no load on the machine can move.
+    echo
+    echo "### Instructions per frame against the peers (callgrind, one 1920x1080 frame each)"
+    echo
+    echo "| scene | celscan exact | cairo | FreeType | exact/cairo | exact/FT |"
+    echo "|---|---:|---:|---:|---:|---:|"
+    for scene in blobs signage thin rational; do
+        count() { # callgrind's total for one frame of bench --profile "$scene" "$@"
+            valgrind --tool=callgrind --callgrind-out-file="$tmp/cg-peer.out" \
+                --toggle-collect="$1" "$bench" --profile "$scene" "$2" "$3" --frames 1 2>&1 |
+                sed -n 's/.*Collected : *//p'
+        }
+        x=$(count celscan_frame --aa exact)
+        c=$(count peer_frame --peer cairo)
+        f=$(count peer_frame --peer freetype)
+        awk -v s="$scene" -v x="$x" -v c="$c" -v f="$f" 'BEGIN {
+            printf "| %s | %.1f M | %.1f M | %.1f M | %.2f | %.2f |\n", s, x / 1e6, c / 1e6, f / 1e6, x / c, x / f }'
+    done
+    echo
+    echo "Instructions are not time (the speed table has the time): pixman's SIMD composites"
+    echo "several pixels an instruction, and cairo draws each shape into a whole frame in memory,"
+    echo "where celscan keeps one line. The ratio is the one figure here that load cannot move."
 } >"$res/callgrind.txt"
 cat "$res/callgrind.txt"
 
