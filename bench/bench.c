@@ -708,17 +708,6 @@ static void blob_scene(int k, int count)
     }
 }
 
-static double median_ms(int n, double (*fn)(void *), void *arg)
-{
-    double *s = malloc((size_t)n * sizeof *s);
-    fn(arg);
-    for (int k = 0; k < n; k++)
-        s[k] = fn(arg);
-    double m = 1e3 * bench_median(s, n);
-    free(s);
-    return m;
-}
-
 typedef struct frame_arg {
     cs_target *t;
     cs_render_opts o;
@@ -744,14 +733,41 @@ static double frame_fn(void *arg)
     }
 }
 
-static double measure(int n, int w, int h, int which, cs_aa_mode aa, int sub, peers *p)
+/* A renderer and mode of one scaling row. */
+typedef struct variant {
+    int which; /* as in frame_arg */
+    cs_aa_mode aa;
+    int sub;
+} variant;
+
+/*
+ * Median ms per frame of each of v[0..count) over n rounds. The variants
+ * take turns within a round (after one warm-up frame each), so a slow
+ * spell of the shared machine falls on all of them alike, as in the speed
+ * section; one after another, a spell skewed a whole row.
+ */
+static void measure_row(int n, int w, int h, const variant *v, int count, peers *p, double *ms)
 {
-    cs_target t;
-    target_init(&t, w, h);
-    frame_arg a = {&t, opts_for(w, h, aa, sub), p, which};
-    double ms = median_ms(n, frame_fn, &a);
-    target_free(&t);
-    return ms;
+    cs_target *t = malloc((size_t)count * sizeof *t);
+    frame_arg *a = malloc((size_t)count * sizeof *a);
+    double *s = malloc((size_t)count * (size_t)n * sizeof *s);
+    if (!t || !a || !s)
+        die("out of memory");
+    for (int i = 0; i < count; i++) {
+        target_init(&t[i], w, h);
+        a[i] = (frame_arg){&t[i], opts_for(w, h, v[i].aa, v[i].sub), p, v[i].which};
+        frame_fn(&a[i]);
+    }
+    for (int k = 0; k < n; k++)
+        for (int i = 0; i < count; i++)
+            s[(size_t)i * (size_t)n + (size_t)k] = frame_fn(&a[i]);
+    for (int i = 0; i < count; i++) {
+        ms[i] = 1e3 * bench_median(&s[(size_t)i * (size_t)n], n);
+        target_free(&t[i]);
+    }
+    free(s);
+    free(a);
+    free(t);
 }
 
 static void run_scaling(const config *cfg)
@@ -760,7 +776,7 @@ static void run_scaling(const config *cfg)
     int n = cfg->repeat < 5 ? cfg->repeat : 5;
     int w = cfg->width;
 
-    out("### Time against output height (Many-blobs, width %d, shapes stretched): median ms over %d runs\n\n",
+    out("### Time against output height (Many-blobs, width %d, shapes stretched): median ms over %d interleaved runs\n\n",
         w, n);
     out("| height | celscan aa 16 ms | us/line | celscan exact ms | us/line | cairo ms | us/line |\n");
     out("|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -773,17 +789,17 @@ static void run_scaling(const config *cfg)
         peers p;
         peers_init(&p, w, h);
         peers_prepare(&p, w, h);
-        double a = measure(n, w, h, 0, CS_AA_SUBSCAN, 16, &p);
-        double b = measure(n, w, h, 0, CS_AA_EXACT, 0, &p);
-        double c = measure(n, w, h, 1, CS_AA_SUBSCAN, 0, &p);
-        out("| %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", h, a, 1e3 * a / h, b, 1e3 * b / h,
-            c, 1e3 * c / h);
+        const variant v[3] = {{0, CS_AA_SUBSCAN, 16}, {0, CS_AA_EXACT, 0}, {1, CS_AA_SUBSCAN, 0}};
+        double ms[3];
+        measure_row(n, w, h, v, 3, &p, ms);
+        out("| %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", h, ms[0], 1e3 * ms[0] / h, ms[1],
+            1e3 * ms[1] / h, ms[2], 1e3 * ms[2] / h);
         peers_free(&p);
     }
 
     int h = cfg->height;
     out("\n### Time against segment count (64 blobs of k cubic segments on the same smooth outlines, "
-        "%dx%d)\n\n", w, h);
+        "%dx%d): median ms over %d interleaved runs\n\n", w, h, n);
     out("| segments per blob | total segments | celscan aa 16 ms | celscan exact ms | cairo ms | FreeType ms |\n");
     out("|---:|---:|---:|---:|---:|---:|\n");
     const int ks[] = {4, 8, 16, 32, 64};
@@ -794,28 +810,38 @@ static void run_scaling(const config *cfg)
         peers p;
         peers_init(&p, w, h);
         peers_prepare(&p, w, h);
-        double a = measure(n, w, h, 0, CS_AA_SUBSCAN, 16, &p);
-        double b = measure(n, w, h, 0, CS_AA_EXACT, 0, &p);
-        double c = measure(n, w, h, 1, CS_AA_SUBSCAN, 0, &p);
-        double d = measure(n, w, h, 2, CS_AA_SUBSCAN, 0, &p);
-        out("| %d | %d | %.2f | %.2f | %.2f | %.2f |\n", ks[i], 64 * ks[i], a, b, c, d);
+        const variant v[4] = {{0, CS_AA_SUBSCAN, 16}, {0, CS_AA_EXACT, 0}, {1, CS_AA_SUBSCAN, 0},
+                              {2, CS_AA_SUBSCAN, 0}};
+        double ms[4];
+        measure_row(n, w, h, v, 4, &p, ms);
+        out("| %d | %d | %.2f | %.2f | %.2f | %.2f |\n", ks[i], 64 * ks[i], ms[0], ms[1], ms[2],
+            ms[3]);
         peers_free(&p);
     }
 
-    out("\n### Time against sub-scanlines (Many-blobs, %dx%d)\n\n", w, h);
+    out("\n### Time against sub-scanlines (Many-blobs, %dx%d): median ms over %d interleaved runs\n\n",
+        w, h, n);
     out("| --aa | ms | ms per sub-scanline |\n|---|---:|---:|\n");
     load(&scene_defs[0]);
     const int subs[] = {0, 1, 2, 4, 8, 16, 32, 64, -1};
+    variant v[sizeof subs / sizeof subs[0]];
+    int sub_of[sizeof subs / sizeof subs[0]], count = 0;
     for (size_t i = 0; i < sizeof subs / sizeof subs[0]; i++) {
         if (cfg->quick && (subs[i] > 4))
             continue;
         cs_aa_mode aa = subs[i] == 0 ? CS_AA_NONE : subs[i] < 0 ? CS_AA_EXACT : CS_AA_SUBSCAN;
-        double ms = measure(n, w, h, 0, aa, subs[i], NULL);
+        v[count] = (variant){0, aa, subs[i]};
+        sub_of[count++] = subs[i];
+    }
+    double ms[sizeof subs / sizeof subs[0]];
+    measure_row(n, w, h, v, count, NULL, ms);
+    for (int i = 0; i < count; i++) {
         char buf[16];
-        if (subs[i] > 0)
-            out("| %s | %.2f | %.2f |\n", aa_name(aa, subs[i], buf, sizeof buf), ms, ms / subs[i]);
+        if (sub_of[i] > 0)
+            out("| %s | %.2f | %.2f |\n", aa_name(v[i].aa, sub_of[i], buf, sizeof buf), ms[i],
+                ms[i] / sub_of[i]);
         else
-            out("| %s | %.2f | |\n", aa_name(aa, subs[i], buf, sizeof buf), ms);
+            out("| %s | %.2f | |\n", aa_name(v[i].aa, sub_of[i], buf, sizeof buf), ms[i]);
     }
     section_close();
 }
