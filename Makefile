@@ -42,8 +42,8 @@ CORE_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) $(WARN) $(CORE_FREESTANDING) -Icor
 # where the sources alone would leave stale objects that link silently.
 # $(eval $(call flags_record,NAME,FLAGS)) writes it when make reads this.
 FLAGS_DIR := $(BUILD)/flags
+$(shell mkdir -p $(FLAGS_DIR))
 define flags_record
-$$(shell mkdir -p $(FLAGS_DIR))
 ifneq ($$(file <$(FLAGS_DIR)/$(1)),$(strip $(2)))
 $$(file >$(FLAGS_DIR)/$(1),$(strip $(2)))
 endif

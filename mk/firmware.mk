@@ -41,6 +41,7 @@ FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c f
 # result: -ffp-contract=off and no fast-math keep every float operation as
 # written, so the frames' CRCs are the same either way (qemu-test checks).
 FW_OPT = $(OPT)
+FW_COLD_OPT := -Os
 FW_COLD_SRC := core/cs_stream.c core/cs_scene.c core/cs_edit.c core/cs_anim.c \
                firmware/main_mcu.c firmware/fw_stream.c firmware/fw_print.c firmware/fw_args.c \
                firmware/fw_mem.c firmware/scenes/fw_scenes.c
@@ -64,12 +65,12 @@ FW_INC_$(1) := -Icore -Ifirmware -Ifirmware/scenes -Ifirmware/boards -Ifirmware/
         -Ifirmware/boards/$(1) -Ihal/mcu -DCS_CFG_FILE='"cs_board_config.h"'
 FW_OBJ_$(1) := $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(CORE_SRC) $(FW_COMMON_SRC) $$(BOARD_SRC))
 
-$$(eval $$(call flags_record,fw-$(1),$(ARM_CC) $$(FW_CPU_$(1)) $(OPT) -Os $(FW_CFLAGS) \
+$$(eval $$(call flags_record,fw-$(1),$(ARM_CC) $$(FW_CPU_$(1)) $(OPT) $(FW_COLD_OPT) $(FW_CFLAGS) \
         $$(FW_INC_$(1)) cold: $(FW_COLD_SRC)))
 $(BUILD)/$(1)/obj/%.o: %.c $(FLAGS_DIR)/fw-$(1)
 	@mkdir -p $$(dir $$@)
 	$(Q)$(ARM_CC) $$(FW_CPU_$(1)) $$(FW_OPT) $(FW_CFLAGS) $$(FW_INC_$(1)) -c $$< -o $$@
-$$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(FW_COLD_SRC)): FW_OPT := -Os
+$$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(FW_COLD_SRC)): FW_OPT := $(FW_COLD_OPT)
 
 $(BUILD)/$(1)/celfw.elf: $$(FW_OBJ_$(1)) $$(FW_LD_$(1)) linker/sections.ld
 	$(Q)$(ARM_CC) $$(FW_CPU_$(1)) $(FW_LDFLAGS) -T$$(FW_LD_$(1)) \
