@@ -209,8 +209,17 @@ static cs_render_opts opts_for(int w, int h, cs_aa_mode aa, int n)
     return o;
 }
 
+/* What callgrind counts by name (--toggle-collect=celscan_frame or
+ * peer_frame) must stay one function under that name: not inlined, and
+ * not cloned for constant arguments (GCC's "peer_frame.constprop.0"). */
+#if defined(__GNUC__) && !defined(__clang__)
+#define PROFILED __attribute__((noinline, noclone))
+#else
+#define PROFILED __attribute__((noinline))
+#endif
+
 /* One whole frame, as celsim renders it; returns seconds. */
-__attribute__((noinline)) static double celscan_frame(cs_target *t, const cs_render_opts *o)
+PROFILED static double celscan_frame(cs_target *t, const cs_render_opts *o)
 {
     cs_renderer r;
     cs_error e;
@@ -286,32 +295,36 @@ static void peers_free(peers *p)
     ol_free(&p->set);
 }
 
+/*
+ * Peer `which` (V_CAIRO, V_CAIRO_FINE or V_FT) draws regions [first, end)
+ * of its outlines; returns seconds. PROFILED, so that callgrind can count
+ * a peer's frame alone (--toggle-collect=peer_frame, bench --profile
+ * SCENE --peer NAME), as it counts celscan_frame.
+ */
+PROFILED static double peer_frame(peers *p, int which, int first, int end, bool over_saved)
+{
+    double t0 = bench_now();
+    if (which == V_CAIRO)
+        peer_cairo_frame(p->cairo, &p->set, first, end, over_saved);
+    else if (which == V_CAIRO_FINE)
+        peer_cairo_frame(p->cairo_fine, &p->set, first, end, over_saved);
+    else
+        peer_ft_frame(p->ft, &p->set, first, end, over_saved);
+    return bench_now() - t0;
+}
+
 static double time_variant(int v, cs_target *t16, cs_target *tx, peers *p, int first, int end,
                            bool over_saved)
 {
-    double t0;
-    switch (v) {
-    case V_CS16: {
+    if (v == V_CS16) {
         cs_render_opts o = opts_for(t16->w, t16->h, CS_AA_SUBSCAN, 16);
         return celscan_frame(t16, &o);
     }
-    case V_CSX: {
+    if (v == V_CSX) {
         cs_render_opts o = opts_for(tx->w, tx->h, CS_AA_EXACT, 0);
         return celscan_frame(tx, &o);
     }
-    case V_CAIRO:
-        t0 = bench_now();
-        peer_cairo_frame(p->cairo, &p->set, first, end, over_saved);
-        return bench_now() - t0;
-    case V_CAIRO_FINE:
-        t0 = bench_now();
-        peer_cairo_frame(p->cairo_fine, &p->set, first, end, over_saved);
-        return bench_now() - t0;
-    default:
-        t0 = bench_now();
-        peer_ft_frame(p->ft, &p->set, first, end, over_saved);
-        return bench_now() - t0;
-    }
+    return peer_frame(p, v, first, end, over_saved);
 }
 
 /*
@@ -573,15 +586,13 @@ static void beam_sweep(int w, int h, cs_aa_mode aa, int n, int runs, int k, doub
 }
 
 /* The median per line over the runs, and the slowest of those. */
-static void beam_summarize(int h, int runs, const double *s, double *prep, beam_result *res)
+static void beam_summarize(int h, int runs, double *s, double *prep, beam_result *res)
 {
     res->worst_us = -1;
     res->worst_line = 0;
-    double *med = malloc((size_t)h * sizeof *med), *tmp = malloc((size_t)runs * sizeof *tmp);
+    double *med = malloc((size_t)h * sizeof *med);
     for (int y = 0; y < h; y++) {
-        for (int k = 0; k < runs; k++)
-            tmp[k] = s[(size_t)y * runs + k];
-        med[y] = 1e6 * bench_median(tmp, runs);
+        med[y] = 1e6 * bench_median(&s[(size_t)y * runs], runs); /* sorts them: not read again */
         if (med[y] > res->worst_us) {
             res->worst_us = med[y];
             res->worst_line = y;
@@ -590,7 +601,6 @@ static void beam_summarize(int h, int runs, const double *s, double *prep, beam_
     res->median_us = bench_median(med, h);
     res->prep_us = 1e6 * bench_median(prep, runs);
     free(med);
-    free(tmp);
 }
 
 /* aa 5 is celsim's default and the paper's; aa 16 and exact are the modes
@@ -712,25 +722,14 @@ typedef struct frame_arg {
     cs_target *t;
     cs_render_opts o;
     peers *p;
-    int which; /* 0 celscan, 1 cairo, 2 FreeType */
+    int which; /* V_CSX for celscan (in mode o), or a peer's V_ code */
 } frame_arg;
 
-static double frame_fn(void *arg)
+static double frame_fn(frame_arg *a)
 {
-    frame_arg *a = arg;
-    double t0;
-    switch (a->which) {
-    case 0:
+    if (a->which == V_CSX)
         return celscan_frame(a->t, &a->o);
-    case 1:
-        t0 = bench_now();
-        peer_cairo_frame(a->p->cairo, &a->p->set, 0, a->p->set.region_count, false);
-        return bench_now() - t0;
-    default:
-        t0 = bench_now();
-        peer_ft_frame(a->p->ft, &a->p->set, 0, a->p->set.region_count, false);
-        return bench_now() - t0;
-    }
+    return peer_frame(a->p, a->which, 0, a->p->set.region_count, false);
 }
 
 /* A renderer and mode of one scaling row. */
@@ -789,7 +788,8 @@ static void run_scaling(const config *cfg)
         peers p;
         peers_init(&p, w, h);
         peers_prepare(&p, w, h);
-        const variant v[3] = {{0, CS_AA_SUBSCAN, 16}, {0, CS_AA_EXACT, 0}, {1, CS_AA_SUBSCAN, 0}};
+        const variant v[3] = {{V_CSX, CS_AA_SUBSCAN, 16}, {V_CSX, CS_AA_EXACT, 0},
+                              {V_CAIRO, CS_AA_SUBSCAN, 0}};
         double ms[3];
         measure_row(n, w, h, v, 3, &p, ms);
         out("| %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", h, ms[0], 1e3 * ms[0] / h, ms[1],
@@ -810,8 +810,8 @@ static void run_scaling(const config *cfg)
         peers p;
         peers_init(&p, w, h);
         peers_prepare(&p, w, h);
-        const variant v[4] = {{0, CS_AA_SUBSCAN, 16}, {0, CS_AA_EXACT, 0}, {1, CS_AA_SUBSCAN, 0},
-                              {2, CS_AA_SUBSCAN, 0}};
+        const variant v[4] = {{V_CSX, CS_AA_SUBSCAN, 16}, {V_CSX, CS_AA_EXACT, 0},
+                              {V_CAIRO, CS_AA_SUBSCAN, 0}, {V_FT, CS_AA_SUBSCAN, 0}};
         double ms[4];
         measure_row(n, w, h, v, 4, &p, ms);
         out("| %d | %d | %.2f | %.2f | %.2f | %.2f |\n", ks[i], 64 * ks[i], ms[0], ms[1], ms[2],
@@ -825,23 +825,22 @@ static void run_scaling(const config *cfg)
     load(&scene_defs[0]);
     const int subs[] = {0, 1, 2, 4, 8, 16, 32, 64, -1};
     variant v[sizeof subs / sizeof subs[0]];
-    int sub_of[sizeof subs / sizeof subs[0]], count = 0;
+    int count = 0;
     for (size_t i = 0; i < sizeof subs / sizeof subs[0]; i++) {
         if (cfg->quick && (subs[i] > 4))
             continue;
         cs_aa_mode aa = subs[i] == 0 ? CS_AA_NONE : subs[i] < 0 ? CS_AA_EXACT : CS_AA_SUBSCAN;
-        v[count] = (variant){0, aa, subs[i]};
-        sub_of[count++] = subs[i];
+        v[count++] = (variant){V_CSX, aa, subs[i]};
     }
     double ms[sizeof subs / sizeof subs[0]];
     measure_row(n, w, h, v, count, NULL, ms);
     for (int i = 0; i < count; i++) {
         char buf[16];
-        if (sub_of[i] > 0)
-            out("| %s | %.2f | %.2f |\n", aa_name(v[i].aa, sub_of[i], buf, sizeof buf), ms[i],
-                ms[i] / sub_of[i]);
+        if (v[i].sub > 0)
+            out("| %s | %.2f | %.2f |\n", aa_name(v[i].aa, v[i].sub, buf, sizeof buf), ms[i],
+                ms[i] / v[i].sub);
         else
-            out("| %s | %.2f | |\n", aa_name(v[i].aa, sub_of[i], buf, sizeof buf), ms[i]);
+            out("| %s | %.2f | |\n", aa_name(v[i].aa, v[i].sub, buf, sizeof buf), ms[i]);
     }
     section_close();
 }
@@ -933,20 +932,6 @@ static int selftest(void)
 
 /* ------------------------------------------------------------- profile */
 
-/* One whole frame of a peer, for callgrind's --toggle-collect=peer_frame:
- * the same call the speed section times. */
-__attribute__((noinline)) static double peer_frame(peers *p, int which)
-{
-    double t0 = bench_now();
-    if (which == V_CAIRO)
-        peer_cairo_frame(p->cairo, &p->set, 0, p->set.region_count, false);
-    else if (which == V_CAIRO_FINE)
-        peer_cairo_frame(p->cairo_fine, &p->set, 0, p->set.region_count, false);
-    else
-        peer_ft_frame(p->ft, &p->set, 0, p->set.region_count, false);
-    return bench_now() - t0;
-}
-
 /* --profile SCENE --peer NAME: frames of one peer on the loaded scene, so
  * that its instructions per frame can be counted as celscan's are. */
 static void profile_peer(const char *name, int w, int h, int frames)
@@ -964,7 +949,7 @@ static void profile_peer(const char *name, int w, int h, int frames)
     if (!s)
         die("out of memory");
     for (int f = 0; f < frames; f++)
-        s[f] = peer_frame(&p, which);
+        s[f] = peer_frame(&p, which, 0, p.set.region_count, false);
     printf("%.3f ms/frame\n", 1e3 * bench_median(s, frames));
     free(s);
     peers_free(&p);

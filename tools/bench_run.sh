@@ -34,21 +34,22 @@ start=$(date +%s)
 {
     echo "### celsim on Many-blobs at 1920x1080, next to cairo (5 interleaved rounds)"
     echo
-    cmd16="celsim render scenes/bench/blobs.json --size 1920x1080 --aa 16 --repeat 5"
-    cmdx="celsim render scenes/bench/blobs.json --size 1920x1080 --aa exact --repeat 5"
-    cmdc="bench --profile blobs --peer cairo --frames 5"
+    args16="render scenes/bench/blobs.json --size 1920x1080 --aa 16 --repeat 5"
+    argsx="render scenes/bench/blobs.json --size 1920x1080 --aa exact --repeat 5"
+    argsc="--profile blobs --peer cairo --frames 5"
     r16= rx= rc=
     for round in 1 2 3 4 5; do
-        r16="$r16 $("$celsim" render scenes/bench/blobs.json --size 1920x1080 --aa 16 --repeat 5 | cut -d' ' -f1)"
-        rx="$rx $("$celsim" render scenes/bench/blobs.json --size 1920x1080 --aa exact --repeat 5 | cut -d' ' -f1)"
-        rc="$rc $("$bench" --profile blobs --peer cairo --frames 5 | cut -d' ' -f1)"
+        # each prints "<ms> ms/frame"
+        r16="$r16 $("$celsim" $args16 | cut -d' ' -f1)"
+        rx="$rx $("$celsim" $argsx | cut -d' ' -f1)"
+        rc="$rc $("$bench" $argsc | cut -d' ' -f1)"
     done
     med() { printf '%s\n' "$@" | sort -g | sed -n 3p; }
     echo "| command (each a median of 5 frames) | rounds, ms/frame | median ms/frame |"
     echo "|---|---|---:|"
-    echo "| \`$cmd16\` | $r16 | $(med $r16) |"
-    echo "| \`$cmdx\` | $rx | $(med $rx) |"
-    echo "| \`$cmdc\` (cairo, default antialias) | $rc | $(med $rc) |"
+    echo "| \`celsim $args16\` | $r16 | $(med $r16) |"
+    echo "| \`celsim $argsx\` | $rx | $(med $rx) |"
+    echo "| \`bench $argsc\` (cairo, default antialias) | $rc | $(med $rc) |"
     echo
     awk -v x="$(med $rx)" -v c="$(med $rc)" 'BEGIN {
         printf "celsim --aa exact / cairo: %.2f (issue 8 asks for at most 0.5).\n", x / c }'
@@ -93,15 +94,15 @@ cat "$res/celsim.txt"
     echo
     echo "| scene | celscan exact | cairo | FreeType | exact/cairo | exact/FT |"
     echo "|---|---:|---:|---:|---:|---:|"
+    count() { # callgrind's total in function $1 for one frame of bench --profile $2 $3 $4
+        valgrind --tool=callgrind --callgrind-out-file="$tmp/cg-peer.out" \
+            --toggle-collect="$1" "$bench" --profile "$2" "$3" "$4" --frames 1 2>&1 |
+            sed -n 's/.*Collected : *//p'
+    }
     for scene in blobs signage thin rational; do
-        count() { # callgrind's total for one frame of bench --profile "$scene" "$@"
-            valgrind --tool=callgrind --callgrind-out-file="$tmp/cg-peer.out" \
-                --toggle-collect="$1" "$bench" --profile "$scene" "$2" "$3" --frames 1 2>&1 |
-                sed -n 's/.*Collected : *//p'
-        }
-        x=$(count celscan_frame --aa exact)
-        c=$(count peer_frame --peer cairo)
-        f=$(count peer_frame --peer freetype)
+        x=$(count celscan_frame "$scene" --aa exact)
+        c=$(count peer_frame "$scene" --peer cairo)
+        f=$(count peer_frame "$scene" --peer freetype)
         awk -v s="$scene" -v x="$x" -v c="$c" -v f="$f" 'BEGIN {
             printf "| %s | %.1f M | %.1f M | %.1f M | %.2f | %.2f |\n", s, x / 1e6, c / 1e6, f / 1e6, x / c, x / f }'
     done
