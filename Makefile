@@ -177,21 +177,24 @@ test-unit: $(HOST_TESTS)
 test-asan: $(ASAN_TESTS)
 	$(Q)$(ASAN_ENV) sh tests/run.sh $(ASAN_TESTS)
 
-$(HOST)/tests/%.o: tests/%.c Makefile
+$(eval $(call flags_record,host-test,$(CC) $(TEST_CFLAGS)))
+$(eval $(call flags_record,asan-core,$(CC) $(ASAN_CORE_CFLAGS)))
+$(eval $(call flags_record,asan-test,$(CC) $(ASAN_TEST_CFLAGS)))
+$(HOST)/tests/%.o: tests/%.c Makefile $(FLAGS_DIR)/host-test
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(TEST_CFLAGS) -c $< -o $@
 
 $(HOST)/tests/test_%: $(HOST)/tests/test_%.o $(HOST_TEST_REF_OBJ) $(HOST)/libcelscan.a
 	$(Q)$(CC) $(TEST_CFLAGS) $^ -lm -o $@
 
-$(ASAN)/core/%.o: core/%.c $(CORE_HDR) Makefile
+$(ASAN)/core/%.o: core/%.c $(CORE_HDR) Makefile $(FLAGS_DIR)/asan-core
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(ASAN_CORE_CFLAGS) -c $< -o $@
 
 $(ASAN)/libcelscan.a: $(ASAN_CORE_OBJ)
 	$(Q)rm -f $@ && ar rcs $@ $^
 
-$(ASAN)/tests/%.o: tests/%.c Makefile
+$(ASAN)/tests/%.o: tests/%.c Makefile $(FLAGS_DIR)/asan-test
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(ASAN_TEST_CFLAGS) -c $< -o $@
 

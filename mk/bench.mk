@@ -19,7 +19,8 @@ BENCH_SCENES := scenes/bench/blobs.json scenes/bench/thin.json scenes/bench/rati
 BENCH_RESULTS := bench/results
 BENCH_ARGS ?=
 
-$(HOST)/bench-obj/%.o: %.c
+$(eval $(call flags_record,bench-obj,$(CC) $(HOST_CFLAGS) $(shell pkg-config --cflags $(BENCH_PKGS))))
+$(HOST)/bench-obj/%.o: %.c $(FLAGS_DIR)/bench-obj
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) -Itests -Ibench $(shell pkg-config --cflags $(BENCH_PKGS)) -c $< -o $@
 

@@ -9,16 +9,17 @@
 
 BETA_CFLAGS := -std=c11 -O2 -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -D_POSIX_C_SOURCE=200809L -MMD -MP
 BETA_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+$(eval $(call flags_record,beta,$(CC) $(BETA_CFLAGS) $(BETA_SAN)))
 
-$(HOST)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR)
+$(HOST)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(BETA_CFLAGS) tests/test_beta.c $(CORE_SRC) -lm -o $@
 
-$(ASAN)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR)
+$(ASAN)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(BETA_CFLAGS) -O1 $(BETA_SAN) tests/test_beta.c $(CORE_SRC) -lm -o $@
 
-$(HOST)/bench_cache_anim: bench/cache_anim.c $(CORE_SRC) $(CORE_HDR)
+$(HOST)/bench_cache_anim: bench/cache_anim.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(BETA_CFLAGS) bench/cache_anim.c $(CORE_SRC) -lm -o $@
 
@@ -37,7 +38,7 @@ HOST_PROGRAMS += $(HOST)/bench_cache_anim
 
 # The JSON helper for paints and CSG (host code: cJSON from Debian).
 $(HOST)/test_paint_json: tests/test_paint_json.c host-sim/paint_json.c host-sim/paint_json.h \
-		$(CORE_SRC) $(CORE_HDR)
+		$(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(BETA_CFLAGS) -Ihost-sim $(shell pkg-config --cflags libcjson) \
 		tests/test_paint_json.c host-sim/paint_json.c $(CORE_SRC) \

@@ -43,10 +43,11 @@ TEST_TARGETS += test-scenes
 # included (mk/stream.mk does the same for the decoder's own tests).
 SCENES_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 SCENES_ASAN := $(ASAN)/scenes
-$(SCENES_ASAN)/core/%.o: core/%.c $(CORE_HDR)
+$(eval $(call flags_record,scenes-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(PKG_CFLAGS) $(SCENES_SAN)))
+$(SCENES_ASAN)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/scenes-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CORE_CFLAGS) $(SCENES_SAN) -c $< -o $@
-$(SCENES_ASAN)/obj/%.o: %.c
+$(SCENES_ASAN)/obj/%.o: %.c $(FLAGS_DIR)/scenes-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) $(PKG_CFLAGS) -Itests $(SCENES_SAN) -c $< -o $@
 $(SCENES_ASAN)/test_scenes: $(patsubst %.o,$(SCENES_ASAN)/obj/%.o,tests/test_scenes.o \

@@ -14,10 +14,11 @@ $(HOST)/tests/test_exact: $(addprefix $(HOST)/obj/,$(EXACT_TEST_OBJ)) $(HOST)/li
 	$(Q)$(CC) $^ -lm -o $@
 
 # Sanitizer builds keep their objects apart from the plain ones.
-$(EXACT_ASAN)/core/%.o: core/%.c $(CORE_HDR)
+$(eval $(call flags_record,exact-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(EXACT_SAN)))
+$(EXACT_ASAN)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/exact-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CORE_CFLAGS) $(EXACT_SAN) -c $< -o $@
-$(EXACT_ASAN)/obj/%.o: %.c
+$(EXACT_ASAN)/obj/%.o: %.c $(FLAGS_DIR)/exact-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) -Itests $(EXACT_SAN) -DTEST_NAME='"test_exact_asan"' -c $< -o $@
 $(EXACT_ASAN)/test_exact: $(addprefix $(EXACT_ASAN)/obj/,$(EXACT_TEST_OBJ)) \

@@ -16,10 +16,11 @@ $(HOST)/test_stream: $(STREAM_TEST_OBJ) $(HOST)/libcelscan.a
 # Sanitizers over everything, the core too: the decoder is what they are for.
 STREAM_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 STREAM_ASAN := $(ASAN)/stream
-$(STREAM_ASAN)/core/%.o: core/%.c $(CORE_HDR)
+$(eval $(call flags_record,stream-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(STREAM_SAN)))
+$(STREAM_ASAN)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/stream-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CORE_CFLAGS) $(STREAM_SAN) -c $< -o $@
-$(STREAM_ASAN)/obj/%.o: %.c
+$(STREAM_ASAN)/obj/%.o: %.c $(FLAGS_DIR)/stream-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) -Itools $(STREAM_SAN) -c $< -o $@
 $(STREAM_ASAN)/test_stream: $(STREAM_ASAN)/obj/tests/test_stream.o \
@@ -49,10 +50,11 @@ FUZZ_GUIDED := core/cs_stream.c core/cs_scene.c core/cs_edit.c core/cs_anim.c co
         tools/cels_write.c tests/fuzz_stream.c
 FUZZ_PLAIN := $(filter-out $(FUZZ_GUIDED),$(CORE_SRC))
 FUZZ_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all $(FUZZ_CAPS) -Icore -Itools
-$(FUZZ)/guided/%.o: %.c $(CORE_HDR) tools/cels_write.h
+$(eval $(call flags_record,fuzz,$(FUZZ_CC) $(FUZZ_CFLAGS)))
+$(FUZZ)/guided/%.o: %.c $(CORE_HDR) tools/cels_write.h $(FLAGS_DIR)/fuzz
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
-$(FUZZ)/plain/%.o: %.c $(CORE_HDR)
+$(FUZZ)/plain/%.o: %.c $(CORE_HDR) $(FLAGS_DIR)/fuzz
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=address,undefined -c $< -o $@
 $(FUZZ)/fuzz_stream: $(patsubst %.c,$(FUZZ)/guided/%.o,$(FUZZ_GUIDED)) \
