@@ -486,7 +486,10 @@ static void run_speed(const config *cfg)
     }
     out("\nRatios are celscan time / peer time: below 1 celscan is faster. \"picture vs cairo\" is the "
         "mean absolute difference (of 255) between celscan blending in sRGB and cairo, and the share "
-        "of pixels off by more than 8: a check that both drew the same scene.\n");
+        "of pixels off by more than 8: a check that both drew the same scene. The renderers take "
+        "turns frame by frame, so each peer frame, drawn into a whole frame in memory, starts with "
+        "caches the others left cold (celscan keeps one line); the celsim row below runs each "
+        "renderer alone, as the issue's command line does.\n");
     if (have_anim) {
         out("\n### Animation at %dx%d: median ms per frame over %d frames (t = 0 .. %.3f s at 60 Hz)\n\n",
             cfg->width, cfg->height, ar.frames, (ar.frames - 1) / 60.0);
