@@ -1,7 +1,7 @@
 # mk/bench.mk - the benchmark suite: celscan against cairo and FreeType.
 #
 #   make bench         generate the scenes, run every section, write bench/results/*.txt
-#                      and regenerate the tables of BENCHMARKS.md (a few minutes)
+#                      and regenerate the tables of BENCHMARKS.md (under a minute)
 #   make bench-smoke   the bench binary on one small scene, one run (part of `make test`)
 #   make bench-scenes  redraw scenes/bench/*.json from bench/gen_scenes.py
 #
