@@ -1,9 +1,12 @@
-# mk/stream.mk - the cel stream: unit tests, sanitizer build, fuzzing.
+# mk/stream.mk - the cel stream: unit tests, sanitizer build, fuzzing (of the decoder, and of
+# the scene JSON loader).
 #
 #   make stream-test        tests/test_stream against the freestanding core
 #   make stream-test-asan   the same under ASan + UBSan (core included)
 #   make fuzz               libFuzzer on the decoder for FUZZ_TIME s (default 60)
 #   make fuzz-smoke         a short fuzz run (FUZZ_SMOKE_TIME, default 45 s), part of `make test`
+#   make fuzz-json          libFuzzer on the scene JSON loader for FUZZ_TIME s (default 60)
+#   make fuzz-json-smoke    a short run of it (FUZZ_JSON_SMOKE_TIME, default 20 s), part of `make test`
 #   make stream-seeds       regenerate tests/fuzz-corpus/ from the test program
 
 STREAM_TEST_OBJ := $(HOST)/obj/tests/test_stream.o $(HOST)/obj/tools/cels_write.o \
@@ -80,4 +83,34 @@ fuzz-smoke: $(FUZZ)/fuzz_stream
 stream-seeds: $(HOST)/test_stream
 	$(Q)$< --seeds tests/fuzz-corpus
 
-TEST_TARGETS += stream-test stream-test-asan fuzz-smoke
+# The scene JSON loader (host code on hand-written files): the loader and the
+# core under the fuzzer's coverage and sanitizers, full store capacities,
+# cJSON from Debian. Seeds are the committed scenes.
+FUZZ_JSON_SMOKE_TIME ?= 20
+FUZZ_JSON_SRC := tests/fuzz_scene_json.c host-sim/scene_json.c host-sim/paint_json.c
+FUZZ_JSON_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all -Icore -Ihost-sim \
+        $(shell pkg-config --cflags libcjson)
+$(eval $(call flags_record,fuzz-json,$(FUZZ_CC) $(FUZZ_JSON_CFLAGS)))
+$(FUZZ)/json/%.o: %.c $(CORE_HDR) host-sim/scene_json.h host-sim/paint_json.h $(FLAGS_DIR)/fuzz-json
+	@mkdir -p $(dir $@)
+	$(Q)$(FUZZ_CC) $(FUZZ_JSON_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
+$(FUZZ)/fuzz_scene_json: $(patsubst %.c,$(FUZZ)/json/%.o,$(FUZZ_JSON_SRC) $(CORE_SRC))
+	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(shell pkg-config --libs libcjson) -o $@
+
+define run_fuzz_json
+	@rm -rf $(FUZZ)/json-corpus && mkdir -p $(FUZZ)/json-corpus && cp scenes/*.json $(FUZZ)/json-corpus/
+	$(Q)cd $(FUZZ) && ./fuzz_scene_json -max_total_time=$(1) -print_final_stats=1 -timeout=10 \
+		-dict=$(CURDIR)/tests/fuzz_scene_json.dict -max_len=65536 \
+		-rss_limit_mb=2048 json-corpus 2>fuzz-json.log; rc=$$?; \
+		grep -E '^(#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss_mb)' fuzz-json.log; \
+		if [ $$rc -ne 0 ]; then tail -40 fuzz-json.log; echo "$(2): 0 passed, 1 failed"; exit 1; fi; \
+		echo "$(2): $$(sed -n 's/^stat::number_of_executed_units: *//p' fuzz-json.log) executions, no finding"; \
+		echo "$(2): 1 passed, 0 failed"
+endef
+.PHONY: fuzz-json fuzz-json-smoke
+fuzz-json: $(FUZZ)/fuzz_scene_json
+	$(call run_fuzz_json,$(FUZZ_TIME),fuzz-json)
+fuzz-json-smoke: $(FUZZ)/fuzz_scene_json
+	$(call run_fuzz_json,$(FUZZ_JSON_SMOKE_TIME),fuzz-json-smoke)
+
+TEST_TARGETS += stream-test stream-test-asan fuzz-smoke fuzz-json-smoke
