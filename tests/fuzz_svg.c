@@ -1,0 +1,91 @@
+/*
+ * fuzz_svg.c - libFuzzer target for the SVG importer (tools/svg), which
+ * `celc import` runs on artwork people bring: XML through expat, CSS,
+ * path data, transforms, strokes and dashes, gradients, clips and text.
+ *
+ * Seeds are scenes/svg/sign.svg and a fixed sample of the icon themes the
+ * SVG tests install (see mk/svg.mk); tests/fuzz_svg.dict holds the element,
+ * attribute, property and keyword names the importer looks for. Beyond "no
+ * crash, no sanitizer report, no hang", every execution checks:
+ *   - a refused document comes with a NUL-terminated message;
+ *   - an imported document that builds a scene (sv_doc_to_scene) renders
+ *     on a small frame with every line CS_OK and every value in [0, 1];
+ *   - for such a document the scene JSON written for it (sv_doc_to_json),
+ *     the path `celc import` takes, loads with celsim's loader too.
+ * A violated check aborts, which libFuzzer reports as a crash.
+ */
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "celscan.h"
+#include "scene_json.h"
+#include "sv.h"
+
+static cs_scene scene;
+static cs_workspace ws;
+
+#define REQUIRE(cond)                                                                             \
+    do {                                                                                          \
+        if (!(cond)) {                                                                            \
+            fprintf(stderr, "fuzz_svg: check failed: %s (line %d)\n", #cond, __LINE__);         \
+            abort();                                                                              \
+        }                                                                                         \
+    } while (0)
+
+enum { FW = 32, FH = 24 };
+
+static void render_small(const cs_scene *s)
+{
+    static float line[FW * 3];
+    cs_render_opts o = cs_render_defaults(FW, FH);
+    o.subscanlines = 3;
+    o.blend = CS_BLEND_SRGB;
+    cs_renderer r;
+    cs_error err;
+    if (cs_frame_begin(&r, &ws, s, &o, &err) != CS_OK)
+        return; /* refused as a whole (a capacity, say): nothing drawn */
+    for (int y = 0; y < FH; y++) {
+        REQUIRE(cs_render_line(&r, y, line) == CS_OK);
+        for (int i = 0; i < FW * 3; i++)
+            REQUIRE(line[i] >= 0.0f && line[i] <= 1.0f);
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    sv_import_opts io;
+    memset(&io, 0, sizeof io);
+    io.nominal_px = 64;
+    sv_doc doc;
+    char msg[512];
+    memset(msg, 'x', sizeof msg); /* so that a missing terminator shows */
+    if (sv_import_buffer((const char *)data, size, &io, &doc, msg, sizeof msg) < 0) {
+        REQUIRE(memchr(msg, 0, sizeof msg) != NULL && msg[0] != 0);
+        return 0;
+    }
+    sv_scene_opts so;
+    memset(&so, 0, sizeof so);
+    so.has_background = true;
+    so.background[0] = so.background[1] = so.background[2] = 1.0;
+    bool built = sv_doc_to_scene(&doc, &so, &scene, msg, sizeof msg) == 0;
+    if (built)
+        render_small(&scene);
+    else
+        REQUIRE(memchr(msg, 0, sizeof msg) != NULL && msg[0] != 0);
+    char *json = sv_doc_to_json(&doc, NULL);
+    if (json) {
+        char jmsg[SCENE_JSON_ERRLEN];
+        int loaded = scene_json_load_string(json, strlen(json), "import.json", &scene, jmsg,
+                                            sizeof jmsg);
+        if (built && loaded != 0) { /* the same document, the other back end */
+            fprintf(stderr, "fuzz_svg: the imported JSON does not load: %s\n", jmsg);
+            abort();
+        }
+        free(json);
+    }
+    sv_doc_free(&doc);
+    return 0;
+}
