@@ -54,7 +54,7 @@ FUZZ_GUIDED := core/cs_stream.c core/cs_scene.c core/cs_edit.c core/cs_anim.c co
 FUZZ_PLAIN := $(filter-out $(FUZZ_GUIDED),$(CORE_SRC))
 FUZZ_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all $(FUZZ_CAPS) -Icore -Itools
 $(eval $(call flags_record,fuzz,$(FUZZ_CC) $(FUZZ_CFLAGS)))
-$(FUZZ)/guided/%.o: %.c $(CORE_HDR) tools/cels_write.h $(FLAGS_DIR)/fuzz
+$(FUZZ)/guided/%.o: %.c $(CORE_HDR) tools/cels_write.h tests/fuzz_check.h $(FLAGS_DIR)/fuzz
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
 $(FUZZ)/plain/%.o: %.c $(CORE_HDR) $(FLAGS_DIR)/fuzz
@@ -64,21 +64,26 @@ $(FUZZ)/fuzz_stream: $(patsubst %.c,$(FUZZ)/guided/%.o,$(FUZZ_GUIDED)) \
         $(patsubst %.c,$(FUZZ)/plain/%.o,$(FUZZ_PLAIN))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ -o $@
 
-# Runs in a scratch copy of the seed corpus; findings land in $(FUZZ)/.
-define run_fuzz
-	@rm -rf $(FUZZ)/corpus && mkdir -p $(FUZZ)/corpus && cp tests/fuzz-corpus/* $(FUZZ)/corpus/
-	$(Q)cd $(FUZZ) && ./fuzz_stream -max_total_time=$(1) -print_final_stats=1 -timeout=5 \
-		-dict=$(CURDIR)/tests/fuzz_stream.dict \
-		-rss_limit_mb=1024 corpus 2>fuzz.log; rc=$$?; \
-		grep -E '^(#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss_mb|fuzz_stream:)' fuzz.log; \
-		if [ $$rc -ne 0 ]; then tail -40 fuzz.log; echo "$(2): 0 passed, 1 failed"; exit 1; fi; \
-		echo "$(2): $$(sed -n 's/^stat::number_of_executed_units: *//p' fuzz.log) executions, no finding"; \
-		echo "$(2): 1 passed, 0 failed"
+# Runs fuzzer $(1) (a program in $(FUZZ)) for $(2) seconds in a scratch corpus,
+# $(FUZZ)/$(1).corpus, filled by FUZZ_SEEDS_$(1) (shell commands) and run
+# with FUZZ_OPTS_$(1); $(3) names it in the summary line. Findings (crash-*,
+# timeout-*) and the log ($(1).log) land in $(FUZZ)/.
+define run_fuzzer
+	@rm -rf $(FUZZ)/$(1).corpus && mkdir -p $(FUZZ)/$(1).corpus
+	$(Q)$(FUZZ_SEEDS_$(1))
+	$(Q)cd $(FUZZ) && ./$(1) -max_total_time=$(2) -print_final_stats=1 $(FUZZ_OPTS_$(1)) \
+		$(1).corpus 2>$(1).log; rc=$$?; \
+		grep -E '^(#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss_mb|$(1):)' $(1).log; \
+		if [ $$rc -ne 0 ]; then tail -40 $(1).log; echo "$(3): 0 passed, 1 failed"; exit 1; fi; \
+		echo "$(3): $$(sed -n 's/^stat::number_of_executed_units: *//p' $(1).log) executions, no finding"; \
+		echo "$(3): 1 passed, 0 failed"
 endef
+FUZZ_SEEDS_fuzz_stream = cp tests/fuzz-corpus/* $(FUZZ)/fuzz_stream.corpus/
+FUZZ_OPTS_fuzz_stream = -timeout=5 -dict=$(CURDIR)/tests/fuzz_stream.dict -rss_limit_mb=1024
 fuzz: $(FUZZ)/fuzz_stream
-	$(call run_fuzz,$(FUZZ_TIME),fuzz)
+	$(call run_fuzzer,fuzz_stream,$(FUZZ_TIME),fuzz)
 fuzz-smoke: $(FUZZ)/fuzz_stream
-	$(call run_fuzz,$(FUZZ_SMOKE_TIME),fuzz-smoke)
+	$(call run_fuzzer,fuzz_stream,$(FUZZ_SMOKE_TIME),fuzz-smoke)
 
 stream-seeds: $(HOST)/test_stream
 	$(Q)$< --seeds tests/fuzz-corpus
@@ -91,26 +96,19 @@ FUZZ_JSON_SRC := tests/fuzz_scene_json.c host-sim/scene_json.c host-sim/paint_js
 FUZZ_JSON_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all -Icore -Ihost-sim \
         $(shell pkg-config --cflags libcjson)
 $(eval $(call flags_record,fuzz-json,$(FUZZ_CC) $(FUZZ_JSON_CFLAGS)))
-$(FUZZ)/json/%.o: %.c $(CORE_HDR) host-sim/scene_json.h host-sim/paint_json.h $(FLAGS_DIR)/fuzz-json
+$(FUZZ)/json/%.o: %.c $(CORE_HDR) tests/fuzz_check.h host-sim/scene_json.h host-sim/paint_json.h $(FLAGS_DIR)/fuzz-json
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_JSON_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
 $(FUZZ)/fuzz_scene_json: $(patsubst %.c,$(FUZZ)/json/%.o,$(FUZZ_JSON_SRC) $(CORE_SRC))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(shell pkg-config --libs libcjson) -o $@
 
-define run_fuzz_json
-	@rm -rf $(FUZZ)/json-corpus && mkdir -p $(FUZZ)/json-corpus && cp scenes/*.json $(FUZZ)/json-corpus/
-	$(Q)cd $(FUZZ) && ./fuzz_scene_json -max_total_time=$(1) -print_final_stats=1 -timeout=10 \
-		-dict=$(CURDIR)/tests/fuzz_scene_json.dict -max_len=65536 \
-		-rss_limit_mb=2048 json-corpus 2>fuzz-json.log; rc=$$?; \
-		grep -E '^(#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss_mb)' fuzz-json.log; \
-		if [ $$rc -ne 0 ]; then tail -40 fuzz-json.log; echo "$(2): 0 passed, 1 failed"; exit 1; fi; \
-		echo "$(2): $$(sed -n 's/^stat::number_of_executed_units: *//p' fuzz-json.log) executions, no finding"; \
-		echo "$(2): 1 passed, 0 failed"
-endef
+FUZZ_SEEDS_fuzz_scene_json = cp scenes/*.json $(FUZZ)/fuzz_scene_json.corpus/
+FUZZ_OPTS_fuzz_scene_json = -timeout=10 -dict=$(CURDIR)/tests/fuzz_scene_json.dict -max_len=65536 \
+        -rss_limit_mb=2048
 .PHONY: fuzz-json fuzz-json-smoke
 fuzz-json: $(FUZZ)/fuzz_scene_json
-	$(call run_fuzz_json,$(FUZZ_TIME),fuzz-json)
+	$(call run_fuzzer,fuzz_scene_json,$(FUZZ_TIME),fuzz-json)
 fuzz-json-smoke: $(FUZZ)/fuzz_scene_json
-	$(call run_fuzz_json,$(FUZZ_JSON_SMOKE_TIME),fuzz-json-smoke)
+	$(call run_fuzzer,fuzz_scene_json,$(FUZZ_JSON_SMOKE_TIME),fuzz-json-smoke)
 
 TEST_TARGETS += stream-test stream-test-asan fuzz-smoke fuzz-json-smoke

@@ -78,29 +78,21 @@ FUZZ_SVG_SRC := tests/fuzz_svg.c $(SVG_LIB_SRC) host-sim/scene_json.c host-sim/p
 FUZZ_SVG_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all -D_GNU_SOURCE -Icore \
         -Ihost-sim -Itools/svg -Itools $(shell pkg-config --cflags $(SVG_PKGS) 2>/dev/null)
 $(eval $(call flags_record,fuzz-svg,$(FUZZ_CC) $(FUZZ_SVG_CFLAGS)))
-$(FUZZ)/svg/%.o: %.c $(CORE_HDR) $(wildcard tools/svg/*.h) host-sim/scene_json.h $(FLAGS_DIR)/fuzz-svg
+$(FUZZ)/svg/%.o: %.c $(CORE_HDR) tests/fuzz_check.h $(wildcard tools/svg/*.h) host-sim/scene_json.h $(FLAGS_DIR)/fuzz-svg
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_SVG_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
 $(FUZZ)/fuzz_svg: $(patsubst %.c,$(FUZZ)/svg/%.o,$(FUZZ_SVG_SRC) $(CORE_SRC))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
 
-define run_fuzz_svg
-	@rm -rf $(FUZZ)/svg-corpus && mkdir -p $(FUZZ)/svg-corpus && cp scenes/svg/*.svg $(FUZZ)/svg-corpus/
-	@find /usr/share/icons -name '*.svg' -size -6k 2>/dev/null | LC_ALL=C sort | awk 'NR % 40 == 0' | \
-		while read -r f; do cp "$$f" "$(FUZZ)/svg-corpus/$$(echo "$$f" | cksum | cut -d' ' -f1).svg"; done
-	$(Q)cd $(FUZZ) && ./fuzz_svg -max_total_time=$(1) -print_final_stats=1 -timeout=10 \
-		-dict=$(CURDIR)/tests/fuzz_svg.dict -max_len=16384 \
-		-rss_limit_mb=2048 svg-corpus 2>fuzz-svg.log; rc=$$?; \
-		grep -E '^(#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss_mb)' fuzz-svg.log; \
-		if [ $$rc -ne 0 ]; then tail -40 fuzz-svg.log; echo "$(2): 0 passed, 1 failed"; exit 1; fi; \
-		echo "$(2): $$(sed -n 's/^stat::number_of_executed_units: *//p' fuzz-svg.log) executions, no finding"; \
-		echo "$(2): 1 passed, 0 failed"
-endef
+FUZZ_SEEDS_fuzz_svg = cp scenes/svg/*.svg $(FUZZ)/fuzz_svg.corpus/ && \
+        find /usr/share/icons -name '*.svg' -size -6k 2>/dev/null | LC_ALL=C sort | awk 'NR % 40 == 0' | \
+        while read -r f; do cp "$$f" "$(FUZZ)/fuzz_svg.corpus/$$(echo "$$f" | cksum | cut -d' ' -f1).svg"; done
+FUZZ_OPTS_fuzz_svg = -timeout=10 -dict=$(CURDIR)/tests/fuzz_svg.dict -max_len=16384 -rss_limit_mb=2048
 .PHONY: fuzz-svg fuzz-svg-smoke
 fuzz-svg: $(FUZZ)/fuzz_svg
-	$(call run_fuzz_svg,$(FUZZ_TIME),fuzz-svg)
+	$(call run_fuzzer,fuzz_svg,$(FUZZ_TIME),fuzz-svg)
 fuzz-svg-smoke: $(FUZZ)/fuzz_svg
-	$(call run_fuzz_svg,$(FUZZ_SVG_SMOKE_TIME),fuzz-svg-smoke)
+	$(call run_fuzzer,fuzz_svg,$(FUZZ_SVG_SMOKE_TIME),fuzz-svg-smoke)
 
 HOST_PROGRAMS += $(HOST)/svgimport
 TEST_TARGETS += test-svg fuzz-svg-smoke

@@ -23,16 +23,11 @@
 #include "celscan.h"
 #include "scene_json.h"
 
+#define FUZZ_NAME "fuzz_scene_json"
+#include "fuzz_check.h"
+
 static cs_scene scene;
 static cs_workspace ws;
-
-#define REQUIRE(cond)                                                                             \
-    do {                                                                                          \
-        if (!(cond)) {                                                                            \
-            fprintf(stderr, "fuzz_scene_json: check failed: %s (line %d)\n", #cond, __LINE__);  \
-            abort();                                                                              \
-        }                                                                                         \
-    } while (0)
 
 enum { FW = 16, FH = 12 };
 

@@ -27,6 +27,9 @@
 #include "cels_write.h"
 #include "celscan.h"
 
+#define FUZZ_NAME "fuzz_stream"
+#include "fuzz_check.h"
+
 static cs_scene store_a, store_b, store_c, store_d;
 
 /* What the run reached, printed at exit: proof that mutated input gets
@@ -51,14 +54,6 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     return 0;
 }
 static cs_workspace ws;
-
-#define REQUIRE(cond)                                                                             \
-    do {                                                                                          \
-        if (!(cond)) {                                                                            \
-            fprintf(stderr, "fuzz_stream: check failed: %s (line %d)\n", #cond, __LINE__);      \
-            abort();                                                                              \
-        }                                                                                         \
-    } while (0)
 
 static uint32_t crc_bytes(uint32_t c, const void *p, size_t n)
 {

@@ -23,16 +23,11 @@
 #include "scene_json.h"
 #include "sv.h"
 
+#define FUZZ_NAME "fuzz_svg"
+#include "fuzz_check.h"
+
 static cs_scene scene;
 static cs_workspace ws;
-
-#define REQUIRE(cond)                                                                             \
-    do {                                                                                          \
-        if (!(cond)) {                                                                            \
-            fprintf(stderr, "fuzz_svg: check failed: %s (line %d)\n", #cond, __LINE__);         \
-            abort();                                                                              \
-        }                                                                                         \
-    } while (0)
 
 enum { FW = 32, FH = 24 };
 
