@@ -679,7 +679,8 @@ static int load_contour(loader *L, const cJSON *c)
     float degf = 0.0f;
     if (member_float(L, c, "degree", true, &degf) != 0)
         return -1;
-    if (degf != (float)(int)degf || degf < 0.0f || degf > 64.0f) {
+    /* The range first: converting a float beyond int's range is undefined. */
+    if (!(degf >= 0.0f && degf <= 64.0f) || degf != (float)(int)degf) {
         push_key(L, "degree");
         return fail(L, "degree must be an integer 1, 2 or 3, got %g", (double)degf);
     }

@@ -8,8 +8,7 @@
 # objects) so that the sanitizer build instruments the core too.
 
 BETA_CFLAGS := -std=c11 -O2 -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -D_POSIX_C_SOURCE=200809L -MMD -MP
-BETA_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-$(eval $(call flags_record,beta,$(CC) $(BETA_CFLAGS) $(BETA_SAN)))
+$(eval $(call flags_record,beta,$(CC) $(BETA_CFLAGS) $(SAN_FLAGS)))
 
 $(HOST)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
@@ -17,7 +16,7 @@ $(HOST)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 
 $(ASAN)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(BETA_CFLAGS) -O1 $(BETA_SAN) tests/test_beta.c $(CORE_SRC) -lm -o $@
+	$(Q)$(CC) $(BETA_CFLAGS) -O1 $(SAN_FLAGS) tests/test_beta.c $(CORE_SRC) -lm -o $@
 
 $(HOST)/bench_cache_anim: bench/cache_anim.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)

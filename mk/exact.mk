@@ -6,7 +6,6 @@
 #   make bench-aa            exact vs --aa 5 / 16 on a demo-like and a heavy scene
 
 EXACT_TEST_OBJ := tests/test_exact.o tests/exact_ref.o
-EXACT_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 EXACT_ASAN := $(ASAN)/exact
 
 $(HOST)/tests/test_exact: $(addprefix $(HOST)/obj/,$(EXACT_TEST_OBJ)) $(HOST)/libcelscan.a
@@ -14,16 +13,16 @@ $(HOST)/tests/test_exact: $(addprefix $(HOST)/obj/,$(EXACT_TEST_OBJ)) $(HOST)/li
 	$(Q)$(CC) $^ -lm -o $@
 
 # Sanitizer builds keep their objects apart from the plain ones.
-$(eval $(call flags_record,exact-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(EXACT_SAN)))
+$(eval $(call flags_record,exact-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(SAN_FLAGS)))
 $(EXACT_ASAN)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/exact-asan
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CORE_CFLAGS) $(EXACT_SAN) -c $< -o $@
+	$(Q)$(CC) $(CORE_CFLAGS) $(SAN_FLAGS) -c $< -o $@
 $(EXACT_ASAN)/obj/%.o: %.c $(FLAGS_DIR)/exact-asan
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(HOST_CFLAGS) -Itests $(EXACT_SAN) -DTEST_NAME='"test_exact_asan"' -c $< -o $@
+	$(Q)$(CC) $(HOST_CFLAGS) -Itests $(SAN_FLAGS) -DTEST_NAME='"test_exact_asan"' -c $< -o $@
 $(EXACT_ASAN)/test_exact: $(addprefix $(EXACT_ASAN)/obj/,$(EXACT_TEST_OBJ)) \
                           $(patsubst core/%.c,$(EXACT_ASAN)/core/%.o,$(CORE_SRC))
-	$(Q)$(CC) $(EXACT_SAN) $^ -lm -o $@
+	$(Q)$(CC) $(SAN_FLAGS) $^ -lm -o $@
 
 $(HOST)/bench_aa_modes: $(HOST)/obj/bench/aa_modes.o $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)

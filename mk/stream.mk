@@ -17,18 +17,17 @@ $(HOST)/test_stream: $(STREAM_TEST_OBJ) $(HOST)/libcelscan.a
 	$(Q)$(CC) $^ -o $@ -lm
 
 # Sanitizers over everything, the core too: the decoder is what they are for.
-STREAM_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 STREAM_ASAN := $(ASAN)/stream
-$(eval $(call flags_record,stream-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(STREAM_SAN)))
+$(eval $(call flags_record,stream-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(SAN_FLAGS)))
 $(STREAM_ASAN)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/stream-asan
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CORE_CFLAGS) $(STREAM_SAN) -c $< -o $@
+	$(Q)$(CC) $(CORE_CFLAGS) $(SAN_FLAGS) -c $< -o $@
 $(STREAM_ASAN)/obj/%.o: %.c $(FLAGS_DIR)/stream-asan
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(HOST_CFLAGS) -Itools $(STREAM_SAN) -c $< -o $@
+	$(Q)$(CC) $(HOST_CFLAGS) -Itools $(SAN_FLAGS) -c $< -o $@
 $(STREAM_ASAN)/test_stream: $(STREAM_ASAN)/obj/tests/test_stream.o \
         $(STREAM_ASAN)/obj/tools/cels_write.o $(STREAM_ASAN)/obj/tools/cels_read.o $(patsubst core/%.c,$(STREAM_ASAN)/core/%.o,$(CORE_SRC))
-	$(Q)$(CC) $(STREAM_SAN) $^ -o $@ -lm
+	$(Q)$(CC) $(SAN_FLAGS) $^ -o $@ -lm
 
 .PHONY: stream-test stream-test-asan fuzz fuzz-smoke stream-seeds
 stream-test: $(HOST)/test_stream

@@ -327,6 +327,24 @@ static void test_animate_values(void)
           "paint track animating beta under a gradient pigment: %s", err);
 }
 
+/* A contour's degree must be a whole number 1..3; one far beyond int's range
+ * (found by fuzz_scene_json) is refused like any other, not converted. */
+static void test_degree_errors(void)
+{
+    static const char *const bad[] = {"9999999999999999992", "1e300", "-1e300", "2.5", "-1", "4"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char json[512], err[SCENE_JSON_ERRLEN] = "";
+        snprintf(json, sizeof json,
+                 "{\"canvas\": {\"width\": 10, \"height\": 10}, \"cels\": [{\"regions\": [{"
+                 "\"paint\": {\"pigment\": \"#fff\"}, \"contours\": [{\"degree\": %s, "
+                 "\"points\": [[0,0],[10,0],[10,10],[0,10]]}]}]}]}",
+                 bad[i]);
+        int rc = scene_json_load_string(json, strlen(json), "d.json", sa, err, sizeof err);
+        CHECK(rc != 0 && strstr(err, "d.json: cels[0].regions[0].contours[0].degree: ") == err,
+              "degree %s: refused with its path, got \"%s\"", bad[i], err);
+    }
+}
+
 /* Loads and expects failure with `path` and `what` in the message. */
 static void expect_fail(const char *name, const char *top, const char *cel, const char *region,
                         const char *contour, const char *path, const char *what)
@@ -520,6 +538,7 @@ int main(int argc, char **argv)
     test_scene_dir(dir);
     TL_RUN(test_animate_values);
     TL_RUN(test_animate_errors);
+    TL_RUN(test_degree_errors);
     TL_RUN(test_json_centroid);
     free(sa);
     free(sb);
