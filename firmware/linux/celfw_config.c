@@ -49,11 +49,21 @@ static bool parse_num(const char *v, double lo, double hi, double *out, char *er
     return true;
 }
 
+/* Numbers by strtol/strtoul, not sscanf: sscanf's conversion of a number
+ * beyond the type's range is undefined, strtol's is ERANGE. */
 static bool parse_size(const char *v, int *w, int *h, char *err, size_t errlen)
 {
-    char tail;
-    if (sscanf(v, "%dx%d%c", w, h, &tail) != 2 || *w < 1 || *h < 1 || *w > CS_CFG_MAX_WIDTH ||
-        *h > CS_CFG_MAX_HEIGHT) {
+    char *x, *end = NULL;
+    errno = 0;
+    long lw = strtol(v, &x, 10), lh = 0;
+    bool ok = x != v && *x == 'x' && isdigit((unsigned char)x[1]);
+    if (ok)
+        lh = strtol(x + 1, &end, 10);
+    ok = ok && *end == '\0' && errno == 0 && lw >= 1 && lh >= 1 && lw <= CS_CFG_MAX_WIDTH &&
+         lh <= CS_CFG_MAX_HEIGHT;
+    *w = ok ? (int)lw : 0;
+    *h = ok ? (int)lh : 0;
+    if (!ok) {
         snprintf(err, errlen, "'%s' is not a size WxH (width 1..%d, height 1..%d)", v, CS_CFG_MAX_WIDTH,
                  CS_CFG_MAX_HEIGHT);
         return false;
@@ -236,13 +246,17 @@ static bool p_chip(celfw_config *c, const char *v, char *err, size_t n)
 
 static bool p_usb_device(celfw_config *c, const char *v, char *err, size_t n)
 {
-    unsigned vid, pid;
-    char tail;
     if (!strcmp(v, "any")) {
         c->usb.vid = c->usb.pid = 0;
         return true;
     }
-    if (sscanf(v, "%x:%x%c", &vid, &pid, &tail) != 2 || vid > 0xffff || pid > 0xffff) {
+    char *colon, *end = NULL;
+    errno = 0;
+    unsigned long vid = strtoul(v, &colon, 16), pid = 0;
+    bool ok = colon != v && *colon == ':' && isxdigit((unsigned char)colon[1]);
+    if (ok)
+        pid = strtoul(colon + 1, &end, 16);
+    if (!ok || *end != '\0' || errno != 0 || vid > 0xffff || pid > 0xffff) {
         snprintf(err, n, "'%s' is not VID:PID in hex (e.g. 1d50:614d) or any", v);
         return false;
     }

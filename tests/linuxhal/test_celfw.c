@@ -175,6 +175,14 @@ static void test_config_errors(void)
                    "rescans it continuously");
     expect_failure("unknown option", (const char *[]){"--plains", "8", NULL}, 2, "unknown option '--plains'");
     expect_failure("null without size", (const char *[]){"--backend", "null", NULL}, 2, "needs --size");
+    /* Numbers beyond int's range are refused (sscanf's %d would be undefined). */
+    expect_failure("size beyond int", (const char *[]){"--backend", "null", "--size", "99999999999x8", NULL}, 2,
+                   "'99999999999x8' is not a size WxH");
+    expect_failure("size with a tail", (const char *[]){"--backend", "null", "--size", "8x8x", NULL}, 2,
+                   "'8x8x' is not a size WxH");
+    expect_failure("usb id beyond range",
+                   (const char *[]){"--backend", "usb", "--usb-device", "1d50:fffffffffffffffff", NULL}, 2,
+                   "'1d50:fffffffffffffffff' is not VID:PID in hex");
     expect_failure("bad backend", (const char *[]){"--backend", "hdmi", NULL}, 2,
                    "'hdmi' is not a backend (gpio, usb or null)");
     expect_failure("1/32 scan without E",
