@@ -9,7 +9,8 @@
 #     exits 0, and says on stderr what was wrong at which byte offset;
 #   - a stream with nothing valid (damaged, cut short, garbage) exits 1 and says so;
 #   - celc refuses bad scenes with the JSON path and exit 1, leaves no output file
-#     behind, refuses bad command lines with exit 2, and `celc import` answers;
+#     behind, refuses bad command lines with exit 2 (celc text: numbers no scene
+#     can hold), and `celc import` answers;
 # Byte offsets are computed here from the file sizes, independently of the decoder.
 # Last line: `cli_stream: N passed, M failed`.
 set -u
@@ -153,6 +154,21 @@ if [ ! -f tools/celc_import.c ]; then
     rc=$?
     check "celc import: not built in (exit $rc): $(cat "$out/bad.err")" \
         sh -c "[ $rc -ne 0 ] && grep -qx 'celc import: not built in' '$out/bad.err'"
+fi
+# celc text: numbers that no scene can hold are refused on the command line
+# (exit 2, the option named), not written to the scene file.
+if [ -f tools/celc_import.c ]; then
+    for arg in "--size nan" "--size 1e400" "--size -5" "--position nan,0" "--position 3" \
+        "--canvas -5x10" "--canvas 200x40x"; do
+        set -- $arg
+        "$celc" text Hi -o "$out/text.json" "$1" "$2" 2>"$out/bad.err"
+        rc=$?
+        check "celc text $arg refused (exit $rc): $(cat "$out/bad.err")" \
+            sh -c "[ $rc -eq 2 ] && grep -q \"^celc text: $1 '$2': expected\" '$out/bad.err'"
+    done
+    "$celc" text Hi -o "$out/text.json" --size 24 --position 3,-4 --canvas 200x40 2>"$out/bad.err"
+    rc=$?
+    check "celc text with valid numbers (exit $rc): $(cat "$out/bad.err")" [ "$rc" -eq 0 ]
 fi
 # Standard output, and the file is exactly that.
 "$celc" compile scenes/demo.json -o - >"$out/stdout.cels" 2>/dev/null

@@ -92,6 +92,33 @@ static int write_cels(const sv_doc *doc, const char *path)
     return rc;
 }
 
+/*
+ * One number (sep 0) or two separated by `sep`, the whole string, each
+ * finite and within [lo, hi]. strtod, not atof or sscanf: those take "abc"
+ * as 0, and "nan" or "1e400" through to a scene file that no loader reads.
+ */
+static bool parse_numbers(const char *s, char sep, double lo, double hi, double *a, double *b)
+{
+    char *end;
+    double v[2];
+    int n = sep ? 2 : 1;
+    for (int k = 0; k < n; k++) {
+        v[k] = strtod(s, &end);
+        if (end == s || !(v[k] >= lo && v[k] <= hi)) /* NaN fails too */
+            return false;
+        if (*end != (k + 1 < n ? sep : '\0'))
+            return false;
+        s = end + 1;
+    }
+    *a = v[0];
+    if (b)
+        *b = v[1];
+    return true;
+}
+
+/* Scene coordinates are refused by the core beyond this (cs_config.h). */
+#define COORD_MAX 1.0e6
+
 static bool parse_bg(const char *s, double rgb[3])
 {
     double a;
@@ -170,11 +197,17 @@ static int usage_text(void)
     return 2;
 }
 
+static int bad_text_arg(const char *option, const char *value, const char *want)
+{
+    fprintf(stderr, "celc text: %s '%s': expected %s\n", option, value, want);
+    return 2;
+}
+
 int celc_text_main(int argc, char **argv)
 {
     const char *text = NULL, *out = NULL, *font = SV_DEFAULT_FONT;
-    double size = 48, x = 0, y = -1, cw = 0, ch = 0, color[3] = {0, 0, 0}, bg[3];
-    bool has_bg = false;
+    double size = 48, x = 0, y = 0, cw = 0, ch = 0, color[3] = {0, 0, 0}, bg[3];
+    bool has_bg = false, y_given = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         double al;
@@ -182,14 +215,16 @@ int celc_text_main(int argc, char **argv)
             out = argv[++i];
         else if (!strcmp(a, "--font") && i + 1 < argc)
             font = argv[++i];
-        else if (!strcmp(a, "--size") && i + 1 < argc)
-            size = atof(argv[++i]);
-        else if (!strcmp(a, "--position") && i + 1 < argc) {
-            if (sscanf(argv[++i], "%lf,%lf", &x, &y) != 2)
-                return usage_text();
+        else if (!strcmp(a, "--size") && i + 1 < argc) {
+            if (!parse_numbers(argv[++i], 0, 1e-3, COORD_MAX, &size, NULL))
+                return bad_text_arg("--size", argv[i], "a text size in 0.001..1e6");
+        } else if (!strcmp(a, "--position") && i + 1 < argc) {
+            if (!parse_numbers(argv[++i], ',', -COORD_MAX, COORD_MAX, &x, &y))
+                return bad_text_arg("--position", argv[i], "X,Y within +-1e6");
+            y_given = true;
         } else if (!strcmp(a, "--canvas") && i + 1 < argc) {
-            if (sscanf(argv[++i], "%lfx%lf", &cw, &ch) != 2)
-                return usage_text();
+            if (!parse_numbers(argv[++i], 'x', 1e-3, COORD_MAX, &cw, &ch))
+                return bad_text_arg("--canvas", argv[i], "WxH, each in 0.001..1e6");
         } else if (!strcmp(a, "--color") && i + 1 < argc) {
             if (sv_parse_color(argv[++i], color, &al) != SV_COLOR_RGB)
                 return usage_text();
@@ -206,7 +241,7 @@ int celc_text_main(int argc, char **argv)
     }
     if (!text || !out)
         return usage_text();
-    if (y < 0)
+    if (!y_given)
         y = size; /* baseline one em down by default */
     sv_path p;
     sv_path_init(&p);
