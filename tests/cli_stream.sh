@@ -9,8 +9,8 @@
 #     exits 0, and says on stderr what was wrong at which byte offset;
 #   - a stream with nothing valid (damaged, cut short, garbage) exits 1 and says so;
 #   - celc refuses bad scenes with the JSON path and exit 1, leaves no output file
-#     behind, refuses bad command lines with exit 2 (celc text: numbers no scene
-#     can hold), and `celc import` answers;
+#     behind, refuses bad command lines with exit 2 (celc text and import: numbers
+#     out of range or not numbers), and `celc import` answers;
 # Byte offsets are computed here from the file sizes, independently of the decoder.
 # Last line: `cli_stream: N passed, M failed`.
 set -u
@@ -169,6 +169,13 @@ if [ -f tools/celc_import.c ]; then
     "$celc" text Hi -o "$out/text.json" --size 24 --position 3,-4 --canvas 200x40 2>"$out/bad.err"
     rc=$?
     check "celc text with valid numbers (exit $rc): $(cat "$out/bad.err")" [ "$rc" -eq 0 ]
+    for arg in "--tolerance nan" "--nominal -5"; do
+        set -- $arg
+        "$celc" import scenes/svg/sign.svg -o "$out/import.json" -q "$1" "$2" 2>"$out/bad.err"
+        rc=$?
+        check "celc import $arg refused (exit $rc): $(cat "$out/bad.err")" \
+            sh -c "[ $rc -eq 2 ] && grep -q \"^celc import: $1 '$2': expected\" '$out/bad.err'"
+    done
 fi
 # Standard output, and the file is exactly that.
 "$celc" compile scenes/demo.json -o - >"$out/stdout.cels" 2>/dev/null

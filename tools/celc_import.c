@@ -119,6 +119,13 @@ static bool parse_numbers(const char *s, char sep, double lo, double hi, double 
 /* Scene coordinates are refused by the core beyond this (cs_config.h). */
 #define COORD_MAX 1.0e6
 
+/* A command-line value parse_numbers refused: usage error, exit 2. */
+static int bad_arg(const char *command, const char *option, const char *value, const char *want)
+{
+    fprintf(stderr, "celc %s: %s '%s': expected %s\n", command, option, value, want);
+    return 2;
+}
+
 static bool parse_bg(const char *s, double rgb[3])
 {
     double a;
@@ -137,9 +144,11 @@ int celc_import_main(int argc, char **argv)
         if (!strcmp(a, "-o") && i + 1 < argc) {
             out = argv[++i];
         } else if (!strcmp(a, "--tolerance") && i + 1 < argc) {
-            opts.tolerance = atof(argv[++i]);
+            if (!parse_numbers(argv[++i], 0, 0.0, COORD_MAX, &opts.tolerance, NULL))
+                return bad_arg("import", "--tolerance", argv[i], "a tolerance in 0..1e6 (0: default)");
         } else if (!strcmp(a, "--nominal") && i + 1 < argc) {
-            opts.nominal_px = atof(argv[++i]);
+            if (!parse_numbers(argv[++i], 0, 0.0, COORD_MAX, &opts.nominal_px, NULL))
+                return bad_arg("import", "--nominal", argv[i], "a size in pixels in 0..1e6 (0: 1024)");
         } else if (!strcmp(a, "--background") && i + 1 < argc) {
             if (!parse_bg(argv[++i], bg)) {
                 fprintf(stderr, "celc import: bad colour '%s'\n", argv[i]);
@@ -197,12 +206,6 @@ static int usage_text(void)
     return 2;
 }
 
-static int bad_text_arg(const char *option, const char *value, const char *want)
-{
-    fprintf(stderr, "celc text: %s '%s': expected %s\n", option, value, want);
-    return 2;
-}
-
 int celc_text_main(int argc, char **argv)
 {
     const char *text = NULL, *out = NULL, *font = SV_DEFAULT_FONT;
@@ -217,14 +220,14 @@ int celc_text_main(int argc, char **argv)
             font = argv[++i];
         else if (!strcmp(a, "--size") && i + 1 < argc) {
             if (!parse_numbers(argv[++i], 0, 1e-3, COORD_MAX, &size, NULL))
-                return bad_text_arg("--size", argv[i], "a text size in 0.001..1e6");
+                return bad_arg("text", "--size", argv[i], "a text size in 0.001..1e6");
         } else if (!strcmp(a, "--position") && i + 1 < argc) {
             if (!parse_numbers(argv[++i], ',', -COORD_MAX, COORD_MAX, &x, &y))
-                return bad_text_arg("--position", argv[i], "X,Y within +-1e6");
+                return bad_arg("text", "--position", argv[i], "X,Y within +-1e6");
             y_given = true;
         } else if (!strcmp(a, "--canvas") && i + 1 < argc) {
             if (!parse_numbers(argv[++i], 'x', 1e-3, COORD_MAX, &cw, &ch))
-                return bad_text_arg("--canvas", argv[i], "WxH, each in 0.001..1e6");
+                return bad_arg("text", "--canvas", argv[i], "WxH, each in 0.001..1e6");
         } else if (!strcmp(a, "--color") && i + 1 < argc) {
             if (sv_parse_color(argv[++i], color, &al) != SV_COLOR_RGB)
                 return usage_text();
