@@ -51,7 +51,9 @@ FUZZ_CAPS := -DCS_CFG_MAX_CELS=8 -DCS_CFG_MAX_REGIONS=32 -DCS_CFG_MAX_CONTOURS=6
 FUZZ_GUIDED := core/cs_stream.c core/cs_scene.c core/cs_edit.c core/cs_anim.c core/cs_status.c \
         tools/cels_write.c tests/fuzz_stream.c
 FUZZ_PLAIN := $(filter-out $(FUZZ_GUIDED),$(CORE_SRC))
-FUZZ_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all $(FUZZ_CAPS) -Icore -Itools
+# Every fuzz build (the JSON loader's below and the SVG importer's in mk/svg.mk too).
+FUZZ_BASE_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all
+FUZZ_CFLAGS := $(FUZZ_BASE_CFLAGS) $(FUZZ_CAPS) -Icore -Itools
 $(eval $(call flags_record,fuzz,$(FUZZ_CC) $(FUZZ_CFLAGS)))
 $(FUZZ)/guided/%.o: %.c $(CORE_HDR) tools/cels_write.h tests/fuzz_check.h $(FLAGS_DIR)/fuzz
 	@mkdir -p $(dir $@)
@@ -92,8 +94,7 @@ stream-seeds: $(HOST)/test_stream
 # cJSON from Debian. Seeds are the committed scenes.
 FUZZ_JSON_SMOKE_TIME ?= 20
 FUZZ_JSON_SRC := tests/fuzz_scene_json.c host-sim/scene_json.c host-sim/paint_json.c
-FUZZ_JSON_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all -Icore -Ihost-sim \
-        $(shell pkg-config --cflags libcjson)
+FUZZ_JSON_CFLAGS := $(FUZZ_BASE_CFLAGS) -Icore -Ihost-sim $(shell pkg-config --cflags libcjson)
 $(eval $(call flags_record,fuzz-json,$(FUZZ_CC) $(FUZZ_JSON_CFLAGS)))
 $(FUZZ)/json/%.o: %.c $(CORE_HDR) tests/fuzz_check.h host-sim/scene_json.h host-sim/paint_json.h $(FLAGS_DIR)/fuzz-json
 	@mkdir -p $(dir $@)

@@ -75,8 +75,8 @@ svg-demo: $(HOST)/celc $(HOST)/celsim
 # the demo sign and every 40th small icon of the themes the tests install.
 FUZZ_SVG_SMOKE_TIME ?= 20
 FUZZ_SVG_SRC := tests/fuzz_svg.c $(SVG_LIB_SRC) host-sim/scene_json.c host-sim/paint_json.c
-FUZZ_SVG_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all -D_GNU_SOURCE -Icore \
-        -Ihost-sim -Itools/svg -Itools $(shell pkg-config --cflags $(SVG_PKGS) 2>/dev/null)
+FUZZ_SVG_CFLAGS := $(FUZZ_BASE_CFLAGS) -D_GNU_SOURCE -Icore -Ihost-sim -Itools/svg -Itools \
+        $(shell pkg-config --cflags $(SVG_PKGS) 2>/dev/null)
 $(eval $(call flags_record,fuzz-svg,$(FUZZ_CC) $(FUZZ_SVG_CFLAGS)))
 $(FUZZ)/svg/%.o: %.c $(CORE_HDR) tests/fuzz_check.h $(wildcard tools/svg/*.h) host-sim/scene_json.h $(FLAGS_DIR)/fuzz-svg
 	@mkdir -p $(dir $@)

@@ -155,27 +155,27 @@ if [ ! -f tools/celc_import.c ]; then
     check "celc import: not built in (exit $rc): $(cat "$out/bad.err")" \
         sh -c "[ $rc -ne 0 ] && grep -qx 'celc import: not built in' '$out/bad.err'"
 fi
-# celc text: numbers that no scene can hold are refused on the command line
-# (exit 2, the option named), not written to the scene file.
+# celc text and import: numbers that no scene can hold are refused on the
+# command line (exit 2, the option named), not written to the scene file.
+refuses() { # refuses COMMAND OPTION VALUE ARGS...: `celc COMMAND ARGS OPTION VALUE` exits 2
+    c=$1 o=$2 v=$3
+    shift 3
+    "$celc" "$c" "$@" "$o" "$v" 2>"$out/bad.err"
+    rc=$?
+    check "celc $c $o $v refused (exit $rc): $(cat "$out/bad.err")" \
+        sh -c "[ $rc -eq 2 ] && grep -q \"^celc $c: $o '$v': expected\" '$out/bad.err'"
+}
 if [ -f tools/celc_import.c ]; then
     for arg in "--size nan" "--size 1e400" "--size -5" "--position nan,0" "--position 3" \
         "--canvas -5x10" "--canvas 200x40x"; do
-        set -- $arg
-        "$celc" text Hi -o "$out/text.json" "$1" "$2" 2>"$out/bad.err"
-        rc=$?
-        check "celc text $arg refused (exit $rc): $(cat "$out/bad.err")" \
-            sh -c "[ $rc -eq 2 ] && grep -q \"^celc text: $1 '$2': expected\" '$out/bad.err'"
+        # shellcheck disable=SC2086
+        refuses text $arg Hi -o "$out/text.json"
     done
     "$celc" text Hi -o "$out/text.json" --size 24 --position 3,-4 --canvas 200x40 2>"$out/bad.err"
     rc=$?
     check "celc text with valid numbers (exit $rc): $(cat "$out/bad.err")" [ "$rc" -eq 0 ]
-    for arg in "--tolerance nan" "--nominal -5"; do
-        set -- $arg
-        "$celc" import scenes/svg/sign.svg -o "$out/import.json" -q "$1" "$2" 2>"$out/bad.err"
-        rc=$?
-        check "celc import $arg refused (exit $rc): $(cat "$out/bad.err")" \
-            sh -c "[ $rc -eq 2 ] && grep -q \"^celc import: $1 '$2': expected\" '$out/bad.err'"
-    done
+    refuses import --tolerance nan scenes/svg/sign.svg -o "$out/import.json" -q
+    refuses import --nominal -5 scenes/svg/sign.svg -o "$out/import.json" -q
 fi
 # Standard output, and the file is exactly that.
 "$celc" compile scenes/demo.json -o - >"$out/stdout.cels" 2>/dev/null

@@ -49,25 +49,34 @@ static bool parse_num(const char *v, double lo, double hi, double *out, char *er
     return true;
 }
 
-/* Numbers by strtol/strtoul, not sscanf: sscanf's conversion of a number
- * beyond the type's range is undefined, strtol's is ERANGE. */
+/*
+ * "A<sep>B": two whole numbers in `base`, by strtol, not sscanf: sscanf's
+ * conversion of a number beyond its type's range is undefined, strtol's is
+ * ERANGE. B must start with a digit (no sign, no space); ranges are the
+ * caller's.
+ */
+static bool parse_pair(const char *v, char sep, int base, long *a, long *b)
+{
+    char *mid, *end;
+    errno = 0;
+    *a = strtol(v, &mid, base);
+    if (mid == v || *mid != sep || !isxdigit((unsigned char)mid[1]))
+        return false;
+    *b = strtol(mid + 1, &end, base);
+    return *end == '\0' && errno == 0;
+}
+
 static bool parse_size(const char *v, int *w, int *h, char *err, size_t errlen)
 {
-    char *x, *end = NULL;
-    errno = 0;
-    long lw = strtol(v, &x, 10), lh = 0;
-    bool ok = x != v && *x == 'x' && isdigit((unsigned char)x[1]);
-    if (ok)
-        lh = strtol(x + 1, &end, 10);
-    ok = ok && *end == '\0' && errno == 0 && lw >= 1 && lh >= 1 && lw <= CS_CFG_MAX_WIDTH &&
-         lh <= CS_CFG_MAX_HEIGHT;
-    *w = ok ? (int)lw : 0;
-    *h = ok ? (int)lh : 0;
-    if (!ok) {
+    long lw, lh;
+    if (!parse_pair(v, 'x', 10, &lw, &lh) || lw < 1 || lh < 1 || lw > CS_CFG_MAX_WIDTH ||
+        lh > CS_CFG_MAX_HEIGHT) {
         snprintf(err, errlen, "'%s' is not a size WxH (width 1..%d, height 1..%d)", v, CS_CFG_MAX_WIDTH,
                  CS_CFG_MAX_HEIGHT);
         return false;
     }
+    *w = (int)lw;
+    *h = (int)lh;
     return true;
 }
 
@@ -250,13 +259,8 @@ static bool p_usb_device(celfw_config *c, const char *v, char *err, size_t n)
         c->usb.vid = c->usb.pid = 0;
         return true;
     }
-    char *colon, *end = NULL;
-    errno = 0;
-    unsigned long vid = strtoul(v, &colon, 16), pid = 0;
-    bool ok = colon != v && *colon == ':' && isxdigit((unsigned char)colon[1]);
-    if (ok)
-        pid = strtoul(colon + 1, &end, 16);
-    if (!ok || *end != '\0' || errno != 0 || vid > 0xffff || pid > 0xffff) {
+    long vid, pid;
+    if (!parse_pair(v, ':', 16, &vid, &pid) || vid < 0 || pid < 0 || vid > 0xffff || pid > 0xffff) {
         snprintf(err, n, "'%s' is not VID:PID in hex (e.g. 1d50:614d) or any", v);
         return false;
     }
