@@ -423,11 +423,18 @@ cs_render_opts cs_render_defaults(int width, int height);
 
 /*
  * One rational polynomial segment in device space: for u in [0,1)
- * x(u) = X(u)/W(u), y(u) = Y(u)/W(u), with X(u) = sum x[i] u^i.
+ * x(u) = ox + X(u)/W(u), y(u) = oy + Y(u)/W(u), with X(u) = sum x[i] u^i.
+ * The origin (ox, oy) is a whole pixel at the segment's first control
+ * point, so the coefficients hold the segment's own extent rather than
+ * its distance from the screen's corner: a float coefficient's rounding
+ * then scales with the segment's size, not with where it is, which the
+ * exact-area bound needs on the tallest screens (BENCHMARKS.md).
  */
 typedef struct cs_segment {
     float x[4], y[4], w[4];
-    float x_lo, x_hi;  /* bounds of x(u) over [0,1] (Bezier hull), set by the frame */
+    int16_t ox, oy;    /* the origin, in pixels (clamped far off screen: any origin is exact) */
+    uint16_t px_lo, px_hi; /* pixels [px_lo, px_hi) that x(u) over [0,1] can touch (its
+                              Bezier hull widened by half a pixel), set by the frame */
     uint16_t region;   /* index into scene regions */
     uint8_t degree;
     bool rational;     /* W varies (w[1..3] not all 0): else x = X / w[0] */

@@ -142,16 +142,17 @@ static void eval_end(const cs_segment *s, float u, float y, cs_exact_end *e)
     e->u = u;
     if (polynomial(s)) {
         float W = s->w[0], inv = 1.0f / W;
-        e->x = X / W;
+        e->x = (float)s->ox + X / W;
         e->dx = dX * inv;
         e->dy = dY * inv;
         e->w = W;
         e->dwr = 0.0f;
     } else {
-        float dW, W = cs__horner_d(s->w, p, u, &dW), inv = 1.0f / W;
-        e->x = X / W;
-        e->dx = (dX - e->x * dW) * inv;
-        e->dy = (dY - y * dW) * inv;
+        /* x and y from the segment's origin, as X and Y are */
+        float dW, W = cs__horner_d(s->w, p, u, &dW), inv = 1.0f / W, x = X / W;
+        e->x = (float)s->ox + x;
+        e->dx = (dX - x * dW) * inv;
+        e->dy = (dY - (y - (float)s->oy) * dW) * inv;
         e->w = W;
         e->dwr = dW * inv;
     }
@@ -160,7 +161,7 @@ static void eval_end(const cs_segment *s, float u, float y, cs_exact_end *e)
 /* y of s at u (for points placed by x). */
 static float seg_y(const cs_segment *s, float u)
 {
-    return cs__horner(s->y, s->degree, u) / cs__horner(s->w, s->degree, u);
+    return (float)s->oy + cs__horner(s->y, s->degree, u) / cs__horner(s->w, s->degree, u);
 }
 
 /*
@@ -196,6 +197,7 @@ static inline void place_end(const cs_segment *s, bool poly, float yv, float lo,
                       bool rising, cs_exact_end *e)
 {
     float g[4];
+    yv -= (float)s->oy; /* from the segment's origin, as Y is */
     for (int i = 0; i < 4; i++)
         g[i] = s->y[i] - yv * s->w[i];
     float f, d, dd;
@@ -249,15 +251,15 @@ static inline void place_end(const cs_segment *s, bool poly, float yv, float lo,
     e->u = u;
     if (poly) {
         float inv = 1.0f / s->w[0];
-        e->x = X * inv;
+        e->x = (float)s->ox + X * inv;
         e->dx = dX * inv;
         e->dy = d * inv;
         e->w = s->w[0];
         e->dwr = 0.0f;
     } else {
-        float dW, ddW, W = jet(s->w, u, &dW, &ddW), inv = 1.0f / W;
-        e->x = X * inv;
-        e->dx = (dX - e->x * dW) * inv;
+        float dW, ddW, W = jet(s->w, u, &dW, &ddW), inv = 1.0f / W, x = X * inv;
+        e->x = (float)s->ox + x;
+        e->dx = (dX - x * dW) * inv;
         e->dy = d * inv;
         e->w = W;
         e->dwr = dW * inv;
@@ -270,14 +272,16 @@ static inline void place_end(const cs_segment *s, bool poly, float yv, float lo,
 static void line_end(const cs_segment *s, float yv, float exact, float ua, float ub,
                      cs_exact_end *e)
 {
+    yv -= (float)s->oy; /* from the segment's origin, as Y is */
     float gy = s->y[1] - yv * s->w[1];
     float u = exact >= 0.0f ? exact
                             : cs__clampf((yv * s->w[0] - s->y[0]) / gy, cs__minf(ua, ub),
                                          cs__maxf(ua, ub));
     float W = s->w[1] * u + s->w[0], inv = 1.0f / W;
+    float x = (s->x[1] * u + s->x[0]) * inv;
     e->u = u;
-    e->x = (s->x[1] * u + s->x[0]) * inv;
-    e->dx = (s->x[1] - e->x * s->w[1]) * inv;
+    e->x = (float)s->ox + x;
+    e->dx = (s->x[1] - x * s->w[1]) * inv;
     e->dy = gy * inv;
     e->w = W;
     e->dwr = s->w[1] * inv;
@@ -443,12 +447,12 @@ static void poly_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact
         u = yv == pc->y_top ? ut : ub;
         d1 = (3.0f * Y[3] * u + 2.0f * Y[2]) * u + Y[1];
     } else {
-        u = poly_level(Y, s->degree, yv * w0, cs__minf(ut, ub), cs__maxf(ut, ub),
+        u = poly_level(Y, s->degree, (yv - (float)s->oy) * w0, cs__minf(ut, ub), cs__maxf(ut, ub),
                        chord_u(ut, pc->y_top, ub, pc->y_bot, yv), pc->dir > 0,
                        (2.0f * LEVEL_TOL) * w0, &d1);
     }
     e->u = u;
-    e->x = (((X[3] * u + X[2]) * u + X[1]) * u + X[0]) * inv;
+    e->x = (float)s->ox + (((X[3] * u + X[2]) * u + X[1]) * u + X[0]) * inv;
     e->dx = ((3.0f * X[3] * u + 2.0f * X[2]) * u + X[1]) * inv;
     e->dy = d1 * inv;
     e->w = w0;
@@ -650,7 +654,7 @@ static float gauss(const cs_segment *s, int nodes, float a, float b, float c)
         float u = mid + half * nt[k];
         float dW, W = cs__horner_d(s->w, p, u, &dW);
         float dY, Y = cs__horner_d(s->y, p, u, &dY);
-        float xr = cs__horner(s->x, p, u) / W - c;
+        float xr = cs__horner(s->x, p, u) / W - (c - (float)s->ox);
         float yd = (dY * W - Y * dW) / (W * W);
         sum += nw[k] * (xr * yd);
     }
@@ -872,7 +876,7 @@ static void cut_at_x(const cs_segment *s, const cs_exact_end *a, float ya, const
     if (!(guess > cs__minf(ua, ub) && guess < cs__maxf(ua, ub)))
         guess = ua + (k - a->x) / (b->x - a->x) * (ub - ua);
     bool rising = (b->x > a->x) == (ub > ua);
-    float u = cs__solve_level_from(s->x, s->w, s->degree, k, cs__minf(ua, ub), cs__maxf(ua, ub),
+    float u = cs__solve_level_from(s->x, s->w, s->degree, k - (float)s->ox, cs__minf(ua, ub), cs__maxf(ua, ub),
                                    guess, rising, &slope);
     float y = cs__clampf(seg_y(s, u), ya, yb);
     eval_end(s, u, y, out);
@@ -1469,8 +1473,7 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
         cs_exact_piece *e = &ex[i];
         const cs_piece *pc = &ws->pieces[act[i]];
         const cs_segment *s = &ws->segments[pc->segment];
-        int32_t pa, pb;
-        cs__hull_pixels(r, s->x_lo, s->x_hi, &pa, &pb);
+        int32_t pa = s->px_lo, pb = s->px_hi;
         e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
         if (e->hidden)
             hide(e, act[i], pc, pa);

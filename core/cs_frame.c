@@ -34,13 +34,15 @@
 
 static float seg_y(const cs_segment *s, float u)
 {
-    return cs__poly_eval(s->y, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
+    return (float)s->oy + cs__poly_eval(s->y, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
 }
 
 /*
- * x bounds of a segment from its Bezier form: with positive homogeneous
- * weights the curve lies in the hull of its control points. Power to
- * Bernstein: b_i = sum_{j<=i} C(i,j)/C(p,j) a_j.
+ * The pixels a segment can touch, from its Bezier form: with positive
+ * homogeneous weights the curve lies in the hull of its control points.
+ * Power to Bernstein: b_i = sum_{j<=i} C(i,j)/C(p,j) a_j. The hull's x
+ * range is widened by half a pixel, so that a crossing rounded just past
+ * it still counts, and kept within the line.
  */
 static void segment_xbounds(cs_segment *s, float width)
 {
@@ -64,12 +66,15 @@ static void segment_xbounds(cs_segment *s, float width)
             hi = width;
             break;
         }
-        float x = bx / bw;
+        float x = (float)s->ox + bx / bw;
         lo = cs__minf(lo, x);
         hi = cs__maxf(hi, x);
     }
-    s->x_lo = cs__clampf(lo, 0.0f, width);
-    s->x_hi = cs__clampf(hi, 0.0f, width);
+    lo = cs__clampf(lo, 0.0f, width);
+    hi = cs__clampf(hi, 0.0f, width);
+    int32_t a = cs__floori(lo - 0.5f), b = cs__floori(hi + 0.5f) + 1;
+    s->px_lo = (uint16_t)(a < 0 ? 0 : a);
+    s->px_hi = (uint16_t)(b > (int32_t)width ? (int32_t)width : b);
 }
 
 /* Appends the monotone pieces of segment `si`, whose end y is `y_end`. */

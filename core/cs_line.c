@@ -144,6 +144,7 @@ static inline float sample_y(int y, int k, float step)
  * clamp keeps it there). */
 static inline float straight_root(const cs_segment *s, const cs_piece *pc, float ys)
 {
+    ys -= (float)s->oy;
     float g0 = s->y[0] - ys * s->w[0], g1 = s->y[1] - ys * s->w[1];
     if (g1 == 0.0f) /* level along the piece: the solver picks the end */
         return cs__solve_level(s->y, s->w, 1, ys, pc->u0, pc->u1);
@@ -167,17 +168,18 @@ static inline void piece_crossing(const cs_workspace *ws, const cs_piece *pc, fl
         w = cs__horner(s->w, 1, u);
         c->guess = u;
     } else {
+        float level = ys - (float)s->oy;
         if (warm)
-            u = cs__solve_level_from(s->y, s->w, s->degree, ys, pc->u0, pc->u1, guess,
+            u = cs__solve_level_from(s->y, s->w, s->degree, level, pc->u0, pc->u1, guess,
                                      pc->dir > 0, &slope);
         else
-            u = cs__solve_level(s->y, s->w, s->degree, ys, pc->u0, pc->u1);
+            u = cs__solve_level(s->y, s->w, s->degree, level, pc->u0, pc->u1);
         w = cs__horner(s->w, s->degree, u);
         /* This root moved along the level by one step (du/dlevel = W / g'),
          * or the root itself. */
         c->guess = slope != 0.0f ? cs__clampf(u + step * w / slope, pc->u0, pc->u1) : u;
     }
-    float x = cs__horner(s->x, s->degree, u) / w;
+    float x = (float)s->ox + cs__horner(s->x, s->degree, u) / w;
     c->x = cs__clampf(x, 0.0f, width);
     c->dir = pc->dir;
     c->operand = pc->operand;
@@ -196,10 +198,11 @@ static inline level_point level_point_at(const cs_segment *s, float u, float ys)
     float W = cs__horner_d(s->w, s->degree, u, &dW);
     (void)cs__horner_d(s->y, s->degree, u, &dY);
     level_point p;
-    p.x = X / W;
+    float x = X / W; /* from the segment's origin, as X is */
+    p.x = (float)s->ox + x;
     p.w = W;
-    p.g1 = dY - ys * dW;
-    p.dxdy = (dX - p.x * dW) / p.g1;
+    p.g1 = dY - (ys - (float)s->oy) * dW;
+    p.dxdy = (dX - x * dW) / p.g1;
     return p;
 }
 
@@ -224,8 +227,8 @@ static void interp_setup(const cs_workspace *ws, const cs_piece *pc, float ys0, 
     float u0 = c->guess, n1 = (float)(samples - 1);
     if (s->degree == 1) { /* exact, so no check */
         float u1 = straight_root(s, pc, ys_last);
-        float x1 = cs__horner(s->x, 1, u1) / cs__horner(s->w, 1, u1);
-        float x0 = cs__horner(s->x, 1, u0) / cs__horner(s->w, 1, u0);
+        float x1 = (float)s->ox + cs__horner(s->x, 1, u1) / cs__horner(s->w, 1, u1);
+        float x0 = (float)s->ox + cs__horner(s->x, 1, u0) / cs__horner(s->w, 1, u0);
         c->guess = x0;
         c->a1 = (x1 - x0) / n1;
         c->a2 = 0.0f;
@@ -238,7 +241,8 @@ static void interp_setup(const cs_workspace *ws, const cs_piece *pc, float ys0, 
     /* Newton's start on ys_last: du/dy = W / g' at u0. */
     float guess = cs__clampf(u0 + (ys_last - ys0) * p0.w / p0.g1, pc->u0, pc->u1);
     bool rising = pc->dir > 0;
-    float u1 = cs__solve_level_from(s->y, s->w, s->degree, ys_last, pc->u0, pc->u1, guess,
+    float oy = (float)s->oy;
+    float u1 = cs__solve_level_from(s->y, s->w, s->degree, ys_last - oy, pc->u0, pc->u1, guess,
                                     rising, &slope);
     level_point p1 = level_point_at(s, u1, ys_last);
     float x1 = p1.x;
@@ -246,9 +250,9 @@ static void interp_setup(const cs_workspace *ws, const cs_piece *pc, float ys0, 
     float h = ys_last - ys0, m0 = p0.dxdy * h, m1 = p1.dxdy * h;
     float c2 = 3.0f * (x1 - x0) - 2.0f * m0 - m1, c3 = 2.0f * (x0 - x1) + m0 + m1;
     float t = (float)mid / n1;
-    float um = cs__solve_level_from(s->y, s->w, s->degree, ys_mid, pc->u0, pc->u1,
+    float um = cs__solve_level_from(s->y, s->w, s->degree, ys_mid - oy, pc->u0, pc->u1,
                                     u0 + (u1 - u0) * t, rising, &slope);
-    float xm = cs__horner(s->x, s->degree, um) / cs__horner(s->w, s->degree, um);
+    float xm = (float)s->ox + cs__horner(s->x, s->degree, um) / cs__horner(s->w, s->degree, um);
     /* NaN or infinite slopes fail this test too. */
     if (!(cs__absf(x0 + t * (m0 + t * (c2 + t * c3)) - xm) <= CS__INTERP_TOL))
         return;
@@ -689,24 +693,22 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
 }
 
 /*
- * Whether every pixel the region's pieces could touch on this line (the
- * segments' hulls, cs__hull_pixels) is already opaque: a skipped region
- * then provably changes no pixel.
+ * Whether every pixel the region's pieces could touch on this line (their
+ * segments' hulls, cs_segment.px_lo/px_hi) is already opaque: a skipped
+ * region then provably changes no pixel.
  */
 static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
 {
     if (!r->record || r->opaque_px == 0u)
         return false;
     cs_workspace *ws = r->ws;
-    float lo = (float)r->opts.width, hi = 0.0f;
+    uint32_t a = (uint32_t)r->opts.width, b = 0u;
     for (uint32_t i = 0; i < n; i++) {
         const cs_segment *s = &ws->segments[ws->pieces[act[i]].segment];
-        lo = cs__minf(lo, s->x_lo);
-        hi = cs__maxf(hi, s->x_hi);
+        a = s->px_lo < a ? s->px_lo : a;
+        b = s->px_hi > b ? s->px_hi : b;
     }
-    int32_t a, b;
-    cs__hull_pixels(r, lo, hi, &a, &b);
-    return a >= b || cs__span_opaque(r, (uint32_t)a, (uint32_t)b);
+    return a >= b || cs__span_opaque(r, a, b);
 }
 
 /*

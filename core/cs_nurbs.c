@@ -70,6 +70,14 @@ static void span_basis(int degree, const float *knots, float h, float basis[4][4
 #undef KNOT
 }
 
+/* The whole pixel at device coordinate v (|v| <= CS_CFG_COORD_LIMIT),
+ * within int16_t: beyond it the origin only helps less. */
+static int16_t origin(float v)
+{
+    int32_t i = cs__floori(v);
+    return (int16_t)(i < -32768 ? -32768 : i > 32767 ? 32767 : i);
+}
+
 cs_status cs__contour_segments(const cs_point *points, const float *intervals, int count,
                                int degree, const cs_affine *to_device, uint16_t region,
                                cs_segment *out, uint32_t capacity, uint32_t *written,
@@ -119,12 +127,19 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
         cs_segment *s = &out[n];
         for (int i = 0; i < 4; i++)
             s->x[i] = s->y[i] = s->w[i] = 0.0f;
+        float ox = 0.0f, oy = 0.0f;
         for (int k = 0; k <= degree; k++) {
             int at = j - degree + k >= 0 ? j - degree + k : j - degree + k + count;
             const cs_point *p = &points[at];
             float dx = to_device->a * p->x + to_device->c * p->y + to_device->e;
             float dy = to_device->b * p->x + to_device->d * p->y + to_device->f;
-            float hx = p->w * dx, hy = p->w * dy;
+            if (k == 0) { /* the origin: the first control point's pixel */
+                s->ox = origin(dx);
+                s->oy = origin(dy);
+                ox = (float)s->ox;
+                oy = (float)s->oy;
+            }
+            float hx = p->w * (dx - ox), hy = p->w * (dy - oy);
             for (int i = 0; i <= degree; i++) {
                 s->x[i] += basis[k][i] * hx;
                 s->y[i] += basis[k][i] * hy;

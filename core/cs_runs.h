@@ -135,17 +135,6 @@ static inline void cs__mark_opaque(cs_workspace *ws, uint32_t a, uint32_t b)
     ws->opaque_bits[wb] |= cs__bit_range(0u, ((b - 1u) & 31u) + 1u);
 }
 
-/* The pixels [*a, *b) that curves within x_lo <= x <= x_hi can touch,
- * widened by half a pixel so that a crossing rounded just past a segment's
- * Bezier hull still counts. */
-static inline void cs__hull_pixels(const cs_renderer *r, float x_lo, float x_hi, int32_t *a,
-                                   int32_t *b)
-{
-    int32_t lo = cs__floori(x_lo - 0.5f), hi = cs__floori(x_hi + 0.5f) + 1;
-    *a = lo < 0 ? 0 : lo;
-    *b = hi > r->opts.width ? r->opts.width : hi;
-}
-
 /* The start of the run holding pixel a, walking right from run start s <= a. */
 static inline uint32_t cs__run_seek(const cs_workspace *ws, uint32_t s, uint32_t a)
 {

@@ -202,8 +202,10 @@ static cs_status build_core(const tscene *t)
     return st;
 }
 
-/* Renders t into out (width*height, channel 0 = coverage). */
-static cs_status render_core(const tscene *t, cs_aa_mode aa, int sub, double *out)
+/* Renders the window [x0, x0+w) x [y0, y0+h) of t's output into out
+ * (w*h, channel 0 = coverage). */
+static cs_status render_window(const tscene *t, cs_aa_mode aa, int sub, int x0, int y0, int w,
+                               int h, double *out)
 {
     cs_status st = build_core(t);
     if (st != CS_OK)
@@ -217,13 +219,19 @@ static cs_status render_core(const tscene *t, cs_aa_mode aa, int sub, double *ou
     if (st != CS_OK)
         return st;
     float *line = malloc(sizeof(float) * 3 * (size_t)t->width);
-    for (int y = 0; y < t->height && st == CS_OK; y++) {
-        st = cs_render_line(&r, y, line);
-        for (int x = 0; x < t->width; x++)
-            out[(size_t)y * (size_t)t->width + (size_t)x] = line[3 * x];
+    for (int y = 0; y < h && st == CS_OK; y++) {
+        st = cs_render_line(&r, y0 + y, line);
+        for (int x = 0; x < w; x++)
+            out[(size_t)y * (size_t)w + (size_t)x] = line[3 * (x0 + x)];
     }
     free(line);
     return st == CS_OK ? r.sticky.status : st;
+}
+
+/* Renders t into out (width*height, channel 0 = coverage). */
+static cs_status render_core(const tscene *t, cs_aa_mode aa, int sub, double *out)
+{
+    return render_window(t, aa, sub, 0, 0, t->width, t->height, out);
 }
 
 static ref_view view_of(const tscene *t)
@@ -330,15 +338,21 @@ static double g_worst_exact;
 static double g_err_sum;  /* |exact - reference| summed over partly covered pixels */
 static long g_err_count;
 
-static double compare_scene(const tscene *t)
+/*
+ * Compares the exact and --aa 16 renders of t with the reference over
+ * `ref_t`'s pixels: t itself, or (see scene_far_tall) the window of t's output
+ * at (x0, y0) that ref_t holds, moved to its own origin.
+ */
+static double compare_window(const tscene *t, const tscene *ref_t, int x0, int y0)
 {
-    size_t np = (size_t)t->width * (size_t)t->height;
+    int w = ref_t->width, h = ref_t->height;
+    size_t np = (size_t)w * (size_t)h;
     double *ref = malloc(sizeof(double) * np), *ex = malloc(sizeof(double) * np),
            *s16 = malloc(sizeof(double) * np);
-    CHECK(ref_region_cov(t, 0, SUBSCAN_REF, ref) == 0, "%s: reference failed", t->name);
-    cs_status st = render_core(t, CS_AA_EXACT, 0, ex);
+    CHECK(ref_region_cov(ref_t, 0, SUBSCAN_REF, ref) == 0, "%s: reference failed", t->name);
+    cs_status st = render_window(t, CS_AA_EXACT, 0, x0, y0, w, h, ex);
     CHECK(st == CS_OK, "%s: exact render: %s", t->name, cs_status_str(st));
-    st = render_core(t, CS_AA_SUBSCAN, 16, s16);
+    st = render_window(t, CS_AA_SUBSCAN, 16, x0, y0, w, h, s16);
     CHECK(st == CS_OK, "%s: aa 16 render: %s", t->name, cs_status_str(st));
     double worst = 0.0, worst16 = 0.0, area_ref = 0.0, area_ex = 0.0, sum = 0.0;
     long partial = 0, inner_off = 0;
@@ -347,8 +361,8 @@ static double compare_scene(const tscene *t)
         double d = fabs(ex[k] - ref[k]);
         if (d > worst) {
             worst = d;
-            wi = (int)(k % (size_t)t->width);
-            wj = (int)(k / (size_t)t->width);
+            wi = (int)(k % (size_t)w);
+            wj = (int)(k / (size_t)w);
         }
         if (ref[k] > 0.0 && ref[k] < 1.0) {
             sum += d;
@@ -372,14 +386,16 @@ static double compare_scene(const tscene *t)
     CHECK(inner_off == 0, "%s: %ld pixels wholly inside are not covered exactly 1", t->name,
           inner_off);
     CHECK(worst <= TOL_EXACT, "%s: exact off by %.3f/255 at (%d, %d): %.6f vs %.6f", t->name,
-          worst * 255.0, wi, wj, ex[wj * t->width + wi], ref[wj * t->width + wi]);
+          worst * 255.0, x0 + wi, y0 + wj, ex[wj * w + wi], ref[wj * w + wi]);
     printf("%-22s exact max err %.4f/255 at (%3d,%3d)   aa16 max err %6.2f/255   area %.4f vs %.4f\n",
-           t->name, worst * 255.0, wi, wj, worst16 * 255.0, area_ex, area_ref);
+           t->name, worst * 255.0, x0 + wi, y0 + wj, worst16 * 255.0, area_ex, area_ref);
     free(ref);
     free(ex);
     free(s16);
     return worst;
 }
+
+static double compare_scene(const tscene *t) { return compare_window(t, t, 0, 0); }
 
 static void scene_circles(void)
 {
@@ -610,6 +626,40 @@ static void scene_random(int count)
     }
 }
 
+/*
+ * Far from the screen's origin: rational blobs (weights 0.3 to 3.5) near
+ * the bottom right corner of the largest screen, CS_CFG_MAX_WIDTH x 16384
+ * lines, where a float coordinate's last bit is 1/1024 px. Strong weights
+ * used to multiply that (the segments' coefficients were held in screen
+ * coordinates: 1.17/255 on the Rational bench scene at this size, over the
+ * bound); a segment now keeps its coefficients from its own origin. Only
+ * the window holding the blobs is rendered and compared. The reference
+ * gets the same float points moved to the window's origin by a whole
+ * number of pixels, which is exact in double, so both see one geometry.
+ */
+static void scene_far_tall(void)
+{
+    const int size = 160, W = CS_CFG_MAX_WIDTH, H = 16384;
+    const int x0 = W - size - 7, y0 = H - size - 3;
+    tscene *t = new_scene("far corner blobs", W, H, W, H);
+    rng_state = 4242u;
+    blob(&t->reg[0], 3, 9, x0 + 40.3, y0 + 41.7, 30.0, 0.3, 3.5, 4);
+    blob(&t->reg[0], 2, 7, x0 + 118.6, y0 + 39.1, 30.0, 0.3, 3.5, -1);
+    blob(&t->reg[0], 3, 12, x0 + 44.4, y0 + 117.3, 30.0, 0.3, 3.5, 7);
+    circle(&t->reg[0], x0 + 117.7, y0 + 118.2, 29.3, 0);
+    tscene *win = malloc(sizeof *win);
+    *win = *t;
+    win->cw = win->width = size;
+    win->ch = win->height = size;
+    for (int c = 0; c < win->reg[0].ncont; c++)
+        for (int k = 0; k < win->reg[0].cont[c].count; k++) {
+            win->reg[0].cont[c].xyw[3 * k] -= x0;
+            win->reg[0].cont[c].xyw[3 * k + 1] -= y0;
+        }
+    compare_window(t, win, x0, y0);
+    free(win);
+}
+
 /* ---------------------------------------------------------- seams */
 
 /* Two regions of one cel share an S-shaped cubic edge: their coverage
@@ -765,6 +815,7 @@ int main(void)
     scene_clipped();
     scene_coincident();
     scene_far();
+    scene_far_tall();
     scene_near_cusp();
     scene_horizontal();
     scene_shallow();

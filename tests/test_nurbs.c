@@ -29,8 +29,8 @@ static void seg_eval(const cs_segment *sg, long double u, long double out[2])
         Y = Y * u + sg->y[i];
         Wt = Wt * u + sg->w[i];
     }
-    out[0] = X / Wt;
-    out[1] = Y / Wt;
+    out[0] = sg->ox + X / Wt;
+    out[1] = sg->oy + Y / Wt;
 }
 
 /*
