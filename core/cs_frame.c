@@ -20,7 +20,7 @@
  *
  * The frame also fixes what the lines need besides geometry: each region's
  * (E, T) map under its cel's lights (or, for functional paints, each
- * function compiled to device space), the x bounds of every segment (so a
+ * function compiled to device space), the pixels every segment can touch (so a
  * line can skip a region lying wholly where the stack is already opaque),
  * and, for CSG regions, which operand's winding each piece moves. Cels
  * held in a pre-combination cache are not converted at all.

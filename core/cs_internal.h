@@ -269,7 +269,8 @@ static inline float cs__solve_level_from(const float *num, const float *den, int
 
 /*
  * Converts one closed periodic NURBS contour to rational polynomial segments
- * in device space (cs_nurbs.c). Control points go through `to_device` first;
+ * in device space, each relative to its own origin (cs_segment; cs_nurbs.c).
+ * Control points go through `to_device` first;
  * a transformed NURBS is still a NURBS with the same weights. Fails with
  * CS_ERR_RANGE (and *bad_point set) if a transformed point leaves the
  * coordinate limit, or CS_ERR_CAP_SEGMENTS when `capacity` is too small.
