@@ -34,7 +34,7 @@ $(HOST)/test_scenes: $(TEST_SCENES_OBJ) $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(PKG_LIBS) -lm
 
 .PHONY: test-scenes
-test-scenes: $(HOST)/test_scenes $(HOST)/celc $(HOST)/celsim
+test-scenes: $(HOST)/test_scenes $(HOST)/celc $(HOST)/celsim $(HOST)/svgimport
 	$(Q)sh tests/run.sh -- "$(HOST)/test_scenes scenes" "sh tests/cli_stream.sh $(HOST) $(BUILD)/cli-stream"
 
 TEST_TARGETS += test-scenes

@@ -10,7 +10,7 @@
 #   - a stream with nothing valid (damaged, cut short, garbage) exits 1 and says so;
 #   - celc refuses bad scenes with the JSON path and exit 1, leaves no output file
 #     behind, refuses bad command lines with exit 2 (celc text and import: numbers
-#     out of range or not numbers), and `celc import` answers;
+#     out of range or not numbers; svgimport render likewise), and `celc import` answers;
 # Byte offsets are computed here from the file sizes, independently of the decoder.
 # Last line: `cli_stream: N passed, M failed`.
 set -u
@@ -176,6 +176,17 @@ if [ -f tools/celc_import.c ]; then
     check "celc text with valid numbers (exit $rc): $(cat "$out/bad.err")" [ "$rc" -eq 0 ]
     refuses import --tolerance nan scenes/svg/sign.svg -o "$out/import.json" -q
     refuses import --nominal -5 scenes/svg/sign.svg -o "$out/import.json" -q
+    # svgimport render (the importer's debugging tool) reads its numbers as strictly
+    for arg in "--size 64x" "--size abcx4" "--size 64x48x" "--aa 0" "--aa abc" \
+        "--aa 99999999999999999"; do
+        # shellcheck disable=SC2086
+        "$host/svgimport" render scenes/svg/sign.svg -o "$out/svg.png" -q $arg 2>/dev/null
+        rc=$?
+        check "svgimport render $arg refused (exit $rc)" [ "$rc" -eq 2 ]
+    done
+    "$host/svgimport" render scenes/svg/sign.svg -o "$out/svg.png" -q --size 64x48 --aa 5
+    rc=$?
+    check "svgimport render with valid numbers (exit $rc)" [ "$rc" -eq 0 ]
 fi
 # Standard output, and the file is exactly that.
 "$celc" compile scenes/demo.json -o - >"$out/stdout.cels" 2>/dev/null

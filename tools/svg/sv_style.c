@@ -576,7 +576,10 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
         snprintf(s->font_family, sizeof s->font_family, "%s", v);
     } else if (!strcmp(name, "font-weight")) {
         INH(font_weight);
-        s->font_weight = (!strcmp(v, "bold") || !strcmp(v, "bolder") || atoi(v) >= 600) ? 700 : 400;
+        /* a number (100..900) or a keyword; strtod, since atoi's overflow is undefined */
+        s->font_weight = (!strcmp(v, "bold") || !strcmp(v, "bolder") || strtod(v, NULL) >= 600.0)
+                             ? 700
+                             : 400;
     } else if (!strcmp(name, "font-style")) {
         INH(font_italic);
         s->font_italic = !strcmp(v, "italic") || !strcmp(v, "oblique");
