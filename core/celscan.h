@@ -424,8 +424,8 @@ cs_render_opts cs_render_defaults(int width, int height);
 /*
  * One rational polynomial segment in device space: for u in [0,1)
  * x(u) = ox + X(u)/W(u), y(u) = oy + Y(u)/W(u), with X(u) = sum x[i] u^i.
- * The origin (ox, oy) is a whole pixel at the segment's first control
- * point, so the coefficients hold the segment's own extent rather than
+ * The origin (ox, oy) is the whole pixel at the segment's start (on the
+ * curve), so the coefficients hold the segment's own extent rather than
  * its distance from the screen's corner: a float coefficient's rounding
  * then scales with the segment's size, not with where it is, which the
  * exact-area bound needs on the tallest screens (BENCHMARKS.md).

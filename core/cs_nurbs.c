@@ -127,23 +127,37 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
         cs_segment *s = &out[n];
         for (int i = 0; i < 4; i++)
             s->x[i] = s->y[i] = s->w[i] = 0.0f;
-        float ox = 0.0f, oy = 0.0f;
+        /* The segment's control points in device space, and its start,
+         * sum_k basis[k][0] w_k P_k / sum_k basis[k][0] w_k. */
+        float px[4] = {0}, py[4] = {0}, pw[4] = {0}, sx = 0.0f, sy = 0.0f, sw = 0.0f;
         for (int k = 0; k <= degree; k++) {
             int at = j - degree + k >= 0 ? j - degree + k : j - degree + k + count;
             const cs_point *p = &points[at];
-            float dx = to_device->a * p->x + to_device->c * p->y + to_device->e;
-            float dy = to_device->b * p->x + to_device->d * p->y + to_device->f;
-            if (k == 0) { /* the origin: the first control point's pixel */
-                s->ox = origin(dx);
-                s->oy = origin(dy);
-                ox = (float)s->ox;
-                oy = (float)s->oy;
-            }
-            float hx = p->w * (dx - ox), hy = p->w * (dy - oy);
+            px[k] = to_device->a * p->x + to_device->c * p->y + to_device->e;
+            py[k] = to_device->b * p->x + to_device->d * p->y + to_device->f;
+            pw[k] = p->w;
+            sx += basis[k][0] * pw[k] * px[k];
+            sy += basis[k][0] * pw[k] * py[k];
+            sw += basis[k][0] * pw[k];
+        }
+        /* The origin: the pixel of the segment's start, which lies on the
+         * curve (a control point may lie far off it). Any origin is exact,
+         * so a start that cannot be formed falls back to the first point. */
+        float ax = px[0], ay = py[0];
+        if (sw > 0.0f) {
+            ax = sx / sw;
+            ay = sy / sw;
+        }
+        bool start_ok = cs__absf(ax) <= CS_CFG_COORD_LIMIT && cs__absf(ay) <= CS_CFG_COORD_LIMIT;
+        s->ox = origin(start_ok ? ax : px[0]);
+        s->oy = origin(start_ok ? ay : py[0]);
+        float ox = (float)s->ox, oy = (float)s->oy;
+        for (int k = 0; k <= degree; k++) {
+            float hx = pw[k] * (px[k] - ox), hy = pw[k] * (py[k] - oy);
             for (int i = 0; i <= degree; i++) {
                 s->x[i] += basis[k][i] * hx;
                 s->y[i] += basis[k][i] * hy;
-                s->w[i] += basis[k][i] * p->w;
+                s->w[i] += basis[k][i] * pw[k];
             }
         }
         s->degree = (uint8_t)degree;

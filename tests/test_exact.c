@@ -647,6 +647,14 @@ static void scene_far_tall(void)
     blob(&t->reg[0], 2, 7, x0 + 118.6, y0 + 39.1, 30.0, 0.3, 3.5, -1);
     blob(&t->reg[0], 3, 12, x0 + 44.4, y0 + 117.3, 30.0, 0.3, 3.5, 7);
     circle(&t->reg[0], x0 + 117.7, y0 + 118.2, 29.3, 0);
+    /* A control point 20000 px above, of weight 0.002: the curve passes
+     * ~40 px from the others, and a segment it starts keeps its origin on
+     * the curve, not at the far point. */
+    tcontour *pulled = begin(&t->reg[0], 2);
+    pt(pulled, x0 + 80.3, y0 + 70.2, 1.0, 1.0);
+    pt(pulled, x0 + 95.1, y0 - 20000.0, 0.002, 1.0);
+    pt(pulled, x0 + 110.6, y0 + 72.9, 1.0, 1.0);
+    pt(pulled, x0 + 96.2, y0 + 90.4, 1.0, 1.0);
     tscene *win = malloc(sizeof *win);
     *win = *t;
     win->cw = win->width = size;
