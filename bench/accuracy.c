@@ -17,7 +17,9 @@
  *             coverage to 8 bits);
  *   cairo     an A8 surface, default antialias, tolerance 0.1 (default) and
  *             0.01 ("fine");
- *   FreeType  the smooth rasterizer's spans (8-bit coverage).
+ *   FreeType  the smooth rasterizer's spans (8-bit coverage);
+ *   AGG       its scanline rasterizer into an 8-bit grey buffer, with its
+ *             default curve flattening (8-bit coverage).
  *
  * Errors are in 1/255 of full coverage: the largest over every pixel of the
  * box, and the mean over edge pixels (exact coverage strictly between 0 and
@@ -32,7 +34,8 @@
 
 const char *const acc_names[ACC_COUNT] = {
     "celscan --aa none", "celscan --aa 16", "celscan --aa exact",
-    "cairo (tolerance 0.1, default)", "cairo (tolerance 0.01)", "FreeType smooth"};
+    "cairo (tolerance 0.1, default)", "cairo (tolerance 0.01)", "FreeType smooth",
+    "AGG (defaults)"};
 
 static void add_stats(acc_stats *s, const double *cov, const double *exact, size_t n)
 {
@@ -174,6 +177,8 @@ int acc_measure(const cs_scene *scene, int width, int height, int max_shapes, pe
             add_stats(&out[ACC_FT], cov, exact, np);
         else
             rc = -1;
+        peer_agg_coverage(&tmp, &oc, evenodd, x0, y0, w, h, cov);
+        add_stats(&out[ACC_AGG], cov, exact, np);
         free(exact);
         free(cov);
         ol_free(&tmp);

@@ -1,10 +1,10 @@
 /*
- * bench.c - celscan against cairo and FreeType, in one process, on one core.
+ * bench.c - celscan against cairo, FreeType and AGG, in one process, on one core.
  *
  *   bench [--sections speed,accuracy,beam,scaling] [--scenes blobs,signage,...]
  *         [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]
  *   bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]
- *   bench --profile SCENE --peer cairo|cairo-fine|freetype [--size WxH] [--frames N]
+ *   bench --profile SCENE --peer cairo|cairo-fine|freetype|agg [--size WxH] [--frames N]
  *   bench --selftest
  *
  * For each reference scene (BENCHMARKS.md) the same geometry is rendered by
@@ -13,6 +13,7 @@
  *             (8-bit sRGB) for every line: what celsim and a board do;
  *   cairo     an ARGB32 image surface, default antialias and tolerance;
  *   FreeType  FT_Outline_Render (smooth, direct spans) with a span compositor;
+ *   AGG       Anti-Grain Geometry's scanline rasterizer with its defaults;
  *
  * and the medians of N interleaved runs are compared (ratio celscan/peer:
  * below 1 means celscan is faster). Quality comes with speed: the accuracy
@@ -262,11 +263,12 @@ static double celscan_cache(cs_target *t, const cs_render_opts *o, uint32_t from
 
 /* --------------------------------------------------------------- speed */
 
-enum { V_CS16, V_CSX, V_CAIRO, V_CAIRO_FINE, V_FT, V_COUNT };
+enum { V_CS16, V_CSX, V_CAIRO, V_CAIRO_FINE, V_FT, V_AGG, V_COUNT };
 
 typedef struct peers {
     peer_cairo *cairo, *cairo_fine;
     peer_ft *ft;
+    peer_agg *agg;
     ol_set set;
 } peers;
 
@@ -276,8 +278,9 @@ static void peers_init(peers *p, int w, int h)
     p->cairo = peer_cairo_new(w, h, 0.1);
     p->cairo_fine = peer_cairo_new(w, h, 0.01);
     p->ft = peer_ft_new(w, h);
-    if (!p->cairo || !p->cairo_fine || !p->ft)
-        die("cannot set up cairo / FreeType at %dx%d", w, h);
+    p->agg = peer_agg_new(w, h);
+    if (!p->cairo || !p->cairo_fine || !p->ft || !p->agg)
+        die("cannot set up cairo / FreeType / AGG at %dx%d", w, h);
 }
 
 static void peers_prepare(peers *p, int w, int h)
@@ -292,11 +295,12 @@ static void peers_free(peers *p)
     peer_cairo_free(p->cairo);
     peer_cairo_free(p->cairo_fine);
     peer_ft_free(p->ft);
+    peer_agg_free(p->agg);
     ol_free(&p->set);
 }
 
 /*
- * Peer `which` (V_CAIRO, V_CAIRO_FINE or V_FT) draws regions [first, end)
+ * Peer `which` (V_CAIRO, V_CAIRO_FINE, V_FT or V_AGG) draws regions [first, end)
  * of its outlines; returns seconds. PROFILED, so that callgrind can count
  * a peer's frame alone (--toggle-collect=peer_frame, bench --profile
  * SCENE --peer NAME), as it counts celscan_frame.
@@ -308,8 +312,10 @@ PROFILED static double peer_frame(peers *p, int which, int first, int end, bool 
         peer_cairo_frame(p->cairo, &p->set, first, end, over_saved);
     else if (which == V_CAIRO_FINE)
         peer_cairo_frame(p->cairo_fine, &p->set, first, end, over_saved);
-    else
+    else if (which == V_FT)
         peer_ft_frame(p->ft, &p->set, first, end, over_saved);
+    else
+        peer_agg_frame(p->agg, &p->set, first, end, over_saved);
     return bench_now() - t0;
 }
 
@@ -432,6 +438,8 @@ static void speed_anim(const config *cfg, const bench_scene_def *d, anim_row *ro
     peer_cairo_save_background(p.cairo_fine);
     peer_ft_frame(p.ft, &p.set, static_region, p.set.region_count, false);
     peer_ft_save_background(p.ft);
+    peer_agg_frame(p.agg, &p.set, static_region, p.set.region_count, false);
+    peer_agg_save_background(p.agg);
 
     double *sd = malloc((size_t)V_COUNT * nf * sizeof *sd);
     double *sc = malloc((size_t)V_COUNT * nf * sizeof *sc);
@@ -464,9 +472,9 @@ static void run_speed(const config *cfg)
     section_open(cfg, SEC_SPEED);
     out("### Speed at %dx%d: median ms per frame over %d interleaved runs\n\n", cfg->width,
         cfg->height, cfg->repeat);
-    out("| scene | celscan aa 16 | celscan exact | cairo | cairo tol 0.01 | FreeType "
-        "| aa16/cairo | exact/cairo | aa16/FT | exact/FT | picture vs cairo |\n");
-    out("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    out("| scene | celscan aa 16 | celscan exact | cairo | cairo tol 0.01 | FreeType | AGG "
+        "| aa16/cairo | exact/cairo | aa16/FT | exact/FT | exact/AGG | picture vs cairo |\n");
+    out("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     anim_row ar;
     bool have_anim = false;
     for (int i = 0; i < SCENE_COUNT; i++) {
@@ -479,10 +487,12 @@ static void run_speed(const config *cfg)
         }
         speed_row r;
         speed_static(cfg, &scene_defs[i], &r);
-        out("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f (%.2f%% > 8) |\n",
+        out("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f "
+            "| %.1f (%.2f%% > 8) |\n",
             scene_defs[i].title, r.ms[V_CS16], r.ms[V_CSX], r.ms[V_CAIRO], r.ms[V_CAIRO_FINE],
-            r.ms[V_FT], r.ms[V_CS16] / r.ms[V_CAIRO], r.ms[V_CSX] / r.ms[V_CAIRO],
-            r.ms[V_CS16] / r.ms[V_FT], r.ms[V_CSX] / r.ms[V_FT], r.agree_mean, r.agree_big);
+            r.ms[V_FT], r.ms[V_AGG], r.ms[V_CS16] / r.ms[V_CAIRO], r.ms[V_CSX] / r.ms[V_CAIRO],
+            r.ms[V_CS16] / r.ms[V_FT], r.ms[V_CSX] / r.ms[V_FT], r.ms[V_CSX] / r.ms[V_AGG],
+            r.agree_mean, r.agree_big);
     }
     out("\nRatios are celscan time / peer time: below 1 celscan is faster. \"picture vs cairo\" is the "
         "mean absolute difference (of 255) between celscan blending in sRGB and cairo, and the share "
@@ -493,15 +503,16 @@ static void run_speed(const config *cfg)
     if (have_anim) {
         out("\n### Animation at %dx%d: median ms per frame over %d frames (t = 0 .. %.3f s at 60 Hz)\n\n",
             cfg->width, cfg->height, ar.frames, (ar.frames - 1) / 60.0);
-        out("| | celscan aa 16 | celscan exact | cairo | cairo tol 0.01 | FreeType | aa16/cairo "
-            "| exact/cairo | aa16/FT | exact/FT |\n");
-        out("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        out("| | celscan aa 16 | celscan exact | cairo | cairo tol 0.01 | FreeType | AGG | aa16/cairo "
+            "| exact/cairo | aa16/FT | exact/FT | exact/AGG |\n");
+        out("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
         const char *names[2] = {"every cel every frame", "static background cached"};
         for (int k = 0; k < 2; k++) {
             const double *m = k ? ar.cached : ar.direct;
-            out("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", names[k],
-                m[V_CS16], m[V_CSX], m[V_CAIRO], m[V_CAIRO_FINE], m[V_FT], m[V_CS16] / m[V_CAIRO],
-                m[V_CSX] / m[V_CAIRO], m[V_CS16] / m[V_FT], m[V_CSX] / m[V_FT]);
+            out("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
+                names[k], m[V_CS16], m[V_CSX], m[V_CAIRO], m[V_CAIRO_FINE], m[V_FT], m[V_AGG],
+                m[V_CS16] / m[V_CAIRO], m[V_CSX] / m[V_CAIRO], m[V_CS16] / m[V_FT],
+                m[V_CSX] / m[V_FT], m[V_CSX] / m[V_AGG]);
         }
         out("\nCached: celscan pre-combines cels %u.. (the static background) once with "
             "cs_cache_build (%.1f ms at aa 16, %.1f ms exact) and composites its runs per frame; "
@@ -803,8 +814,8 @@ static void run_scaling(const config *cfg)
     int h = cfg->height;
     out("\n### Time against segment count (64 blobs of k cubic segments on the same smooth outlines, "
         "%dx%d): median ms over %d interleaved runs\n\n", w, h, n);
-    out("| segments per blob | total segments | celscan aa 16 ms | celscan exact ms | cairo ms | FreeType ms |\n");
-    out("|---:|---:|---:|---:|---:|---:|\n");
+    out("| segments per blob | total segments | celscan aa 16 ms | celscan exact ms | cairo ms | FreeType ms | AGG ms |\n");
+    out("|---:|---:|---:|---:|---:|---:|---:|\n");
     const int ks[] = {4, 8, 16, 32, 64};
     for (size_t i = 0; i < sizeof ks / sizeof ks[0]; i++) {
         if (cfg->quick && ks[i] > 8)
@@ -813,12 +824,13 @@ static void run_scaling(const config *cfg)
         peers p;
         peers_init(&p, w, h);
         peers_prepare(&p, w, h);
-        const variant v[4] = {{V_CSX, CS_AA_SUBSCAN, 16}, {V_CSX, CS_AA_EXACT, 0},
-                              {V_CAIRO, CS_AA_SUBSCAN, 0}, {V_FT, CS_AA_SUBSCAN, 0}};
-        double ms[4];
-        measure_row(n, w, h, v, 4, &p, ms);
-        out("| %d | %d | %.2f | %.2f | %.2f | %.2f |\n", ks[i], 64 * ks[i], ms[0], ms[1], ms[2],
-            ms[3]);
+        const variant v[5] = {{V_CSX, CS_AA_SUBSCAN, 16}, {V_CSX, CS_AA_EXACT, 0},
+                              {V_CAIRO, CS_AA_SUBSCAN, 0}, {V_FT, CS_AA_SUBSCAN, 0},
+                              {V_AGG, CS_AA_SUBSCAN, 0}};
+        double ms[5];
+        measure_row(n, w, h, v, 5, &p, ms);
+        out("| %d | %d | %.2f | %.2f | %.2f | %.2f | %.2f |\n", ks[i], 64 * ks[i], ms[0], ms[1],
+            ms[2], ms[3], ms[4]);
         peers_free(&p);
     }
 
@@ -929,6 +941,50 @@ static int selftest(void)
                 }
         }
     }
+    /* The peers draw the same pictures: FreeType's and AGG's frames against
+     * cairo's (all three blend 8-bit sRGB values), so that a peer drawing
+     * nothing, or the wrong thing, cannot pass for a fast one. Cell-based
+     * rasterizers apply the fill rule to a pixel's summed area, which
+     * differs from cairo where an outline crosses itself: hence a share of
+     * pixels, not none, allowed to differ. */
+    for (int i = 0; i < SCENE_COUNT; i++) {
+        load(&scene_defs[i]);
+        int w = 480, h = 272;
+        peers p;
+        peers_init(&p, w, h);
+        peers_prepare(&p, w, h);
+        peer_frame(&p, V_CAIRO, 0, p.set.region_count, false);
+        peer_frame(&p, V_FT, 0, p.set.region_count, false);
+        peer_frame(&p, V_AGG, 0, p.set.region_count, false);
+        int stride;
+        const uint32_t *c = peer_cairo_pixels(p.cairo, &stride);
+        const uint32_t *other[2] = {peer_ft_pixels(p.ft), peer_agg_pixels(p.agg)};
+        const char *names[2] = {"FreeType", "AGG"};
+        for (int k = 0; k < 2; k++) {
+            double sum = 0.0;
+            long over = 0;
+            for (int y = 0; y < h; y++)
+                for (int x = 0; x < w; x++) {
+                    uint32_t a = c[(size_t)y * (size_t)(stride / 4) + (size_t)x];
+                    uint32_t b = other[k][(size_t)y * (size_t)w + (size_t)x];
+                    double d = 0.0;
+                    for (int sh = 0; sh < 24; sh += 8)
+                        d += abs((int)((a >> sh) & 255u) - (int)((b >> sh) & 255u)) / 3.0;
+                    sum += d;
+                    over += d > 8.0;
+                }
+            double mean = sum / (double)(w * h), share = 100.0 * (double)over / (double)(w * h);
+            checked++;
+            if (!(mean < 1.0 && share < 2.0)) {
+                failed++;
+                fprintf(stderr, "selftest: %s, %s differs from cairo: mean %.2f/255, %.2f%% > 8\n",
+                        scene_defs[i].name, names[k], mean, share);
+            }
+            printf("bench selftest: %-8s %-8s vs cairo: mean %.2f/255, %.2f%% of pixels > 8\n",
+                   scene_defs[i].name, names[k], mean, share);
+        }
+        peers_free(&p);
+    }
     printf("bench selftest: %d passed, %d failed\n", checked - failed, failed);
     return failed != 0;
 }
@@ -942,9 +998,10 @@ static void profile_peer(const char *name, int w, int h, int frames)
     int which = strcmp(name, "cairo") == 0        ? V_CAIRO
                 : strcmp(name, "cairo-fine") == 0 ? V_CAIRO_FINE
                 : strcmp(name, "freetype") == 0   ? V_FT
+                : strcmp(name, "agg") == 0        ? V_AGG
                                                   : -1;
     if (which < 0)
-        die("unknown peer '%s' (cairo, cairo-fine, freetype)", name);
+        die("unknown peer '%s' (cairo, cairo-fine, freetype, agg)", name);
     peers p;
     peers_init(&p, w, h);
     peers_prepare(&p, w, h);
@@ -966,7 +1023,7 @@ static void usage(void)
           "rational,anim]\n"
           "             [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]\n"
           "       bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]\n"
-          "       bench --profile SCENE --peer cairo|cairo-fine|freetype [--size WxH] [--frames N]\n"
+          "       bench --profile SCENE --peer cairo|cairo-fine|freetype|agg [--size WxH] [--frames N]\n"
           "       bench --selftest\n",
           stderr);
     exit(2);

@@ -1,13 +1,14 @@
 /*
  * bench.h - what the parts of the benchmark program share.
  *
- * The benchmark (bench.c) renders the same scene three ways in one process:
- * with the celscan core, with cairo and with FreeType's smooth rasterizer.
- * The peers cannot read NURBS, so outline.c turns the scene's contours into
- * the Bezier paths a user of those libraries would hand them: exact where the
- * curve is polynomial (lines, quadratics, cubics), cubic approximations
- * within OL_RATIONAL_TOL device pixels where it is rational (circles,
- * weighted NURBS). peers.c draws those paths with cairo and FreeType;
+ * The benchmark (bench.c) renders the same scene four ways in one process:
+ * with the celscan core, with cairo, with FreeType's smooth rasterizer and
+ * with Anti-Grain Geometry. The peers cannot read NURBS, so outline.c turns
+ * the scene's contours into the Bezier paths a user of those libraries would
+ * hand them: exact where the curve is polynomial (lines, quadratics,
+ * cubics), cubic approximations within OL_RATIONAL_TOL device pixels where it
+ * is rational (circles, weighted NURBS). peer_cairo.c, peer_ft.c and
+ * peer_agg.cpp (C++, behind the C interface of peer_agg.h) draw those paths;
  * accuracy.c measures every renderer's coverage against the long double
  * reference of the test suite (tests/ref); anim.c plays the scenes'
  * "animate" transform tracks, which the JSON loader only checks.
@@ -24,48 +25,8 @@
 
 #include "celscan.h"
 
-/* Largest distance, in device pixels, between a rational curve and the
- * cubic Beziers that stand for it in the peers' paths. */
-#define OL_RATIONAL_TOL 0.01
-
-/* ------------------------------------------------------------ outlines */
-
-enum { OL_LINE = 1, OL_QUAD = 2, OL_CUBIC = 3 };
-
-/* One path command in device pixels (y down): LINE p[0..1], QUAD control
- * p[0..1] end p[2..3], CUBIC controls p[0..3] end p[4..5]. */
-typedef struct ol_cmd {
-    int op;
-    double p[6];
-} ol_cmd;
-
-typedef struct ol_contour {
-    double x0, y0;     /* start point */
-    int first, count;  /* commands [first, first+count) of the set */
-    int scene_contour; /* index into cs_scene contours */
-} ol_contour;
-
-typedef struct ol_region {
-    int first, count;  /* contours [first, first+count) of the set */
-    int scene_region;
-    int cel;
-    bool evenodd;
-    double rgba[4];    /* sRGB-encoded straight colour and alpha, for the peers */
-    double bx0, by0, bx1, by1; /* device bounds of the control polygon */
-} ol_region;
-
-/* The scene as peer paths, regions in scene order (front-most first). */
-typedef struct ol_set {
-    ol_region *regions;
-    int region_count;
-    ol_contour *contours;
-    int contour_count;
-    ol_cmd *cmds;
-    int cmd_count, cmd_cap;
-    double background[4]; /* sRGB, alpha 1 */
-    int width, height;
-    int rational_segments, approx_cubics; /* how much was approximated */
-} ol_set;
+#include "outline.h"
+#include "peer_agg.h"
 
 /*
  * Converts `scene` at its current cel transforms, for a width x height
@@ -138,7 +99,7 @@ typedef struct acc_stats {
     int shapes;
 } acc_stats;
 
-enum { ACC_CS_NONE, ACC_CS_16, ACC_CS_EXACT, ACC_CAIRO, ACC_CAIRO_FINE, ACC_FT, ACC_COUNT };
+enum { ACC_CS_NONE, ACC_CS_16, ACC_CS_EXACT, ACC_CAIRO, ACC_CAIRO_FINE, ACC_FT, ACC_AGG, ACC_COUNT };
 extern const char *const acc_names[ACC_COUNT];
 
 /*

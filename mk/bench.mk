@@ -1,4 +1,4 @@
-# mk/bench.mk - the benchmark suite: celscan against cairo and FreeType.
+# mk/bench.mk - the benchmark suite: celscan against cairo, FreeType and AGG.
 #
 #   make bench         generate the scenes, run every section, write bench/results/*.txt
 #                      and regenerate the tables of BENCHMARKS.md (under a minute)
@@ -7,12 +7,15 @@
 #
 # BENCH_ARGS adds options to the main run (e.g. BENCH_ARGS="--repeat 3").
 # The bench binary links the core library, the scene loader, the test
-# suite's reference (tests/ref, for accuracy), cairo and FreeType.
+# suite's reference (tests/ref, for accuracy), cairo, FreeType and AGG.
 
-BENCH_PKGS := cairo freetype2 libcjson
+BENCH_PKGS := cairo freetype2 libcjson libagg
 BENCH_SRC := bench/bench.c bench/outline.c bench/peer_cairo.c bench/peer_ft.c bench/anim.c \
         bench/accuracy.c host-sim/scene_json.c host-sim/paint_json.c tests/ref/ref.c
-BENCH_OBJ := $(patsubst %.c,$(HOST)/bench-obj/%.o,$(BENCH_SRC))
+# AGG is C++: its peer alone is compiled as C++ (the program links with $(CXX)).
+BENCH_CXX_SRC := bench/peer_agg.cpp
+BENCH_OBJ := $(patsubst %.c,$(HOST)/bench-obj/%.o,$(BENCH_SRC)) \
+        $(patsubst %.cpp,$(HOST)/bench-obj/%.o,$(BENCH_CXX_SRC))
 BENCH_BIN := $(HOST)/bench
 BENCH_SCENES := scenes/bench/blobs.json scenes/bench/thin.json scenes/bench/rational.json \
         scenes/bench/anim.json
@@ -24,8 +27,15 @@ $(HOST)/bench-obj/%.o: %.c $(FLAGS_DIR)/bench-obj
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) -Itests -Ibench $(shell pkg-config --cflags $(BENCH_PKGS)) -c $< -o $@
 
+BENCH_CXXFLAGS = -std=c++11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -MMD -MP -Ibench \
+        $(shell pkg-config --cflags libagg)
+$(eval $(call flags_record,bench-cxx,$(CXX) $(BENCH_CXXFLAGS)))
+$(HOST)/bench-obj/%.o: %.cpp $(FLAGS_DIR)/bench-cxx
+	@mkdir -p $(dir $@)
+	$(Q)$(CXX) $(BENCH_CXXFLAGS) -c $< -o $@
+
 $(BENCH_BIN): $(BENCH_OBJ) $(HOST)/libcelscan.a
-	$(Q)$(CC) -o $@ $(BENCH_OBJ) $(HOST)/libcelscan.a $(shell pkg-config --libs $(BENCH_PKGS)) -lm
+	$(Q)$(CXX) -o $@ $(BENCH_OBJ) $(HOST)/libcelscan.a $(shell pkg-config --libs $(BENCH_PKGS)) -lm
 
 # The scenes are committed, so that every checkout measures the same bytes
 # (a Python with another random module could draw them differently);

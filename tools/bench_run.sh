@@ -21,7 +21,7 @@ start=$(date +%s)
     echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
     echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- core host-sim bench ':!bench/results' 2>/dev/null || echo ' (with local changes)')"
     echo "- compiler: $(${CC:-cc} --version | head -n 1), core and bench at -O2"
-    echo "- cairo $(dpkg-query -W -f='${Version}' libcairo2 2>/dev/null || pkg-config --modversion cairo), FreeType $(dpkg-query -W -f='${Version}' libfreetype6 2>/dev/null || pkg-config --modversion freetype2) (Debian packages)"
+    echo "- cairo $(dpkg-query -W -f='${Version}' libcairo2 2>/dev/null || pkg-config --modversion cairo), FreeType $(dpkg-query -W -f='${Version}' libfreetype6 2>/dev/null || pkg-config --modversion freetype2), AGG $(dpkg-query -W -f='${Version}' libagg-dev 2>/dev/null || pkg-config --modversion libagg) (Debian packages)"
     echo "- load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: medians and ratios, not absolute times, are the figures to trust)"
     echo "- command: \`make bench\` (runs \`$bench --out $res${*:+ $*}\`, then the celsim and callgrind runs below)"
 } >"$res/machine.txt"
@@ -92,8 +92,8 @@ cat "$res/celsim.txt"
     echo
     echo "### Instructions per frame against the peers (callgrind, one 1920x1080 frame each)"
     echo
-    echo "| scene | celscan exact | cairo | FreeType | exact/cairo | exact/FT |"
-    echo "|---|---:|---:|---:|---:|---:|"
+    echo "| scene | celscan exact | cairo | FreeType | AGG | exact/cairo | exact/FT | exact/AGG |"
+    echo "|---|---:|---:|---:|---:|---:|---:|---:|"
     count() { # callgrind's total in function $1 for one frame of bench --profile $2 $3 $4
         valgrind --tool=callgrind --callgrind-out-file="$tmp/cg-peer.out" \
             --toggle-collect="$1" "$bench" --profile "$2" "$3" "$4" --frames 1 2>&1 |
@@ -103,8 +103,10 @@ cat "$res/celsim.txt"
         x=$(count celscan_frame "$scene" --aa exact)
         c=$(count peer_frame "$scene" --peer cairo)
         f=$(count peer_frame "$scene" --peer freetype)
-        awk -v s="$scene" -v x="$x" -v c="$c" -v f="$f" 'BEGIN {
-            printf "| %s | %.1f M | %.1f M | %.1f M | %.2f | %.2f |\n", s, x / 1e6, c / 1e6, f / 1e6, x / c, x / f }'
+        a=$(count peer_frame "$scene" --peer agg)
+        awk -v s="$scene" -v x="$x" -v c="$c" -v f="$f" -v a="$a" 'BEGIN {
+            printf "| %s | %.1f M | %.1f M | %.1f M | %.1f M | %.2f | %.2f | %.2f |\n", s, x / 1e6,
+                c / 1e6, f / 1e6, a / 1e6, x / c, x / f, x / a }'
     done
     echo
     echo "Instructions are not time (the speed table has the time): pixman's SIMD composites"

@@ -5,7 +5,7 @@
 # first and runs apt-get only for what is missing, so on a prepared machine
 # it costs a fraction of a second and needs no network.
 set -eu
-PACKAGES="make gcc pkg-config python3 libcjson-dev libpng-dev libcairo2-dev libfreetype-dev
+PACKAGES="make gcc g++ pkg-config python3 libcjson-dev libpng-dev libcairo2-dev libfreetype-dev libagg-dev
  libexpat1-dev zlib1g-dev fonts-dejavu-core gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
  libgpiod-dev libusb-1.0-0-dev umockdev libumockdev-dev liblz4-dev
  librsvg2-bin adwaita-icon-theme breeze-icon-theme clang libclang-rt-14-dev valgrind"
