@@ -158,12 +158,6 @@ static void eval_end(const cs_segment *s, float u, float y, cs_exact_end *e)
     }
 }
 
-/* y of s at u (for points placed by x). */
-static float seg_y(const cs_segment *s, float u)
-{
-    return (float)s->oy + cs__horner(s->y, s->degree, u) / cs__horner(s->w, s->degree, u);
-}
-
 /*
  * Value, first and second derivative at u of the cubic c (c[3] and c[2]
  * are 0 for lower degrees: cs_nurbs.c clears them).
@@ -878,7 +872,7 @@ static void cut_at_x(const cs_segment *s, const cs_exact_end *a, float ya, const
     bool rising = (b->x > a->x) == (ub > ua);
     float u = cs__solve_level_from(s->x, s->w, s->degree, k - (float)s->ox, cs__minf(ua, ub), cs__maxf(ua, ub),
                                    guess, rising, &slope);
-    float y = cs__clampf(seg_y(s, u), ya, yb);
+    float y = cs__clampf(cs__segment_y(s, u), ya, yb);
     eval_end(s, u, y, out);
     out->x = k;
     *y_out = y;
@@ -1092,7 +1086,7 @@ static void add_poly_parts(exact_ctx *cx, const cs_segment *s, float sign,
         float yb = y1;
         if (i < n) {
             float u = top->u + (bot->u - top->u) * ((float)i / (float)n);
-            yb = cs__clampf(seg_y(s, u), ya, y1);
+            yb = cs__clampf(cs__segment_y(s, u), ya, y1);
             eval_end(s, u, yb, &b);
         } else {
             b = *bot;
@@ -1173,7 +1167,7 @@ static void add_edge(exact_ctx *cx, const cs_exact_piece *e, float sign, float y
     float y0 = ya;
     for (int k = 0; k < nt; k++) {
         float u = up ? t[k] : t[nt - 1 - k];
-        float y = cs__clampf(seg_y(s, u), y0, yb);
+        float y = cs__clampf(cs__segment_y(s, u), y0, yb);
         eval_end(s, u, y, &b);
         add_x_monotone(cx, s, sign, &a, y0, &b, y);
         a = b;

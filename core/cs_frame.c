@@ -32,11 +32,6 @@
  */
 #include "cs_internal.h"
 
-static float seg_y(const cs_segment *s, float u)
-{
-    return (float)s->oy + cs__poly_eval(s->y, s->degree, u) / cs__poly_eval(s->w, s->degree, u);
-}
-
 /*
  * The pixels a segment can touch, from its Bezier form: with positive
  * homogeneous weights the curve lies in the hull of its control points.
@@ -87,9 +82,9 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t
     cut[n++] = 0.0f;
     n += cs__turns(s->y, s->w, s->degree, 0.0f, 1.0f, &cut[1]);
     cut[n++] = 1.0f;
-    float ya = seg_y(s, 0.0f);
+    float ya = cs__segment_y(s, 0.0f);
     for (int k = 0; k + 1 < n; k++) {
-        float yb = (k + 2 == n) ? y_end : seg_y(s, cut[k + 1]);
+        float yb = (k + 2 == n) ? y_end : cs__segment_y(s, cut[k + 1]);
         if (ya != yb) {
             if (r->piece_count >= CS_CFG_MAX_PIECES)
                 return CS_ERR_CAP_PIECES;
@@ -364,7 +359,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                     for (uint32_t i = 0; i < n && st == CS_OK; i++) {
                         uint32_t next = first + (i + 1) % n;
                         segment_xbounds(&ws->segments[first + i], width);
-                        st = split_segment(r, first + i, seg_y(&ws->segments[next], 0.0f),
+                        st = split_segment(r, first + i, cs__segment_y(&ws->segments[next], 0.0f),
                                            operand);
                     }
                 }

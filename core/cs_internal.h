@@ -141,6 +141,17 @@ static inline float cs__horner(const float *c, int degree, float u)
     }
 }
 
+/* The point of segment s at u: its origin plus X/W and Y/W (cs_segment). */
+static inline float cs__segment_x(const cs_segment *s, float u)
+{
+    return (float)s->ox + cs__horner(s->x, s->degree, u) / cs__horner(s->w, s->degree, u);
+}
+
+static inline float cs__segment_y(const cs_segment *s, float u)
+{
+    return (float)s->oy + cs__horner(s->y, s->degree, u) / cs__horner(s->w, s->degree, u);
+}
+
 /* Value of c at u, and its derivative in *d, by Horner's scheme (unrolled). */
 static inline float cs__horner_d(const float *c, int degree, float u, float *d)
 {

@@ -227,8 +227,7 @@ static void interp_setup(const cs_workspace *ws, const cs_piece *pc, float ys0, 
     float u0 = c->guess, n1 = (float)(samples - 1);
     if (s->degree == 1) { /* exact, so no check */
         float u1 = straight_root(s, pc, ys_last);
-        float x1 = (float)s->ox + cs__horner(s->x, 1, u1) / cs__horner(s->w, 1, u1);
-        float x0 = (float)s->ox + cs__horner(s->x, 1, u0) / cs__horner(s->w, 1, u0);
+        float x1 = cs__segment_x(s, u1), x0 = cs__segment_x(s, u0);
         c->guess = x0;
         c->a1 = (x1 - x0) / n1;
         c->a2 = 0.0f;
@@ -252,7 +251,7 @@ static void interp_setup(const cs_workspace *ws, const cs_piece *pc, float ys0, 
     float t = (float)mid / n1;
     float um = cs__solve_level_from(s->y, s->w, s->degree, ys_mid - oy, pc->u0, pc->u1,
                                     u0 + (u1 - u0) * t, rising, &slope);
-    float xm = (float)s->ox + cs__horner(s->x, s->degree, um) / cs__horner(s->w, s->degree, um);
+    float xm = cs__segment_x(s, um);
     /* NaN or infinite slopes fail this test too. */
     if (!(cs__absf(x0 + t * (m0 + t * (c2 + t * c3)) - xm) <= CS__INTERP_TOL))
         return;

@@ -144,13 +144,13 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
          * curve (a control point may lie far off it). Any origin is exact,
          * so a start that cannot be formed falls back to the first point. */
         float ax = px[0], ay = py[0];
-        if (sw > 0.0f) {
+        if (sw > 0.0f && cs__absf(sx / sw) <= CS_CFG_COORD_LIMIT &&
+            cs__absf(sy / sw) <= CS_CFG_COORD_LIMIT) {
             ax = sx / sw;
             ay = sy / sw;
         }
-        bool start_ok = cs__absf(ax) <= CS_CFG_COORD_LIMIT && cs__absf(ay) <= CS_CFG_COORD_LIMIT;
-        s->ox = origin(start_ok ? ax : px[0]);
-        s->oy = origin(start_ok ? ay : py[0]);
+        s->ox = origin(ax);
+        s->oy = origin(ay);
         float ox = (float)s->ox, oy = (float)s->oy;
         for (int k = 0; k <= degree; k++) {
             float hx = pw[k] * (px[k] - ox), hy = pw[k] * (py[k] - oy);
