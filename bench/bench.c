@@ -333,6 +333,14 @@ static double time_variant(int v, cs_target *t16, cs_target *tx, peers *p, int f
     return peer_frame(p, v, first, end, over_saved);
 }
 
+/* How far apart two pixels are: the mean of their R, G and B differences
+ * (of 255), the one measure of "the same picture" here. */
+static double rgb_diff(uint32_t argb, int r, int g, int b)
+{
+    return (abs((int)((argb >> 16) & 255u) - r) + abs((int)((argb >> 8) & 255u) - g) +
+            abs((int)(argb & 255u) - b)) / 3.0;
+}
+
 /*
  * How alike celscan's picture (blended in sRGB, as cairo blends) and
  * cairo's are: a check that both drew the same scene, not a quality figure.
@@ -351,12 +359,10 @@ static void agreement(cs_target *t, peers *p, double *mean, double *big)
     long n = 0, over = 0;
     for (int y = 0; y < t->h; y++)
         for (int x = 0; x < t->w; x++) {
-            uint32_t c = px[(size_t)y * (stride / 4) + x];
             const uint8_t *s = &t->image[((size_t)y * t->w + x) * 3];
-            int d = abs((int)((c >> 16) & 255) - s[0]) + abs((int)((c >> 8) & 255) - s[1]) +
-                    abs((int)(c & 255) - s[2]);
-            sum += d / 3.0;
-            over += d / 3.0 > 8.0;
+            double d = rgb_diff(px[(size_t)y * (stride / 4) + x], s[0], s[1], s[2]);
+            sum += d;
+            over += d > 8.0;
             n++;
         }
     *mean = sum / (double)n;
@@ -965,11 +971,10 @@ static int selftest(void)
             long over = 0;
             for (int y = 0; y < h; y++)
                 for (int x = 0; x < w; x++) {
-                    uint32_t a = c[(size_t)y * (size_t)(stride / 4) + (size_t)x];
                     uint32_t b = other[k][(size_t)y * (size_t)w + (size_t)x];
-                    double d = 0.0;
-                    for (int sh = 0; sh < 24; sh += 8)
-                        d += abs((int)((a >> sh) & 255u) - (int)((b >> sh) & 255u)) / 3.0;
+                    double d = rgb_diff(c[(size_t)y * (size_t)(stride / 4) + (size_t)x],
+                                        (int)((b >> 16) & 255u), (int)((b >> 8) & 255u),
+                                        (int)(b & 255u));
                     sum += d;
                     over += d > 8.0;
                 }
