@@ -412,6 +412,9 @@ typedef struct cs_render_opts {
     bool no_early_out;  /* true: composite every cel even where the stack is already
                            opaque. Bit-identical output, only slower: for tests and
                            for measuring what front-to-back skipping saves. */
+    bool no_grey;       /* true: keep transmittance per channel even when every paint of
+                           the frame transmits grey. Bit-identical output, only slower:
+                           for tests and for measuring what the grey path saves. */
 } cs_render_opts;
 
 /*
@@ -562,6 +565,7 @@ typedef struct cs_cache {
     cs_render_opts opts;    /* the cache is valid for these (time aside) */
     const uint32_t *line_first; /* height + 1 run indices */
     const cs_cache_run *runs;
+    bool grey;              /* every run's T is grey (the same on all channels) */
 } cs_cache;
 
 /* The context of one frame. Set up by cs_frame_begin; fields are private. */
@@ -578,6 +582,7 @@ typedef struct cs_renderer {
     const cs_cache *cache;        /* pre-combined cels composited in their place, or NULL */
     uint32_t opaque_px;           /* pixels of the line whose stack is opaque */
     bool record;                  /* the early-out is on: opaque runs are skipped */
+    bool grey;                    /* every T of the frame is grey: kept in channel 0 alone */
 } cs_renderer;
 
 /*

@@ -50,6 +50,7 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
     cache->cel_count = cel_count;
     cache->line_first = 0;
     cache->runs = 0;
+    cache->grey = false;
     if (!ws || !scene || !opts || (!buffer && size > 0) || cel_count == 0 ||
         cel_first >= scene->cel_count || cel_count > scene->cel_count - cel_first) {
         cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
@@ -84,6 +85,7 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
 
     int width = opts->width;
     size_t count = 0;
+    bool grey = true; /* every stored T is */
     for (int y = 0; y < opts->height; y++) {
         cs__line_stack(&r, y);
         if (line_first)
@@ -91,11 +93,13 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
         /* The open run is built here and stored when it closes, so that the
          * count (and bytes_needed) is exact even when nothing fits. The
          * line's own runs may split pixels of one map; they are joined. */
-        cs_cache_run cur;
+        cs_cache_run cur = {0, 0, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
         bool open = false;
         for (uint32_t x = 0; x <= (uint32_t)width;) {
             uint32_t end = x < (uint32_t)width ? ws->run_end[x] : x + 1u;
-            const float *E = &ws->stack_E[3 * x], *T = &ws->stack_T[3 * x];
+            const float *E = &ws->stack_E[3 * x], *Ts = &ws->stack_T[3 * x];
+            /* A grey frame keeps T in channel 0 alone (cs_renderer.grey). */
+            float T[3] = {Ts[0], r.grey ? Ts[0] : Ts[1], r.grey ? Ts[0] : Ts[2]};
             bool clear = x == (uint32_t)width ||
                          (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f && T[0] == 1.0f &&
                           T[1] == 1.0f && T[2] == 1.0f);
@@ -114,6 +118,7 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
                         d->T[ch] = cur.T[ch];
                     }
                 }
+                grey = grey && cur.T[0] == cur.T[1] && cur.T[1] == cur.T[2];
                 count++;
                 open = false;
             }
@@ -140,6 +145,7 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
     cache->run_count = (uint32_t)count;
     cache->line_first = line_first;
     cache->runs = runs;
+    cache->grey = grey;
     cache->status = CS_OK;
     /* A capacity error met while rendering the range degrades the cached
      * picture just as it would the direct one; report it, keep the cache. */
@@ -156,6 +162,7 @@ void cs__cache_composite(cs_renderer *r, int y)
 {
     const cs_cache *cache = r->cache;
     cs_workspace *ws = r->ws;
+    bool grey = CS_CFG_GREY && r->grey;
     uint32_t s = 0; /* a run start left of the cached run */
     for (uint32_t k = cache->line_first[y]; k < cache->line_first[y + 1]; k++) {
         const cs_cache_run *run = &cache->runs[k];
@@ -164,9 +171,9 @@ void cs__cache_composite(cs_renderer *r, int y)
         for (;;) {
             uint32_t e = ws->run_end[s];
             if (!cs__run_opaque(r, s)) {
-                e = cs__run_clip(ws, &s, a, b);
+                e = cs__run_clip(ws, grey, &s, a, b);
                 /* An opaque run's T is 0: finite T_s times 0 leaves 0 behind it. */
-                cs__run_join(r, s, e, run->E, run->T);
+                cs__run_join(r, grey, s, e, run->E, run->T);
             }
             if (e >= b)
                 break;

@@ -141,6 +141,17 @@
 #endif
 
 /*
+ * Frames whose every paint transmits grey (T the same on all channels: any
+ * white or grey medium, every opaque paint, so all imported SVG) keep T in
+ * one channel, which saves up to ~5 % of a frame; the path is a second
+ * copy of the run code, ~5 KB of Cortex-M4 flash that a small board may
+ * rather keep. The pixels are the same bits either way (docs/BETA.md).
+ */
+#ifndef CS_CFG_GREY
+#define CS_CFG_GREY 1
+#endif
+
+/*
  * Pre-combined cel caches (cs_cache_build) need one more line of (E) floats
  * in the workspace; a small board that keeps no cache can leave them out.
  */

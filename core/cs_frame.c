@@ -140,6 +140,7 @@ cs_render_opts cs_render_defaults(int width, int height)
     o.time = 0.0f;
     o.blend = CS_BLEND_SCENE;
     o.no_early_out = false;
+    o.no_grey = false;
     return o;
 }
 
@@ -174,6 +175,34 @@ static void region_map(const cs_paint *p, const float *front, const float *back,
         E[k] = p->beta * pig * front[k] + clear * back[k];
         T[k] = clear;
     }
+}
+
+static bool grey3(const float *v)
+{
+    return v[0] == v[1] && v[1] == v[2];
+}
+
+/*
+ * Whether a region's T = (1 - beta) m is grey at every pixel, so that the
+ * frame may keep one channel of it (cs_renderer.grey). A functional medium
+ * is grey where all its stops are: values between them are the same
+ * arithmetic on each channel. A functional beta scales the constant medium.
+ * Otherwise T is the constant the frame computed: an opaque paint's is 0 on
+ * every channel whatever its medium.
+ */
+static bool region_grey(const cs_scene *scene, const cs_region *reg, const cs_paint *paint,
+                        const float *T)
+{
+    if (reg->func[CS_FIELD_MEDIUM]) {
+        const cs_paint_func *fn = &scene->funcs[reg->func[CS_FIELD_MEDIUM] - 1u];
+        for (uint32_t k = 0; k < fn->stop_count; k++)
+            if (!grey3(fn->stops[k].value))
+                return false;
+        return true;
+    }
+    if (reg->func[CS_FIELD_BETA])
+        return grey3(paint->medium);
+    return grey3(T);
 }
 
 /* Inverse of an affine map; all zeros when it is singular (its cel then
@@ -269,6 +298,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     r->segment_count = r->piece_count = r->active_count = r->next_order = 0;
     r->next_line = 0;
     r->cache = cache;
+    r->grey = false;
     r->cel_begin = cel_begin;
     r->cel_end = cel_end < scene->cel_count ? cel_end : scene->cel_count;
     cs__error(&r->sticky, CS_OK, -1, -1, -1, -1);
@@ -303,6 +333,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     }
 
     float width = (float)opts->width;
+    bool grey = !opts->no_grey && (!cache || cache->grey);
     for (uint32_t ci = r->cel_begin; ci < r->cel_end; ci++) {
         if (cache && ci >= cache->cel_first && ci - cache->cel_first < cache->cel_count)
             continue; /* composited from the cache's runs instead */
@@ -335,6 +366,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                 paint = &animated;
             }
             region_map(paint, lights, lights + 3, srgb, ws->region_E[ri], ws->region_T[ri]);
+            grey = grey && region_grey(scene, reg, paint, ws->region_T[ri]);
             for (int f = 0; f < 3; f++)
                 if (reg->func[f])
                     cs__func_compile(&scene->funcs[reg->func[f] - 1u], &inv,
@@ -371,6 +403,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
             }
         }
     }
+    r->grey = CS_CFG_GREY && grey;
     sort_by_top(ws, r->piece_count);
 #if CS_CFG_EXACT
     if (opts->aa == CS_AA_EXACT) /* no row placed yet (cs_exact.c) */

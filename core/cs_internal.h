@@ -45,6 +45,16 @@ static inline void cs__copy_track(cs_track *dst, const cs_track *src)
     dst->ease = src->ease;
 }
 
+/* For a function written once for two cases told apart by a constant
+ * argument (a grey or a coloured frame, cs_renderer.grey): forced inline
+ * into one wrapper per case, each case is compiled without the test.
+ * Without the grey path there is one case, and the compiler may choose. */
+#if defined(__GNUC__) && CS_CFG_GREY
+#define CS__SPECIALISE inline __attribute__((always_inline))
+#else
+#define CS__SPECIALISE inline
+#endif
+
 /* A quiet NaN, as a constant (no libm). */
 #define CS__NAN (__builtin_nanf(""))
 

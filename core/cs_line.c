@@ -516,11 +516,14 @@ typedef struct fold_paint {
     bool functional;
     bool direct;      /* the cel's only region on this line: straight into the stack */
     bool snap;        /* with direct: the cel may hide (see region_may_hide) */
+    bool grey;        /* the frame keeps T in channel 0 alone (cs_renderer.grey) */
 } fold_paint;
 
 /* Adds coverage c of paint (E, A) to the cel at the run starting at s,
- * within what the regions in front of it left (`used`). */
-static inline void accumulate(cs_workspace *ws, uint32_t s, float c, const float *E, const float *A)
+ * within what the regions in front of it left (`used`). A grey frame keeps
+ * A in channel 0 alone. */
+static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, float c,
+                                      const float *E, const float *A)
 {
     float room = 1.0f - ws->used[s];
     if (c > room)
@@ -529,17 +532,34 @@ static inline void accumulate(cs_workspace *ws, uint32_t s, float c, const float
         return;
     float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
     if (ws->used[s] == 0.0f) { /* the first region here: what is stored is stale */
-        for (int ch = 0; ch < 3; ch++) {
+        for (int ch = 0; ch < 3; ch++)
             ce[ch] = c * E[ch];
-            ca[ch] = c * A[ch];
+        ca[0] = c * A[0];
+        if (!grey) {
+            ca[1] = c * A[1];
+            ca[2] = c * A[2];
         }
     } else {
-        for (int ch = 0; ch < 3; ch++) {
+        for (int ch = 0; ch < 3; ch++)
             ce[ch] += c * E[ch];
-            ca[ch] += c * A[ch];
+        ca[0] += c * A[0];
+        if (!grey) {
+            ca[1] += c * A[1];
+            ca[2] += c * A[2];
         }
     }
     ws->used[s] += c;
+}
+
+/* t = 1 - c A, snapped to 0 below CS__T_ZERO if the cel may hide; channel
+ * 0 alone in a grey frame (the others are left unset). */
+static CS__SPECIALISE void transmittance(float t[3], const float *A, float c, bool snap, bool grey)
+{
+    for (int ch = 0; ch < (grey ? 1 : 3); ch++) {
+        t[ch] = 1.0f - c * A[ch];
+        if (snap && t[ch] < CS__T_ZERO)
+            t[ch] = 0.0f;
+    }
 }
 
 /*
@@ -549,17 +569,14 @@ static inline void accumulate(cs_workspace *ws, uint32_t s, float c, const float
  * 1, 0 + v is v), so the bits are the same, without the round trip through
  * the cel's share of the runs.
  */
-static inline void composite_direct(cs_renderer *r, uint32_t s, uint32_t e, float c,
-                                    const float *E, const float *A, bool snap)
+static CS__SPECIALISE void composite_direct(cs_renderer *r, bool grey, uint32_t s, uint32_t e,
+                                            float c, const float *E, const float *A, bool snap)
 {
     float cE[3], t[3];
-    for (int ch = 0; ch < 3; ch++) {
+    for (int ch = 0; ch < 3; ch++)
         cE[ch] = c * E[ch];
-        t[ch] = 1.0f - c * A[ch];
-        if (snap && t[ch] < CS__T_ZERO)
-            t[ch] = 0.0f;
-    }
-    cs__run_join(r, s, e, cE, t);
+    transmittance(t, A, c, snap, grey);
+    cs__run_join(r, grey, s, e, cE, t);
 }
 
 /*
@@ -568,31 +585,31 @@ static inline void composite_direct(cs_renderer *r, uint32_t s, uint32_t e, floa
  * of a; returns the start of the last run visited (at or left of b - 1),
  * from which the region's next coverage run, further right, is sought.
  */
-static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uint32_t a,
-                         uint32_t b, float c)
+static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *fp, uint32_t s,
+                                           uint32_t a, uint32_t b, float c, bool grey)
 {
     s = cs__run_seek(ws, s, a);
     for (;;) {
         uint32_t e = ws->run_end[s];
         if (!cs__run_opaque(fp->r, s)) {
-            e = cs__run_clip(ws, &s, a, b);
+            e = cs__run_clip(ws, grey, &s, a, b);
             if (!fp->functional) {
                 if (fp->direct)
-                    composite_direct(fp->r, s, e, c, fp->E, fp->A, fp->snap);
+                    composite_direct(fp->r, grey, s, e, c, fp->E, fp->A, fp->snap);
                 else
-                    accumulate(ws, s, c, fp->E, fp->A);
+                    accumulate(ws, grey, s, c, fp->E, fp->A);
             } else {
                 /* The paint varies along x: a run per pixel. */
                 for (uint32_t x = s;; x++) {
                     if (x + 1u < e)
-                        cs__run_split(ws, x, x + 1u);
+                        cs__run_split(ws, grey, x, x + 1u);
                     float E[3], A[3];
                     paint_at(fp->r, fp->region, fp->front, fp->cel->back, (float)x + 0.5f,
                              fp->py, E, A);
                     if (fp->direct)
-                        composite_direct(fp->r, x, x + 1u, c, E, A, fp->snap);
+                        composite_direct(fp->r, grey, x, x + 1u, c, E, A, fp->snap);
                     else
-                        accumulate(ws, x, c, E, A);
+                        accumulate(ws, grey, x, c, E, A);
                     if (x + 1u >= e)
                         break;
                 }
@@ -602,6 +619,27 @@ static uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uin
             return s;
         s = e;
     }
+}
+
+/* fold_run_as once per case: a grey frame and a coloured one. */
+static uint32_t fold_run_grey(cs_workspace *ws, const fold_paint *fp, uint32_t s, uint32_t a,
+                              uint32_t b, float c)
+{
+    return fold_run_as(ws, fp, s, a, b, c, true);
+}
+
+static uint32_t fold_run_colour(cs_workspace *ws, const fold_paint *fp, uint32_t s, uint32_t a,
+                                uint32_t b, float c)
+{
+    return fold_run_as(ws, fp, s, a, b, c, false);
+}
+
+static inline uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uint32_t a,
+                                uint32_t b, float c)
+{
+    if (CS_CFG_GREY && fp->grey)
+        return fold_run_grey(ws, fp, s, a, b, c);
+    return fold_run_colour(ws, fp, s, a, b, c);
 }
 
 /*
@@ -653,6 +691,7 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
     }
     fp.py = (float)y + 0.5f;
     fp.direct = direct;
+    fp.grey = r->grey;
     fp.snap = direct && region_may_hide(r, reg);
     uint32_t width = (uint32_t)r->opts.width;
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
@@ -717,7 +756,8 @@ static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
  * is snapped to 0 below CS__T_ZERO. Snapping depends on the cel alone,
  * never on the early-out, so turning the early-out off changes no bit.
  */
-static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
+static CS__SPECIALISE void composite_cel_as(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap,
+                                            bool grey)
 {
     cs_workspace *ws = r->ws;
     for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s]) {
@@ -725,14 +765,18 @@ static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
             continue;
         float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
         float t[3];
-        for (int ch = 0; ch < 3; ch++) {
-            t[ch] = 1.0f - ca[ch];
-            if (snap && t[ch] < CS__T_ZERO)
-                t[ch] = 0.0f;
-        }
-        cs__run_join(r, s, ws->run_end[s], ce, t);
+        transmittance(t, ca, 1.0f, snap, grey);
+        cs__run_join(r, grey, s, ws->run_end[s], ce, t);
         ws->used[s] = 0.0f;
     }
+}
+
+static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
+{
+    if (CS_CFG_GREY && r->grey)
+        composite_cel_as(r, lo, hi, snap, true);
+    else
+        composite_cel_as(r, lo, hi, snap, false);
 }
 
 /* Moves the active list to line y: adds pieces starting above y+1, drops
@@ -919,7 +963,7 @@ void cs__line_stack(cs_renderer *r, int y)
  * (decoded to linear light under sRGB blending), in place in stack_E, and
  * joins neighbouring runs whose pixels came out equal.
  */
-static void finish_line(cs_renderer *r)
+static CS__SPECIALISE void finish_line_as(cs_renderer *r, bool grey)
 {
     cs_workspace *ws = r->ws;
     uint32_t width = (uint32_t)r->opts.width;
@@ -929,9 +973,10 @@ static void finish_line(cs_renderer *r)
     for (uint32_t s = 0; s < width;) {
         float *E = &ws->stack_E[3 * s];
         const float *T = &ws->stack_T[3 * s];
-        E[0] = cs__clampf(E[0] + T[0] * L0, 0.0f, 1.0f);
-        E[1] = cs__clampf(E[1] + T[1] * L1, 0.0f, 1.0f);
-        E[2] = cs__clampf(E[2] + T[2] * L2, 0.0f, 1.0f);
+        float T0 = T[0], T1 = grey ? T0 : T[1], T2 = grey ? T0 : T[2];
+        E[0] = cs__clampf(E[0] + T0 * L0, 0.0f, 1.0f);
+        E[1] = cs__clampf(E[1] + T1 * L1, 0.0f, 1.0f);
+        E[2] = cs__clampf(E[2] + T2 * L2, 0.0f, 1.0f);
         /* sRGB blending composited encoded values; hand back linear light. */
         if (srgb)
             for (int ch = 0; ch < 3; ch++)
@@ -948,6 +993,14 @@ static void finish_line(cs_renderer *r)
         prev = s;
         s = e;
     }
+}
+
+static void finish_line(cs_renderer *r)
+{
+    if (CS_CFG_GREY && r->grey)
+        finish_line_as(r, true);
+    else
+        finish_line_as(r, false);
 }
 
 cs_status cs_render_line_runs(cs_renderer *r, int y)

@@ -20,6 +20,13 @@
  * each run is the per-pixel arithmetic of the pixels it stands for, in the
  * same order, so the result is the same bits as computing every pixel.
  *
+ * A frame whose every paint transmits grey (cs_renderer.grey: T the same
+ * on every channel, as for any white or grey medium) keeps T and the cel's
+ * A in channel 0 alone: the same products on one number instead of three
+ * equal ones, so the same bits, with a third of the transmittance work.
+ * The functions here take `grey` as an argument, a constant wherever they
+ * are inlined into one of the two specialised copies of the line code.
+ *
  * A run whose stack transmits nothing (T = 0 on every channel) is opaque:
  * nothing behind it can show, so later cels skip it and it is never split
  * again. With the early-out off (cs_render_opts.no_early_out) nothing is
@@ -66,23 +73,37 @@ static inline uint32_t cs__run_start(const cs_workspace *ws, uint32_t x)
     return (w << 5) + cs__high_bit(bits);
 }
 
-/* Splits the run starting at s at pixel x (s < x < run_end[s]). */
-static inline void cs__run_split(cs_workspace *ws, uint32_t s, uint32_t x)
+/* Copies a map (E, T), T channel 0 alone if grey, written out: a loop here
+ * is left rolled by the compiler, and a split is on every edge pixel. */
+static CS__SPECIALISE void cs__copy_map(float *dE, float *dT, const float *sE, const float *sT,
+                                        bool grey)
+{
+    float e0 = sE[0], e1 = sE[1], e2 = sE[2], t0 = sT[0];
+    dE[0] = e0;
+    dE[1] = e1;
+    dE[2] = e2;
+    dT[0] = t0;
+    if (!grey) {
+        float t1 = sT[1], t2 = sT[2];
+        dT[1] = t1;
+        dT[2] = t2;
+    }
+}
+
+/* Splits the run starting at s at pixel x (s < x < run_end[s]). In a grey
+ * frame only channel 0 of T and of the cel's A is kept (cs_renderer.grey). */
+static CS__SPECIALISE void cs__run_split(cs_workspace *ws, bool grey, uint32_t s, uint32_t x)
 {
     ws->run_end[x] = ws->run_end[s];
     ws->run_end[s] = (uint16_t)x;
     ws->run_starts[x >> 5] |= 1u << (x & 31u);
-    for (int ch = 0; ch < 3; ch++) {
-        ws->stack_E[3 * x + ch] = ws->stack_E[3 * s + ch];
-        ws->stack_T[3 * x + ch] = ws->stack_T[3 * s + ch];
-    }
+    cs__copy_map(&ws->stack_E[3 * x], &ws->stack_T[3 * x], &ws->stack_E[3 * s],
+                 &ws->stack_T[3 * s], grey);
     float used = ws->used[s];
     ws->used[x] = used;
     if (used != 0.0f) /* a run the cel has not reached holds no cel values */
-        for (int ch = 0; ch < 3; ch++) {
-            ws->cel_E[3 * x + ch] = ws->cel_E[3 * s + ch];
-            ws->cel_A[3 * x + ch] = ws->cel_A[3 * s + ch];
-        }
+        cs__copy_map(&ws->cel_E[3 * x], &ws->cel_A[3 * x], &ws->cel_E[3 * s], &ws->cel_A[3 * s],
+                     grey);
 }
 
 /* Whether the stack of the run at s is opaque (and the early-out is on):
@@ -145,16 +166,28 @@ static inline uint32_t cs__run_seek(const cs_workspace *ws, uint32_t s, uint32_t
 
 /* Puts a map (E, t) behind the stack of the run [s, e): E_s += T_s E,
  * T_s *= t; the run is counted opaque once T_s is 0 on every channel.
- * Every way into the stack (a cel, a lone region, the cache) ends here. */
-static inline void cs__run_join(cs_renderer *r, uint32_t s, uint32_t e, const float E[3],
-                                const float t[3])
+ * Every way into the stack (a cel, a lone region, the cache) ends here.
+ * In a grey frame T_s and t are their channel 0: the products are those of
+ * the three channels, which hold the same number. */
+static CS__SPECIALISE void cs__run_join(cs_renderer *r, bool grey, uint32_t s, uint32_t e,
+                                        const float E[3], const float t[3])
 {
     float *se = &r->ws->stack_E[3 * s], *st = &r->ws->stack_T[3 * s];
-    for (int ch = 0; ch < 3; ch++) {
-        se[ch] += st[ch] * E[ch];
-        st[ch] *= t[ch];
+    bool opaque;
+    if (grey) {
+        float T = st[0];
+        for (int ch = 0; ch < 3; ch++)
+            se[ch] += T * E[ch];
+        st[0] = T * t[0];
+        opaque = st[0] == 0.0f;
+    } else {
+        for (int ch = 0; ch < 3; ch++) {
+            se[ch] += st[ch] * E[ch];
+            st[ch] *= t[ch];
+        }
+        opaque = (st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f);
     }
-    if ((st[0] == 0.0f) & (st[1] == 0.0f) & (st[2] == 0.0f)) {
+    if (opaque) {
         r->opaque_px += e - s;
         cs__mark_opaque(r->ws, s, e);
     }
@@ -162,15 +195,16 @@ static inline void cs__run_join(cs_renderer *r, uint32_t s, uint32_t e, const fl
 
 /* Splits the run at *s, which meets [a, b), so that it lies within [a, b);
  * *s becomes its start and the return value its end. */
-static inline uint32_t cs__run_clip(cs_workspace *ws, uint32_t *s, uint32_t a, uint32_t b)
+static CS__SPECIALISE uint32_t cs__run_clip(cs_workspace *ws, bool grey, uint32_t *s, uint32_t a,
+                                    uint32_t b)
 {
     uint32_t e = ws->run_end[*s];
     if (*s < a) {
-        cs__run_split(ws, *s, a);
+        cs__run_split(ws, grey, *s, a);
         *s = a;
     }
     if (e > b) {
-        cs__run_split(ws, *s, b);
+        cs__run_split(ws, grey, *s, b);
         e = b;
     }
     return e;

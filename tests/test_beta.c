@@ -776,6 +776,124 @@ static void test_cache(void)
     CHECK(st == CS_ERR_CAP_CACHE && cache.bytes_needed > 0, "size query");
 }
 
+/* ---------------------------------------------------- 6b. the grey path */
+
+/* Whether a frame at o takes the grey path (cs_renderer.grey: a private
+ * field, read here to know which path the pixels came from). */
+static bool frame_grey(const cs_scene *s, const cs_render_opts *o, const cs_cache *cache)
+{
+    cs_renderer r;
+    cs_error e;
+    return cs_frame_begin_cached(&r, &g_ws, s, o, cache, &e) == CS_OK && r.grey;
+}
+
+/* Renders at o with the grey path allowed and refused: the same bits. */
+static bool same_bits_both_paths(const cs_scene *s, cs_render_opts o, const cs_cache *cache)
+{
+    size_t bytes = sizeof(float) * 3 * (size_t)o.width * (size_t)o.height;
+    o.no_grey = false;
+    bool ok = render(s, &o, cache, img_a) == CS_OK;
+    o.no_grey = true;
+    ok = ok && render(s, &o, cache, img_b) == CS_OK;
+    return ok && memcmp(img_a, img_b, bytes) == 0;
+}
+
+/*
+ * A frame whose every transmittance is grey keeps T in one channel
+ * (cs_renderer.grey). Its pixels must be the bits of the three-channel
+ * path, which the rest of this file checks against closed forms; here the
+ * two paths are compared, and which frames may take the grey one.
+ */
+static void test_grey_path(void)
+{
+    build_busy_scene(&g_scene);
+    cs_render_opts o = opts_n(96, 64, 5);
+    CHECK(!frame_grey(&g_scene, &o, NULL), "coloured media: three channels");
+    /* The same scene with every medium grey (constant and gradient). */
+    for (uint32_t i = 0; i < g_scene.region_count; i++) {
+        float *m = g_scene.regions[i].paint.medium;
+        m[1] = m[2] = m[0];
+    }
+    for (uint32_t f = 0; f < g_scene.func_count; f++)
+        for (uint32_t k = 0; k < g_scene.funcs[f].stop_count; k++) {
+            float *v = g_scene.funcs[f].stops[k].value;
+            v[1] = v[2] = v[0];
+        }
+    CHECK(frame_grey(&g_scene, &o, NULL), "grey media: one channel");
+    o.no_grey = true;
+    CHECK(!frame_grey(&g_scene, &o, NULL), "no_grey refuses the grey path");
+    for (int aa = 0; aa < 4; aa++) {
+        cs_render_opts m = opts_n(96, 64, aa == 3 ? 16 : 5);
+        m.aa = aa == 0 ? CS_AA_NONE : aa == 2 ? CS_AA_EXACT : CS_AA_SUBSCAN;
+        for (int early = 0; early < 2; early++) {
+            m.no_early_out = early != 0;
+            CHECK(same_bits_both_paths(&g_scene, m, NULL),
+                  "grey path differs from three channels (aa mode %d, early-out %s)", aa,
+                  early ? "off" : "on");
+        }
+        m.blend = CS_BLEND_SRGB;
+        CHECK(same_bits_both_paths(&g_scene, m, NULL),
+              "grey path differs from three channels (aa mode %d, sRGB blending)", aa);
+    }
+    /* A grey cache behind grey live cels stays grey; its runs hold T whole. */
+    cs_cache cache;
+    cs_error e;
+    o.no_grey = false;
+    cs_status st = cs_cache_build(&cache, cache_buf, sizeof cache_buf, &g_ws, &g_scene, &o, 3,
+                                  13, &e);
+    CHECK(st == CS_OK && cache.grey, "grey cache: %s, grey %d", cs_status_str(st), cache.grey);
+    CHECK(frame_grey(&g_scene, &o, &cache), "grey cache, grey frame");
+    CHECK(same_bits_both_paths(&g_scene, o, &cache), "grey cached frame differs");
+    /* A coloured medium in the cached range only: the cache is coloured, so
+     * the frame keeps three channels though its live cels are grey. */
+    float *m = g_scene.regions[g_scene.cels[14].first_region].paint.medium;
+    m[1] = 0.5f * m[0];
+    st = cs_cache_build(&cache, cache_buf, sizeof cache_buf, &g_ws, &g_scene, &o, 3, 13, &e);
+    CHECK(st == CS_OK && !cache.grey, "coloured cache: %s, grey %d", cs_status_str(st),
+          cache.grey);
+    CHECK(!frame_grey(&g_scene, &o, &cache), "coloured cache: three channels");
+    render(&g_scene, &o, NULL, img_a);
+    render(&g_scene, &o, &cache, img_b);
+    double d = max_diff(img_a, img_b, (size_t)3 * 96 * 64);
+    CHECK(d < 1e-5, "coloured cache behind grey cels vs direct: %.2e", d);
+
+    /* An opaque paint transmits nothing on any channel, whatever its medium;
+     * but a functional beta lets its coloured medium through. */
+    cs_scene_init(&g_scene, 64, 32);
+    const float card[3] = {0.8f, 0.7f, 0.6f}; /* light behind the stack, so T shows */
+    cs_scene_set_background(&g_scene, card);
+    add_cel(&g_scene, NULL, NULL, NULL);
+    add_region(&g_scene, paint(0.2, 0.6, 0.9, 0.9, 0.5, 0.2, 1));
+    add_rect(&g_scene, 4, 4, 30, 28);
+    add_cel(&g_scene, NULL, NULL, NULL);
+    add_region(&g_scene, paint(0.9, 0.9, 0.1, 1, 1, 1, 0));
+    add_circle(&g_scene, 20, 16, 12);
+    o = opts_n(64, 32, 5);
+    CHECK(frame_grey(&g_scene, &o, NULL), "opaque paint with a coloured medium: grey");
+    add_cel(&g_scene, NULL, NULL, NULL);
+    add_region(&g_scene, paint(0.3, 0.3, 0.3, 0.9, 0.5, 0.2, 1));
+    const double g[4] = {0, 0, 64, 0};
+    const double off[2] = {0, 1};
+    const double ramp[2][3] = {{0, 0, 0}, {1, 1, 1}};
+    cs_paint_func fn = make_func(CS_FUNC_LINEAR, CS_SPREAD_PAD, g, 4, 2, off, ramp);
+    CHECK(cs_scene_set_region_func(&g_scene, CS_FIELD_BETA, &fn, &e) == CS_OK, "beta ramp");
+    add_rect(&g_scene, 0, 8, 64, 24);
+    CHECK(!frame_grey(&g_scene, &o, NULL), "functional beta over a coloured medium: three channels");
+    CHECK(same_bits_both_paths(&g_scene, o, NULL), "functional beta: the paths differ");
+    /* A grey medium gradient is grey; one coloured stop is not. */
+    g_scene.regions[2].paint.medium[1] = g_scene.regions[2].paint.medium[2] = 0.9f;
+    CHECK(frame_grey(&g_scene, &o, NULL), "functional beta over a grey medium: grey");
+    CHECK(same_bits_both_paths(&g_scene, o, NULL), "grey functional beta: the paths differ");
+    const double greys[2][3] = {{0.2, 0.2, 0.2}, {0.8, 0.8, 0.8}};
+    fn = make_func(CS_FUNC_LINEAR, CS_SPREAD_REFLECT, g, 4, 2, off, greys);
+    CHECK(cs_scene_set_region_func(&g_scene, CS_FIELD_MEDIUM, &fn, &e) == CS_OK, "medium ramp");
+    CHECK(frame_grey(&g_scene, &o, NULL), "grey medium gradient: grey");
+    CHECK(same_bits_both_paths(&g_scene, o, NULL), "grey medium gradient: the paths differ");
+    g_scene.funcs[g_scene.regions[2].func[CS_FIELD_MEDIUM] - 1u].stops[1].value[2] = 0.7f;
+    CHECK(!frame_grey(&g_scene, &o, NULL), "coloured medium stop: three channels");
+    printf("  grey path: same bits as three channels in every mode, cached and not\n");
+}
+
 /* ------------------------------------------------------------- 7. CSG */
 
 /* The reference: shapes with exact membership, combined by the same RPN. */
@@ -1309,6 +1427,7 @@ int main(void)
     test_gradients();
     test_early_out_exact();
     test_cache();
+    test_grey_path();
     test_csg();
     test_csg_validation();
     test_func_validation();

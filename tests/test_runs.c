@@ -19,6 +19,8 @@
  * must agree bit for bit, but in exact mode: there an arc behind opaque
  * pixels is stood in for by its height (cs_exact.c, hide), which sums the
  * cover deltas right of it in another order, so a last bit may differ.
+ * Half the scenes have grey media, whose frames keep T in one channel;
+ * with that path refused (no_grey) they must come out the same bits.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -53,6 +55,9 @@ static void make_random(rnd_scene *rs, int W, int H)
         rs->bg[ch] = rnd01();
     }
     rs->has_bg = tc_rand() < 0.5;
+    /* Half the scenes have grey media only: their frames keep T in one
+     * channel (cs_renderer.grey). */
+    bool grey_media = tc_rand() < 0.5;
     for (int i = 0; i < rs->n; i++) {
         rnd_cel *c = &rs->cel[i];
         c->cx = tc_uniform(-0.2 * W, 1.2 * W);
@@ -66,6 +71,8 @@ static void make_random(rnd_scene *rs, int W, int H)
             c->front[ch] = rnd01();
             c->back[ch] = rnd01();
         }
+        if (grey_media)
+            c->paint.medium[1] = c->paint.medium[2] = c->paint.medium[0];
         c->paint.beta = opaque ? 1.0f : rnd01();
     }
 }
@@ -97,17 +104,24 @@ static cs_status build_scene(cs_scene *sc, const rnd_scene *rs, int W, int H, in
     return st;
 }
 
-static cs_status render(const cs_scene *sc, int W, int H, cs_aa_mode aa, int nsub, bool early_out,
-                        float *rgb)
+static cs_status render_as(const cs_scene *sc, int W, int H, cs_aa_mode aa, int nsub,
+                           bool early_out, bool grey_path, float *rgb)
 {
     cs_renderer r;
     cs_render_opts o = {.width = W, .height = H, .aa = aa, .subscanlines = nsub};
     o.no_early_out = !early_out;
+    o.no_grey = !grey_path;
     cs_error err;
     cs_status st = cs_frame_begin(&r, tc_workspace(), sc, &o, &err);
     for (int y = 0; y < H && st == CS_OK; y++)
         st = cs_render_line(&r, y, rgb + (size_t)3 * W * y);
     return st;
+}
+
+static cs_status render(const cs_scene *sc, int W, int H, cs_aa_mode aa, int nsub, bool early_out,
+                        float *rgb)
+{
+    return render_as(sc, W, H, aa, nsub, early_out, true, rgb);
 }
 
 /* One random scene against the per-pixel double compositor. */
@@ -229,6 +243,11 @@ static void check_outputs(int W, int H, cs_aa_mode aa, int nsub, const char *mod
     else
         CHECK(!ok || memcmp(a, b, 3 * n * sizeof *a) == 0,
               "%s %dx%d: early-out on and off differ", mode, W, H);
+    /* The grey path (grey media, half the scenes) and the three channels:
+     * the same bits. */
+    ok = ok && render_as(sc, W, H, aa, nsub, true, false, b) == CS_OK;
+    CHECK(!ok || memcmp(a, b, 3 * n * sizeof *a) == 0,
+          "%s %dx%d: the grey path and three channels differ", mode, W, H);
     int bad_runs = 0, bad_px = 0, bad_walk = 0;
     cs_renderer r;
     cs_render_opts o = {.width = W, .height = H, .aa = aa, .subscanlines = nsub};

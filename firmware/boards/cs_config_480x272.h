@@ -57,6 +57,8 @@
 #define CS_CFG_EXACT 0
 /* The panel is RGB565: the 5 KB table for 8-bit sRGB would only cost flash. */
 #define CS_CFG_SRGB8_TABLE 0
+/* One copy of the run code (the grey path costs ~5 KB of flash). */
+#define CS_CFG_GREY 0
 /* No pre-combined cache: it needs more RAM than the whole board has. */
 #define CS_CFG_CACHE 0
 
