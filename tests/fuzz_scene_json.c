@@ -13,7 +13,10 @@
  *   - a scene that loads either renders, sub-scanlines at t = 0 and exact
  *     area at t = 1.7 s on a small frame, with every line CS_OK and every
  *     value in [0, 1], or is refused by cs_frame_begin with an error the
- *     loader can describe (a JSON path and the problem).
+ *     loader can describe (a JSON path and the problem);
+ *   - a frame that renders comes out the same bits with the grey path
+ *     refused (cs_render_opts.no_grey): whichever path the paints allow,
+ *     the pixels are the three-channel ones.
  * A violated check aborts, which libFuzzer reports as a crash.
  */
 #include <stdio.h>
@@ -42,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         REQUIRE(msg[0] != 0);
         return 0;
     }
-    static float frame[FW * FH * 3];
+    static float frame[FW * FH * 3], colour[FW * FH * 3];
     cs_render_opts o = cs_render_defaults(FW, FH);
     o.subscanlines = 3;
     for (int pass = 0; pass < 2; pass++) {
@@ -55,7 +58,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             where[0] = 0;
             scene_json_describe_error(&err, where, sizeof where);
             REQUIRE(where[0] != 0);
+            continue;
         }
+        cs_render_opts three = o;
+        three.no_grey = true;
+        REQUIRE(fuzz_render(&r, &ws, &scene, &three, colour, &err) == CS_OK);
+        REQUIRE(memcmp(frame, colour, sizeof frame) == 0);
     }
     return 0;
 }
