@@ -97,9 +97,9 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
         bool open = false;
         for (uint32_t x = 0; x <= (uint32_t)width;) {
             uint32_t end = x < (uint32_t)width ? ws->run_end[x] : x + 1u;
-            const float *E = &ws->stack_E[3 * x], *Ts = &ws->stack_T[3 * x];
-            /* A grey frame keeps T in channel 0 alone (cs_renderer.grey). */
-            float T[3] = {Ts[0], r.grey ? Ts[0] : Ts[1], r.grey ? Ts[0] : Ts[2]};
+            const float *E = &ws->stack_E[3 * x];
+            float T[3];
+            cs__run_T(ws, r.grey, x, T);
             bool clear = x == (uint32_t)width ||
                          (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f && T[0] == 1.0f &&
                           T[1] == 1.0f && T[2] == 1.0f);
@@ -118,7 +118,7 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
                         d->T[ch] = cur.T[ch];
                     }
                 }
-                grey = grey && cur.T[0] == cur.T[1] && cur.T[1] == cur.T[2];
+                grey = grey && cs__grey3(cur.T);
                 count++;
                 open = false;
             }

@@ -177,11 +177,6 @@ static void region_map(const cs_paint *p, const float *front, const float *back,
     }
 }
 
-static bool grey3(const float *v)
-{
-    return v[0] == v[1] && v[1] == v[2];
-}
-
 /*
  * Whether a region's T = (1 - beta) m is grey at every pixel, so that the
  * frame may keep one channel of it (cs_renderer.grey). A functional medium
@@ -196,13 +191,13 @@ static bool region_grey(const cs_scene *scene, const cs_region *reg, const cs_pa
     if (reg->func[CS_FIELD_MEDIUM]) {
         const cs_paint_func *fn = &scene->funcs[reg->func[CS_FIELD_MEDIUM] - 1u];
         for (uint32_t k = 0; k < fn->stop_count; k++)
-            if (!grey3(fn->stops[k].value))
+            if (!cs__grey3(fn->stops[k].value))
                 return false;
         return true;
     }
     if (reg->func[CS_FIELD_BETA])
-        return grey3(paint->medium);
-    return grey3(T);
+        return cs__grey3(paint->medium);
+    return cs__grey3(T);
 }
 
 /* Inverse of an affine map; all zeros when it is singular (its cel then

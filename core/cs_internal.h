@@ -55,6 +55,13 @@ static inline void cs__copy_track(cs_track *dst, const cs_track *src)
 #define CS__SPECIALISE inline
 #endif
 
+/* Whether the three channels of v hold the same number: a grey
+ * transmittance, which a frame may keep in one channel (cs_renderer.grey). */
+static inline bool cs__grey3(const float *v)
+{
+    return v[0] == v[1] && v[1] == v[2];
+}
+
 /* A quiet NaN, as a constant (no libm). */
 #define CS__NAN (__builtin_nanf(""))
 

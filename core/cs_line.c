@@ -516,7 +516,6 @@ typedef struct fold_paint {
     bool functional;
     bool direct;      /* the cel's only region on this line: straight into the stack */
     bool snap;        /* with direct: the cel may hide (see region_may_hide) */
-    bool grey;        /* the frame keeps T in channel 0 alone (cs_renderer.grey) */
 } fold_paint;
 
 /* Adds coverage c of paint (E, A) to the cel at the run starting at s,
@@ -637,7 +636,7 @@ static uint32_t fold_run_colour(cs_workspace *ws, const fold_paint *fp, uint32_t
 static inline uint32_t fold_run(cs_workspace *ws, const fold_paint *fp, uint32_t s, uint32_t a,
                                 uint32_t b, float c)
 {
-    if (CS_CFG_GREY && fp->grey)
+    if (CS_CFG_GREY && fp->r->grey)
         return fold_run_grey(ws, fp, s, a, b, c);
     return fold_run_colour(ws, fp, s, a, b, c);
 }
@@ -691,7 +690,6 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
     }
     fp.py = (float)y + 0.5f;
     fp.direct = direct;
-    fp.grey = r->grey;
     fp.snap = direct && region_may_hide(r, reg);
     uint32_t width = (uint32_t)r->opts.width;
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
@@ -971,12 +969,11 @@ static CS__SPECIALISE void finish_line_as(cs_renderer *r, bool grey)
     bool srgb = r->opts.blend == CS_BLEND_SRGB;
     uint32_t prev = UINT32_MAX;
     for (uint32_t s = 0; s < width;) {
-        float *E = &ws->stack_E[3 * s];
-        const float *T = &ws->stack_T[3 * s];
-        float T0 = T[0], T1 = grey ? T0 : T[1], T2 = grey ? T0 : T[2];
-        E[0] = cs__clampf(E[0] + T0 * L0, 0.0f, 1.0f);
-        E[1] = cs__clampf(E[1] + T1 * L1, 0.0f, 1.0f);
-        E[2] = cs__clampf(E[2] + T2 * L2, 0.0f, 1.0f);
+        float *E = &ws->stack_E[3 * s], T[3];
+        cs__run_T(ws, grey, s, T);
+        E[0] = cs__clampf(E[0] + T[0] * L0, 0.0f, 1.0f);
+        E[1] = cs__clampf(E[1] + T[1] * L1, 0.0f, 1.0f);
+        E[2] = cs__clampf(E[2] + T[2] * L2, 0.0f, 1.0f);
         /* sRGB blending composited encoded values; hand back linear light. */
         if (srgb)
             for (int ch = 0; ch < 3; ch++)

@@ -90,6 +90,16 @@ static CS__SPECIALISE void cs__copy_map(float *dE, float *dT, const float *sE, c
     }
 }
 
+/* The stack's T of the run at s on all three channels: a grey frame keeps
+ * it in channel 0 alone (the others are stale). */
+static CS__SPECIALISE void cs__run_T(const cs_workspace *ws, bool grey, uint32_t s, float T[3])
+{
+    const float *st = &ws->stack_T[3 * s];
+    T[0] = st[0];
+    T[1] = grey ? st[0] : st[1];
+    T[2] = grey ? st[0] : st[2];
+}
+
 /* Splits the run starting at s at pixel x (s < x < run_end[s]). In a grey
  * frame only channel 0 of T and of the cel's A is kept (cs_renderer.grey). */
 static CS__SPECIALISE void cs__run_split(cs_workspace *ws, bool grey, uint32_t s, uint32_t x)
