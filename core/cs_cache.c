@@ -158,11 +158,12 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
 #endif
 }
 
-void cs__cache_composite(cs_renderer *r, int y)
+/* The cached runs of line y put behind the stack; compiled once per case
+ * (CS__SPECIALISE), a grey frame and a coloured one, as the line code is. */
+static CS__SPECIALISE void cache_composite_as(cs_renderer *r, int y, bool grey)
 {
     const cs_cache *cache = r->cache;
     cs_workspace *ws = r->ws;
-    bool grey = CS_CFG_GREY && r->grey;
     uint32_t s = 0; /* a run start left of the cached run */
     for (uint32_t k = cache->line_first[y]; k < cache->line_first[y + 1]; k++) {
         const cs_cache_run *run = &cache->runs[k];
@@ -180,4 +181,12 @@ void cs__cache_composite(cs_renderer *r, int y)
             s = e;
         }
     }
+}
+
+void cs__cache_composite(cs_renderer *r, int y)
+{
+    if (CS_CFG_GREY && r->grey)
+        cache_composite_as(r, y, true);
+    else
+        cache_composite_as(r, y, false);
 }
