@@ -22,6 +22,7 @@
 #include <time.h>
 
 #include "celscan.h"
+#include "cli_num.h"
 
 #define PI 3.14159265358979323846
 #define W 1920
@@ -199,9 +200,11 @@ static double frame_ms(const cs_scene *s, cs_workspace *ws, cs_aa_mode aa, int s
 
 int main(int argc, char **argv)
 {
-    int runs = argc > 1 ? atoi(argv[1]) : 5;
-    if (runs < 1 || runs > 64)
-        runs = 5;
+    long runs = 5;
+    if (argc > 1 && !cli_int(argv[1], 10, '\0', 1, 64, &runs)) {
+        fprintf(stderr, "usage: bench_aa_modes [RUNS 1..64]\n");
+        return 2;
+    }
     cs_scene *s = malloc(sizeof *s);
     cs_workspace *ws = malloc(sizeof *ws);
     float *line = malloc(sizeof(float) * 3 * W);
@@ -210,7 +213,7 @@ int main(int argc, char **argv)
     const char *names[2] = {"demo", "heavy"};
     const cs_aa_mode modes[3] = {CS_AA_EXACT, CS_AA_SUBSCAN, CS_AA_SUBSCAN};
     const int subs[3] = {0, 5, 16};
-    printf("1920x1080, %d runs, CPU ms/frame (cs_frame_begin + all lines): median (min)\n", runs);
+    printf("1920x1080, %ld runs, CPU ms/frame (cs_frame_begin + all lines): median (min)\n", runs);
     printf("%-6s %18s %18s %18s\n", "scene", "exact", "aa 5", "aa 16");
     for (int sc = 0; sc < 2; sc++) {
         if (sc == 0)

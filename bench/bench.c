@@ -39,6 +39,7 @@
 #include <time.h>
 
 #include "bench.h"
+#include "cli_num.h"
 #include "ref/ref.h"
 #include "scene_json.h"
 
@@ -1034,6 +1035,15 @@ static void usage(void)
     exit(2);
 }
 
+/* A count option (--repeat, --frames, --shapes): 1 up to a million. */
+static int count_arg(const char *v)
+{
+    long n = 0;
+    if (!cli_int(v, 10, '\0', 1, 1000000, &n))
+        usage();
+    return (int)n;
+}
+
 static void parse_list(const char *arg, const char *const *names, int n, bool *set, size_t stride)
 {
     for (int i = 0; i < n; i++)
@@ -1072,17 +1082,17 @@ int main(int argc, char **argv)
             parse_list(v, &scene_defs[0].name, SCENE_COUNT, cfg.scenes, sizeof scene_defs[0]);
             i++;
         } else if (strcmp(a, "--size") == 0 && v) {
-            if (sscanf(v, "%dx%d", &cfg.width, &cfg.height) != 2 || cfg.width < 1 || cfg.height < 1)
+            if (!cli_size(v, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT, &cfg.width, &cfg.height))
                 usage();
             i++;
         } else if (strcmp(a, "--repeat") == 0 && v) {
-            cfg.repeat = atoi(v);
+            cfg.repeat = count_arg(v);
             i++;
         } else if (strcmp(a, "--frames") == 0 && v) {
-            cfg.frames = atoi(v);
+            cfg.frames = count_arg(v);
             i++;
         } else if (strcmp(a, "--shapes") == 0 && v) {
-            cfg.shapes = atoi(v);
+            cfg.shapes = count_arg(v);
             i++;
         } else if (strcmp(a, "--out") == 0 && v) {
             cfg.out_dir = v;
@@ -1093,12 +1103,8 @@ int main(int argc, char **argv)
             profile = v;
             i++;
         } else if (strcmp(a, "--aa") == 0 && v) {
-            if (strcmp(v, "none") == 0)
-                prof_aa = CS_AA_NONE;
-            else if (strcmp(v, "exact") == 0)
-                prof_aa = CS_AA_EXACT;
-            else
-                prof_sub = atoi(v);
+            if (!cli_aa(v, &prof_aa, &prof_sub))
+                usage();
             i++;
         } else if (strcmp(a, "--peer") == 0 && v) {
             prof_peer = v;

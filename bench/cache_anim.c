@@ -27,6 +27,7 @@
 #include <time.h>
 
 #include "celscan.h"
+#include "cli_num.h"
 
 static cs_scene scene;
 static cs_workspace ws;
@@ -218,12 +219,14 @@ static double median(double *v, int n)
 
 int main(int argc, char **argv)
 {
-    int W = argc > 2 ? atoi(argv[1]) : 1280, H = argc > 2 ? atoi(argv[2]) : 720;
-    int frames = argc > 3 ? atoi(argv[3]) : 24;
-    if (W < 16 || H < 16 || W > CS_CFG_MAX_WIDTH || frames < 1) {
+    long w = 1280, h = 720, n = 24;
+    if ((argc > 2 && (!cli_int(argv[1], 10, '\0', 16, CS_CFG_MAX_WIDTH, &w) ||
+                      !cli_int(argv[2], 10, '\0', 16, CS_CFG_MAX_HEIGHT, &h))) ||
+        (argc > 3 && !cli_int(argv[3], 10, '\0', 1, 100000, &n)) || argc == 2 || argc > 4) {
         fprintf(stderr, "usage: bench_cache_anim [WIDTH HEIGHT [FRAMES]]\n");
         return 2;
     }
+    int W = (int)w, H = (int)h, frames = (int)n;
     build();
     cs_render_opts o;
     memset(&o, 0, sizeof o);

@@ -33,6 +33,7 @@
 
 #include "cels_read.h"
 #include "celscan.h"
+#include "cli_num.h"
 #include "clock.h"
 #include "display.h"
 #include "frame_drive.h"
@@ -102,32 +103,6 @@ static int usage_error(const char *fmt, ...)
 }
 
 /* A whole-string decimal integer in [lo, hi]. */
-static bool parse_int(const char *s, long lo, long hi, int *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno != 0 || v < lo || v > hi || s[0] == '+' ||
-        s[0] == ' ')
-        return false;
-    *out = (int)v;
-    return true;
-}
-
-static bool parse_size(const char *s, int *w, int *h)
-{
-    const char *x = strchr(s, 'x');
-    if (x == NULL || x == s || x[1] == '\0')
-        return false;
-    char wbuf[16];
-    size_t n = (size_t)(x - s);
-    if (n >= sizeof wbuf)
-        return false;
-    memcpy(wbuf, s, n);
-    wbuf[n] = '\0';
-    return parse_int(wbuf, 1, 1000000, w) && parse_int(x + 1, 1, 1000000, h);
-}
-
 /* The value of an option given as "--opt value" or "--opt=value". */
 static const char *option_value(int argc, char **argv, int *i, const char *arg, const char *name)
 {
@@ -172,25 +147,18 @@ static int parse_render_args(int argc, char **argv, options *o)
                 return usage_error("%s expects a file name", name);
             o->out = v;
         } else if (name && strcmp(name, "--size") == 0) {
-            if (!parse_size(v, &o->width, &o->height))
+            if (!cli_size(v, 1000000, 1000000, &o->width, &o->height))
                 return usage_error("--size expects WxH, got '%s'", v);
             if (o->width > CS_CFG_MAX_WIDTH || o->height > CS_CFG_MAX_HEIGHT)
                 return usage_error("--size %s is beyond the configured maximum %dx%d", v,
                                    CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
         } else if (name && strcmp(name, "--time") == 0) {
-            char *end;
-            double t = strtod(v, &end);
-            if (end == v || *end != '\0' || !isfinite(t) || fabs(t) > 1e9)
+            double t;
+            if (!cli_real(v, '\0', -1e9, 1e9, &t))
                 return usage_error("--time expects seconds (a number), got '%s'", v);
             o->time = (float)t;
         } else if (name && strcmp(name, "--aa") == 0) {
-            if (strcmp(v, "none") == 0) {
-                o->aa = CS_AA_NONE;
-            } else if (strcmp(v, "exact") == 0) {
-                o->aa = CS_AA_EXACT;
-            } else if (parse_int(v, 1, CS_CFG_MAX_SUBSCANLINES, &o->subscanlines)) {
-                o->aa = CS_AA_SUBSCAN;
-            } else {
+            if (!cli_aa(v, &o->aa, &o->subscanlines)) {
                 return usage_error("--aa expects none, exact or a number of sub-scanlines "
                                    "1..%d, got '%s'",
                                    CS_CFG_MAX_SUBSCANLINES, v);
@@ -203,8 +171,10 @@ static int parse_render_args(int argc, char **argv, options *o)
             else
                 return usage_error("--encoding expects srgb or linear, got '%s'", v);
         } else if (name && strcmp(name, "--repeat") == 0) {
-            if (!parse_int(v, 1, MAX_REPEAT, &o->repeat))
+            long n;
+            if (!cli_int(v, 10, '\0', 1, MAX_REPEAT, &n))
                 return usage_error("--repeat expects a count 1..%d, got '%s'", MAX_REPEAT, v);
+            o->repeat = (int)n;
         } else if (name && strcmp(name, "--blend") == 0) {
             if (strcmp(v, "linear") == 0)
                 o->blend = CS_BLEND_LINEAR;

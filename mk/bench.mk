@@ -11,7 +11,7 @@
 
 BENCH_PKGS := cairo freetype2 libcjson libagg
 BENCH_SRC := bench/bench.c bench/outline.c bench/peer_cairo.c bench/peer_ft.c bench/anim.c \
-        bench/accuracy.c host-sim/scene_json.c host-sim/paint_json.c tests/ref/ref.c
+        bench/accuracy.c host-sim/scene_json.c host-sim/paint_json.c tests/ref/ref.c tools/cli_num.c
 # AGG is C++: its peer alone is compiled as C++ (the program links with $(CXX)).
 BENCH_CXX_SRC := bench/peer_agg.cpp
 BENCH_OBJ := $(patsubst %.c,$(HOST)/bench-obj/%.o,$(BENCH_SRC)) \

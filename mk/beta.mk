@@ -18,9 +18,9 @@ $(ASAN)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(BETA_CFLAGS) -O1 $(SAN_FLAGS) tests/test_beta.c $(CORE_SRC) -lm -o $@
 
-$(HOST)/bench_cache_anim: bench/cache_anim.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
+$(HOST)/bench_cache_anim: bench/cache_anim.c tools/cli_num.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(BETA_CFLAGS) bench/cache_anim.c $(CORE_SRC) -lm -o $@
+	$(Q)$(CC) $(BETA_CFLAGS) -Itools bench/cache_anim.c tools/cli_num.c $(CORE_SRC) -lm -o $@
 
 .PHONY: test-beta test-beta-asan bench-cache
 test-beta: $(HOST)/test_beta

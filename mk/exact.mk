@@ -24,7 +24,7 @@ $(EXACT_ASAN)/test_exact: $(addprefix $(EXACT_ASAN)/obj/,$(EXACT_TEST_OBJ)) \
                           $(patsubst core/%.c,$(EXACT_ASAN)/core/%.o,$(CORE_SRC))
 	$(Q)$(CC) $(SAN_FLAGS) $^ -lm -o $@
 
-$(HOST)/bench_aa_modes: $(HOST)/obj/bench/aa_modes.o $(HOST)/libcelscan.a
+$(HOST)/bench_aa_modes: $(HOST)/obj/bench/aa_modes.o $(HOST)/obj/tools/cli_num.o $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $^ -lm -o $@
 

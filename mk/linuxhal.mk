@@ -30,13 +30,14 @@ LX_JSON_LIBS = $(PKG_LIBS)
 $(HOST)/obj/firmware/linux/celfw_scene_json.o: HOST_CFLAGS += -Ihost-sim
 
 $(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(LX_JSON_OBJ) \
-        $(HOST)/libcelscan.a
+        $(HOST)/obj/tools/cli_num.o $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) -lm
 
 # The tests also write cel streams (tools/cels_write.c) to feed celfw.
 $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(LX_FW_OBJ) \
-        $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/obj/tools/cels_write.o $(HOST)/libcelscan.a
+        $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/obj/tools/cels_write.o $(HOST)/obj/tools/cli_num.o \
+        $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) -lm -lpthread
 

@@ -16,7 +16,7 @@ SVG_LIBS = $(shell pkg-config --libs $(SVG_PKGS) 2>/dev/null) -lm
 
 SVG_LIB_SRC := $(sort $(wildcard tools/svg/sv_*.c))
 SVG_LIB_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_LIB_SRC))
-SVG_CELC_OBJ := $(HOST)/obj/tools/celc_import.o
+SVG_CELC_OBJ := $(HOST)/obj/tools/celc_import.o $(HOST)/obj/tools/cli_num.o
 SVG_TEST_SRC := tests/test_svg.c tests/test_svg_unit.c tests/test_svg_cov.c \
         tests/test_svg_beta.c tests/test_svg_rsvg.c tests/svg_refscan.c
 SVG_TEST_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_TEST_SRC))

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "celc_import.h"
+#include "cli_num.h"
 #include "cels_write.h"
 #include "svg/sv.h"
 #include "svg/sv_import.h"
@@ -92,27 +93,18 @@ static int write_cels(const sv_doc *doc, const char *path)
     return rc;
 }
 
-/*
- * One number (sep 0) or two separated by `sep`, the whole string, each
- * finite and within [lo, hi]. strtod, not atof or sscanf: those take "abc"
- * as 0, and "nan" or "1e400" through to a scene file that no loader reads.
- */
+/* One number (sep 0) or two separated by `sep`, the whole string, each
+ * within [lo, hi] and read strictly (cli_num.h): "abc", "nan" and "1e400"
+ * must not reach a scene file that no loader reads. */
 static bool parse_numbers(const char *s, char sep, double lo, double hi, double *a, double *b)
 {
-    char *end;
-    double v[2];
-    int n = sep ? 2 : 1;
-    for (int k = 0; k < n; k++) {
-        v[k] = strtod(s, &end);
-        if (end == s || !(v[k] >= lo && v[k] <= hi)) /* NaN fails too */
-            return false;
-        if (*end != (k + 1 < n ? sep : '\0'))
-            return false;
-        s = end + 1;
-    }
-    *a = v[0];
+    double first, second = 0.0;
+    const char *rest = cli_real(s, sep, lo, hi, &first);
+    if (!rest || (sep && !cli_real(rest, '\0', lo, hi, &second)))
+        return false;
+    *a = first;
     if (b)
-        *b = v[1];
+        *b = second;
     return true;
 }
 

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "celfw_config.h"
+#include "cli_num.h"
 #include "gud_wire.h"
 
 typedef bool (*parse_fn)(celfw_config *c, const char *v, char *err, size_t errlen);
@@ -23,60 +24,32 @@ typedef struct setting {
     const char *help;
 } setting;
 
+/* Numbers are read strictly (cli_num.h): decimal, or hex after 0x. */
 static bool parse_int(const char *v, long lo, long hi, long *out, char *err, size_t errlen)
 {
-    char *end;
-    errno = 0;
-    long x = strtol(v, &end, 0);
-    if (!*v || *end || errno || x < lo || x > hi) {
+    if (!cli_int(v, 0, '\0', lo, hi, out)) {
         snprintf(err, errlen, "'%s' is not an integer in %ld..%ld", v, lo, hi);
         return false;
     }
-    *out = x;
     return true;
 }
 
 static bool parse_num(const char *v, double lo, double hi, double *out, char *err, size_t errlen)
 {
-    char *end;
-    errno = 0;
-    double x = strtod(v, &end);
-    if (!*v || *end || errno || !(x >= lo && x <= hi)) {
+    if (!cli_real(v, '\0', lo, hi, out)) {
         snprintf(err, errlen, "'%s' is not a number in %g..%g", v, lo, hi);
         return false;
     }
-    *out = x;
     return true;
-}
-
-/*
- * "A<sep>B": two whole numbers in `base`, by strtol, not sscanf: sscanf's
- * conversion of a number beyond its type's range is undefined, strtol's is
- * ERANGE. B must start with a digit (no sign, no space); ranges are the
- * caller's.
- */
-static bool parse_pair(const char *v, char sep, int base, long *a, long *b)
-{
-    char *mid, *end;
-    errno = 0;
-    *a = strtol(v, &mid, base);
-    if (mid == v || *mid != sep || !isxdigit((unsigned char)mid[1]))
-        return false;
-    *b = strtol(mid + 1, &end, base);
-    return *end == '\0' && errno == 0;
 }
 
 static bool parse_size(const char *v, int *w, int *h, char *err, size_t errlen)
 {
-    long lw, lh;
-    if (!parse_pair(v, 'x', 10, &lw, &lh) || lw < 1 || lh < 1 || lw > CS_CFG_MAX_WIDTH ||
-        lh > CS_CFG_MAX_HEIGHT) {
+    if (!cli_size(v, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT, w, h)) {
         snprintf(err, errlen, "'%s' is not a size WxH (width 1..%d, height 1..%d)", v, CS_CFG_MAX_WIDTH,
                  CS_CFG_MAX_HEIGHT);
         return false;
     }
-    *w = (int)lw;
-    *h = (int)lh;
     return true;
 }
 
@@ -260,7 +233,8 @@ static bool p_usb_device(celfw_config *c, const char *v, char *err, size_t n)
         return true;
     }
     long vid, pid;
-    if (!parse_pair(v, ':', 16, &vid, &pid) || vid < 0 || pid < 0 || vid > 0xffff || pid > 0xffff) {
+    const char *rest = cli_int(v, 16, ':', 0, 0xffff, &vid);
+    if (!rest || !cli_int(rest, 16, '\0', 0, 0xffff, &pid)) {
         snprintf(err, n, "'%s' is not VID:PID in hex (e.g. 1d50:614d) or any", v);
         return false;
     }

@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "celfw_input.h"
+#include "cli_num.h"
 
 typedef enum kind { IN_NONE, IN_STDIN, IN_FILE, IN_TCP, IN_TTY } kind;
 
@@ -117,9 +118,7 @@ static int open_tty(celfw_input *in, const char *spec, char *err, size_t errlen)
     snprintf(dev, sizeof dev, "%s", spec);
     char *colon = strrchr(dev, ':');
     if (colon) {
-        char *end;
-        baud = strtol(colon + 1, &end, 10);
-        if (*end || !baud_of(baud)) {
+        if (!cli_int(colon + 1, 10, '\0', 1, 4000000, &baud) || !baud_of(baud)) {
             snprintf(err, errlen, "input tty:%s: '%s' is not a supported baud rate", spec, colon + 1);
             return -1;
         }

@@ -7,13 +7,13 @@
  *   svgimport render icon.svg -o out.png [--size WxH] [--aa none|N|exact]
  *             [--blend srgb|linear] [--background C|none] [--one-cel-per-shape]
  */
-#include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "../celc_import.h"
+#include "../cli_num.h"
 #include "sv.h"
 #include "sv_import.h"
 #include "sv_render.h"
@@ -24,21 +24,6 @@ static int usage(void)
                     "  svgimport render IN.svg -o OUT.png [--size WxH] [--aa none|N|exact]\n"
                     "            [--blend srgb|linear] [--background C|none] [-q])\n");
     return 2;
-}
-
-/* A whole number in [lo, hi] filling all of `v` up to `end` (0: the whole
- * string), by strtol; atoi and sscanf take "abc" as 0 and overflow silently. */
-static bool whole_number(const char *v, char end, long lo, long hi, int *out, const char **rest)
-{
-    char *stop;
-    errno = 0;
-    long n = strtol(v, &stop, 10);
-    if (stop == v || errno || n < lo || n > hi || *stop != end)
-        return false;
-    *out = (int)n;
-    if (rest)
-        *rest = stop + (end ? 1 : 0);
-    return true;
 }
 
 static int render_main(int argc, char **argv)
@@ -56,20 +41,11 @@ static int render_main(int argc, char **argv)
         if (!strcmp(a, "-o") && i + 1 < argc) {
             out = argv[++i];
         } else if (!strcmp(a, "--size") && i + 1 < argc) {
-            const char *v = argv[++i], *rest;
             /* the core refuses sizes it cannot render; this only reads them */
-            if (!whole_number(v, 'x', 1, 65535, &w, &rest) ||
-                !whole_number(rest, 0, 1, 65535, &h, NULL))
+            if (!cli_size(argv[++i], 65535, 65535, &w, &h))
                 return usage();
         } else if (!strcmp(a, "--aa") && i + 1 < argc) {
-            const char *v = argv[++i];
-            if (!strcmp(v, "none"))
-                aa = CS_AA_NONE;
-            else if (!strcmp(v, "exact"))
-                aa = CS_AA_EXACT;
-            else if (whole_number(v, 0, 1, CS_CFG_MAX_SUBSCANLINES, &sub, NULL))
-                aa = CS_AA_SUBSCAN;
-            else
+            if (!cli_aa(argv[++i], &aa, &sub))
                 return usage();
         } else if (!strcmp(a, "--blend") && i + 1 < argc) {
             blend = strcmp(argv[++i], "linear") != 0 ? CS_BLEND_SRGB : CS_BLEND_LINEAR;
