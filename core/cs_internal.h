@@ -55,6 +55,14 @@ static inline void cs__copy_track(cs_track *dst, const cs_track *src)
 #define CS__SPECIALISE inline
 #endif
 
+/* For a hot function written into its hottest caller, where the compiler
+ * would call it (the call and the registers it saves measured). */
+#if defined(__GNUC__)
+#define CS__HOT_INLINE inline __attribute__((always_inline))
+#else
+#define CS__HOT_INLINE inline
+#endif
+
 /* Whether the three channels of v hold the same number: a grey
  * transmittance, which a frame may keep in one channel (cs_renderer.grey). */
 static inline bool cs__grey3(const float *v)
