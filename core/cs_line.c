@@ -625,7 +625,7 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
  * different value comes, so that a pixel with the coverage of the pixels
  * after it (an entry that only holds a cover delta, as at the inner side
  * of an edge) joins them: fewer, longer runs, and every pixel gets the
- * value it would alone. `cursor` is where fold_run seeks from.
+ * value it would alone. `cursor` is where fold_run_as seeks from.
  */
 typedef struct pending {
     uint32_t a, b, cursor;
