@@ -579,6 +579,7 @@ static void run_accuracy(const config *cfg)
 typedef struct beam_result {
     double worst_us, median_us, prep_us;
     int worst_line;
+    int fifo_lines; /* lines of render-ahead buffer that keep the display fed; 0: none do */
 } beam_result;
 
 /* One sweep of a frame, every line timed on its own (render + pixel
@@ -606,8 +607,40 @@ static void beam_sweep(int w, int h, cs_aa_mode aa, int n, int runs, int k, doub
     free(px);
 }
 
-/* The median per line over the runs, and the slowest of those. */
-static void beam_summarize(int h, int runs, double *s, double *prep, beam_result *res)
+/*
+ * The lines of buffer a board needs to race the beam with these line times
+ * (us). The display takes a line every `period`; the renderer runs ahead
+ * as far as a FIFO of K lines lets it (it fills the FIFO in the vertical
+ * blanking and while cheaper lines are shown) and must never fall behind.
+ * A renderer that waits only for a free slot finishes line n by
+ * max over m <= n of (m - K) periods + the time of lines m..n, so it keeps
+ * up exactly when every run of lines [m, n] renders within (n - m + K)
+ * periods: K is 1 plus the largest excess of any run of lines over its
+ * own periods, in whole periods, found as a maximum-sum run of
+ * (t - period) by Kadane's scan. With no excess K is 1: each line is
+ * rendered while the one before it is shown. Returns 0 when the lines
+ * take longer in total than their periods: no buffer keeps up. (The first
+ * lines' lead comes from the blanking, 45 lines at 1080p60; a K beyond
+ * what it can fill holds only for runs that start after cheaper lines.)
+ */
+static int beam_fifo_lines(const double *t_us, int h, double period)
+{
+    double best = 0.0, here = 0.0, total = 0.0;
+    for (int y = 0; y < h; y++) {
+        here = here > 0.0 ? here + (t_us[y] - period) : t_us[y] - period;
+        if (here > best)
+            best = here;
+        total += t_us[y] - period;
+    }
+    if (total > 0.0)
+        return 0;
+    return 1 + (int)ceil(best / period);
+}
+
+/* The median per line over the runs, the slowest of those, and the buffer
+ * the medians need (beam_fifo_lines). */
+static void beam_summarize(int h, int runs, double period, double *s, double *prep,
+                           beam_result *res)
 {
     res->worst_us = -1;
     res->worst_line = 0;
@@ -619,6 +652,7 @@ static void beam_summarize(int h, int runs, double *s, double *prep, beam_result
             res->worst_line = y;
         }
     }
+    res->fifo_lines = beam_fifo_lines(med, h, period);
     res->median_us = bench_median(med, h);
     res->prep_us = 1e6 * bench_median(prep, runs);
     free(med);
@@ -642,8 +676,8 @@ static void run_beam(const config *cfg)
         "runs per line\n\n",
         runs);
     out("| scene | display | mode | worst line us | at line | median line us | line period us "
-        "| margin us | frame prep us |\n");
-    out("|---|---|---|---:|---:|---:|---:|---:|---:|\n");
+        "| margin us | buffer lines | frame prep us |\n");
+    out("|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (int i = 0; i < SCENE_COUNT; i++) {
         if (!cfg->scenes[i])
             continue;
@@ -673,19 +707,31 @@ static void run_beam(const config *cfg)
             for (size_t m = 0; m < BEAM_MODES; m++) {
                 if (!(cfg->quick && d + 1 < BEAM_DISPLAYS)) {
                     beam_result r;
-                    beam_summarize(displays[d].h, runs, s[d][m], prep[d][m], &r);
-                    out("| %s | %s | %s | %.2f | %d | %.2f | %.1f | %+.2f%s | %.0f |\n",
+                    beam_summarize(displays[d].h, runs, displays[d].period_us, s[d][m],
+                                   prep[d][m], &r);
+                    char fifo[32];
+                    if (r.fifo_lines > 0)
+                        snprintf(fifo, sizeof fifo, "%d", r.fifo_lines);
+                    else
+                        snprintf(fifo, sizeof fifo, "none keeps up");
+                    out("| %s | %s | %s | %.2f | %d | %.2f | %.1f | %+.2f%s | %s | %.0f |\n",
                         scene_defs[i].title, displays[d].name, beam_modes[m].name, r.worst_us,
                         r.worst_line, r.median_us, displays[d].period_us,
                         displays[d].period_us - r.worst_us,
-                        r.worst_us > displays[d].period_us ? " **over**" : "", r.prep_us);
+                        r.worst_us > displays[d].period_us ? " **over**" : "", fifo, r.prep_us);
                 }
                 free(s[d][m]);
                 free(prep[d][m]);
             }
         }
     }
-    out("\nMargin = line period - worst line (negative: that line would miss the beam). The 5 runs "
+    out("\nMargin = line period - worst line (negative: that line would miss the beam). Buffer "
+        "lines = the smallest render-ahead FIFO (K lines of O(width) memory) with which these "
+        "median line times never fall behind the display: the renderer runs ahead as far as the "
+        "FIFO lets it, while the display is blanked or cheaper lines are shown, so any run of "
+        "lines [m, n] has (n - m + K) line periods; 1 is no buffer beyond the line being "
+        "rendered; \"none keeps up\" means the lines take longer in total than the frame's "
+        "active lines. The 5 runs "
         "of each line are interleaved with those of the other displays and modes. Frame prep "
         "(cs_frame_begin: NURBS to monotone pieces) runs in the vertical blanking, 45 lines "
         "(666 us) at 1080p60. The Animation row is its frame at t = 0.\n");
@@ -869,6 +915,54 @@ static void run_scaling(const config *cfg)
 
 /* ------------------------------------------------------------ selftest */
 
+/* The smallest FIFO by simulating it (the beam report's buffer column
+ * finds it by a formula): the display takes line n at n periods, the
+ * renderer may start line n once line n - K has been taken (at the start,
+ * K lines before the display starts) and finishes it t[n] later. */
+static int fifo_by_simulation(const double *t, int h, double period)
+{
+    for (int k = 1; k <= h; k++) {
+        double done = -1e300;
+        bool kept_up = true;
+        for (int n = 0; n < h && kept_up; n++) {
+            double slot_free = (double)(n - k) * period;
+            done = (done > slot_free ? done : slot_free) + t[n];
+            kept_up = done <= (double)n * period;
+        }
+        if (kept_up)
+            return k;
+    }
+    return h + 1;
+}
+
+/* beam_fifo_lines against fifo_by_simulation on random line times. */
+static int selftest_fifo(int *checked)
+{
+    int failed = 0;
+    unsigned seed = 12345u;
+    for (int trial = 0; trial < 2000; trial++) {
+        double t[64];
+        int h = 1 + trial % 64;
+        double total = 0.0;
+        for (int y = 0; y < h; y++) {
+            seed = seed * 1103515245u + 12345u;
+            /* mostly cheap lines with a few up to 4 periods long */
+            double u = (double)(seed >> 8) / 16777216.0;
+            t[y] = u < 0.8 ? 10.0 * u : 60.0 * u;
+            total += t[y] - 14.8;
+        }
+        int formula = beam_fifo_lines(t, h, 14.8);
+        int want = total > 0.0 ? 0 : fifo_by_simulation(t, h, 14.8);
+        (*checked)++;
+        if (formula != want) {
+            failed++;
+            fprintf(stderr, "selftest: buffer lines for %d line times: formula %d, simulation %d\n",
+                    h, formula, want);
+        }
+    }
+    return failed;
+}
+
 /*
  * The Bezier paths the peers get must be the scene's curves: every span's
  * start point is checked against tests/ref's de Boor evaluation, and for
@@ -991,6 +1085,7 @@ static int selftest(void)
         }
         peers_free(&p);
     }
+    failed += selftest_fifo(&checked);
     printf("bench selftest: %d passed, %d failed\n", checked - failed, failed);
     return failed != 0;
 }
