@@ -145,7 +145,7 @@
  * white or grey medium, every opaque paint, so all imported SVG) keep T in
  * one channel, which saves up to ~5 % of a frame. The path is a second
  * copy of the run code, and with it the run code is inlined where a
- * region's runs are folded (~2 % more, grey or not): 80.6 -> 99.5 KB of
+ * region's runs are folded (~2 % more, grey or not): 81.8 -> 100.7 KB of
  * Cortex-M4 code for the core, flash that a small board may rather keep.
  * The pixels are the same bits either way (docs/BETA.md).
  */
