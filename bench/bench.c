@@ -940,6 +940,7 @@ static int selftest_fifo(int *checked)
 {
     int failed = 0;
     unsigned seed = 12345u;
+    const double period = displays[0].period_us;
     for (int trial = 0; trial < 2000; trial++) {
         double t[64];
         int h = 1 + trial % 64;
@@ -949,10 +950,10 @@ static int selftest_fifo(int *checked)
             /* mostly cheap lines with a few up to 4 periods long */
             double u = (double)(seed >> 8) / 16777216.0;
             t[y] = u < 0.8 ? 10.0 * u : 60.0 * u;
-            total += t[y] - 14.8;
+            total += t[y] - period;
         }
-        int formula = beam_fifo_lines(t, h, 14.8);
-        int want = total > 0.0 ? 0 : fifo_by_simulation(t, h, 14.8);
+        int formula = beam_fifo_lines(t, h, period);
+        int want = total > 0.0 ? 0 : fifo_by_simulation(t, h, period);
         (*checked)++;
         if (formula != want) {
             failed++;

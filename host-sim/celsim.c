@@ -102,7 +102,6 @@ static int usage_error(const char *fmt, ...)
     return EXIT_USAGE;
 }
 
-/* A whole-string decimal integer in [lo, hi]. */
 /* The value of an option given as "--opt value" or "--opt=value". */
 static const char *option_value(int argc, char **argv, int *i, const char *arg, const char *name)
 {
