@@ -751,6 +751,7 @@ typedef struct cs_stream {
     uint64_t garbage_offset;    /* start of the current run of skipped bytes */
     uint64_t skipped;           /* bytes outside transactions, in total */
     uint64_t skip_left;         /* bytes left of a transaction being skipped */
+    uint64_t env_end;           /* where the open signed envelope's trailer starts, or 0 */
     uint32_t commits, dropped;  /* transactions committed and dropped, in total */
     uint32_t body_len, body_pos, crc, trailer;
     uint32_t rec_len, rec_pos, fixed_len, fill, word;

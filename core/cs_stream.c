@@ -37,7 +37,7 @@
 enum { ST_HUNT, ST_BODY, ST_TRAILER, ST_SKIP };
 enum { P_HDR, P_FIXED, P_FLOATS, P_SKIP, P_DEAD };
 enum { M_NONE, M_FULL, M_PATCH };
-enum { H_NONE, H_STREAM, H_TXN };
+enum { H_NONE, H_STREAM, H_TXN, H_SIGNED };
 
 static uint32_t rd_u32(const uint8_t *p)
 {
@@ -165,7 +165,7 @@ cs_status cs_stream_init(cs_stream *s, cs_scene *front, bool front_valid, cs_sce
     s->back = back;
     s->has_scene = front_valid;
     s->offset = s->txn_offset = s->rec_offset = s->garbage_offset = s->skipped = 0;
-    s->skip_left = 0;
+    s->skip_left = s->env_end = 0;
     s->commits = s->dropped = 0;
     s->body_len = s->body_pos = s->crc = s->trailer = 0;
     s->rec_len = s->rec_pos = s->fixed_len = s->fill = s->word = 0;
@@ -203,6 +203,9 @@ static int ring_header(const cs_stream *s, uint8_t *hdr)
     if (hdr[1] == CS_WIRE_TXN_MAGIC[1] && hdr[2] == CS_WIRE_TXN_MAGIC[2] &&
         hdr[3] == CS_WIRE_TXN_MAGIC[3])
         kind = H_TXN;
+    else if (hdr[1] == CS_WIRE_SIGNED_MAGIC[1] && hdr[2] == CS_WIRE_SIGNED_MAGIC[2] &&
+             hdr[3] == CS_WIRE_SIGNED_MAGIC[3])
+        kind = H_SIGNED;
     else if (hdr[1] == CS_WIRE_STREAM_MAGIC[1] && hdr[2] == CS_WIRE_STREAM_MAGIC[2] &&
              hdr[3] == CS_WIRE_STREAM_MAGIC[3])
         kind = H_STREAM;
@@ -212,6 +215,35 @@ static int ring_header(const cs_stream *s, uint8_t *hdr)
 }
 
 static void end_body(cs_stream *s, uint64_t at);
+
+/*
+ * A signed envelope (docs/STREAM.md): the core does not verify signatures
+ * (a board that must, verifies before its decoder; an MCU is fed by a trusted
+ * host), it unwraps. The signature block is skipped, the inner transaction
+ * that follows is found by its own header and decoded as any other, and the
+ * envelope's trailer after it is skipped; so a signed stream gives the very
+ * scene its unsigned original gives.
+ */
+static void start_envelope(cs_stream *s, const uint8_t *hdr, uint64_t at)
+{
+    uint32_t len = rd_u32(hdr + 8);
+    s->win_count = 0;
+    s->in_garbage = false;
+    s->skip_left = (uint64_t)len + CS_WIRE_TRAILER_SIZE;
+    s->state = ST_SKIP;
+    s->env_end = 0;
+    if (hdr[4] != CS_WIRE_MAJOR || len < CS_WIRE_SIGNED_MIN_BODY) {
+        bool version = hdr[4] != CS_WIRE_MAJOR;
+        emit(s, version ? CS_ERR_STREAM_VERSION : CS_ERR_STREAM_RECORD, at, at + (version ? 4 : 8),
+             version ? "signed envelope of an unsupported major version: skipped"
+                     : "signed envelope too short for a signature and a transaction: skipped",
+             0);
+        s->dropped++;
+        return;
+    }
+    s->skip_left = CS_WIRE_SIG_BLOCK_SIZE;
+    s->env_end = at + CS_WIRE_HEADER_SIZE + len;
+}
 
 static void start_txn(cs_stream *s, const uint8_t *hdr, uint64_t at)
 {
@@ -757,6 +789,12 @@ static void end_txn(cs_stream *s, uint64_t trailer_at)
         s->commits++;
     }
     to_hunt(s);
+    if (s->env_end != 0 && s->offset == s->env_end) {
+        /* the inner transaction filled its envelope: skip the envelope's CRC */
+        s->skip_left = CS_WIRE_TRAILER_SIZE;
+        s->state = ST_SKIP;
+    }
+    s->env_end = 0;
 }
 
 static void step(cs_stream *s, uint8_t b)
@@ -776,6 +814,15 @@ static void step(cs_stream *s, uint8_t b)
             s->dropped++;
         }
         start_txn(s, hdr, hdr_at);
+        return;
+    }
+    if (h == H_SIGNED) {
+        if (s->state == ST_BODY || s->state == ST_TRAILER) {
+            emit(s, CS_ERR_STREAM_TRUNCATED, s->txn_offset, hdr_at,
+                 "transaction cut short by the next signed envelope", 0);
+            s->dropped++;
+        }
+        start_envelope(s, hdr, hdr_at);
         return;
     }
     if (h == H_STREAM && s->state == ST_HUNT) {

@@ -18,6 +18,15 @@
 #define CS_WIRE_STREAM_MAGIC "CELS" /* word: reserved, 0 */
 #define CS_WIRE_TXN_MAGIC "CSTX"    /* word: body length in bytes */
 #define CS_WIRE_TRAILER_SIZE 4      /* CRC-32 of header and body */
+/* A signed envelope is framed as a transaction: its body is the signature
+ * block (key id, sequence, signature) and then one whole inner transaction.
+ * The core only unwraps it; verifying is the Linux board's job (celfw). */
+#define CS_WIRE_SIGNED_MAGIC "CSSG"  /* word: body length in bytes */
+#define CS_WIRE_SIG_KEYID_SIZE 8
+#define CS_WIRE_SIG_SIZE 64         /* Ed25519 */
+#define CS_WIRE_SIG_BLOCK_SIZE (CS_WIRE_SIG_KEYID_SIZE + 8 + CS_WIRE_SIG_SIZE) /* + u64 sequence */
+/* The smallest envelope body: the block and an inner transaction with no body. */
+#define CS_WIRE_SIGNED_MIN_BODY (CS_WIRE_SIG_BLOCK_SIZE + CS_WIRE_HEADER_SIZE + CS_WIRE_TRAILER_SIZE)
 
 /* Record header: type u16 (class << 8 | subtype), payload length u32. */
 #define CS_WIRE_RECORD_HEADER_SIZE 6

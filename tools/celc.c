@@ -3,6 +3,16 @@
  *
  *   celc compile SCENE.json -o OUT.cels    scene JSON (DESIGN.md, docs/SCENE.md) to a stream
  *   celc import ...                        SVG to scene JSON or a stream (tools/celc_import.c)
+ *   celc keygen -o NAME                    an Ed25519 key pair: NAME.key (0600), NAME.pub
+ *   celc sign IN.cels -o OUT.cels --key NAME.key    every transaction in a signed envelope
+ *
+ * Signing (tools/cels_sign.c, docs/STREAM.md) wraps each transaction in an
+ * envelope carrying the key id, a sequence number and an Ed25519 signature;
+ * `compile --sign NAME.key` does it on the way out. The sequence is the
+ * wall-clock time in microseconds (one more for each further transaction of
+ * the same run): no counter file lives beside the key, so copies of a key on
+ * two build machines cannot reuse a number, and a sign that remembers the
+ * last sequence it applied refuses anything signed before it.
  *
  * compile loads the JSON with the same loader celsim uses (host-sim/
  * scene_json.c), so the scene is built and checked by the core's cs_scene_*
@@ -26,9 +36,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "celc_import.h"
+#include "cels_sign.h"
 #include "cels_write.h"
 #include "celscan.h"
 #include "scene_json.h"
@@ -36,7 +48,9 @@
 enum { EXIT_FAIL = 1, EXIT_USAGE = 2 };
 
 static const char usage_text[] =
-    "usage: celc compile SCENE.json -o OUT.cels [-v]\n"
+    "usage: celc compile SCENE.json -o OUT.cels [-v] [--sign NAME.key]\n"
+    "       celc keygen -o NAME\n"
+    "       celc sign IN.cels -o OUT.cels --key NAME.key\n"
     "       celc import DRAWING.svg -o OUT.json|OUT.cels [options]   (celc import --help)\n"
     "       celc text \"STRING\" -o OUT.json [options]                 (celc text --help)\n"
     "\n"
@@ -45,6 +59,11 @@ static const char usage_text[] =
     "          the whole scene. -o - writes to standard output. Errors name the\n"
     "          JSON path, e.g. cels[2].regions[0].contours[1].points[4].\n"
     "  -v      print what was written (cels, regions, contours, functions, tracks, bytes)\n"
+    "  --sign NAME.key  sign the transaction (as celc sign does)\n"
+    "keygen    writes a new Ed25519 key pair: NAME.key (private, mode 0600) and NAME.pub\n"
+    "          (give it to celfw --trust); never overwrites a key\n"
+    "sign      wraps every transaction of a stream in a signed envelope; the sequence\n"
+    "          number is the time in microseconds, one more per transaction\n"
     "import    turns an SVG drawing into scene JSON or straight into a stream: paths,\n"
     "          shapes, transforms, styles, gradients, strokes as regions, text\n"
     "text      sets a string in a font (FreeType) as scene JSON\n"
@@ -116,9 +135,42 @@ static int write_atomically(const char *path, const uint8_t *data, size_t len)
     return ok ? 0 : EXIT_FAIL;
 }
 
+/*
+ * Signs the stream in `b` with the key file `key_path` in place (b becomes
+ * the signed stream). 0, or EXIT_FAIL with the reason on stderr.
+ */
+static int sign_buffer(cels_buf *b, const char *key_path, const char *what)
+{
+    cels_secret_key k;
+    char err[400];
+    if (!cels_sign_init()) {
+        fprintf(stderr, "celc: libsodium cannot start\n");
+        return EXIT_FAIL;
+    }
+    if (cels_read_secret_key(key_path, &k, err, sizeof err) != 0) {
+        fprintf(stderr, "celc: %s\n", err);
+        return EXIT_FAIL;
+    }
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    uint64_t seq = (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+    cels_buf out;
+    cels_buf_init(&out);
+    int rc = cels_sign_stream(b->data, b->len, &k, &seq, &out, err, sizeof err);
+    memset(&k, 0, sizeof k);
+    if (rc != 0 || out.oom) {
+        fprintf(stderr, "celc: %s: %s\n", what, out.oom ? "out of memory" : err);
+        cels_buf_free(&out);
+        return EXIT_FAIL;
+    }
+    cels_buf_free(b);
+    *b = out;
+    return 0;
+}
+
 static int compile_main(int argc, char **argv)
 {
-    const char *in = NULL, *out = NULL;
+    const char *in = NULL, *out = NULL, *key = NULL;
     bool verbose = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -128,6 +180,10 @@ static int compile_main(int argc, char **argv)
             out = argv[++i];
         } else if (strncmp(a, "--output=", 9) == 0) {
             out = a + 9;
+        } else if (strcmp(a, "--sign") == 0) {
+            if (i + 1 >= argc || argv[i + 1][0] == '\0')
+                return usage_error("--sign needs a key file NAME.key (see celc --help)");
+            key = argv[++i];
         } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
             verbose = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
@@ -172,7 +228,7 @@ static int compile_main(int argc, char **argv)
                 in, b.len - 2 * CS_WIRE_HEADER_SIZE - CS_WIRE_TRAILER_SIZE,
                 (unsigned)CS_CFG_STREAM_MAX_TXN);
         rc = EXIT_FAIL;
-    } else {
+    } else if (key == NULL || (rc = sign_buffer(&b, key, in)) == 0) {
         rc = write_atomically(out, b.data, b.len);
     }
     if (rc == 0 && verbose)
@@ -184,6 +240,81 @@ static int compile_main(int argc, char **argv)
                 b.len, CS_WIRE_MAJOR, CS_WIRE_MINOR);
     cels_buf_free(&b);
     free(scene);
+    return rc;
+}
+
+static int keygen_main(int argc, char **argv)
+{
+    const char *name = NULL;
+    for (int i = 1; i < argc; i++) {
+        if ((strcmp(argv[i], "-o") == 0 || strcmp(argv[i], "--output") == 0) && i + 1 < argc)
+            name = argv[++i];
+        else
+            return usage_error("keygen: unexpected argument '%s' (celc keygen -o NAME)", argv[i]);
+    }
+    if (name == NULL || name[0] == '\0')
+        return usage_error("keygen needs -o NAME (writes NAME.key and NAME.pub)");
+    char err[400];
+    if (!cels_sign_init()) {
+        fprintf(stderr, "celc: libsodium cannot start\n");
+        return EXIT_FAIL;
+    }
+    if (cels_keygen(name, err, sizeof err) != 0) {
+        fprintf(stderr, "celc: keygen: %s\n", err);
+        return EXIT_FAIL;
+    }
+    fprintf(stderr, "celc: wrote %s.key (private, mode 0600: keep it) and %s.pub (for celfw --trust)\n",
+            name, name);
+    return 0;
+}
+
+/* Reads a whole file into b; 0, or EXIT_FAIL with the reason on stderr. */
+static int read_whole(const char *path, cels_buf *b)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        fprintf(stderr, "celc: %s: %s\n", path, strerror(errno));
+        return EXIT_FAIL;
+    }
+    uint8_t chunk[65536];
+    size_t got;
+    while ((got = fread(chunk, 1, sizeof chunk, f)) > 0)
+        cels_put_bytes(b, chunk, got);
+    bool bad = ferror(f) != 0;
+    fclose(f);
+    if (bad || b->oom) {
+        fprintf(stderr, "celc: %s: %s\n", path, bad ? "read error" : "out of memory");
+        return EXIT_FAIL;
+    }
+    return 0;
+}
+
+static int sign_main(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL, *key = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if ((strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) && i + 1 < argc)
+            out = argv[++i];
+        else if (strcmp(a, "--key") == 0 && i + 1 < argc)
+            key = argv[++i];
+        else if (a[0] == '-' && a[1] != '\0')
+            return usage_error("sign: unknown option or missing value '%s' (see celc --help)", a);
+        else if (in == NULL)
+            in = a;
+        else
+            return usage_error("sign: unexpected argument '%s': one stream per run", a);
+    }
+    if (in == NULL || out == NULL || out[0] == '\0' || key == NULL)
+        return usage_error("sign needs IN.cels, -o OUT.cels and --key NAME.key");
+    cels_buf b;
+    cels_buf_init(&b);
+    int rc = read_whole(in, &b);
+    if (rc == 0)
+        rc = sign_buffer(&b, key, in);
+    if (rc == 0)
+        rc = write_atomically(out, b.data, b.len);
+    cels_buf_free(&b);
     return rc;
 }
 
@@ -200,10 +331,14 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "compile") == 0)
         return compile_main(argc - 1, argv + 1);
+    if (strcmp(cmd, "keygen") == 0)
+        return keygen_main(argc - 1, argv + 1);
+    if (strcmp(cmd, "sign") == 0)
+        return sign_main(argc - 1, argv + 1);
     /* SVG import and text setting live in tools/celc_import.c (tools/svg/). */
     if (strcmp(cmd, "import") == 0)
         return celc_import_main(argc - 1, argv + 1);
     if (strcmp(cmd, "text") == 0)
         return celc_text_main(argc - 1, argv + 1);
-    return usage_error("unknown command '%s' (compile, import or text; see celc --help)", cmd);
+    return usage_error("unknown command '%s' (compile, keygen, sign, import or text; see celc --help)", cmd);
 }

@@ -116,6 +116,12 @@ void cels_txn_begin(cels_buf *b)
     header(b, CS_WIRE_TXN_MAGIC, 0);
 }
 
+void cels_envelope_begin(cels_buf *b)
+{
+    b->txn_start = b->len;
+    header(b, CS_WIRE_SIGNED_MAGIC, 0);
+}
+
 void cels_txn_end(cels_buf *b)
 {
     if (b->oom || b->txn_start + CS_WIRE_HEADER_SIZE > b->len)

@@ -44,6 +44,8 @@ void cels_stream_header(cels_buf *b);
 /* Opens a transaction; cels_txn_end fills in its length, header CRC and trailer CRC. */
 void cels_txn_begin(cels_buf *b);
 void cels_txn_end(cels_buf *b);
+/* Opens a signed envelope (tools/cels_sign.h fills it); closed by cels_txn_end too. */
+void cels_envelope_begin(cels_buf *b);
 /* Opens a record of `type`; cels_rec_end fills in its payload length. */
 void cels_rec_begin(cels_buf *b, uint16_t type);
 void cels_rec_end(cels_buf *b);
