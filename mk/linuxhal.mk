@@ -29,17 +29,19 @@ LX_JSON_OBJ := $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json
 LX_JSON_LIBS = $(PKG_LIBS)
 $(HOST)/obj/firmware/linux/celfw_scene_json.o: HOST_CFLAGS += -Ihost-sim
 
+# celfw checks signed streams with the signer's own envelope code (tools/cels_sign.c, libsodium).
 $(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(LX_JSON_OBJ) \
-        $(HOST)/obj/tools/cli_num.o $(HOST)/libcelscan.a
+        $(HOST)/obj/tools/cli_num.o $(HOST)/obj/tools/cels_sign.o $(HOST)/obj/tools/cels_write.o \
+        $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) -lm
+	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(SODIUM_LIBS) -lm
 
 # The tests also write cel streams (tools/cels_write.c) to feed celfw.
 $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(LX_FW_OBJ) \
         $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/obj/tools/cels_write.o $(HOST)/obj/tools/cli_num.o \
-        $(HOST)/libcelscan.a
+        $(HOST)/obj/tools/cels_sign.o $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) -lm -lpthread
+	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) $(SODIUM_LIBS) -lm -lpthread
 
 # The tests run the real libgpiod and libusb against emulated device nodes:
 # libumockdev-preload redirects /dev and /sys into the test's own testbed.

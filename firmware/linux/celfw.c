@@ -9,8 +9,14 @@
  * frames, so a frame never mixes two scenes. The display may come and go
  * (USB); the loop keeps its clock and counts frames it could not show.
  *
+ * Every input's bytes take one path (on_bytes): cut into whole frames per
+ * connection or file (celfw_frame.c), checked against the trusted keys
+ * (celfw_trust.c: with any key, only transactions signed by one with a fresh
+ * sequence number pass; the rest are refused whole with one word why), then
+ * decoded; a signed transaction's sequence is recorded once it commits.
+ *
  * Everything worth knowing goes to stderr as one line per event, in a form
- * scripts can parse:
+ * scripts can parse (repeated kinds of event are rate-limited, celfw_log.h):
  *   celfw: start key=value ...      once, with the resolved input address
  *   celfw: event <what>             display lost/back, clients, stream errors
  *   celfw: status key=value ...     every --log-interval seconds
@@ -32,14 +38,20 @@
 
 #include "celfw_config.h"
 #include "celfw_input.h"
+#include "celfw_log.h"
 #include "celfw_scenes.h"
 #include "celfw_stream.h"
+#include "celfw_trust.h"
 #include "gud_host.h"
 #include "hub75.h"
 #include "lx_display.h"
 #include "lx_scene_source.h"
 
 enum { EXIT_CONFIG = 2, EXIT_INPUT = 3, EXIT_DISPLAY = 4 };
+/* Kinds of event line that a sender can repeat at will, each rate-limited. */
+enum { LOG_COMMIT, LOG_STREAM_ERROR, LOG_REFUSED, LOG_INPUT, LOG_KINDS };
+static const char *const log_kind_name[LOG_KINDS] = {"stream commit", "stream error", "stream refused",
+                                                     "input"};
 
 typedef struct celfw {
     celfw_config cfg;
@@ -50,6 +62,8 @@ typedef struct celfw {
     char builtin[32];        /* a built-in scene being shown, "" otherwise */
     celfw_input *in;
     celfw_stream *stream;
+    celfw_trust *trust;
+    celfw_ratelimit limit[LOG_KINDS];
     uint64_t iterations, frames, dropped, stream_bytes, stream_errors, commits, failures;
     lx_frame_stats sum;
     bool display_up, render_warned;
@@ -87,55 +101,124 @@ static void backend_log(void *user, const char *fmt, ...)
     say("event", "%s", msg);
 }
 
-/* ------------------------------------------------------------- stream */
-
-static void on_bytes(void *user, const uint8_t *p, size_t n)
+/* An event line of a kind a sender can repeat: rate-limited (celfw_log.h). */
+static void tell(celfw *fw, int kind, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void tell(celfw *fw, int kind, const char *fmt, ...)
 {
-    celfw *fw = user;
-    while (n > 0) {
-        size_t used = 0;
-        celfw_stream_error err = {0};
-        cs_scene *shown = fw->scene[fw->front], *back = fw->scene[fw->front ^ 1];
-        celfw_stream_result r = celfw_stream_feed(fw->stream, p, n, &used, shown, back, &err);
-        if (used > n)
-            used = n;
-        p += used;
-        n -= used;
-        fw->stream_bytes += used;
-        if (r == CELFW_STREAM_COMMIT) {
-            /* between frames: the next frame shows the new scene whole; the
-             * old one becomes the decoder's scratch (a patch copies what is
-             * shown before it edits) */
-            fw->front ^= 1;
-            fw->builtin[0] = 0;
-            fw->commits++;
-            say("event", "stream commit %llu applied", (unsigned long long)fw->commits);
-        } else if (r == CELFW_STREAM_ERROR) {
-            fw->stream_errors++;
-            say("event", "stream error at byte %llu: %s; scene kept", (unsigned long long)err.offset,
-                err.what);
-        } else if (used == 0) {
-            break;
-        }
+    uint64_t held;
+    bool allow = celfw_ratelimit_allow(&fw->limit[kind], lx_now(&lx_clock_monotonic), &held);
+    if (held)
+        say("event", "%llu more '%s' lines not shown (at most %d per %d s)", (unsigned long long)held,
+            log_kind_name[kind], CELFW_LOG_BURST, CELFW_LOG_WINDOW_S);
+    if (!allow)
+        return;
+    char msg[600];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    say("event", "%s", msg);
+}
+
+/* Tells the counts held back in windows that have ended (every kind, at exit). */
+static void tell_held(celfw *fw, bool final)
+{
+    uint64_t now = lx_now(&lx_clock_monotonic);
+    for (int k = 0; k < LOG_KINDS; k++) {
+        uint64_t held = celfw_ratelimit_due(&fw->limit[k], now, final);
+        if (held)
+            say("event", "%llu more '%s' lines not shown (at most %d per %d s)", (unsigned long long)held,
+                log_kind_name[k], CELFW_LOG_BURST, CELFW_LOG_WINDOW_S);
     }
 }
 
-static void on_reset(void *user, const char *why)
+/* ------------------------------------------------------------- stream */
+
+static void stream_error(celfw *fw, const celfw_stream_error *err)
+{
+    fw->stream_errors++;
+    tell(fw, LOG_STREAM_ERROR, "stream error at byte %llu: %s; scene kept", (unsigned long long)err->offset,
+         err->what);
+}
+
+/*
+ * One whole frame of one input: the trust check, then the decoder. This is
+ * the one place every transaction from every input passes.
+ */
+static void apply_frame(celfw *fw, const celfw_frame *fr)
+{
+    celfw_trust_txn tx = {.txn = fr->data, .len = fr->len, .key = -1};
+    if (fr->kind != CELFW_FRAME_STREAM) {
+        celfw_verdict v = celfw_trust_check(fw->trust, fr->data, fr->len, fr->kind == CELFW_FRAME_SIGNED, &tx);
+        if (v == CELFW_TRUST_MALFORMED) {
+            celfw_stream_error err;
+            celfw_stream_describe(CS_ERR_STREAM_RECORD, tx.why, fr->offset, fr->offset, &err);
+            stream_error(fw, &err);
+            return;
+        }
+        if (v != CELFW_TRUST_PASS) {
+            fw->stream_errors++;
+            tell(fw, LOG_REFUSED, "stream refused at byte %llu: %s: %s (transaction at byte %llu dropped); "
+                 "scene kept", (unsigned long long)fr->offset, celfw_verdict_word(v), tx.why,
+                 (unsigned long long)fr->offset);
+            return;
+        }
+    }
+    celfw_stream_error err = {0};
+    cs_scene *shown = fw->scene[fw->front], *back = fw->scene[fw->front ^ 1];
+    celfw_stream_result r = celfw_stream_frame(fw->stream, tx.txn, tx.len, fr->offset + tx.offset, shown, back,
+                                               &err);
+    if (r == CELFW_STREAM_COMMIT) {
+        /* between frames: the next frame shows the new scene whole; the
+         * old one becomes the decoder's scratch (a patch copies what is
+         * shown before it edits) */
+        fw->front ^= 1;
+        fw->builtin[0] = 0;
+        fw->commits++;
+        tell(fw, LOG_COMMIT, "stream commit %llu applied", (unsigned long long)fw->commits);
+        char why[400];
+        if (celfw_trust_applied(fw->trust, &tx, why, sizeof why) != 0)
+            say("error", "the commit is shown but its sequence was not saved (a restart would accept "
+                "it again): %s", why);
+    } else if (r == CELFW_STREAM_ERROR) {
+        stream_error(fw, &err);
+    }
+}
+
+static void on_bytes(void *user, celfw_framer *src, const uint8_t *p, size_t n)
+{
+    celfw *fw = user;
+    fw->stream_bytes += n;
+    celfw_frame fr;
+    do {
+        size_t used = celfw_framer_push(src, p, n, &fr);
+        p += used;
+        n -= used;
+        if (fr.kind == CELFW_FRAME_ERROR) {
+            celfw_stream_error err;
+            celfw_stream_describe(fr.status, fr.what, fr.offset, fr.at, &err);
+            stream_error(fw, &err);
+        } else if (fr.kind != CELFW_FRAME_NONE) {
+            apply_frame(fw, &fr);
+        }
+    } while (fr.kind != CELFW_FRAME_NONE);
+}
+
+static void on_reset(void *user, celfw_framer *src, const char *why)
 {
     (void)why;
     celfw *fw = user;
-    celfw_stream_error err;
-    while (celfw_stream_reset(fw->stream, &err) == CELFW_STREAM_ERROR) {
-        fw->stream_errors++;
-        say("event", "stream error at byte %llu: %s; scene kept", (unsigned long long)err.offset,
-            err.what);
+    celfw_frame fr;
+    if (celfw_framer_end(src, &fr)) {
+        celfw_stream_error err;
+        celfw_stream_describe(fr.status, fr.what, fr.offset, fr.at, &err);
+        stream_error(fw, &err);
     }
 }
 
 static void on_note(void *user, const char *what)
 {
-    (void)user;
-    say("event", "%s", what);
+    tell(user, LOG_INPUT, "%s", what);
 }
 
 /* ------------------------------------------------------------- status */
@@ -253,6 +336,35 @@ static int bench_gpio(celfw *fw)
     return 0;
 }
 
+/* Loads the trusted keys and the state of their sequences. */
+static int open_trust(celfw *fw)
+{
+    const celfw_config *c = &fw->cfg;
+    char err[600];
+    fw->trust = celfw_trust_new();
+    if (!fw->trust) {
+        say("error", "libsodium cannot start (no entropy source?)");
+        return EXIT_CONFIG;
+    }
+    for (int i = 0; i < c->trust_count; i++)
+        if (celfw_trust_add_key(fw->trust, c->trust[i], err, sizeof err) != 0) {
+            say("error", "%s", err);
+            return EXIT_CONFIG;
+        }
+    if (c->state_dir[0]) {
+        bool fresh = false;
+        if (celfw_trust_open_state(fw->trust, c->state_dir, &fresh, err, sizeof err) != 0) {
+            say("error", "%s", err);
+            return EXIT_CONFIG;
+        }
+        if (fresh)
+            say("event", "trust state %s/trust-state not there yet: no sequence applied so far", c->state_dir);
+    }
+    for (int k = 0; k < LOG_KINDS; k++)
+        fw->limit[k].what = log_kind_name[k];
+    return 0;
+}
+
 /* ----------------------------------------------------------------- loop */
 
 static void wait_and_serve(celfw *fw, uint64_t until)
@@ -262,9 +374,10 @@ static void wait_and_serve(celfw *fw, uint64_t until)
     sink.user = fw;
     if (fw->in)
         celfw_input_tick(fw->in, &sink);
+    tell_held(fw, false);
     do {
-        struct pollfd pfd[2];
-        int n = fw->in ? celfw_input_pollfds(fw->in, pfd, 2) : 0;
+        struct pollfd pfd[CELFW_INPUT_MAX_FDS];
+        int n = fw->in ? celfw_input_pollfds(fw->in, pfd, CELFW_INPUT_MAX_FDS) : 0;
         uint64_t now = lx_now(&lx_clock_monotonic);
         uint64_t left = until > now ? until - now : 0;
         struct timespec ts = {(time_t)(left / 1000000000u), (long)(left % 1000000000u)};
@@ -388,31 +501,43 @@ int main(int argc, char **argv)
         fw->disp->ops->close(fw->disp);
         return rc;
     }
+    if ((rc = open_trust(fw)) != 0) {
+        fw->disp->ops->close(fw->disp);
+        return rc;
+    }
     if (celfw_input_open(&fw->in, fw->cfg.input, err, sizeof err) != 0) {
         say("error", "%s", err);
         fw->disp->ops->close(fw->disp);
         return EXIT_INPUT;
     }
+    celfw_input_set_timeout(fw->in, fw->cfg.input_timeout);
     fw->display_up = fw->disp->ops->connected(fw->disp);
     char aa[16];
     if (fw->cfg.aa == CS_AA_NONE)
         snprintf(aa, sizeof aa, "none");
     else
         snprintf(aa, sizeof aa, "%d", fw->cfg.subscanlines);
-    say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s",
+    say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s "
+        "trusted_keys=%d",
         fw->disp->ops->name, fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
         celfw_input_describe(fw->in), fw->cfg.scene, celfw_stream_available() ? "cel-stream" : "none",
-        display_state(fw));
+        display_state(fw), celfw_trust_key_count(fw->trust));
+    if (celfw_input_public(fw->in) && celfw_trust_key_count(fw->trust) == 0)
+        say("warning", "input %s listens beyond loopback and no key is trusted: anyone who can reach it "
+            "can change the picture (celc keygen, then celfw --trust KEY.pub --state-dir DIR)",
+            celfw_input_describe(fw->in));
     if (!celfw_stream_available() && strcmp(fw->cfg.input, "none") != 0)
         say("event", "stream decoder not in this build: input bytes are counted, not decoded");
 
     const char *why = run(fw);
+    tell_held(fw, true);
     char reason[64];
     snprintf(reason, sizeof reason, "reason=%s ", why);
     status(fw, "exit", reason);
     fw->disp->ops->close(fw->disp);
     celfw_input_close(fw->in);
     celfw_stream_free(fw->stream);
+    celfw_trust_free(fw->trust);
     lx_scene_source_free(&fw->src);
     free(fw->scene[0]);
     free(fw->scene[1]);

@@ -119,6 +119,36 @@ static bool p_input(celfw_config *c, const char *v, char *err, size_t n)
     return true;
 }
 
+static bool p_input_timeout(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return parse_num(v, 0.1, 86400.0, &c->input_timeout, err, n);
+}
+
+/* Repeatable: each --trust (or trust = line, file first) adds a key. */
+static bool p_trust(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (c->trust_count == CELFW_MAX_TRUST) {
+        snprintf(err, n, "at most %d trusted keys", CELFW_MAX_TRUST);
+        return false;
+    }
+    if (!v[0] || strlen(v) >= sizeof c->trust[0]) {
+        snprintf(err, n, "'%s' is not a key file path", v);
+        return false;
+    }
+    snprintf(c->trust[c->trust_count++], sizeof c->trust[0], "%s", v);
+    return true;
+}
+
+static bool p_state_dir(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (!v[0] || strlen(v) >= sizeof c->state_dir - 16) {
+        snprintf(err, n, "'%s' is not a directory path", v);
+        return false;
+    }
+    snprintf(c->state_dir, sizeof c->state_dir, "%s", v);
+    return true;
+}
+
 static bool p_scene(celfw_config *c, const char *v, char *err, size_t n)
 {
     (void)err;
@@ -315,7 +345,12 @@ static const setting settings[] = {
     {"size", "WxH", p_size, "render size (null: required; usb: default the device's mode)"},
     {"fps", "N", p_fps, "frames per second (default 30); 0 = unpaced. HUB75 is always unpaced"},
     {"aa", "none|N", p_aa, "anti-aliasing: pixel centres, or N sub-scanlines (default 4)"},
-    {"input", "SPEC", p_input, "cel stream: none, stdin, file:PATH, tcp:[HOST:]PORT, tty:DEV[:BAUD]"},
+    {"input", "SPEC", p_input, "cel stream: none, stdin, file:PATH, tcp:PORT (loopback), tcp:ADDR:PORT, "
+                              "tcp:[ADDR]:PORT, tty:DEV[:BAUD]"},
+    {"input-timeout", "SECONDS", p_input_timeout, "drop a TCP client that completes no transaction for this "
+                                                  "long (default 10)"},
+    {"trust", "FILE.pub", p_trust, "apply only transactions signed by this key (repeatable; celc keygen)"},
+    {"state-dir", "DIR", p_state_dir, "keeps the last applied sequence per trusted key (needed with trust)"},
     {"scene", "SPEC", p_scene, "scene until the stream commits one: builtin:demo|anim|bars, FILE.json, none"},
     {"log-interval", "SECONDS", p_log, "seconds between status lines (default 5; 0 = at exit only)"},
     {"frames", "N", p_frames, "stop after N frames (default: run until SIGTERM)"},
@@ -366,6 +401,7 @@ void celfw_config_default(celfw_config *c)
     c->subscanlines = 4;
     snprintf(c->input, sizeof c->input, "none");
     snprintf(c->scene, sizeof c->scene, "builtin:demo");
+    c->input_timeout = 10.0;
     c->log_interval = 5.0;
     hub75_config_default(&c->hub75);
     gud_config_default(&c->usb);
@@ -536,6 +572,11 @@ bool celfw_config_check(celfw_config *c, char *err, size_t errlen)
     }
     if (c->backend == CELFW_GPIO)
         c->fps = 0.0;
+    if (c->trust_count > 0 && !c->state_dir[0]) {
+        snprintf(err, errlen, "trust needs state-dir DIR: the last sequence applied from each key must "
+                 "outlive a restart, or an old signed stream could roll the sign back");
+        return false;
+    }
     if (c->bench_gpio && c->backend != CELFW_GPIO) {
         snprintf(err, errlen, "bench-gpio needs backend gpio");
         return false;

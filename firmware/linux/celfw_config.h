@@ -18,6 +18,8 @@
 #include "gud_host.h"
 #include "hub75.h"
 
+#define CELFW_MAX_TRUST 16
+
 typedef enum celfw_backend { CELFW_NULL = 0, CELFW_GPIO, CELFW_USB } celfw_backend;
 
 typedef struct celfw_config {
@@ -29,6 +31,10 @@ typedef struct celfw_config {
     int subscanlines;
     char input[256];       /* none | stdin | file:PATH | tcp:[HOST:]PORT | tty:DEVICE[:BAUD] */
     char scene[256];       /* builtin:NAME | PATH.json | none */
+    double input_timeout;  /* seconds a TCP client may go without completing a frame */
+    char trust[CELFW_MAX_TRUST][256]; /* public key files; any: only signed transactions apply */
+    int trust_count;
+    char state_dir[256];   /* where the last applied sequence per key is kept */
     double log_interval;   /* seconds between status lines; 0 = only at exit */
     uint64_t max_frames;   /* stop after this many frames; 0 = never */
     double duration;       /* stop after this many seconds; 0 = never */

@@ -1,8 +1,13 @@
 /*
  * celfw_input.c - the byte sources behind celfw's cel stream.
  *
- * TCP listens on one port and serves one client at a time; others wait in
- * the backlog until the current one leaves (a kiosk has one content server).
+ * TCP listens on one port, on loopback unless an address is given, and
+ * serves several clients at once, each with its own framer, so no client
+ * waits behind another: an idle one, a one-byte-a-second one or an intruder
+ * holding a connection open costs a slot and its buffer, never the sign.
+ * Clients that complete no frame in time are dropped (checked every frame),
+ * keepalive probes catch peers that vanished, and a full house makes room by
+ * dropping the client that has gone longest without completing a frame.
  * A tty is put in raw mode at the given baud rate. A file is read in chunks
  * so that a large file cannot hold up a frame. All descriptors are
  * non-blocking and only read when poll() says so.
@@ -12,6 +17,7 @@
 #include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,17 +31,60 @@
 
 typedef enum kind { IN_NONE, IN_STDIN, IN_FILE, IN_TCP, IN_TTY } kind;
 
+/* One byte sequence being read: the tty, stdin, a file, or a TCP client. */
+typedef struct session {
+    int fd;               /* -1 when none is open */
+    uint64_t bytes;
+    uint64_t progress_ns; /* when it connected or last completed a frame */
+    uint64_t frames;      /* its framer's count at progress_ns */
+    celfw_framer fr;
+} session;
+
 struct celfw_input {
     kind k;
-    int fd;       /* the data descriptor, -1 when none is open */
+    session one;  /* stdin, file, tty */
+    session client[CELFW_INPUT_MAX_CLIENTS];
     int listen_fd;
+    bool public;  /* listening beyond loopback */
+    uint64_t timeout_ns;
     char desc[300];
-    char peer[80];
-    uint64_t session_bytes;
     char spec[256];          /* tty: reopened from this after the port goes away */
     time_t next_reopen;
     uint8_t buf[65536]; /* one read's worth: bounds the time a read takes from a frame */
 };
+
+static uint64_t now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
+
+/* "127.0.0.1:5000" or "[::1]:5000" of an address. */
+static void format_addr(const struct sockaddr_storage *ss, char *out, size_t n, bool *loopback)
+{
+    char h[INET6_ADDRSTRLEN] = "?";
+    int port = 0;
+    bool lo = false;
+    if (ss->ss_family == AF_INET) {
+        const struct sockaddr_in *a = (const struct sockaddr_in *)ss;
+        inet_ntop(AF_INET, &a->sin_addr, h, sizeof h);
+        port = ntohs(a->sin_port);
+        lo = (ntohl(a->sin_addr.s_addr) >> 24) == 127;
+        snprintf(out, n, "%s:%d", h, port);
+    } else if (ss->ss_family == AF_INET6) {
+        const struct sockaddr_in6 *a = (const struct sockaddr_in6 *)ss;
+        inet_ntop(AF_INET6, &a->sin6_addr, h, sizeof h);
+        port = ntohs(a->sin6_port);
+        lo = IN6_IS_ADDR_LOOPBACK(&a->sin6_addr) ||
+             (IN6_IS_ADDR_V4MAPPED(&a->sin6_addr) && a->sin6_addr.s6_addr[12] == 127);
+        snprintf(out, n, "[%s]:%d", h, port);
+    } else {
+        snprintf(out, n, "?");
+    }
+    if (loopback)
+        *loopback = lo;
+}
 
 static int set_nonblock(int fd)
 {
@@ -64,13 +113,27 @@ static speed_t baud_of(long b)
 
 static int open_tcp(celfw_input *in, const char *spec, char *err, size_t errlen)
 {
-    char host[256] = "0.0.0.0", port[32];
+    /* PORT, HOST:PORT or [ADDR]:PORT; a bare port is loopback only */
+    char host[256] = "127.0.0.1", port[32];
     const char *colon = strrchr(spec, ':');
-    if (colon) {
+    if (spec[0] == '[') {
+        const char *close_br = strchr(spec, ']');
+        if (!close_br || close_br[1] != ':') {
+            snprintf(err, errlen, "input tcp:%s: expected [ADDRESS]:PORT", spec);
+            return -1;
+        }
+        snprintf(host, sizeof host, "%.*s", (int)(close_br - spec - 1), spec + 1);
+        snprintf(port, sizeof port, "%s", close_br + 2);
+    } else if (colon) {
         snprintf(host, sizeof host, "%.*s", (int)(colon - spec), spec);
         snprintf(port, sizeof port, "%s", colon + 1);
     } else {
         snprintf(port, sizeof port, "%s", spec);
+    }
+    long pn;
+    if (!cli_int(port, 10, '\0', 0, 65535, &pn)) {
+        snprintf(err, errlen, "input tcp:%s: '%s' is not a port 0..65535", spec, port);
+        return -1;
     }
     struct addrinfo hints = {0}, *ai = NULL;
     hints.ai_family = AF_UNSPEC;
@@ -84,7 +147,7 @@ static int open_tcp(celfw_input *in, const char *spec, char *err, size_t errlen)
     int fd = socket(ai->ai_family, SOCK_STREAM | SOCK_CLOEXEC, 0);
     int one = 1;
     if (fd < 0 || setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one) != 0 ||
-        bind(fd, ai->ai_addr, ai->ai_addrlen) != 0 || listen(fd, 4) != 0 || set_nonblock(fd) != 0) {
+        bind(fd, ai->ai_addr, ai->ai_addrlen) != 0 || listen(fd, 16) != 0 || set_nonblock(fd) != 0) {
         snprintf(err, errlen, "input tcp:%s: cannot listen: %s", spec, strerror(errno));
         if (fd >= 0)
             close(fd);
@@ -94,20 +157,14 @@ static int open_tcp(celfw_input *in, const char *spec, char *err, size_t errlen)
     freeaddrinfo(ai);
     struct sockaddr_storage ss;
     socklen_t sl = sizeof ss;
+    memset(&ss, 0, sizeof ss);
     getsockname(fd, (struct sockaddr *)&ss, &sl);
-    char h[INET6_ADDRSTRLEN] = "?";
-    int p = 0;
-    if (ss.ss_family == AF_INET) {
-        struct sockaddr_in *a = (struct sockaddr_in *)&ss;
-        inet_ntop(AF_INET, &a->sin_addr, h, sizeof h);
-        p = ntohs(a->sin_port);
-    } else if (ss.ss_family == AF_INET6) {
-        struct sockaddr_in6 *a = (struct sockaddr_in6 *)&ss;
-        inet_ntop(AF_INET6, &a->sin6_addr, h, sizeof h);
-        p = ntohs(a->sin6_port);
-    }
+    char a[INET6_ADDRSTRLEN + 16];
+    bool lo = false;
+    format_addr(&ss, a, sizeof a, &lo);
     in->listen_fd = fd;
-    snprintf(in->desc, sizeof in->desc, "tcp:%s:%d", h, p);
+    in->public = !lo;
+    snprintf(in->desc, sizeof in->desc, "tcp:%s", a);
     return 0;
 }
 
@@ -143,8 +200,9 @@ static int open_tty(celfw_input *in, const char *spec, char *err, size_t errlen)
     t.c_cc[VMIN] = 0;
     t.c_cc[VTIME] = 0;
     tcsetattr(fd, TCSANOW, &t);
-    in->fd = fd;
+    in->one.fd = fd;
     snprintf(in->desc, sizeof in->desc, "tty:%s:%ld", dev, baud);
+    celfw_framer_init(&in->one.fr, in->desc);
     return 0;
 }
 
@@ -153,24 +211,29 @@ int celfw_input_open(celfw_input **out, const char *spec, char *err, size_t errl
     celfw_input *in = calloc(1, sizeof *in);
     if (!in)
         return -1;
-    in->fd = in->listen_fd = -1;
+    in->one.fd = in->listen_fd = -1;
+    for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS; i++)
+        in->client[i].fd = -1;
+    in->timeout_ns = 10000000000u;
     int r = 0;
     if (!strcmp(spec, "none")) {
         in->k = IN_NONE;
         snprintf(in->desc, sizeof in->desc, "none");
     } else if (!strcmp(spec, "stdin")) {
         in->k = IN_STDIN;
-        in->fd = 0;
+        in->one.fd = 0;
         set_nonblock(0);
         snprintf(in->desc, sizeof in->desc, "stdin");
+        celfw_framer_init(&in->one.fr, in->desc);
     } else if (!strncmp(spec, "file:", 5)) {
         in->k = IN_FILE;
-        in->fd = open(spec + 5, O_RDONLY | O_CLOEXEC);
-        if (in->fd < 0) {
+        in->one.fd = open(spec + 5, O_RDONLY | O_CLOEXEC);
+        if (in->one.fd < 0) {
             snprintf(err, errlen, "input %s: %s", spec, strerror(errno));
             r = -1;
         }
         snprintf(in->desc, sizeof in->desc, "%s", spec);
+        celfw_framer_init(&in->one.fr, in->desc);
     } else if (!strncmp(spec, "tcp:", 4)) {
         in->k = IN_TCP;
         r = open_tcp(in, spec + 4, err, errlen);
@@ -190,29 +253,106 @@ int celfw_input_open(celfw_input **out, const char *spec, char *err, size_t errl
     return 0;
 }
 
+void celfw_input_set_timeout(celfw_input *in, double seconds)
+{
+    in->timeout_ns = (uint64_t)(seconds * 1e9);
+}
+
+bool celfw_input_public(const celfw_input *in)
+{
+    return in->public;
+}
+
 int celfw_input_pollfds(celfw_input *in, struct pollfd *pfd, int max)
 {
     int n = 0;
-    if (in->fd >= 0 && n < max)
-        pfd[n++] = (struct pollfd){in->fd, POLLIN, 0};
-    else if (in->listen_fd >= 0 && n < max) /* accept only while no client is being served */
+    if (in->one.fd >= 0 && n < max)
+        pfd[n++] = (struct pollfd){in->one.fd, POLLIN, 0};
+    /* always accepting: a full house makes room (see accept_client) */
+    if (in->listen_fd >= 0 && n < max)
         pfd[n++] = (struct pollfd){in->listen_fd, POLLIN, 0};
+    for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS && n < max; i++)
+        if (in->client[i].fd >= 0)
+            pfd[n++] = (struct pollfd){in->client[i].fd, POLLIN, 0};
     return n;
 }
 
-static void end_session(celfw_input *in, const celfw_input_sink *sink, const char *why)
+static void end_session(session *s, const celfw_input_sink *sink, const char *why)
 {
     char what[512];
-    snprintf(what, sizeof what, "input %s: %s after %llu bytes", in->k == IN_TCP ? in->peer : in->desc, why,
-             (unsigned long long)in->session_bytes);
+    snprintf(what, sizeof what, "input %s: %s after %llu bytes", s->fr.name, why, (unsigned long long)s->bytes);
     if (sink->note)
         sink->note(sink->user, what);
     if (sink->reset)
-        sink->reset(sink->user, why);
-    if (in->fd > 0) /* never close stdin's 0: the process may still want it */
-        close(in->fd);
-    in->fd = -1;
-    in->session_bytes = 0;
+        sink->reset(sink->user, &s->fr, why);
+    celfw_framer_free(&s->fr);
+    if (s->fd > 0) /* never close stdin's 0: the process may still want it */
+        close(s->fd);
+    s->fd = -1;
+    s->bytes = 0;
+}
+
+static void accept_client(celfw_input *in, const celfw_input_sink *sink)
+{
+    struct sockaddr_storage ss;
+    socklen_t sl = sizeof ss;
+    int c = accept(in->listen_fd, (struct sockaddr *)&ss, &sl);
+    if (c < 0)
+        return;
+    set_nonblock(c);
+    fcntl(c, F_SETFD, FD_CLOEXEC);
+    /* peers that vanish without a FIN (power cut, cable) are found in about a minute */
+    int one = 1, idle = 30, intvl = 10, cnt = 3;
+    setsockopt(c, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
+    setsockopt(c, IPPROTO_TCP, TCP_KEEPIDLE, &idle, sizeof idle);
+    setsockopt(c, IPPROTO_TCP, TCP_KEEPINTVL, &intvl, sizeof intvl);
+    setsockopt(c, IPPROTO_TCP, TCP_KEEPCNT, &cnt, sizeof cnt);
+    session *slot = NULL, *stalest = NULL;
+    for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS; i++) {
+        session *s = &in->client[i];
+        if (s->fd < 0 && !slot)
+            slot = s;
+        if (s->fd >= 0 && (!stalest || s->progress_ns < stalest->progress_ns))
+            stalest = s;
+    }
+    if (!slot) {
+        end_session(stalest, sink, "dropped to make room for a new client (every slot taken)");
+        slot = stalest;
+    }
+    char a[INET6_ADDRSTRLEN + 16], name[96];
+    format_addr(&ss, a, sizeof a, NULL);
+    snprintf(name, sizeof name, "tcp client %s", a);
+    slot->fd = c;
+    slot->bytes = 0;
+    slot->progress_ns = now_ns();
+    slot->frames = 0;
+    celfw_framer_init(&slot->fr, name);
+    char what[160];
+    snprintf(what, sizeof what, "input %s connected", name);
+    if (sink->note)
+        sink->note(sink->user, what);
+}
+
+/* Reads what one session has; its bytes go to the sink with its framer. */
+static void read_session(celfw_input *in, session *s, const celfw_input_sink *sink)
+{
+    ssize_t got = read(s->fd, in->buf, sizeof in->buf);
+    if (got > 0) {
+        s->bytes += (uint64_t)got;
+        sink->bytes(sink->user, &s->fr, in->buf, (size_t)got);
+        if (s->fr.frames != s->frames) {
+            s->frames = s->fr.frames;
+            s->progress_ns = now_ns();
+        }
+    } else if (got == 0) {
+        if (in->k == IN_TTY)
+            return; /* a tty with no data reads 0 in raw non-blocking mode */
+        end_session(s, sink, in->k == IN_TCP ? "closed" : "ended");
+    } else if (errno != EAGAIN && errno != EINTR) {
+        char why[120];
+        snprintf(why, sizeof why, "read failed: %s", strerror(errno));
+        end_session(s, sink, why);
+    }
 }
 
 void celfw_input_service(celfw_input *in, const struct pollfd *pfd, int n, const celfw_input_sink *sink)
@@ -220,54 +360,35 @@ void celfw_input_service(celfw_input *in, const struct pollfd *pfd, int n, const
     for (int i = 0; i < n; i++) {
         if (!pfd[i].revents)
             continue;
-        if (pfd[i].fd == in->listen_fd && in->fd < 0) {
-            struct sockaddr_storage ss;
-            socklen_t sl = sizeof ss;
-            int c = accept(in->listen_fd, (struct sockaddr *)&ss, &sl);
-            if (c < 0)
-                continue;
-            set_nonblock(c);
-            fcntl(c, F_SETFD, FD_CLOEXEC);
-            char h[INET6_ADDRSTRLEN] = "?";
-            int port = 0;
-            if (ss.ss_family == AF_INET) {
-                inet_ntop(AF_INET, &((struct sockaddr_in *)&ss)->sin_addr, h, sizeof h);
-                port = ntohs(((struct sockaddr_in *)&ss)->sin_port);
-            } else if (ss.ss_family == AF_INET6) {
-                inet_ntop(AF_INET6, &((struct sockaddr_in6 *)&ss)->sin6_addr, h, sizeof h);
-                port = ntohs(((struct sockaddr_in6 *)&ss)->sin6_port);
-            }
-            snprintf(in->peer, sizeof in->peer, "tcp client %s:%d", h, port);
-            in->fd = c;
-            in->session_bytes = 0;
-            char what[160];
-            snprintf(what, sizeof what, "input %s connected", in->peer);
-            if (sink->note)
-                sink->note(sink->user, what);
+        if (pfd[i].fd == in->listen_fd) {
+            accept_client(in, sink);
             continue;
         }
-        if (pfd[i].fd != in->fd || in->fd < 0)
+        if (pfd[i].fd == in->one.fd) {
+            read_session(in, &in->one, sink);
             continue;
-        ssize_t got = read(in->fd, in->buf, sizeof in->buf);
-        if (got > 0) {
-            in->session_bytes += (uint64_t)got;
-            sink->bytes(sink->user, in->buf, (size_t)got);
-        } else if (got == 0) {
-            if (in->k == IN_TTY)
-                continue; /* a tty with no data reads 0 in raw non-blocking mode */
-            end_session(in, sink, in->k == IN_TCP ? "closed" : "ended");
-        } else if (errno != EAGAIN && errno != EINTR) {
-            char why[120];
-            snprintf(why, sizeof why, "read failed: %s", strerror(errno));
-            end_session(in, sink, why);
         }
+        for (int k = 0; k < CELFW_INPUT_MAX_CLIENTS; k++)
+            if (in->client[k].fd >= 0 && in->client[k].fd == pfd[i].fd)
+                read_session(in, &in->client[k], sink);
     }
 }
 
 void celfw_input_tick(celfw_input *in, const celfw_input_sink *sink)
 {
+    if (in->k == IN_TCP && in->timeout_ns) {
+        uint64_t now = now_ns();
+        for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS; i++) {
+            session *s = &in->client[i];
+            if (s->fd >= 0 && now - s->progress_ns > in->timeout_ns) {
+                char why[120];
+                snprintf(why, sizeof why, "timed out (no whole transaction for %.3g s)", (double)in->timeout_ns / 1e9);
+                end_session(s, sink, why);
+            }
+        }
+    }
     /* a USB serial adapter that was pulled out may come back: try once a second */
-    if (in->k != IN_TTY || in->fd >= 0)
+    if (in->k != IN_TTY || in->one.fd >= 0)
         return;
     time_t now = time(NULL);
     if (now < in->next_reopen)
@@ -291,8 +412,14 @@ void celfw_input_close(celfw_input *in)
 {
     if (!in)
         return;
-    if (in->fd > 0)
-        close(in->fd);
+    if (in->one.fd > 0)
+        close(in->one.fd);
+    celfw_framer_free(&in->one.fr);
+    for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS; i++) {
+        if (in->client[i].fd >= 0)
+            close(in->client[i].fd);
+        celfw_framer_free(&in->client[i].fr);
+    }
     if (in->listen_fd >= 0)
         close(in->listen_fd);
     free(in);

@@ -2,14 +2,13 @@
  * celfw_stream.c - celfw's stream decoder seam (celfw_stream.h) over the
  * core's cel-stream decoder (cs_stream, core/cs_stream.c).
  *
- * The core decoder works on two scene stores it is given once; celfw owns
- * its two stores and exchanges them at every commit. The two agree because
- * the adapter swaps the decoder's stores (cs_stream_swap) at the same moment
- * it tells celfw to swap its own, so from then on `shown` and `next` are the
- * decoder's front and back. The decoder starts on the first bytes, with
- * celfw's scene on display as a valid front (patches may edit a built-in or
- * JSON scene), and again after each reset, so offsets in messages count
- * from the start of the current connection or file.
+ * Each frame arrives whole (celfw_frame.c cut it out of its input, the
+ * trust check passed it), so the decoder starts afresh on every frame, on
+ * celfw's two stores as they are at that moment, with the scene on display
+ * as a valid front (patches may edit a built-in or JSON scene); frames from
+ * different inputs can then follow one another in any order. The decoder's
+ * offsets count from the frame; the frame's place in its input is added,
+ * so messages count from the start of the connection or file.
  *
  * Errors are turned into one line of text here (status, the decoder's
  * explanation, the scene location for validation errors, and what was
@@ -24,7 +23,6 @@
 
 struct celfw_stream {
     cs_stream st;
-    bool started;
 };
 
 bool celfw_stream_available(void)
@@ -43,11 +41,11 @@ void celfw_stream_free(celfw_stream *s)
 }
 
 /* "<status>[: <explanation>][ (cel c, region r, ...)] (<what was dropped>)" */
-static void describe(const cs_stream_error *e, celfw_stream_error *out)
+static void describe(const cs_stream_error *e, uint64_t base, celfw_stream_error *out)
 {
     char *b = out->what;
     size_t len = sizeof out->what, n = 0;
-    out->offset = e->at;
+    out->offset = base + e->at;
 #define ADD(...)                                                                                   \
     do {                                                                                           \
         if (n < len) {                                                                             \
@@ -70,46 +68,49 @@ static void describe(const cs_stream_error *e, celfw_stream_error *out)
         ADD(")");
     }
     if (e->status == CS_ERR_STREAM_SYNC)
-        ADD(" (bytes skipped from byte %llu)", (unsigned long long)e->offset);
+        ADD(" (bytes skipped from byte %llu)", (unsigned long long)(base + e->offset));
     else
-        ADD(" (transaction at byte %llu dropped)", (unsigned long long)e->offset);
+        ADD(" (transaction at byte %llu dropped)", (unsigned long long)(base + e->offset));
 #undef ADD
 }
 
-celfw_stream_result celfw_stream_feed(celfw_stream *s, const uint8_t *p, size_t n, size_t *used,
-                                      cs_scene *shown, cs_scene *next, celfw_stream_error *err)
+void celfw_stream_describe(cs_status status, const char *what, uint64_t offset, uint64_t at,
+                           celfw_stream_error *err)
 {
-    *used = 0;
-    if (!s->started || s->st.front != shown || s->st.back != next) {
-        /* First bytes, or stores celfw replaced behind the decoder's back:
-         * start over on the stores as they are now. */
-        if (cs_stream_init(&s->st, shown, true, next) != CS_OK)
-            return CELFW_STREAM_MORE;
-        s->started = true;
-    }
-    cs_stream_event ev = cs_stream_feed(&s->st, p, n, used);
-    if (ev == CS_STREAM_COMMIT) {
-        cs_stream_swap(&s->st); /* celfw swaps its own two stores in step */
-        return CELFW_STREAM_COMMIT;
-    }
-    if (ev == CS_STREAM_ERROR) {
-        describe(cs_stream_last_error(&s->st), err);
-        return CELFW_STREAM_ERROR;
-    }
-    return CELFW_STREAM_MORE;
+    cs_stream_error e;
+    memset(&e, 0, sizeof e);
+    e.status = status;
+    e.offset = offset;
+    e.at = at;
+    e.what = what;
+    e.where.cel = e.where.region = e.where.contour = e.where.item = -1;
+    describe(&e, 0, err);
 }
 
-celfw_stream_result celfw_stream_reset(celfw_stream *s, celfw_stream_error *err)
+celfw_stream_result celfw_stream_frame(celfw_stream *s, const uint8_t *p, size_t n, uint64_t base,
+                                       cs_scene *shown, cs_scene *next, celfw_stream_error *err)
 {
-    if (!s->started)
+    if (cs_stream_init(&s->st, shown, true, next) != CS_OK)
         return CELFW_STREAM_MORE;
-    cs_stream_event ev = cs_stream_finish(&s->st);
-    if (ev == CS_STREAM_ERROR) {
-        describe(cs_stream_last_error(&s->st), err);
-        return CELFW_STREAM_ERROR;
+    celfw_stream_result r = CELFW_STREAM_MORE;
+    /* A whole frame gives at most one event worth telling (a commit or the
+     * reason it was dropped); the loop only drains what a skipped frame leaves. */
+    for (;;) {
+        size_t used = 0;
+        cs_stream_event ev = cs_stream_feed(&s->st, p, n, &used);
+        p += used;
+        n -= used;
+        if (ev == CS_STREAM_MORE && n == 0)
+            ev = cs_stream_finish(&s->st);
+        if (ev == CS_STREAM_COMMIT) {
+            cs_stream_swap(&s->st); /* celfw swaps its own two stores in step */
+            return CELFW_STREAM_COMMIT;
+        }
+        if (ev == CS_STREAM_ERROR && r == CELFW_STREAM_MORE) {
+            describe(cs_stream_last_error(&s->st), base, err);
+            r = CELFW_STREAM_ERROR;
+        }
+        if (ev == CS_STREAM_MORE && n == 0)
+            return r;
     }
-    /* Nothing more to report: the next sequence starts afresh, at offset 0.
-     * (A commit cannot wait here: every commit was swapped in when fed.) */
-    s->started = false;
-    return CELFW_STREAM_MORE;
 }
