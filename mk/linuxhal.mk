@@ -22,7 +22,7 @@ LX_TESTS := $(patsubst tests/linuxhal/%.c,$(HOST)/tests/%,$(wildcard tests/linux
 LX_ALL_OBJ := $(LX_HAL_OBJ) $(LX_FW_OBJ) $(HOST)/obj/firmware/linux/celfw.o $(LX_TEST_SUPPORT) \
         $(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS))
 $(LX_ALL_OBJ): HOST_CFLAGS += -D_DEFAULT_SOURCE $(LX_INC) $(LX_PKG_CFLAGS) $(LX_UMOCKDEV_CFLAGS)
-$(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS)): HOST_CFLAGS += -Ihost-sim
+$(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS)): HOST_CFLAGS += -Ihost-sim -Itests
 
 # celfw shows scene JSON files (--scene FILE.json) with celsim's loader.
 LX_JSON_OBJ := $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o
@@ -39,7 +39,7 @@ $(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(L
 # The tests also write cel streams (tools/cels_write.c) to feed celfw.
 $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(LX_FW_OBJ) \
         $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/obj/tools/cels_write.o $(HOST)/obj/tools/cli_num.o \
-        $(HOST)/obj/tools/cels_sign.o $(HOST)/libcelscan.a
+        $(HOST)/obj/tools/cels_sign.o $(HOST)/obj/tools/cels_read.o $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) $(SODIUM_LIBS) -lm -lpthread
 

@@ -176,15 +176,20 @@ static int read_key_file(const char *path, const char *tag, mode_t forbidden, co
     return rc;
 }
 
+void cels_secret_key_from_seed(const uint8_t seed[CELS_SEED_SIZE], cels_secret_key *k)
+{
+    crypto_sign_seed_keypair(k->pub.pk, k->sk, seed);
+    key_id(k->pub.pk, k->pub.id);
+}
+
 int cels_read_secret_key(const char *path, cels_secret_key *k, char *err, size_t errlen)
 {
     uint8_t seed[CELS_SEED_SIZE];
     if (read_key_file(path, SECRET_TAG, 077, "lets others read the private key", seed, sizeof seed, err,
                       errlen) != 0)
         return -1;
-    crypto_sign_seed_keypair(k->pub.pk, k->sk, seed);
+    cels_secret_key_from_seed(seed, k);
     sodium_memzero(seed, sizeof seed);
-    key_id(k->pub.pk, k->pub.id);
     return 0;
 }
 

@@ -57,6 +57,8 @@ bool cels_sign_init(void);
  */
 int cels_keygen(const char *name, char *err, size_t errlen);
 
+/* The key pair of a 32-byte seed (what NAME.key holds): for key files and test keys. */
+void cels_secret_key_from_seed(const uint8_t seed[CELS_SEED_SIZE], cels_secret_key *k);
 /* Reads a private key file (mode checked: no access for group or others). */
 int cels_read_secret_key(const char *path, cels_secret_key *k, char *err, size_t errlen);
 /* Reads a public key file (mode checked: not writable by group or others). */

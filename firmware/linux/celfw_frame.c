@@ -107,6 +107,7 @@ static bool start(celfw_framer *f, celfw_frame_kind k, const uint8_t *hdr, uint6
         fr->data = f->buf;
         fr->len = f->len;
         fr->offset = hdr_at;
+        fr->at = 0;
         return true;
     }
     uint64_t body = rd_u32(hdr + 8);
@@ -182,6 +183,7 @@ static bool step(celfw_framer *f, uint8_t b, celfw_frame *fr)
         fr->data = f->buf;
         fr->len = f->len;
         fr->offset = f->frame_offset;
+        fr->at = 0;
         return true;
     default: /* F_SKIP */
         if (--f->skip_left == 0) {
