@@ -9,9 +9,18 @@
  * libusb finds the emulated GUD display that this process serves; the panel
  * memory is compared with the core's rendering of the frame celfw reports
  * last (--time-step makes the animation time exact and repeatable).
+ *
+ * Signed streams and the hardened TCP input (issue 23): with a trusted key,
+ * unsigned, forged, wrong-key and replayed streams change nothing on the
+ * glass and are each refused with their word, a signed one is applied, and
+ * the replay is still refused after a restart on the same state directory;
+ * tcp:PORT listens on loopback only; idle, one-byte-a-second and intruding
+ * clients, and a full house of them, do not keep a valid sender waiting;
+ * 60,000 commits write a few lines and a count, not megabytes.
  */
 #include <arpa/inet.h>
 #include <errno.h>
+#include <ifaddrs.h>
 #include <fcntl.h>
 #include <math.h>
 #include <netinet/in.h>
@@ -19,11 +28,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
+#include "cels_sign.h"
 #include "cels_write.h"
+#include "celfw_input.h"
 #include "celfw_scenes.h"
 #include "fake_gud.h"
 #include "gud_wire.h"
@@ -554,6 +566,385 @@ static void test_file_and_tty(UMockdevTestbed *tb)
     CHECK(rc == 0 && ex && field(ex, "stream_bytes") == sizeof msg, "tty bytes counted: %s", ex ? ex : c.log);
 }
 
+/* ------------------------------------------------- signed streams, TCP ingress */
+
+static int port_of(const char *start_line)
+{
+    const char *tcp = strstr(start_line, "input=tcp:127.0.0.1:");
+    return tcp ? atoi(tcp + strlen("input=tcp:127.0.0.1:")) : 0;
+}
+
+/* Connects, sends, closes. */
+static bool push(int port, const uint8_t *p, size_t n)
+{
+    int fd = tcp_connect(port);
+    bool ok = fd >= 0 && send_all(fd, p, n);
+    if (fd >= 0)
+        close(fd);
+    return ok;
+}
+
+/* The picture the signed stream brings: a background and an orange square. */
+static void signed_scene(cs_scene *s)
+{
+    cs_error e;
+    const cs_affine id = {1, 0, 0, 1, 0, 0};
+    const cs_paint p = {{0.9f, 0.4f, 0.1f}, {1, 1, 1}, 1.0f};
+    const cs_point pts[4] = {{40, 30, 1}, {200, 30, 1}, {200, 150, 1}, {40, 150, 1}};
+    cs_scene_init(s, 320, 180);
+    cs_scene_set_background(s, (const float[3]){0.05f, 0.1f, 0.2f});
+    cs_scene_add_cel(s, &id, NULL, (const float[3]){0, 0, 0}, &e);
+    cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e);
+    cs_scene_add_contour(s, 1, 4, pts, NULL, &e);
+}
+
+/* A patch moving cel 0 by dx. */
+static void move_patch(cels_buf *b, float dx)
+{
+    cels_txn_begin(b);
+    cels_rec_begin(b, CS_REC_CEL_TRANSFORM);
+    cels_put_u32(b, 0);
+    const float m[6] = {1, 0, 0, 1, dx, 0};
+    cels_put_f32s(b, m, 6);
+    cels_rec_end(b);
+    cels_rec_commit(b);
+    cels_txn_end(b);
+}
+
+/* A stream (with its stream header) signed by the key file `key` from sequence seq. */
+static void signed_stream(const uint8_t *plain, size_t n, const char *key, uint64_t seq, cels_buf *out)
+{
+    cels_secret_key k;
+    char err[400] = "";
+    cels_buf_init(out);
+    CHECK(cels_read_secret_key(key, &k, err, sizeof err) == 0 &&
+              cels_sign_stream(plain, n, &k, &seq, out, err, sizeof err) == 0,
+          "sign with %s: %s", key, err);
+}
+
+static double wait_commit(child *c, const char *needle, double timeout)
+{
+    double t0 = now_s();
+    return wait_line(c, needle, timeout, NULL, 0) ? now_s() - t0 : 1e9;
+}
+
+static void test_signed(UMockdevTestbed *tb, const char *dir)
+{
+    char k1[300], k2[300], pub1[310], key1[310], key2[310], state[300], err[400] = "";
+    snprintf(k1, sizeof k1, "%s/op", dir);
+    snprintf(k2, sizeof k2, "%s/stranger", dir);
+    snprintf(pub1, sizeof pub1, "%s.pub", k1);
+    snprintf(key1, sizeof key1, "%s.key", k1);
+    snprintf(key2, sizeof key2, "%s.key", k2);
+    snprintf(state, sizeof state, "%s/state", dir);
+    CHECK(cels_keygen(k1, err, sizeof err) == 0 && cels_keygen(k2, err, sizeof err) == 0, "keygen: %s", err);
+    mkdir(state, 0700);
+
+    /* configuration errors of trust */
+    expect_failure("trust without state-dir",
+                   (const char *[]){"--backend", "null", "--size", "8x8", "--trust", pub1, NULL}, 2,
+                   "trust needs state-dir");
+    expect_failure("missing key file",
+                   (const char *[]){"--backend", "null", "--size", "8x8", "--trust", "/nonexistent.pub",
+                                    "--state-dir", state, NULL},
+                   2, "trust /nonexistent.pub: No such file");
+    chmod(state, 0777);
+    expect_failure("exposed state-dir",
+                   (const char *[]){"--backend", "null", "--size", "8x8", "--trust", pub1, "--state-dir", state, NULL},
+                   2, "lets others replace the trust state");
+    chmod(state, 0700);
+
+    static cs_scene a;
+    signed_scene(&a);
+    cels_buf plain, patch, sa, forged, stranger, later;
+    cels_buf_init(&plain);
+    cels_buf_init(&patch);
+    cels_stream_header(&plain);
+    cels_encode_scene(&plain, &a);
+    move_patch(&patch, 60.0f);
+    signed_stream(plain.data, plain.len, key1, 100, &sa);
+    signed_stream(patch.data, patch.len, key1, 200, &forged);
+    signed_stream(patch.data, patch.len, key2, 300, &stranger);
+    signed_stream(patch.data, patch.len, key1, 400, &later);
+    /* forge: another dx, every CRC made right again */
+    uint8_t *inner = forged.data + CS_WIRE_HEADER_SIZE + CS_WIRE_SIG_BLOCK_SIZE;
+    size_t inner_len = patch.len;
+    inner[16 + 6 + 4 + 16] ^= 0x20;
+    uint32_t c1 = cs_crc32(0, inner, inner_len - 4), c2;
+    memcpy(inner + inner_len - 4, &c1, 4);
+    c2 = cs_crc32(0, forged.data, forged.len - 4);
+    memcpy(forged.data + forged.len - 4, &c2, 4);
+
+    fake_gud_opts o;
+    fake_gud_opts_default(&o);
+    o.pid = 0x7104;
+    fake_gud *dev = fake_gud_add(tb, 6, 2, &o);
+    child c;
+    spawn(&c,
+          (const char *[]){"--backend", "usb", "--usb-device", "1d50:7104", "--scene", "builtin:anim",
+                           "--time-step", "0.03", "--fps", "60", "--input", "tcp:127.0.0.1:0", "--trust", pub1,
+                           "--state-dir", state, "--input-timeout", "2", "--log-interval", "0.1", NULL},
+          false);
+    char line[1024] = "";
+    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line) && strstr(line, "trusted_keys=1"),
+          "start line counts the trusted keys: %s", line);
+    int port = port_of(line);
+    CHECK(port > 0 && !strstr(c.log, "warning"), "loopback, no warning: %s", c.log);
+
+    /* An intruder connects first and holds half a transaction. */
+    int intruder = tcp_connect(port);
+    CHECK(intruder >= 0 && send_all(intruder, patch.data, 30), "intruder holds a connection");
+    g_usleep(100000);
+    double t0 = now_s();
+    CHECK(push(port, sa.data, sa.len), "send the signed scene");
+    double dt = wait_commit(&c, "stream commit 1 applied", 10.0);
+    CHECK(dt < 2.0, "the signed scene applies at once beside the intruder (%.3f s after sending; timeout 2 s)",
+          now_s() - t0);
+
+    static const struct {
+        const char *what;
+        const char *word;
+    } refusals[] = {{"unsigned", "stream refused at byte 0: unsigned"},
+                    {"forged", "stream refused at byte 0: bad signature"},
+                    {"wrong key", "stream refused at byte 0: unknown key"},
+                    {"replayed", "stream refused at byte 16: replayed sequence"}};
+    const cels_buf *bad[] = {&patch, &forged, &stranger, &sa};
+    for (int i = 0; i < 4; i++) {
+        CHECK(push(port, bad[i]->data, bad[i]->len), "send the %s stream", refusals[i].what);
+        CHECK(wait_line(&c, "stream refused", 10.0, line, sizeof line) && strstr(line, refusals[i].word) &&
+                  strstr(line, "scene kept"),
+              "%s: '%s' in: %s", refusals[i].what, refusals[i].word, line);
+    }
+    close(intruder);
+    /* frames after the refusals, so the glass had every chance to change */
+    unsigned long long before = 0;
+    for (int i = 0; i < 60; i++) {
+        if (!wait_line(&c, "celfw: status", 5.0, line, sizeof line))
+            break;
+        if (!before)
+            before = field(line, "frames");
+        else if (field(line, "frames") >= before + 10)
+            break;
+    }
+    kill(c.pid, SIGTERM);
+    int rc = wait_exit(&c, 10.0);
+    if (getenv("LX_TEST_VERBOSE"))
+        fprintf(stderr, "%s", c.log);
+    const char *ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && field(ex, "commits") == 1 && field(ex, "stream_errors") >= 4,
+          "exit: one commit, four refusals: rc %d, %s", rc, ex ? ex : c.log);
+    if (ex) {
+        const char *at = strstr(ex, "anim_t=");
+        float t = at ? strtof(at + 7, NULL) : -1.0f;
+        int diff = compare_panel_scene(dev, &a, t, 320, 180);
+        CHECK(diff == 0, "the panel shows the signed scene, untouched by the refused ones (%d pixels differ)", diff);
+        cs_error e;
+        cs_scene_copy(&scene, &a);
+        cs_scene_set_transform(&scene, 0, &(const cs_affine){1, 0, 0, 1, 60, 0}, &e);
+        CHECK(compare_panel_scene(dev, &scene, t, 320, 180) > 1000, "and not the patched one");
+    }
+    fake_gud_unplug(dev);
+    fake_gud_free(dev);
+
+    /* A restart on the same state: the old stream is still a replay; a newer one applies. */
+    spawn(&c,
+          (const char *[]){"--backend", "null", "--size", "64x36", "--fps", "100", "--input", "tcp:0", "--trust",
+                           pub1, "--state-dir", state, "--log-interval", "0", NULL},
+          false);
+    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line), "restarted: %s", c.log);
+    port = port_of(line);
+    CHECK(push(port, sa.data, sa.len), "replay after the restart");
+    CHECK(wait_line(&c, "stream refused", 10.0, line, sizeof line) && strstr(line, "replayed sequence"),
+          "still a replay after the restart: %s", line);
+    CHECK(push(port, plain.data, plain.len) && push(port, later.data, later.len), "send a newer signed patch");
+    CHECK(wait_line(&c, "stream commit 1 applied", 10.0, line, sizeof line),
+          "the newer signed patch applies: %s", c.log);
+    kill(c.pid, SIGTERM);
+    rc = wait_exit(&c, 10.0);
+    ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && field(ex, "commits") == 1 && field(ex, "stream_errors") == 2,
+          "restart: one commit, two refusals (the replay, the unsigned scene): %s", ex ? ex : c.log);
+
+    /* Every input is held to the same rule: an unsigned file is refused too. */
+    char file[320], spec[340];
+    snprintf(file, sizeof file, "%s/plain.cels", dir);
+    FILE *f = fopen(file, "wb");
+    if (f) {
+        fwrite(plain.data, 1, plain.len, f);
+        fclose(f);
+    }
+    snprintf(spec, sizeof spec, "file:%s", file);
+    spawn(&c,
+          (const char *[]){"--backend", "null", "--size", "64x36", "--fps", "100", "--frames", "10", "--input",
+                           spec, "--trust", pub1, "--state-dir", state, "--log-interval", "0", NULL},
+          false);
+    rc = wait_exit(&c, 10.0);
+    CHECK(rc == 0 && strstr(c.log, "stream refused at byte 16: unsigned") && strstr(c.log, " commits=0 "),
+          "an unsigned file is refused: %s", c.log);
+
+    cels_buf_free(&plain);
+    cels_buf_free(&patch);
+    cels_buf_free(&sa);
+    cels_buf_free(&forged);
+    cels_buf_free(&stranger);
+    cels_buf_free(&later);
+}
+
+/* A non-loopback IPv4 address of this machine, if it has one. */
+static bool other_address(struct in_addr *out)
+{
+    struct ifaddrs *ifa = NULL;
+    bool found = false;
+    if (getifaddrs(&ifa) != 0)
+        return false;
+    for (struct ifaddrs *i = ifa; i && !found; i = i->ifa_next)
+        if (i->ifa_addr && i->ifa_addr->sa_family == AF_INET) {
+            struct in_addr a = ((struct sockaddr_in *)i->ifa_addr)->sin_addr;
+            if ((ntohl(a.s_addr) >> 24) != 127) {
+                *out = a;
+                found = true;
+            }
+        }
+    freeifaddrs(ifa);
+    return found;
+}
+
+static void test_tcp_ingress(void)
+{
+    static cs_scene a;
+    signed_scene(&a);
+    cels_buf plain;
+    cels_buf_init(&plain);
+    cels_stream_header(&plain);
+    cels_encode_scene(&plain, &a);
+
+    child c;
+    spawn(&c,
+          (const char *[]){"--backend", "null", "--size", "64x36", "--fps", "100", "--input", "tcp:0", "--scene",
+                           "none", "--input-timeout", "1", "--log-interval", "0", NULL},
+          false);
+    char line[1024] = "";
+    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line) && strstr(line, "input=tcp:127.0.0.1:"),
+          "tcp:PORT listens on loopback: %s", line);
+    int port = port_of(line);
+    CHECK(port > 0 && !strstr(c.log, "warning"), "no warning on loopback");
+    struct in_addr other;
+    if (other_address(&other)) {
+        int fd = socket(AF_INET, SOCK_STREAM, 0);
+        struct sockaddr_in sa = {0};
+        sa.sin_family = AF_INET;
+        sa.sin_port = htons((uint16_t)port);
+        sa.sin_addr = other;
+        CHECK(connect(fd, (struct sockaddr *)&sa, sizeof sa) != 0, "not reachable on %s", inet_ntoa(other));
+        close(fd);
+    }
+
+    /* An idle client and a one-byte-a-second client connect first. */
+    int idle = tcp_connect(port), slow = tcp_connect(port);
+    double t0 = now_s();
+    CHECK(idle >= 0 && slow >= 0 && write(slow, "C", 1) == 1, "idle and slow clients connected");
+    g_usleep(200000);
+    double t1 = now_s();
+    CHECK(push(port, plain.data, plain.len), "a valid sender");
+    CHECK(wait_commit(&c, "stream commit 1 applied", 5.0) < 1.0,
+          "the valid sender is not kept waiting (applied %.3f s after sending; timeout 1 s)", now_s() - t1);
+    int drops = 0;
+    double next_byte = t0 + 1.0;
+    while (now_s() - t0 < 3.0 && drops < 2) {
+        if (now_s() >= next_byte) {
+            send(slow, "S", 1, MSG_NOSIGNAL); /* it may be gone already */
+            next_byte += 1.0;
+        }
+        if (wait_line(&c, "timed out", 0.05, line, sizeof line))
+            drops++;
+    }
+    CHECK(drops == 2 && now_s() - t0 < 2.5, "idle and slow clients dropped after the 1 s timeout (%d by %.2f s)",
+          drops, now_s() - t0);
+    close(idle);
+    close(slow);
+
+    /* A full house of idle clients (an intruder's): a new sender still gets in at once. */
+    int hold[CELFW_INPUT_MAX_CLIENTS];
+    for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS; i++)
+        hold[i] = tcp_connect(port);
+    g_usleep(100000);
+    t1 = now_s();
+    CHECK(push(port, plain.data, plain.len), "a sender beyond the full house");
+    CHECK(wait_commit(&c, "stream commit 2 applied", 5.0) < 0.8,
+          "applied %.3f s after sending, before any time-out freed a slot", now_s() - t1);
+    for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS; i++)
+        if (hold[i] >= 0)
+            close(hold[i]);
+    kill(c.pid, SIGTERM);
+    int rc = wait_exit(&c, 10.0);
+    if (getenv("LX_TEST_VERBOSE"))
+        fprintf(stderr, "%s", c.log);
+    CHECK(rc == 0 && strstr(c.log, "more 'input' lines not shown"),
+          "connection lines are rate-limited too (16 connections in a second): %s", c.log);
+
+    /* Beyond loopback only when asked, and then with a warning if no key is trusted. */
+    spawn(&c, (const char *[]){"--backend", "null", "--size", "8x8", "--frames", "2", "--input", "tcp:0.0.0.0:0",
+                               "--log-interval", "0", NULL},
+          false);
+    rc = wait_exit(&c, 10.0);
+    CHECK(rc == 0 && strstr(c.log, "input=tcp:0.0.0.0:") &&
+              strstr(c.log, "celfw: warning input tcp:0.0.0.0:") && strstr(c.log, "no key is trusted"),
+          "explicit 0.0.0.0 listens with a warning: %s", c.log);
+    spawn(&c, (const char *[]){"--backend", "null", "--size", "8x8", "--frames", "2", "--input", "tcp:[::1]:0",
+                               "--log-interval", "0", NULL},
+          false);
+    rc = wait_exit(&c, 10.0);
+    CHECK((rc == 0 && strstr(c.log, "input=tcp:[::1]:") && !strstr(c.log, "warning")) ||
+              strstr(c.log, "cannot listen"),
+          "[::1] is loopback too: %s", c.log);
+    expect_failure("bad port", (const char *[]){"--backend", "null", "--size", "8x8", "--input", "tcp:70000", NULL},
+                   3, "'70000' is not a port");
+    cels_buf_free(&plain);
+}
+
+/* 60,000 empty patches: every one applies, the log stays a few lines long. */
+static void test_log_flood(void)
+{
+    enum { N = 60000 };
+    cels_buf b;
+    cels_buf_init(&b);
+    for (int i = 0; i < N; i++) {
+        cels_txn_begin(&b);
+        cels_rec_commit(&b);
+        cels_txn_end(&b);
+    }
+    child c;
+    spawn(&c,
+          (const char *[]){"--backend", "null", "--size", "64x36", "--fps", "100", "--input", "tcp:0", "--scene",
+                           "none", "--log-interval", "0", NULL},
+          false);
+    char line[1024] = "";
+    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line), "started");
+    double t0 = now_s();
+    CHECK(push(port_of(line), b.data, b.len), "send %d empty patches (%zu bytes)", N, b.len);
+    char want[80];
+    snprintf(want, sizeof want, "closed after %zu bytes", b.len);
+    CHECK(wait_line(&c, want, 30.0, NULL, 0), "all received (%.2f s)", now_s() - t0);
+    kill(c.pid, SIGTERM);
+    int rc = wait_exit(&c, 20.0);
+    if (getenv("LX_TEST_VERBOSE"))
+        fprintf(stderr, "%s", c.log);
+    const char *ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && field(ex, "commits") == N, "every patch applied: %s", ex ? ex : c.log);
+    unsigned long long shown = 0, held = 0;
+    for (const char *p = c.log; (p = strstr(p, "celfw: event ")) != NULL; p++) {
+        if (!strncmp(p + 13, "stream commit ", 14))
+            shown++;
+        const char *m = strstr(p, " more 'stream commit' lines");
+        const char *eol = strchr(p, '\n');
+        if (m && eol && m < eol)
+            held += strtoull(p + 13, NULL, 10);
+    }
+    CHECK(shown + held == N && shown <= 40, "%llu commit lines and %llu told as counts", shown, held);
+    CHECK(c.len < 8192, "the log stays small: %zu bytes", c.len);
+    cels_buf_free(&b);
+}
+
 int main(void)
 {
     UMockdevTestbed *tb = umockdev_testbed_new();
@@ -578,6 +969,17 @@ int main(void)
     test_usb_unplug(tb);
     test_sigterm_stdin();
     test_file_and_tty(tb);
+    char dir[] = "/tmp/celfw-trust-XXXXXX";
+    if (cels_sign_init() && mkdtemp(dir)) {
+        test_signed(tb, dir);
+        char cmd[100];
+        snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+        CHECK(system(cmd) == 0, "remove %s", dir);
+    } else {
+        CHECK(false, "libsodium and a temporary directory for the signed-stream tests");
+    }
+    test_tcp_ingress();
+    test_log_flood();
     g_object_unref(tb);
     return lx_test_report("test_celfw");
 }
