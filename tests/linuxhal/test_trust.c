@@ -602,14 +602,33 @@ static int write_seeds(const char *dir)
     char err[200], path[400];
     if (cels_sign_stream(plain.data, plain.len, &k, &seq, &sig, err, sizeof err) != 0)
         return 1;
+    /* the same stream twice (the second time a replay), and signed by a key the fuzzer does not trust */
+    cels_buf twice, other;
+    cels_buf_init(&twice);
+    cels_buf_init(&other);
+    cels_put_bytes(&twice, sig.data, sig.len);
+    cels_put_bytes(&twice, sig.data, sig.len);
+    cels_secret_key stranger;
+    uint8_t seed[CELS_SEED_SIZE];
+    memset(seed, 0x5a, sizeof seed);
+    cels_secret_key_from_seed(seed, &stranger);
+    if (cels_sign_stream(plain.data, plain.len, &stranger, &seq, &other, err, sizeof err) != 0)
+        return 1;
+    /* byte 0 is the fuzzer's mode: 0x80 trusts the test key, the low bits choose the chunking */
     const struct {
         const char *name;
+        uint8_t mode;
         cels_buf *b;
-    } seeds[] = {{"signed.fuzz", &sig}, {"plain.fuzz", &plain}};
-    for (size_t i = 0; i < 2; i++) {
+    } seeds[] = {{"signed-trusted.fuzz", 0x80, &sig},
+                 {"signed-untrusted.fuzz", 0x02, &sig},
+                 {"plain-trusted.fuzz", 0x81, &plain},
+                 {"replay-trusted.fuzz", 0x80, &twice},
+                 {"stranger-trusted.fuzz", 0x83, &other}};
+    for (size_t i = 0; i < sizeof seeds / sizeof seeds[0]; i++) {
         snprintf(path, sizeof path, "%s/%s", dir, seeds[i].name);
         FILE *f = fopen(path, "wb");
-        if (!f || fwrite(seeds[i].b->data, 1, seeds[i].b->len, f) != seeds[i].b->len) {
+        if (!f || fputc(seeds[i].mode, f) == EOF ||
+            fwrite(seeds[i].b->data, 1, seeds[i].b->len, f) != seeds[i].b->len) {
             fprintf(stderr, "test_trust: cannot write %s\n", path);
             return 1;
         }
@@ -617,6 +636,8 @@ static int write_seeds(const char *dir)
     }
     cels_buf_free(&plain);
     cels_buf_free(&sig);
+    cels_buf_free(&twice);
+    cels_buf_free(&other);
     return 0;
 }
 
