@@ -231,7 +231,7 @@ static void start_envelope(cs_stream *s, const uint8_t *hdr, uint64_t at)
     s->in_garbage = false;
     s->skip_left = (uint64_t)len + CS_WIRE_TRAILER_SIZE;
     s->state = ST_SKIP;
-    s->env_end = 0;
+    s->env_end = at + CS_WIRE_HEADER_SIZE + len;
     if (hdr[4] != CS_WIRE_MAJOR || len < CS_WIRE_SIGNED_MIN_BODY) {
         bool version = hdr[4] != CS_WIRE_MAJOR;
         emit(s, version ? CS_ERR_STREAM_VERSION : CS_ERR_STREAM_RECORD, at, at + (version ? 4 : 8),
@@ -242,7 +242,19 @@ static void start_envelope(cs_stream *s, const uint8_t *hdr, uint64_t at)
         return;
     }
     s->skip_left = CS_WIRE_SIG_BLOCK_SIZE;
-    s->env_end = at + CS_WIRE_HEADER_SIZE + len;
+}
+
+/* A frame (or a skipped stretch) ended: hunt again, or skip the trailer of
+ * the envelope it filled. */
+static void frame_done(cs_stream *s)
+{
+    to_hunt(s);
+    if (s->env_end != 0 && s->offset == s->env_end) {
+        s->skip_left = CS_WIRE_TRAILER_SIZE;
+        s->state = ST_SKIP;
+    } else if (s->offset > s->env_end) {
+        s->env_end = 0;
+    }
 }
 
 static void start_txn(cs_stream *s, const uint8_t *hdr, uint64_t at)
@@ -788,13 +800,7 @@ static void end_txn(cs_stream *s, uint64_t trailer_at)
         s->commit_ready = true;
         s->commits++;
     }
-    to_hunt(s);
-    if (s->env_end != 0 && s->offset == s->env_end) {
-        /* the inner transaction filled its envelope: skip the envelope's CRC */
-        s->skip_left = CS_WIRE_TRAILER_SIZE;
-        s->state = ST_SKIP;
-    }
-    s->env_end = 0;
+    frame_done(s);
 }
 
 static void step(cs_stream *s, uint8_t b)
@@ -807,7 +813,9 @@ static void step(cs_stream *s, uint8_t b)
     uint8_t hdr[CS_WIRE_HEADER_SIZE];
     int h = ring_header(s, hdr);
     uint64_t hdr_at = at + 1 - CS_WIRE_HEADER_SIZE;
-    if (h == H_TXN) {
+    /* Inside an envelope being skipped (a refused one, its signature block),
+     * the inner transaction's header is part of what is skipped. */
+    if (h == H_TXN && !(s->state == ST_SKIP && hdr_at < s->env_end)) {
         if (s->state == ST_BODY || s->state == ST_TRAILER) {
             emit(s, CS_ERR_STREAM_TRUNCATED, s->txn_offset, hdr_at,
                  "transaction cut short by the next transaction header", 0);
@@ -859,7 +867,7 @@ static void step(cs_stream *s, uint8_t b)
         break;
     default: /* ST_SKIP */
         if (--s->skip_left == 0)
-            to_hunt(s);
+            frame_done(s);
         break;
     }
 }

@@ -274,6 +274,59 @@ static void test_sign_stream(void)
     cels_buf_free(&sig);
 }
 
+/* The core decoder's side of envelopes (no verification): a short one and one of another major
+ * version are reported and skipped; the good one after them commits; nothing is called stray. */
+static void test_core_unwrap(void)
+{
+    cels_secret_key k;
+    sign_test_key(&k);
+    cels_buf b, t;
+    cels_buf_init(&b);
+    cels_buf_init(&t);
+    patch(&t, 5.0f);
+    cels_envelope_begin(&b); /* 0: an envelope with only 20 bytes of body */
+    uint8_t zeros[20] = {0};
+    cels_put_bytes(&b, zeros, sizeof zeros);
+    cels_txn_end(&b);
+    size_t second = b.len;  /* 40: a whole envelope of major version 2 */
+    cels_sign_txn(&b, &k, 1, t.data, t.len);
+    b.data[second + 4] = 2;
+    wr32(b.data + second + 12, cs_crc32(0, b.data + second, 12));
+    size_t third = b.len;   /* 200: a good one */
+    cels_sign_txn(&b, &k, 2, t.data, t.len);
+    square_scene(&scene_a, 0.4f);
+    cs_stream s;
+    cs_stream_init(&s, &scene_a, true, &scene_b);
+    const uint8_t *p = b.data;
+    size_t n = b.len, used;
+    char got[200] = "";
+    size_t o = 0;
+    for (int guard = 0; guard < 20; guard++) {
+        cs_stream_event ev = cs_stream_feed(&s, p, n, &used);
+        p += used;
+        n -= used;
+        if (ev == CS_STREAM_MORE && n == 0)
+            ev = cs_stream_finish(&s);
+        if (ev == CS_STREAM_COMMIT) {
+            cs_stream_swap(&s);
+            o += (size_t)snprintf(got + o, sizeof got - o, "C ");
+        } else if (ev == CS_STREAM_ERROR) {
+            const cs_stream_error *e = cs_stream_last_error(&s);
+            o += (size_t)snprintf(got + o, sizeof got - o, "%d@%llu/%llu ", (int)e->status,
+                                  (unsigned long long)e->offset, (unsigned long long)e->at);
+        } else if (n == 0) {
+            break;
+        }
+    }
+    char want[200];
+    snprintf(want, sizeof want, "%d@0/8 %d@%zu/%zu C ", CS_ERR_STREAM_RECORD, CS_ERR_STREAM_VERSION, second,
+             second + 4);
+    CHECK(third == 200 && !strcmp(got, want), "core decoder on envelopes:\n  got  %s\n  want %s", got, want);
+    CHECK(s.front->cels[0].transform.e == 5.0f, "the good envelope's patch is applied");
+    cels_buf_free(&b);
+    cels_buf_free(&t);
+}
+
 static void write_file(const char *path, const char *text, int mode)
 {
     FILE *f = fopen(path, "w");
@@ -657,6 +710,7 @@ int main(int argc, char **argv)
     test_keys(dir);
     test_envelope();
     test_sign_stream();
+    test_core_unwrap();
     test_trust_state(dir);
     test_framer();
     test_ratelimit();
