@@ -19,6 +19,9 @@
 
 enum { F_HUNT, F_BODY, F_SKIP };
 
+/* A buffer up to this size is kept between frames (patches); a larger one is freed. */
+#define KEEP_BUFFER ((size_t)1 << 20)
+
 static uint32_t rd_u32(const uint8_t *p)
 {
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
@@ -197,8 +200,11 @@ static bool step(celfw_framer *f, uint8_t b, celfw_frame *fr)
 size_t celfw_framer_push(celfw_framer *f, const uint8_t *p, size_t n, celfw_frame *fr)
 {
     fr->kind = CELFW_FRAME_NONE;
-    if (f->state != F_BODY)
+    if (f->state != F_BODY) {
         f->len = 0; /* the frame handed out last is no longer needed */
+        if (f->cap > KEEP_BUFFER)
+            celfw_framer_free(f); /* a big scene went through: give its memory back */
+    }
     for (size_t i = 0; i < n; i++)
         if (step(f, p[i], fr))
             return i + 1;

@@ -17,7 +17,8 @@
  * byte offsets the decoder would give (they count from the start of the
  * sequence), and the framer resynchronises on the next header, as the core
  * decoder does. Memory: the frame being collected, grown as its bytes come,
- * at most CELFW_FRAME_MAX bytes.
+ * at most CELFW_FRAME_MAX bytes, and given back after a frame of more than
+ * a megabyte.
  */
 #ifndef CELFW_FRAME_H
 #define CELFW_FRAME_H

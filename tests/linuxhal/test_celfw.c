@@ -746,12 +746,21 @@ static void test_signed(UMockdevTestbed *tb, const char *dir)
     fake_gud_unplug(dev);
     fake_gud_free(dev);
 
-    /* A restart on the same state: the old stream is still a replay; a newer one applies. */
+    /* A restart on the same state (trust and state-dir from a config file this time): the old
+     * stream is still a replay; a newer one applies. */
+    char conf[320];
+    snprintf(conf, sizeof conf, "%s/celfw.conf", dir);
+    FILE *cf = fopen(conf, "w");
+    if (cf) {
+        fprintf(cf, "# signed streams only\ntrust = %s\nstate-dir = %s\n", pub1, state);
+        fclose(cf);
+    }
     spawn(&c,
-          (const char *[]){"--backend", "null", "--size", "64x36", "--fps", "100", "--input", "tcp:0", "--trust",
-                           pub1, "--state-dir", state, "--log-interval", "0", NULL},
+          (const char *[]){"--config", conf, "--backend", "null", "--size", "64x36", "--fps", "100", "--input",
+                           "tcp:0", "--log-interval", "0", NULL},
           false);
-    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line), "restarted: %s", c.log);
+    CHECK(wait_line(&c, "celfw: start", 10.0, line, sizeof line) && strstr(line, "trusted_keys=1"),
+          "restarted with the config file's key: %s", c.log);
     port = port_of(line);
     CHECK(push(port, sa.data, sa.len), "replay after the restart");
     CHECK(wait_line(&c, "stream refused", 10.0, line, sizeof line) && strstr(line, "replayed sequence"),
