@@ -281,30 +281,38 @@ int cels_sign_stream(const uint8_t *in, size_t len, const cels_secret_key *k, ui
     return 0;
 }
 
+/* A parse failure of kind st. */
+static const char *refuse(cels_envelope *e, cs_status st, const char *why)
+{
+    e->status = st;
+    return why;
+}
+
 const char *cels_envelope_parse(const uint8_t *frame, size_t len, cels_envelope *e)
 {
     size_t n = 0;
     const char *why;
     if (len < CS_WIRE_HEADER_SIZE || !is_header(frame, CS_WIRE_SIGNED_MAGIC))
-        return "not a signed envelope header";
+        return refuse(e, CS_ERR_STREAM_SYNC, "not a signed envelope header");
     if (frame[4] != CS_WIRE_MAJOR)
-        return "signed envelope of an unsupported major version";
+        return refuse(e, CS_ERR_STREAM_VERSION, "signed envelope of an unsupported major version");
     if ((why = check_frame(frame, len, &n)) != NULL)
-        return why;
+        return refuse(e, strstr(why, "CRC") ? CS_ERR_STREAM_CRC : CS_ERR_STREAM_TRUNCATED, why);
     if (n != len)
-        return "bytes after the envelope's trailer";
+        return refuse(e, CS_ERR_STREAM_RECORD, "bytes after the envelope's trailer");
     size_t body = n - CS_WIRE_HEADER_SIZE - CS_WIRE_TRAILER_SIZE;
     if (body < CS_WIRE_SIGNED_MIN_BODY)
-        return "signed envelope too short for a signature and a transaction";
+        return refuse(e, CS_ERR_STREAM_RECORD, "signed envelope too short for a signature and a transaction");
     const uint8_t *b = frame + CS_WIRE_HEADER_SIZE;
     e->key_id = b;
     e->sequence = rd_u64(b + CS_WIRE_SIG_KEYID_SIZE);
     e->signature = b + CS_WIRE_SIG_KEYID_SIZE + 8;
     e->inner = b + CS_WIRE_SIG_BLOCK_SIZE;
     e->inner_len = body - CS_WIRE_SIG_BLOCK_SIZE;
+    e->status = CS_OK;
     if (!is_header(e->inner, CS_WIRE_TXN_MAGIC) ||
         (uint64_t)rd_u32(e->inner + 8) + CS_WIRE_HEADER_SIZE + CS_WIRE_TRAILER_SIZE != e->inner_len)
-        return "signed envelope does not hold exactly one transaction";
+        return refuse(e, CS_ERR_STREAM_RECORD, "signed envelope does not hold exactly one transaction");
     return NULL;
 }
 

@@ -46,6 +46,7 @@ typedef struct cels_envelope {
     const uint8_t *signature; /* CS_WIRE_SIG_SIZE bytes */
     const uint8_t *inner;     /* one whole transaction: header, body, trailer */
     size_t inner_len;
+    cs_status status;         /* parse failures: CS_ERR_STREAM_CRC, _VERSION, _TRUNCATED or _RECORD */
 } cels_envelope;
 
 /* Initialises libsodium; false if it cannot (no entropy source). */
@@ -83,7 +84,7 @@ int cels_sign_stream(const uint8_t *in, size_t len, const cels_secret_key *k, ui
 /*
  * Parses a whole envelope frame (header, body, trailer), checking its CRCs
  * and that the body holds the signature block and exactly one transaction
- * whose header CRC matches. Returns NULL, or what is wrong.
+ * whose header CRC matches. Returns NULL, or what is wrong (and e->status its kind).
  */
 const char *cels_envelope_parse(const uint8_t *frame, size_t len, cels_envelope *e);
 

@@ -152,7 +152,9 @@ static void apply_frame(celfw *fw, const celfw_frame *fr)
         celfw_verdict v = celfw_trust_check(fw->trust, fr->data, fr->len, fr->kind == CELFW_FRAME_SIGNED, &tx);
         if (v == CELFW_TRUST_MALFORMED) {
             celfw_stream_error err;
-            celfw_stream_describe(CS_ERR_STREAM_RECORD, tx.why, fr->offset, fr->offset, &err);
+            /* damage is reported where the decoder reports it: at the CRC field */
+            uint64_t at = tx.status == CS_ERR_STREAM_CRC ? fr->offset + fr->len - 4 : fr->offset;
+            celfw_stream_describe(tx.status, tx.why, fr->offset, at, &err);
             stream_error(fw, &err);
             return;
         }

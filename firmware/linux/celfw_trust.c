@@ -248,6 +248,7 @@ celfw_verdict celfw_trust_check(const celfw_trust *t, const uint8_t *frame, size
     out->offset = 0;
     out->key = -1;
     out->sequence = 0;
+    out->status = CS_OK;
     out->why[0] = 0;
     if (!is_signed) {
         if (t->key_count == 0)
@@ -259,6 +260,7 @@ celfw_verdict celfw_trust_check(const celfw_trust *t, const uint8_t *frame, size
     const char *bad = cels_envelope_parse(frame, len, &e);
     if (bad) {
         snprintf(out->why, sizeof out->why, "%s", bad);
+        out->status = e.status;
         return CELFW_TRUST_MALFORMED;
     }
     out->txn = e.inner;

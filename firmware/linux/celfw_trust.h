@@ -26,6 +26,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "celscan.h"
+
 typedef enum celfw_verdict {
     CELFW_TRUST_PASS = 0,      /* may go to the decoder */
     CELFW_TRUST_UNSIGNED,      /* a transaction outside an envelope, keys trusted */
@@ -42,6 +44,7 @@ typedef struct celfw_trust_txn {
     size_t offset;       /* of txn within the frame */
     int key;             /* index of the trusted key, -1 if none verified */
     uint64_t sequence;
+    cs_status status;    /* malformed envelopes: what kind of fault (CS_ERR_STREAM_CRC, ...) */
     char why[200];       /* refusals and malformed envelopes: the details */
 } celfw_trust_txn;
 

@@ -715,6 +715,14 @@ static void test_signed(UMockdevTestbed *tb, const char *dir)
                   strstr(line, "scene kept"),
               "%s: '%s' in: %s", refusals[i].what, refusals[i].word, line);
     }
+    /* A damaged envelope is damage, not a trust question: a stream error at its CRC field. */
+    later.data[40] ^= 1;
+    CHECK(push(port, later.data, later.len), "send a damaged envelope");
+    char want[120];
+    snprintf(want, sizeof want, "stream error at byte %zu: transaction CRC mismatch", later.len - 4);
+    CHECK(wait_line(&c, "stream error", 10.0, line, sizeof line) && strstr(line, want),
+          "damaged envelope: '%s' in: %s", want, line);
+    later.data[40] ^= 1;
     close(intruder);
     /* frames after the refusals, so the glass had every chance to change */
     unsigned long long before = 0;
@@ -731,8 +739,8 @@ static void test_signed(UMockdevTestbed *tb, const char *dir)
     if (getenv("LX_TEST_VERBOSE"))
         fprintf(stderr, "%s", c.log);
     const char *ex = strstr(c.log, "celfw: exit");
-    CHECK(rc == 0 && ex && field(ex, "commits") == 1 && field(ex, "stream_errors") >= 4,
-          "exit: one commit, four refusals: rc %d, %s", rc, ex ? ex : c.log);
+    CHECK(rc == 0 && ex && field(ex, "commits") == 1 && field(ex, "stream_errors") >= 5,
+          "exit: one commit, four refusals, one damaged envelope: rc %d, %s", rc, ex ? ex : c.log);
     if (ex) {
         const char *at = strstr(ex, "anim_t=");
         float t = at ? strtof(at + 7, NULL) : -1.0f;
