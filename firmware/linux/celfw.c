@@ -101,15 +101,20 @@ static void backend_log(void *user, const char *fmt, ...)
     say("event", "%s", msg);
 }
 
+static void say_held(int kind, uint64_t held)
+{
+    if (held)
+        say("event", "%llu more '%s' lines not shown (at most %d per %d s)", (unsigned long long)held,
+            log_kind_name[kind], CELFW_LOG_BURST, CELFW_LOG_WINDOW_S);
+}
+
 /* An event line of a kind a sender can repeat: rate-limited (celfw_log.h). */
 static void tell(celfw *fw, int kind, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static void tell(celfw *fw, int kind, const char *fmt, ...)
 {
     uint64_t held;
     bool allow = celfw_ratelimit_allow(&fw->limit[kind], lx_now(&lx_clock_monotonic), &held);
-    if (held)
-        say("event", "%llu more '%s' lines not shown (at most %d per %d s)", (unsigned long long)held,
-            log_kind_name[kind], CELFW_LOG_BURST, CELFW_LOG_WINDOW_S);
+    say_held(kind, held);
     if (!allow)
         return;
     char msg[600];
@@ -124,12 +129,8 @@ static void tell(celfw *fw, int kind, const char *fmt, ...)
 static void tell_held(celfw *fw, bool final)
 {
     uint64_t now = lx_now(&lx_clock_monotonic);
-    for (int k = 0; k < LOG_KINDS; k++) {
-        uint64_t held = celfw_ratelimit_due(&fw->limit[k], now, final);
-        if (held)
-            say("event", "%llu more '%s' lines not shown (at most %d per %d s)", (unsigned long long)held,
-                log_kind_name[k], CELFW_LOG_BURST, CELFW_LOG_WINDOW_S);
-    }
+    for (int k = 0; k < LOG_KINDS; k++)
+        say_held(k, celfw_ratelimit_due(&fw->limit[k], now, final));
 }
 
 /* ------------------------------------------------------------- stream */
@@ -139,6 +140,14 @@ static void stream_error(celfw *fw, const celfw_stream_error *err)
     fw->stream_errors++;
     tell(fw, LOG_STREAM_ERROR, "stream error at byte %llu: %s; scene kept", (unsigned long long)err->offset,
          err->what);
+}
+
+/* What the framer dropped (stray bytes, a cut or oversized frame), worded as the decoder words it. */
+static void frame_error(celfw *fw, const celfw_frame *fr)
+{
+    celfw_stream_error err;
+    celfw_stream_describe(fr->status, fr->what, fr->offset, fr->at, &err);
+    stream_error(fw, &err);
 }
 
 /*
@@ -196,13 +205,10 @@ static void on_bytes(void *user, celfw_framer *src, const uint8_t *p, size_t n)
         size_t used = celfw_framer_push(src, p, n, &fr);
         p += used;
         n -= used;
-        if (fr.kind == CELFW_FRAME_ERROR) {
-            celfw_stream_error err;
-            celfw_stream_describe(fr.status, fr.what, fr.offset, fr.at, &err);
-            stream_error(fw, &err);
-        } else if (fr.kind != CELFW_FRAME_NONE) {
+        if (fr.kind == CELFW_FRAME_ERROR)
+            frame_error(fw, &fr);
+        else if (fr.kind != CELFW_FRAME_NONE)
             apply_frame(fw, &fr);
-        }
     } while (fr.kind != CELFW_FRAME_NONE);
 }
 
@@ -211,11 +217,8 @@ static void on_reset(void *user, celfw_framer *src, const char *why)
     (void)why;
     celfw *fw = user;
     celfw_frame fr;
-    if (celfw_framer_end(src, &fr)) {
-        celfw_stream_error err;
-        celfw_stream_describe(fr.status, fr.what, fr.offset, fr.at, &err);
-        stream_error(fw, &err);
-    }
+    if (celfw_framer_end(src, &fr))
+        frame_error(fw, &fr);
 }
 
 static void on_note(void *user, const char *what)
@@ -362,8 +365,6 @@ static int open_trust(celfw *fw)
         if (fresh)
             say("event", "trust state %s/trust-state not there yet: no sequence applied so far", c->state_dir);
     }
-    for (int k = 0; k < LOG_KINDS; k++)
-        fw->limit[k].what = log_kind_name[k];
     return 0;
 }
 

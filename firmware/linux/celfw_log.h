@@ -17,8 +17,8 @@
 #define CELFW_LOG_BURST 10
 #define CELFW_LOG_WINDOW_S 10
 
+/* One kind of line; zero-initialised. */
 typedef struct celfw_ratelimit {
-    const char *what;      /* the kind of line, named in the summary */
     uint64_t window_start; /* ns */
     uint64_t shown, held;  /* lines written and held back in this window */
 } celfw_ratelimit;

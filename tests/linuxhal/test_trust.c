@@ -622,7 +622,7 @@ static void test_framer(void)
 
 static void test_ratelimit(void)
 {
-    celfw_ratelimit r = {.what = "stream commit"};
+    celfw_ratelimit r = {0};
     uint64_t held = 0, shown = 0, summary;
     for (int i = 0; i < 60000; i++) {
         shown += celfw_ratelimit_allow(&r, 1000u + (uint64_t)i, &summary);
