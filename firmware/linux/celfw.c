@@ -154,7 +154,7 @@ static void frame_error(celfw *fw, const celfw_frame *fr)
  * One whole frame of one input: the trust check, then the decoder. This is
  * the one place every transaction from every input passes.
  */
-static void apply_frame(celfw *fw, const celfw_frame *fr)
+static void apply_frame(celfw *fw, celfw_framer *src, const celfw_frame *fr)
 {
     celfw_trust_txn tx = {.txn = fr->data, .len = fr->len, .key = -1};
     if (fr->kind != CELFW_FRAME_STREAM) {
@@ -186,6 +186,7 @@ static void apply_frame(celfw *fw, const celfw_frame *fr)
         fw->front ^= 1;
         fw->builtin[0] = 0;
         fw->commits++;
+        src->applied++; /* the sender's progress, for the input's time-out */
         tell(fw, LOG_COMMIT, "stream commit %llu applied", (unsigned long long)fw->commits);
         char why[400];
         if (celfw_trust_applied(fw->trust, &tx, why, sizeof why) != 0)
@@ -208,7 +209,7 @@ static void on_bytes(void *user, celfw_framer *src, const uint8_t *p, size_t n)
         if (fr.kind == CELFW_FRAME_ERROR)
             frame_error(fw, &fr);
         else if (fr.kind != CELFW_FRAME_NONE)
-            apply_frame(fw, &fr);
+            apply_frame(fw, src, &fr);
     } while (fr.kind != CELFW_FRAME_NONE);
 }
 

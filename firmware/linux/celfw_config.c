@@ -347,7 +347,7 @@ static const setting settings[] = {
     {"aa", "none|N", p_aa, "anti-aliasing: pixel centres, or N sub-scanlines (default 4)"},
     {"input", "SPEC", p_input, "cel stream: none, stdin, file:PATH, tcp:PORT (loopback), tcp:ADDR:PORT, "
                               "tcp:[ADDR]:PORT, tty:DEV[:BAUD]"},
-    {"input-timeout", "SECONDS", p_input_timeout, "drop a TCP client that completes no transaction for this "
+    {"input-timeout", "SECONDS", p_input_timeout, "drop a TCP client that gets no transaction applied for this "
                                                   "long (default 10)"},
     {"trust", "FILE.pub", p_trust, "apply only transactions signed by this key (repeatable; celc keygen)"},
     {"state-dir", "DIR", p_state_dir, "keeps the last applied sequence per trusted key (needed with trust)"},

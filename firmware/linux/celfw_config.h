@@ -31,7 +31,7 @@ typedef struct celfw_config {
     int subscanlines;
     char input[256];       /* none | stdin | file:PATH | tcp:[HOST:]PORT | tty:DEVICE[:BAUD] */
     char scene[256];       /* builtin:NAME | PATH.json | none */
-    double input_timeout;  /* seconds a TCP client may go without completing a frame */
+    double input_timeout;  /* seconds a TCP client may go without a transaction applied */
     char trust[CELFW_MAX_TRUST][256]; /* public key files; any: only signed transactions apply */
     int trust_count;
     char state_dir[256];   /* where the last applied sequence per key is kept */

@@ -104,7 +104,6 @@ static bool start(celfw_framer *f, celfw_frame_kind k, const uint8_t *hdr, uint6
             error(fr, CS_ERR_STREAM_TOO_BIG, hdr_at, hdr_at, "out of memory for a stream header");
             return true;
         }
-        f->frames++;
         f->state = F_HUNT;
         fr->kind = k;
         fr->data = f->buf;
@@ -181,7 +180,6 @@ static bool step(celfw_framer *f, uint8_t b, celfw_frame *fr)
             return false;
         f->state = F_HUNT;
         f->ring_count = 0;
-        f->frames++;
         fr->kind = (celfw_frame_kind)f->kind;
         fr->data = f->buf;
         fr->len = f->len;

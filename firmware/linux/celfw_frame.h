@@ -55,7 +55,8 @@ typedef struct celfw_frame {
 typedef struct celfw_framer {
     char name[96];       /* the source, for log lines: "tcp client 127.0.0.1:5000" */
     uint64_t offset;     /* bytes of this sequence so far */
-    uint64_t frames;     /* whole frames handed out (a sender's progress) */
+    uint64_t applied;    /* transactions of this sequence that committed: counted by
+                            the sink, watched by the input as the sender's progress */
     uint64_t frame_offset, skip_left;
     uint8_t *buf;
     size_t len, cap, want;

@@ -5,9 +5,11 @@
  * serves several clients at once, each with its own framer, so no client
  * waits behind another: an idle one, a one-byte-a-second one or an intruder
  * holding a connection open costs a slot and its buffer, never the sign.
- * Clients that complete no frame in time are dropped (checked every frame),
- * keepalive probes catch peers that vanished, and a full house makes room by
- * dropping the client that has gone longest without completing a frame.
+ * Clients that get no transaction applied in time are dropped (checked every
+ * frame): one that sends nothing, crawls, or sends only what is refused.
+ * Keepalive probes catch peers that vanished, and a full house makes room by
+ * dropping the client that has gone longest without a transaction applied,
+ * so a crowd of intruders cannot keep the operator out.
  * A tty is put in raw mode at the given baud rate. A file is read in chunks
  * so that a large file cannot hold up a frame. All descriptors are
  * non-blocking and only read when poll() says so.
@@ -35,8 +37,8 @@ typedef enum kind { IN_NONE, IN_STDIN, IN_FILE, IN_TCP, IN_TTY } kind;
 typedef struct session {
     int fd;               /* -1 when none is open */
     uint64_t bytes;
-    uint64_t progress_ns; /* when it connected or last completed a frame */
-    uint64_t frames;      /* its framer's count at progress_ns */
+    uint64_t progress_ns; /* when it connected or last had a transaction applied */
+    uint64_t applied;     /* its framer's count at progress_ns */
     celfw_framer fr;
 } session;
 
@@ -325,7 +327,7 @@ static void accept_client(celfw_input *in, const celfw_input_sink *sink)
     slot->fd = c;
     slot->bytes = 0;
     slot->progress_ns = now_ns();
-    slot->frames = 0;
+    slot->applied = 0;
     celfw_framer_init(&slot->fr, name);
     char what[160];
     snprintf(what, sizeof what, "input %s connected", name);
@@ -340,8 +342,8 @@ static void read_session(celfw_input *in, session *s, const celfw_input_sink *si
     if (got > 0) {
         s->bytes += (uint64_t)got;
         sink->bytes(sink->user, &s->fr, in->buf, (size_t)got);
-        if (s->fr.frames != s->frames) {
-            s->frames = s->fr.frames;
+        if (s->fr.applied != s->applied) {
+            s->applied = s->fr.applied;
             s->progress_ns = now_ns();
         }
     } else if (got == 0) {

@@ -11,10 +11,11 @@
  * because a transaction cut there can never be completed by the next client.
  *
  * TCP serves up to CELFW_INPUT_MAX_CLIENTS clients at once. A client that
- * completes no frame within the input timeout is dropped, keepalive probes
- * find peers that vanished without a word, and when every slot is taken a
- * new client takes the slot of the one that has gone longest without
- * completing a frame: whoever connects first cannot hold the sign.
+ * gets no transaction applied within the input timeout is dropped (the sink
+ * counts applied transactions in the framer: celfw_framer.applied),
+ * keepalive probes find peers that vanished without a word, and when every
+ * slot is taken a new client takes the slot of the one that has gone longest
+ * without a transaction applied: whoever connects first cannot hold the sign.
  */
 #ifndef CELFW_INPUT_H
 #define CELFW_INPUT_H
@@ -41,7 +42,7 @@ typedef struct celfw_input celfw_input;
 /* Opens spec (none, stdin, file:PATH, tcp:[HOST:]PORT, tcp:[ADDR]:PORT, tty:DEV[:BAUD]);
  * tcp:PORT listens on 127.0.0.1 only. */
 int celfw_input_open(celfw_input **in, const char *spec, char *err, size_t errlen);
-/* A TCP client that completes no frame for this long is dropped (default 10 s). */
+/* A TCP client that gets no transaction applied for this long is dropped (default 10 s). */
 void celfw_input_set_timeout(celfw_input *in, double seconds);
 /* Whether the input listens beyond loopback (a network can reach it). */
 bool celfw_input_public(const celfw_input *in);

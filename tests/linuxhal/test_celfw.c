@@ -856,29 +856,40 @@ static void test_tcp_ingress(void)
         close(fd);
     }
 
-    /* An idle client and a one-byte-a-second client connect first. */
-    int idle = tcp_connect(port), slow = tcp_connect(port);
+    /* An idle client, a one-byte-a-second client and one that sends nothing but damaged
+     * transactions (whole frames, never applied) connect first. */
+    cels_buf damaged;
+    cels_buf_init(&damaged);
+    move_patch(&damaged, 1.0f);
+    damaged.data[damaged.len - 1] ^= 1;
+    int idle = tcp_connect(port), slow = tcp_connect(port), noisy = tcp_connect(port);
     double t0 = now_s();
-    CHECK(idle >= 0 && slow >= 0 && write(slow, "C", 1) == 1, "idle and slow clients connected");
+    CHECK(idle >= 0 && slow >= 0 && noisy >= 0 && write(slow, "C", 1) == 1, "idle, slow and noisy clients");
     g_usleep(200000);
     double t1 = now_s();
     CHECK(push(port, plain.data, plain.len), "a valid sender");
     CHECK(wait_commit(&c, "stream commit 1 applied", 5.0) < 1.0,
           "the valid sender is not kept waiting (applied %.3f s after sending; timeout 1 s)", now_s() - t1);
     int drops = 0;
-    double next_byte = t0 + 1.0;
-    while (now_s() - t0 < 3.0 && drops < 2) {
+    double next_byte = t0 + 1.0, next_noise = t0;
+    while (now_s() - t0 < 3.0 && drops < 3) {
         if (now_s() >= next_byte) {
             send(slow, "S", 1, MSG_NOSIGNAL); /* it may be gone already */
             next_byte += 1.0;
         }
+        if (now_s() >= next_noise) {
+            send(noisy, damaged.data, damaged.len, MSG_NOSIGNAL);
+            next_noise += 0.3;
+        }
         if (wait_line(&c, "timed out", 0.05, line, sizeof line))
             drops++;
     }
-    CHECK(drops == 2 && now_s() - t0 < 2.5, "idle and slow clients dropped after the 1 s timeout (%d by %.2f s)",
-          drops, now_s() - t0);
+    CHECK(drops == 3 && now_s() - t0 < 2.5,
+          "idle, slow and noisy clients dropped after the 1 s timeout (%d by %.2f s)", drops, now_s() - t0);
     close(idle);
     close(slow);
+    close(noisy);
+    cels_buf_free(&damaged);
 
     /* A full house of idle clients (an intruder's): a new sender still gets in at once. */
     int hold[CELFW_INPUT_MAX_CLIENTS];
