@@ -113,16 +113,21 @@ static int parse_state(celfw_trust *t, char *text, const char *path, char *err, 
             }
             continue;
         }
-        char id[40];
-        uint64_t seq;
-        int used = 0;
-        if (sscanf(line, "%16[0-9a-f] %" SCNu64 "%n", id, &seq, &used) != 2 || line[used] != 0 ||
-            strlen(id) != 2 * CS_WIRE_SIG_KEYID_SIZE || line[2 * CS_WIRE_SIG_KEYID_SIZE] != ' ' ||
-            line[2 * CS_WIRE_SIG_KEYID_SIZE + 1] < '0' || line[2 * CS_WIRE_SIG_KEYID_SIZE + 1] > '9') {
+        /* "KEYID SEQUENCE": 16 lower-case hex digits, one space, decimal digits, nothing else */
+        char id[2 * CS_WIRE_SIG_KEYID_SIZE + 1];
+        const char *digits = line + 2 * CS_WIRE_SIG_KEYID_SIZE + 1;
+        char *end = NULL;
+        bool ok = strlen(line) > 2 * CS_WIRE_SIG_KEYID_SIZE + 1 && line[2 * CS_WIRE_SIG_KEYID_SIZE] == ' ' &&
+                  strspn(line, "0123456789abcdef") == 2 * CS_WIRE_SIG_KEYID_SIZE &&
+                  strspn(digits, "0123456789") == strlen(digits);
+        errno = 0;
+        unsigned long long seq = ok ? strtoull(digits, &end, 10) : 0;
+        if (!ok || errno == ERANGE || *end != 0) {
             snprintf(err, errlen, "%s:%d: damaged (expected 'KEYID SEQUENCE'); refusing to guess which "
                      "sequences were applied", path, no);
             return -1;
         }
+        snprintf(id, sizeof id, "%.*s", 2 * CS_WIRE_SIG_KEYID_SIZE, line);
         if (find_state(t, id) || t->state_count == MAX_STATE) {
             snprintf(err, errlen, "%s:%d: key %s listed twice, or more than %d keys", path, no, id, MAX_STATE);
             return -1;

@@ -438,7 +438,10 @@ static void test_trust_state(const char *dir)
     snprintf(name, sizeof name, "%s/trust-state", state);
     static const char *const bad[] = {"celscan-trust-state-1\nzz 5\n", "", "something else\n",
                                       "celscan-trust-state-1\n0123456789abcdef 12x\n",
-                                      "celscan-trust-state-1\n0123456789abcdef -1\n"};
+                                      "celscan-trust-state-1\n0123456789abcdef -1\n",
+                                      "celscan-trust-state-1\n0123456789abcdef 99999999999999999999999\n",
+                                      "celscan-trust-state-1\n0123456789ABCDEF 5\n",
+                                      "celscan-trust-state-1\n0123456789abcdef  5\n"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         write_file(name, bad[i], 0600);
         tr = celfw_trust_new();
