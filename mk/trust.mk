@@ -30,7 +30,7 @@ $(FUZZ)/fuzz_sign: $(patsubst %.c,$(FUZZ)/sign/%.o,$(FUZZ_SIGN_SRC)) \
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SODIUM_LIBS) -o $@
 
 FUZZ_SEEDS_fuzz_sign = cp tests/fuzz-sign-corpus/* $(FUZZ)/fuzz_sign.corpus/
-FUZZ_OPTS_fuzz_sign = -timeout=5 -rss_limit_mb=1024 -max_len=8192
+FUZZ_OPTS_fuzz_sign = -timeout=5 -dict=$(CURDIR)/tests/fuzz_sign.dict -rss_limit_mb=1024 -max_len=8192
 .PHONY: fuzz-sign fuzz-sign-smoke sign-seeds test-sign
 fuzz-sign: $(FUZZ)/fuzz_sign
 	$(call run_fuzzer,fuzz_sign,$(FUZZ_TIME),fuzz-sign)
