@@ -30,6 +30,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "celfw_clock.h"
 #include "celfw_config.h"
 #include "celfw_input.h"
 #include "celfw_scenes.h"
@@ -50,10 +51,11 @@ typedef struct celfw {
     char builtin[32];        /* a built-in scene being shown, "" otherwise */
     celfw_input *in;
     celfw_stream *stream;
-    uint64_t iterations, frames, dropped, stream_bytes, stream_errors, commits, failures;
+    uint64_t frames, dropped, stream_bytes, stream_errors, commits, failures;
     lx_frame_stats sum;
     bool display_up, render_warned;
-    double anim_t;
+    celfw_clock clk;         /* which animation time each frame shows */
+    float anim_t;            /* the last frame's, as the renderer took it */
     uint64_t t0, last_log, frames_at_log;
 } celfw;
 
@@ -108,6 +110,7 @@ static void on_bytes(void *user, const uint8_t *p, size_t n)
              * shown before it edits) */
             fw->front ^= 1;
             fw->builtin[0] = 0;
+            celfw_clock_show(&fw->clk, fw->scene[fw->front ^ 1], fw->scene[fw->front], NULL, 0);
             fw->commits++;
             say("event", "stream commit %llu applied", (unsigned long long)fw->commits);
         } else if (r == CELFW_STREAM_ERROR) {
@@ -147,7 +150,7 @@ static const char *display_state(const celfw *fw)
 
 static void status(celfw *fw, const char *kind, const char *extra)
 {
-    uint64_t now = lx_now(&lx_clock_monotonic);
+    uint64_t now = lx_now(fw->clk.mono);
     bool final = !strcmp(kind, "exit"); /* the exit line gives the whole run's rate */
     uint64_t since = final ? fw->t0 : fw->last_log, base = final ? 0 : fw->frames_at_log;
     double dt = (double)(now - since) / 1e9;
@@ -163,7 +166,7 @@ static void status(celfw *fw, const char *kind, const char *extra)
         (unsigned long long)fw->sum.rects, (unsigned long long)fw->sum.bytes_raw,
         (unsigned long long)fw->sum.bytes_wire, (unsigned long long)fw->sum.writes,
         (unsigned long long)fw->sum.retries, (unsigned long long)(fw->sum.errors + fw->failures), fps,
-        fw->anim_t);
+        (double)fw->anim_t);
     fw->last_log = now;
     fw->frames_at_log = fw->frames;
 }
@@ -230,6 +233,7 @@ static int load_scene(celfw *fw)
         return EXIT_CONFIG;
     }
     memcpy(fw->scene[fw->front ^ 1], s, sizeof *s);
+    celfw_clock_show(&fw->clk, NULL, s, NULL, fw->builtin[0] ? celfw_scene_period_ns(fw->builtin) : 0);
     return 0;
 }
 
@@ -265,28 +269,26 @@ static void wait_and_serve(celfw *fw, uint64_t until)
     do {
         struct pollfd pfd[2];
         int n = fw->in ? celfw_input_pollfds(fw->in, pfd, 2) : 0;
-        uint64_t now = lx_now(&lx_clock_monotonic);
+        uint64_t now = lx_now(fw->clk.mono);
         uint64_t left = until > now ? until - now : 0;
         struct timespec ts = {(time_t)(left / 1000000000u), (long)(left % 1000000000u)};
         int r = ppoll(pfd, (nfds_t)n, &ts, NULL);
         if (r > 0)
             celfw_input_service(fw->in, pfd, n, &sink);
-    } while (!stop_signal && lx_now(&lx_clock_monotonic) < until);
+    } while (!stop_signal && lx_now(fw->clk.mono) < until);
 }
 
 static const char *run(celfw *fw)
 {
     const celfw_config *c = &fw->cfg;
     uint64_t period = c->fps > 0 ? (uint64_t)(1e9 / c->fps) : 0;
-    uint64_t next = lx_now(&lx_clock_monotonic);
+    uint64_t next = lx_now(fw->clk.mono);
     fw->t0 = fw->last_log = next;
     uint64_t log_every = (uint64_t)(c->log_interval * 1e9);
     uint64_t render_errors = 0;
     for (;;) {
-        uint64_t start = lx_now(&lx_clock_monotonic);
-        fw->anim_t = c->time_step > 0 ? (double)fw->iterations * c->time_step : (double)(start - fw->t0) / 1e9;
-        float t = (float)fw->anim_t;
-        fw->anim_t = t; /* report the value the renderer used */
+        uint64_t start = lx_now(fw->clk.mono);
+        float t = fw->anim_t = celfw_clock_frame(&fw->clk, fw->scene[fw->front]);
         if (fw->builtin[0] && celfw_scene_animated(fw->builtin))
             celfw_scene_build(fw->builtin, fw->scene[fw->front], t);
         lx_scene_source_set(&fw->src, fw->scene[fw->front], t);
@@ -295,7 +297,6 @@ static const char *run(celfw *fw)
         lx_frame_stats st = {0};
         lx_status s = fw->disp->ops->present(fw->disp, &fw->src.src, &st);
         add_stats(&fw->sum, &st);
-        fw->iterations++;
         if (s == LX_OK) {
             fw->frames++;
             if (!fw->display_up)
@@ -325,7 +326,7 @@ static const char *run(celfw *fw)
                 say("event", "frame failed (%llu so far): %s: %s", (unsigned long long)fw->failures,
                     lx_status_str(s), fw->disp->err);
         }
-        uint64_t now = lx_now(&lx_clock_monotonic);
+        uint64_t now = lx_now(fw->clk.mono);
         if (log_every && now - fw->last_log >= log_every)
             status(fw, "status", "");
         if (stop_signal)
@@ -384,6 +385,7 @@ int main(int argc, char **argv)
         fw->disp->ops->close(fw->disp);
         return EXIT_DISPLAY;
     }
+    celfw_clock_init(&fw->clk, &lx_clock_monotonic, &lx_clock_realtime, fw->cfg.realtime, fw->cfg.time_step);
     if ((rc = load_scene(fw)) != 0) {
         fw->disp->ops->close(fw->disp);
         return rc;
