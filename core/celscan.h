@@ -595,6 +595,19 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
                          const cs_render_opts *opts, cs_error *err);
 
 /*
+ * Whether `scene` can be rendered with `opts` (its canvas scaled to the
+ * output size within the coordinate limit, its segments and pieces within
+ * the workspace's capacities): prepares trial frames in r and ws (scratch,
+ * as for cs_frame_begin) at opts->time and, if the scene has keys, at its
+ * earliest and latest key time. Meant for a commit: a board checks the
+ * scene a stream brings before it swaps it in, so a scene that cannot
+ * render is refused once instead of failing frame after frame. Time
+ * between keys is not sampled (at most three trials, whatever the keys).
+ */
+cs_status cs_scene_check_render(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                                const cs_render_opts *opts, cs_error *err);
+
+/*
  * As cs_frame_begin, but cels [cache->cel_first, +cel_count) are not
  * scan-converted: their pre-combined lines from `cache` are composited in
  * their place in the stack. `cache` may be NULL (render every cel). A cache
@@ -789,6 +802,15 @@ cs_stream_event cs_stream_finish(cs_stream *s);
 
 /* Makes the ready commit the front scene (between frames). CS_ERR_STATE if none is ready. */
 cs_status cs_stream_swap(cs_stream *s);
+
+/*
+ * Drops the ready commit instead of swapping it in (the caller found it
+ * unusable, e.g. cs_scene_check_render failed): the front scene stays, the
+ * transaction counts as dropped, and cs_stream_last_error reports `status`
+ * with `what` (which must outlive the next feed) and `where`, at the end of
+ * the transaction. CS_ERR_STATE if no commit is ready.
+ */
+cs_status cs_stream_refuse(cs_stream *s, cs_status status, const char *what, const cs_error *where);
 
 /*
  * Whether the back store is in use: a transaction is being decoded into it,

@@ -892,6 +892,24 @@ cs_status cs_stream_swap(cs_stream *s)
     return CS_OK;
 }
 
+cs_status cs_stream_refuse(cs_stream *s, cs_status status, const char *what, const cs_error *where)
+{
+    if (!s || !s->commit_ready)
+        return CS_ERR_STATE;
+    s->commit_ready = false;
+    s->commits--;
+    s->dropped++;
+    s->last.status = status;
+    s->last.offset = s->txn_offset;
+    s->last.at = s->offset;
+    s->last.what = what ? what : "refused";
+    if (where)
+        s->last.where = *where;
+    else
+        cs__error(&s->last.where, CS_OK, -1, -1, -1, -1);
+    return CS_OK;
+}
+
 bool cs_stream_busy(const cs_stream *s)
 {
     return s && (s->state == ST_BODY || s->state == ST_TRAILER || s->commit_ready);

@@ -1694,6 +1694,66 @@ static void test_busy(void)
     free(other);
 }
 
+/*
+ * A scene that decodes and validates but cannot render at the board's size
+ * (canvas 1e-6 scaled to 320x180: beyond the coordinate limit) is found by
+ * cs_scene_check_render at its commit and dropped with cs_stream_refuse: the
+ * error names the transaction, the scene on display stays, and the next
+ * transaction decodes as usual.
+ */
+static void test_refuse(void)
+{
+    cs_scene *s = new_scene(), *tiny = new_scene();
+    build_demo(s);
+    cs_scene_copy(tiny, s);
+    cs_error e;
+    CHECK(cs_scene_set_canvas(tiny, 1e-6f, 1e-6f) == CS_OK, "a valid canvas of 1e-6");
+    cels_buf b;
+    encode(s, &b, true);
+    size_t second = b.len;
+    cels_encode_scene(&b, tiny);
+    size_t third = b.len;
+    cels_encode_scene(&b, s);
+    cs_render_opts o = cs_render_defaults(320, 180);
+    cs_renderer r;
+    CHECK(cs_scene_check_render(&r, ws, s, &o, &e) == CS_OK, "the demo renders at 320x180");
+    cs_stream_init(&st, store_a, false, store_b);
+    size_t off = 0, used;
+    int commits = 0, refused = 0;
+    while (off < b.len || commits + refused < 3) {
+        cs_stream_event ev = cs_stream_feed(&st, b.data + off, b.len - off, &used);
+        off += used;
+        if (ev == CS_STREAM_COMMIT) {
+            cs_status c = cs_scene_check_render(&r, ws, st.back, &o, &e);
+            if (c == CS_OK) {
+                commits++;
+                cs_stream_swap(&st);
+                continue;
+            }
+            refused++;
+            CHECK(c == CS_ERR_RANGE && e.cel == -1, "tiny canvas: %s (cel %d)", status_name(c), (int)e.cel);
+            CHECK(cs_stream_refuse(&st, c, "cannot render", &e) == CS_OK, "refuse the commit");
+            const cs_stream_error *le = cs_stream_last_error(&st);
+            CHECK(le->status == CS_ERR_RANGE && le->offset == second && le->at == third &&
+                      !strcmp(le->what, "cannot render"),
+                  "refusal reported at %llu for the transaction at %llu (want %zu, %zu)",
+                  (unsigned long long)le->at, (unsigned long long)le->offset, third, second);
+            char why[128] = "";
+            CHECK(cs_stream_scene(&st) && scene_equal(s, cs_stream_scene(&st), why, sizeof why),
+                  "the demo stays on display: %s", why);
+            CHECK(cs_stream_refuse(&st, c, "again", &e) == CS_ERR_STATE, "nothing left to refuse");
+        } else if (ev == CS_STREAM_MORE && off >= b.len) {
+            break;
+        }
+    }
+    CHECK(commits == 2 && refused == 1 && st.commits == 2 && st.dropped == 1,
+          "two commits and one refusal (%d, %d; decoder counts %u, %u)", commits, refused, st.commits,
+          st.dropped);
+    cels_buf_free(&b);
+    free(s);
+    free(tiny);
+}
+
 /* The host reader: a file with a good scene and a damaged patch. */
 static void test_reader(void)
 {
@@ -2397,6 +2457,7 @@ int main(int argc, char **argv)
     test_random_and_resync();
     test_valid_then_damaged();
     test_busy();
+    test_refuse();
     test_patches();
     test_reader();
     test_edit_ops();

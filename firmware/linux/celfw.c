@@ -55,6 +55,7 @@ typedef struct celfw {
     lx_frame_stats sum;
     bool display_up, render_warned;
     celfw_clock clk;         /* which animation time each frame shows */
+    char refusal[200];       /* why the last commit was refused */
     float anim_t;            /* the last frame's, as the renderer took it */
     uint64_t t0, last_log, frames_at_log;
 } celfw;
@@ -121,6 +122,23 @@ static void on_bytes(void *user, const uint8_t *p, size_t n)
             break;
         }
     }
+}
+
+/*
+ * A committed scene that cannot render at the display's size (a canvas of
+ * 1e-6 scaled beyond the coordinate limit, more segments than the renderer
+ * holds) is refused here, before the swap, instead of failing every frame.
+ */
+static const char *check_commit(void *user, const cs_scene *next, cs_status *status, cs_error *where)
+{
+    celfw *fw = user;
+    cs_status st = lx_scene_source_check(&fw->src, next, where);
+    if (st == CS_OK)
+        return NULL;
+    *status = st;
+    snprintf(fw->refusal, sizeof fw->refusal, "commit refused: the scene (canvas %gx%g) cannot render at %dx%d",
+             (double)next->canvas_w, (double)next->canvas_h, fw->src.src.width, fw->src.src.height);
+    return fw->refusal;
 }
 
 static void on_reset(void *user, const char *why)
@@ -386,6 +404,7 @@ int main(int argc, char **argv)
         return EXIT_DISPLAY;
     }
     celfw_clock_init(&fw->clk, &lx_clock_monotonic, &lx_clock_realtime, fw->cfg.realtime, fw->cfg.time_step);
+    celfw_stream_set_check(fw->stream, check_commit, fw);
     if ((rc = load_scene(fw)) != 0) {
         fw->disp->ops->close(fw->disp);
         return rc;

@@ -55,6 +55,17 @@ void celfw_stream_free(celfw_stream *s);
 celfw_stream_result celfw_stream_feed(celfw_stream *s, const uint8_t *p, size_t n, size_t *used,
                                       cs_scene *shown, cs_scene *next, celfw_stream_error *err);
 /*
+ * A check of every committed scene before it is reported as COMMIT (celfw:
+ * can it render at the display's size?). It returns NULL to accept, or why
+ * not (valid until the next feed) with a status and scene location; the
+ * commit is then dropped and reported as CELFW_STREAM_ERROR at the end of
+ * its transaction, and `shown` stays.
+ */
+typedef const char *(*celfw_stream_check)(void *user, const cs_scene *next, cs_status *status,
+                                          cs_error *where);
+void celfw_stream_set_check(celfw_stream *s, celfw_stream_check check, void *user);
+
+/*
  * The byte sequence ended (client gone, end of file): drops a partial
  * transaction. Returns CELFW_STREAM_ERROR with `err` for each thing
  * dropped; call until it returns CELFW_STREAM_MORE.

@@ -69,6 +69,13 @@ void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time)
     s->opts.time = time;
 }
 
+cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err)
+{
+    cs_render_opts o = s->opts;
+    o.time = 0.0f;
+    return cs_scene_check_render(&s->r[0], s->ws[0], scene, &o, err);
+}
+
 void lx_scene_source_free(lx_scene_source *s)
 {
     for (int l = 0; l < LX_MAX_LANES; l++) {

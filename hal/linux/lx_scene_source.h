@@ -30,6 +30,9 @@ lx_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_
                                int subscanlines);
 /* Chooses the scene and the animation time of the next frame. */
 void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time);
+/* Whether `scene` can be rendered at this source's size (cs_scene_check_render
+ * in lane 0's workspace): only between frames. */
+cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err);
 void lx_scene_source_free(lx_scene_source *s);
 
 #endif /* LX_SCENE_SOURCE_H */

@@ -19,6 +19,7 @@
 #include <glib.h>
 
 #include "celfw_child.h"
+#include "fake_gud.h"
 
 const char *celfw_child_path(void)
 {
@@ -167,4 +168,30 @@ bool send_all(int fd, const uint8_t *p, size_t n)
         n -= (size_t)w;
     }
     return true;
+}
+
+/* The truth for the panel: the frame of `s` at time t, rendered by the core, as RGB565. */
+int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h)
+{
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.subscanlines = 4;
+    o.time = t;
+    static cs_workspace ws;
+    cs_renderer r;
+    cs_error e;
+    uint8_t *want = malloc((size_t)w * (size_t)h * 2u), *got = malloc((size_t)w * (size_t)h * 2u);
+    float *line = malloc((size_t)w * 3u * sizeof(float));
+    cs_frame_begin(&r, &ws, s, &o, &e);
+    for (int y = 0; y < h; y++) {
+        cs_render_line(&r, y, line);
+        cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, want + (size_t)y * (size_t)w * 2u);
+    }
+    fake_gud_framebuffer(dev, got, (size_t)w * (size_t)h * 2u);
+    int bad = 0;
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        bad += memcmp(got + 2 * i, want + 2 * i, 2) != 0;
+    free(want);
+    free(got);
+    free(line);
+    return bad;
 }

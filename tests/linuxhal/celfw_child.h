@@ -13,6 +13,8 @@
 #include <stdint.h>
 #include <sys/types.h>
 
+#include "celscan.h"
+
 typedef struct child {
     pid_t pid;
     int err_fd, in_fd;
@@ -38,5 +40,10 @@ unsigned long long field(const char *line, const char *key);
 int tcp_connect(int port);
 /* Writes all n bytes; false if the peer went away. */
 bool send_all(int fd, const uint8_t *p, size_t n);
+
+typedef struct fake_gud fake_gud;
+/* Pixels of the emulated panel (w x h, RGB565) that differ from the core's
+ * rendering of s at time t with celfw's defaults (4 sub-scanlines). */
+int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h);
 
 #endif /* CELFW_CHILD_H */

@@ -32,7 +32,6 @@
 #include "scene_json.h"
 
 static cs_scene scene;
-static cs_workspace ws;
 
 /* Runs celfw to completion; checks its exit status and that stderr says `needle`. */
 static void expect_failure(const char *what, const char *const *args, int code, const char *needle)
@@ -93,31 +92,6 @@ static void test_config_errors(void)
     CHECK(rc == 0 && strstr(c.log, "reason=frames") && strstr(c.log, " frames=3 "),
           "config file read, command line wins: %s", c.log);
     unlink(path);
-}
-
-/* The truth for the panel: the frame of `s` at time t, rendered by the core, as RGB565. */
-static int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h)
-{
-    cs_render_opts o = cs_render_defaults(w, h);
-    o.subscanlines = 4;
-    o.time = t;
-    cs_renderer r;
-    cs_error e;
-    uint8_t *want = malloc((size_t)w * (size_t)h * 2u), *got = malloc((size_t)w * (size_t)h * 2u);
-    float *line = malloc((size_t)w * 3u * sizeof(float));
-    cs_frame_begin(&r, &ws, s, &o, &e);
-    for (int y = 0; y < h; y++) {
-        cs_render_line(&r, y, line);
-        cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, want + (size_t)y * (size_t)w * 2u);
-    }
-    fake_gud_framebuffer(dev, got, (size_t)w * (size_t)h * 2u);
-    int bad = 0;
-    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
-        bad += memcmp(got + 2 * i, want + 2 * i, 2) != 0;
-    free(want);
-    free(got);
-    free(line);
-    return bad;
 }
 
 /* The same for a built-in scene of celfw. */
