@@ -6,7 +6,10 @@
  * frame at the animation clock's time, pulling lines as the display wants
  * them, then wait for the next frame slot while feeding whatever input
  * arrived to the stream decoder. A commit swaps the two scene stores between
- * frames, so a frame never mixes two scenes. The display may come and go
+ * frames, so a frame never mixes two scenes. A frame slower than its budget
+ * (a 16,000-point scene on a big panel) does not starve the input: between
+ * lines, every few milliseconds, celfw reads what arrived and holds it (up
+ * to CELFW_HOLD_MAX) until the frame is out, then decodes it. The display may come and go
  * (USB); the loop keeps its clock and counts frames it could not show.
  *
  * Everything worth knowing goes to stderr as one line per event, in a form
@@ -42,6 +45,11 @@
 
 enum { EXIT_CONFIG = 2, EXIT_INPUT = 3, EXIT_DISPLAY = 4 };
 
+/* Input is read between the lines of a frame at most this often... */
+#define CELFW_SERVE_NS 4000000u
+/* ...and held until the frame is out, up to this much (plus one read). */
+#define CELFW_HOLD_MAX (1u << 20)
+
 typedef struct celfw {
     celfw_config cfg;
     lx_display *disp;
@@ -51,11 +59,16 @@ typedef struct celfw {
     char builtin[32];        /* a built-in scene being shown, "" otherwise */
     celfw_input *in;
     celfw_stream *stream;
-    uint64_t frames, dropped, stream_bytes, stream_errors, commits, failures;
+    uint64_t frames, dropped, stream_bytes, stream_errors, commits, failures, slow;
     lx_frame_stats sum;
     bool display_up, render_warned;
     celfw_clock clk;         /* which animation time each frame shows */
     char refusal[200];       /* why the last commit was refused */
+    bool in_frame;           /* a frame is rendering: input is held, not decoded */
+    bool held_reset;         /* the byte sequence ended after the held bytes */
+    uint8_t *held;           /* input read while a frame rendered */
+    size_t held_n, held_cap;
+    uint64_t last_serve;
     float anim_t;            /* the last frame's, as the renderer took it */
     uint64_t t0, last_log, frames_at_log;
 } celfw;
@@ -92,9 +105,36 @@ static void backend_log(void *user, const char *fmt, ...)
 
 /* ------------------------------------------------------------- stream */
 
+/* Keeps bytes read during a frame; the decoder may not swap scenes then. */
+static void hold(celfw *fw, const uint8_t *p, size_t n)
+{
+    if (fw->held_n + n > fw->held_cap) {
+        size_t cap = fw->held_cap ? fw->held_cap : 65536;
+        while (cap < fw->held_n + n)
+            cap *= 2;
+        uint8_t *q = realloc(fw->held, cap);
+        if (!q) {
+            /* cannot happen within CELFW_HOLD_MAX on a board that started;
+             * if it does, what was lost is a cut transaction: say so */
+            fw->held_reset = true;
+            fw->stream_errors++;
+            say("event", "out of memory holding %zu input bytes during a frame: dropped", n);
+            return;
+        }
+        fw->held = q;
+        fw->held_cap = cap;
+    }
+    memcpy(fw->held + fw->held_n, p, n);
+    fw->held_n += n;
+}
+
 static void on_bytes(void *user, const uint8_t *p, size_t n)
 {
     celfw *fw = user;
+    if (fw->in_frame) {
+        hold(fw, p, n);
+        return;
+    }
     while (n > 0) {
         size_t used = 0;
         celfw_stream_error err = {0};
@@ -145,6 +185,10 @@ static void on_reset(void *user, const char *why)
 {
     (void)why;
     celfw *fw = user;
+    if (fw->in_frame) {
+        fw->held_reset = true; /* after the held bytes, in order */
+        return;
+    }
     celfw_stream_error err;
     while (celfw_stream_reset(fw->stream, &err) == CELFW_STREAM_ERROR) {
         fw->stream_errors++;
@@ -174,11 +218,11 @@ static void status(celfw *fw, const char *kind, const char *extra)
     double dt = (double)(now - since) / 1e9;
     double fps = dt > 0 ? (double)(fw->frames - base) / dt : 0.0;
     say(kind,
-        "%st=%.2f frames=%llu dropped=%llu misses=%llu stream_bytes=%llu stream_errors=%llu commits=%llu "
+        "%st=%.2f frames=%llu dropped=%llu misses=%llu slow=%llu stream_bytes=%llu stream_errors=%llu commits=%llu "
         "display=%s lines_sent=%llu rects=%llu bytes_raw=%llu bytes_wire=%llu gpio_writes=%llu "
         "retries=%llu errors=%llu fps=%.1f anim_t=%.9g",
         extra, (double)(now - fw->t0) / 1e9, (unsigned long long)fw->frames,
-        (unsigned long long)fw->dropped, (unsigned long long)fw->sum.line_misses,
+        (unsigned long long)fw->dropped, (unsigned long long)fw->sum.line_misses, (unsigned long long)fw->slow,
         (unsigned long long)fw->stream_bytes, (unsigned long long)fw->stream_errors,
         (unsigned long long)fw->commits, display_state(fw), (unsigned long long)fw->sum.lines_sent,
         (unsigned long long)fw->sum.rects, (unsigned long long)fw->sum.bytes_raw,
@@ -277,6 +321,48 @@ static int bench_gpio(celfw *fw)
 
 /* ----------------------------------------------------------------- loop */
 
+/* Polls the input until `until` (once, if it has passed) and serves it. */
+static void serve(celfw *fw, uint64_t until)
+{
+    static const celfw_input_sink sink_proto = {NULL, on_bytes, on_reset, on_note};
+    celfw_input_sink sink = sink_proto;
+    sink.user = fw;
+    struct pollfd pfd[2];
+    int n = fw->in ? celfw_input_pollfds(fw->in, pfd, 2) : 0;
+    uint64_t now = lx_now(fw->clk.mono);
+    uint64_t left = until > now ? until - now : 0;
+    struct timespec ts = {(time_t)(left / 1000000000u), (long)(left % 1000000000u)};
+    if (ppoll(pfd, (nfds_t)n, &ts, NULL) > 0)
+        celfw_input_service(fw->in, pfd, n, &sink);
+}
+
+/* Between the lines of a frame: read what arrived, every CELFW_SERVE_NS. */
+static void serve_between_lines(void *user)
+{
+    celfw *fw = user;
+    if (!fw->in || fw->held_reset || fw->held_n >= CELFW_HOLD_MAX)
+        return; /* after a reset, the next session's bytes wait for the decoder */
+    uint64_t now = lx_now(fw->clk.mono);
+    if (now - fw->last_serve < CELFW_SERVE_NS)
+        return;
+    fw->last_serve = now;
+    serve(fw, 0);
+}
+
+/* The frame is out: decode what was held during it. */
+static void release_held(celfw *fw)
+{
+    fw->in_frame = false;
+    size_t n = fw->held_n;
+    fw->held_n = 0;
+    if (n)
+        on_bytes(fw, fw->held, n);
+    if (fw->held_reset) {
+        fw->held_reset = false;
+        on_reset(fw, "");
+    }
+}
+
 static void wait_and_serve(celfw *fw, uint64_t until)
 {
     static const celfw_input_sink sink_proto = {NULL, on_bytes, on_reset, on_note};
@@ -285,15 +371,9 @@ static void wait_and_serve(celfw *fw, uint64_t until)
     if (fw->in)
         celfw_input_tick(fw->in, &sink);
     do {
-        struct pollfd pfd[2];
-        int n = fw->in ? celfw_input_pollfds(fw->in, pfd, 2) : 0;
-        uint64_t now = lx_now(fw->clk.mono);
-        uint64_t left = until > now ? until - now : 0;
-        struct timespec ts = {(time_t)(left / 1000000000u), (long)(left % 1000000000u)};
-        int r = ppoll(pfd, (nfds_t)n, &ts, NULL);
-        if (r > 0)
-            celfw_input_service(fw->in, pfd, n, &sink);
+        serve(fw, until);
     } while (!stop_signal && lx_now(fw->clk.mono) < until);
+    fw->last_serve = lx_now(fw->clk.mono);
 }
 
 static const char *run(celfw *fw)
@@ -313,8 +393,18 @@ static const char *run(celfw *fw)
         fw->disp->frame_start_ns = start;
         fw->disp->frame_period_ns = period;
         lx_frame_stats st = {0};
+        fw->in_frame = true;
         lx_status s = fw->disp->ops->present(fw->disp, &fw->src.src, &st);
+        release_held(fw);
         add_stats(&fw->sum, &st);
+        uint64_t took = lx_now(fw->clk.mono) - start;
+        if (period && took > period && s == LX_OK) {
+            /* the lines went out as they were rendered; nothing was blanked */
+            fw->slow++;
+            if (fw->slow <= 3 || fw->slow % 1000 == 0)
+                say("event", "slow frame: %.1f ms for a %.1f ms budget (%llu so far); input served between lines",
+                    (double)took / 1e6, (double)period / 1e6, (unsigned long long)fw->slow);
+        }
         if (s == LX_OK) {
             fw->frames++;
             if (!fw->display_up)
@@ -405,6 +495,8 @@ int main(int argc, char **argv)
     }
     celfw_clock_init(&fw->clk, &lx_clock_monotonic, &lx_clock_realtime, fw->cfg.realtime, fw->cfg.time_step);
     celfw_stream_set_check(fw->stream, check_commit, fw);
+    fw->src.between_lines = serve_between_lines;
+    fw->src.between_user = fw;
     if ((rc = load_scene(fw)) != 0) {
         fw->disp->ops->close(fw->disp);
         return rc;
@@ -437,5 +529,6 @@ int main(int argc, char **argv)
     lx_scene_source_free(&fw->src);
     free(fw->scene[0]);
     free(fw->scene[1]);
+    free(fw->held);
     return strcmp(why, "error") == 0 ? EXIT_DISPLAY : 0;
 }

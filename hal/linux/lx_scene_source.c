@@ -35,6 +35,8 @@ static lx_status line(void *user, int lane, int y, float *rgb)
      * the first one so celfw can report it, but carry on showing frames. */
     if (s->r[lane].sticky.status != CS_OK && s->err.status == CS_OK)
         s->err = s->r[lane].sticky;
+    if (s->between_lines)
+        s->between_lines(s->between_user);
     return LX_OK;
 }
 

@@ -23,6 +23,10 @@ typedef struct lx_scene_source {
     cs_renderer r[LX_MAX_LANES];
     int lanes;
     cs_error err;             /* the first error of the frame, if any */
+    /* Called after every rendered line, if set: lets the program serve its
+     * input while a slow frame renders (it must not touch the scene). */
+    void (*between_lines)(void *user);
+    void *between_user;
 } lx_scene_source;
 
 /* Sets up lanes for width x height output. aa/subscanlines as in cs_render_opts. */
