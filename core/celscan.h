@@ -262,6 +262,7 @@ typedef struct cs_scene {
     float canvas_w, canvas_h;
     bool has_background;
     uint8_t blend;       /* cs_blend the scene asks for (imported SVG: sRGB); see cs_render_opts */
+    uint64_t epoch_ns;   /* wall-clock time of animation time 0, ns since 1970 UTC; 0: none */
     float background[3]; /* linear light */
     float stack_front[3];
     float stack_back[3];
@@ -402,6 +403,14 @@ typedef enum cs_blend {
 
 /* The blending space the scene asks for: CS_BLEND_LINEAR (the default) or CS_BLEND_SRGB. */
 cs_status cs_scene_set_blend(cs_scene *scene, cs_blend blend);
+
+/*
+ * The wall-clock instant (ns since 1970-01-01 UTC) at which the scene's
+ * animation time is 0, or 0 for none. The renderer never reads it: a board
+ * whose clock follows the wall clock (celfw --clock realtime) shows time
+ * now - epoch, so the boards of a video wall show the same instant.
+ */
+cs_status cs_scene_set_epoch(cs_scene *scene, uint64_t epoch_ns);
 
 typedef struct cs_render_opts {
     int width, height;  /* output size in pixels */

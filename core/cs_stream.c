@@ -86,6 +86,7 @@ static int fixed_size(uint32_t type)
     case CS_REC_CANVAS:
     case CS_REC_CEL_MOVE:
     case CS_REC_TRACK_REMOVE:
+    case CS_REC_EPOCH:
         return 8;
     case CS_REC_BACKGROUND:
     case CS_REC_CONTOUR:
@@ -330,6 +331,9 @@ static void finish_record(cs_stream *s)
         break;
     case CS_REC_BLEND:
         st = rd_u32(b) > 1u ? CS_ERR_STREAM_RECORD : cs_scene_set_blend(sc, (cs_blend)rd_u32(b));
+        break;
+    case CS_REC_EPOCH:
+        st = cs_scene_set_epoch(sc, (uint64_t)rd_u32(b) | (uint64_t)rd_u32(b + 4) << 32);
         break;
     case CS_REC_CEL:
         wire_affine(b + 4, &m);

@@ -462,7 +462,7 @@ static void test_roundtrip_beta(void)
     encode(s, &b, true);
     printf("  beta scene: %zu bytes of stream\n", b.len);
     CHECK(b.len > 21 && b.data[5] == CS_WIRE_MINOR && b.data[21] == CS_WIRE_MINOR &&
-              CS_WIRE_MINOR == 2,
+              CS_WIRE_MINOR == 3,
           "stream and transaction headers say version 1.%d", CS_WIRE_MINOR);
     for (int chunking = 0; chunking < 4; chunking++) {
         result r;
@@ -1754,6 +1754,43 @@ static void test_refuse(void)
     free(tiny);
 }
 
+/*
+ * EPOCH (1.3): the wall-clock instant of animation time 0 travels with the
+ * scene, a patch may set it alone, and it changes no pixel.
+ */
+static void test_epoch(void)
+{
+    cs_scene *s = new_scene(), *t = new_scene();
+    build_demo(s);
+    cs_scene_copy(t, s);
+    const uint64_t epoch = 1795000000123456789ull; /* 2026-11-18, to the ns; both halves non-zero */
+    CHECK(cs_scene_set_epoch(t, epoch) == CS_OK && t->epoch_ns == epoch && s->epoch_ns == 0, "set the epoch");
+    cels_buf b;
+    encode(t, &b, true);
+    result r;
+    decode(b.data, b.len, 7, NULL, &r);
+    char why[128] = "";
+    CHECK(r.commits == 1 && r.errors == 0 && r.scene && r.scene->epoch_ns == epoch &&
+              scene_equal(t, r.scene, why, sizeof why) && renders_equal(s, r.scene),
+          "epoch round trip: %d commits, %d errors, %s", r.commits, r.errors, why);
+    cels_buf_free(&b);
+    /* a patch of the epoch alone */
+    encode(s, &b, true);
+    cels_txn_begin(&b);
+    cels_rec_begin(&b, CS_REC_EPOCH);
+    cels_put_u32(&b, (uint32_t)epoch);
+    cels_put_u32(&b, (uint32_t)(epoch >> 32));
+    cels_rec_end(&b);
+    cels_rec_commit(&b);
+    cels_txn_end(&b);
+    decode(b.data, b.len, 1, NULL, &r);
+    CHECK(r.commits == 2 && r.errors == 0 && r.scene && scene_equal(t, r.scene, why, sizeof why),
+          "EPOCH patch: %d commits, %d errors, %s", r.commits, r.errors, why);
+    cels_buf_free(&b);
+    free(s);
+    free(t);
+}
+
 /* The host reader: a file with a good scene and a damaged patch. */
 static void test_reader(void)
 {
@@ -2458,6 +2495,7 @@ int main(int argc, char **argv)
     test_valid_then_damaged();
     test_busy();
     test_refuse();
+    test_epoch();
     test_patches();
     test_reader();
     test_edit_ops();

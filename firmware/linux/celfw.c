@@ -151,7 +151,7 @@ static void on_bytes(void *user, const uint8_t *p, size_t n)
              * shown before it edits) */
             fw->front ^= 1;
             fw->builtin[0] = 0;
-            celfw_clock_show(&fw->clk, fw->scene[fw->front ^ 1], fw->scene[fw->front], NULL, 0);
+            celfw_clock_show(&fw->clk, fw->scene[fw->front ^ 1], fw->scene[fw->front], 0);
             fw->commits++;
             say("event", "stream commit %llu applied", (unsigned long long)fw->commits);
         } else if (r == CELFW_STREAM_ERROR) {
@@ -295,7 +295,7 @@ static int load_scene(celfw *fw)
         return EXIT_CONFIG;
     }
     memcpy(fw->scene[fw->front ^ 1], s, sizeof *s);
-    celfw_clock_show(&fw->clk, NULL, s, NULL, fw->builtin[0] ? celfw_scene_period_ns(fw->builtin) : 0);
+    celfw_clock_show(&fw->clk, NULL, s, fw->builtin[0] ? celfw_scene_period_ns(fw->builtin) : 0);
     return 0;
 }
 

@@ -32,11 +32,10 @@ bool celfw_clock_same_animation(const cs_scene *a, const cs_scene *b)
            !memcmp(a->key_values, b->key_values, a->value_count * sizeof a->key_values[0]);
 }
 
-void celfw_clock_show(celfw_clock *c, const cs_scene *before, const cs_scene *after,
-                      const uint64_t *epoch, uint64_t period_ns)
+void celfw_clock_show(celfw_clock *c, const cs_scene *before, const cs_scene *after, uint64_t period_ns)
 {
-    c->has_epoch = epoch != NULL;
-    c->epoch_ns = epoch ? *epoch : 0;
+    c->has_epoch = after && after->epoch_ns != 0;
+    c->epoch_ns = after ? after->epoch_ns : 0;
     c->period_ns = period_ns;
     if (before && after && celfw_clock_same_animation(before, after))
         return;

@@ -49,12 +49,11 @@ void celfw_clock_init(celfw_clock *c, const lx_clock *mono, const lx_clock *wall
                       double step);
 /*
  * A new scene is shown (before: the one it replaces, NULL at start). The
- * animation restarts unless both have the same tracks and keys. epoch: the
- * scene's epoch in ns since 1970 UTC, or NULL. period_ns: 0, or the period
- * of a periodic built-in scene.
+ * animation restarts unless both have the same tracks and keys; its epoch
+ * (after->epoch_ns, if not 0) is what --clock realtime counts from.
+ * period_ns: 0, or the period of a periodic built-in scene.
  */
-void celfw_clock_show(celfw_clock *c, const cs_scene *before, const cs_scene *after,
-                      const uint64_t *epoch, uint64_t period_ns);
+void celfw_clock_show(celfw_clock *c, const cs_scene *before, const cs_scene *after, uint64_t period_ns);
 /* The animation time of the frame that starts now, in seconds for the renderer. */
 float celfw_clock_frame(celfw_clock *c, const cs_scene *scene);
 /* What celfw_clock_frame does after it has read the clock: pure, for tests. */

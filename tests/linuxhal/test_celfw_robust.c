@@ -9,6 +9,7 @@
  */
 #include <math.h>
 #include <signal.h>
+#include <time.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -238,6 +239,53 @@ static void test_slow_frames(void)
     cels_buf_free(&b);
 }
 
+/*
+ * --clock realtime: a stream whose scene carries an EPOCH (here the wall
+ * clock of 1.5 s ago) is shown at wall clock less epoch, whenever it was
+ * committed: celfw's frame time must lie between what the wall clock gave
+ * just before and just after the frame.
+ */
+static void test_realtime(void)
+{
+    static cs_scene motion;
+    char err[SCENE_JSON_ERRLEN];
+    int rc = scene_json_load("scenes/motion.json", &motion, err, sizeof err);
+    CHECK(rc == 0, "scenes/motion.json: %s", err);
+    if (rc != 0)
+        return;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    uint64_t now = (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+    cs_scene_set_epoch(&motion, now - 1500000000u);
+    cels_buf b;
+    cels_buf_init(&b);
+    cels_stream_header(&b);
+    cels_encode_scene(&b, &motion);
+    child c;
+    spawn(&c,
+          (const char *[]){"--backend", "null", "--size", "160x90", "--fps", "50", "--clock", "realtime", "--input",
+                           "tcp:127.0.0.1:0", "--log-interval", "0.05", NULL},
+          false);
+    char line[1024] = "";
+    int port = start_port(&c, line, sizeof line);
+    int fd = port > 0 ? tcp_connect(port) : -1;
+    double sent = now_s();
+    CHECK(fd >= 0 && send_all(fd, b.data, b.len), "send motion.json with an epoch 1.5 s ago");
+    CHECK(wait_line(&c, "stream commit 1 applied", 10.0, line, sizeof line), "commit");
+    CHECK(wait_line(&c, "celfw: status", 5.0, line, sizeof line), "a status line after it");
+    double seen = now_s();
+    const char *at = strstr(line, "anim_t=");
+    double t = at ? strtod(at + 7, NULL) : -1;
+    /* the frame started after the send and before the status line was read */
+    CHECK(t >= 1.5 + 0.0 && t <= 1.5 + (seen - sent) + 0.01, "anim_t=%.3f within [1.5, %.3f]", t,
+          1.5 + (seen - sent));
+    if (fd >= 0)
+        close(fd);
+    kill(c.pid, SIGTERM);
+    CHECK(wait_exit(&c, 10.0) == 0, "clean exit: %s", c.log);
+    cels_buf_free(&b);
+}
+
 int main(void)
 {
     UMockdevTestbed *tb = umockdev_testbed_new();
@@ -258,6 +306,7 @@ int main(void)
     test_hostile_usb(tb);
     test_unrenderable(tb);
     test_slow_frames();
+    test_realtime();
     g_object_unref(tb);
     return lx_test_report("test_celfw_robust");
 }

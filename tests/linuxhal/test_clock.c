@@ -18,8 +18,10 @@
  *  - a patch that leaves the tracks alone keeps the animation running; one
  *    that changes a key restarts it.
  */
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "celfw_clock.h"
 #include "celfw_scenes.h"
@@ -34,7 +36,7 @@
 #define MS 1000000ull
 #define BOOT (7ull * 1000000000ull) /* the monotonic clock's reading at celfw's start */
 
-static cs_scene motion, anim, patched;
+static cs_scene motion, anim, patched, walled;
 static lx_scene_source src;
 
 /* The frame of scene at time t, as celfw's display would get it (RGB565). */
@@ -60,9 +62,9 @@ static void play(const cs_scene *s, uint64_t commit, int frames, uint64_t period
     lx_clock m = vclock_make(&mono), w = vclock_make(&wall);
     celfw_clock c;
     celfw_clock_init(&c, &m, &w, false, 0.0);
-    celfw_clock_show(&c, NULL, &anim, NULL, 0); /* the --scene celfw starts with */
+    celfw_clock_show(&c, NULL, &anim, 0); /* the --scene celfw starts with */
     mono = commit;
-    celfw_clock_show(&c, &anim, s, NULL, period);
+    celfw_clock_show(&c, &anim, s, period);
     for (int k = 0; k < frames; k++) {
         mono = commit + (uint64_t)k * 40u * MS;
         frame(s, celfw_clock_frame(&c, s), out + (size_t)k * W * H * 2u);
@@ -93,7 +95,7 @@ static void test_uptime(void)
         lx_clock m = vclock_make(&mono), w = vclock_make(&wall);
         celfw_clock c;
         celfw_clock_init(&c, &m, &w, false, 0.0);
-        celfw_clock_show(&c, NULL, &motion, NULL, 0);
+        celfw_clock_show(&c, NULL, &motion, 0);
         mono = BOOT + up[i].ns + 12345;
         float t = celfw_clock_frame(&c, &motion);
         frame(&motion, t, one);
@@ -105,7 +107,7 @@ static void test_uptime(void)
         for (int k = 0; k < 50; k++) {
             celfw_clock_init(&c, &m, &w, false, 0.0);
             mono = BOOT;
-            celfw_clock_show(&c, NULL, &anim, NULL, celfw_scene_period_ns("anim"));
+            celfw_clock_show(&c, NULL, &anim, celfw_scene_period_ns("anim"));
             mono = BOOT + (uint64_t)k * 40u * MS;
             float t0 = celfw_clock_frame(&c, &anim);
             mono = BOOT + up[i].ns + (uint64_t)k * 40u * MS;
@@ -140,17 +142,19 @@ static void test_realtime(void)
     celfw_clock ca, cb;
     celfw_clock_init(&ca, &ma, &w, true, 0.0);
     celfw_clock_init(&cb, &mb, &w, true, 0.0);
-    celfw_clock_show(&ca, NULL, &motion, &epoch, 0);
+    cs_scene_copy(&walled, &motion);
+    cs_scene_set_epoch(&walled, epoch);
+    celfw_clock_show(&ca, NULL, &walled, 0);
     mono_b += 777 * MS; /* board b got the stream later, and booted long before */
-    celfw_clock_show(&cb, NULL, &motion, &epoch, 0);
-    float t = celfw_clock_frame(&ca, &motion);
+    celfw_clock_show(&cb, NULL, &walled, 0);
+    float t = celfw_clock_frame(&ca, &walled);
     CHECK(t == 0.0f, "before the epoch: the first frame (t=%g)", (double)t);
     int bad = 0;
     for (int k = 0; k < 40; k++) {
         wall = epoch + (uint64_t)k * 93u * MS;
         mono_a += 40 * MS;
         mono_b += 40 * MS;
-        float ta = celfw_clock_frame(&ca, &motion), tb = celfw_clock_frame(&cb, &motion);
+        float ta = celfw_clock_frame(&ca, &walled), tb = celfw_clock_frame(&cb, &walled);
         frame(&motion, ta, a);
         frame(&motion, tb, b);
         frame(&motion, (float)k * 0.093f, ref);
@@ -158,7 +162,7 @@ static void test_realtime(void)
     }
     CHECK(bad == 0, "realtime: two boards agree with each other and the epoch (%d of 40 frames differ)", bad);
     /* a scene without an epoch is timed from its commit */
-    celfw_clock_show(&ca, &motion, &anim, NULL, 0);
+    celfw_clock_show(&ca, &walled, &anim, 0);
     mono_a += 250 * MS;
     t = celfw_clock_frame(&ca, &anim);
     CHECK(t == 0.25f, "realtime without an epoch: from the commit (t=%.9g)", (double)t);
@@ -173,29 +177,53 @@ static void test_patches(void)
     lx_clock m = vclock_make(&mono), w = vclock_make(&wall);
     celfw_clock c;
     celfw_clock_init(&c, &m, &w, false, 0.0);
-    celfw_clock_show(&c, NULL, &motion, NULL, 0);
+    celfw_clock_show(&c, NULL, &motion, 0);
     mono += 1500 * MS;
     cs_scene_copy(&patched, &motion);
     cs_paint p = patched.regions[0].paint;
     p.pigment[0] = 0.5f;
     cs_error e;
     CHECK(cs_scene_set_paint(&patched, 0, (cs_fill_rule)patched.regions[0].fill_rule, &p, &e) == CS_OK, "patch a paint");
-    celfw_clock_show(&c, &motion, &patched, NULL, 0);
+    celfw_clock_show(&c, &motion, &patched, 0);
     float t = celfw_clock_frame(&c, &patched);
     CHECK(t == 1.5f, "a paint patch keeps the animation running (t=%.9g)", (double)t);
     cs_scene_copy(&patched, &motion);
     patched.key_times[1] += 0.25f;
     mono += 500 * MS;
-    celfw_clock_show(&c, &motion, &patched, NULL, 0);
+    celfw_clock_show(&c, &motion, &patched, 0);
     mono += 100 * MS;
     t = celfw_clock_frame(&c, &patched);
     CHECK(t == 0.1f, "a key change restarts it (t=%.9g)", (double)t);
     /* --time-step: fixed steps from the commit */
     celfw_clock_init(&c, &m, &w, false, 0.04);
-    celfw_clock_show(&c, NULL, &motion, NULL, 0);
+    celfw_clock_show(&c, NULL, &motion, 0);
     for (int k = 0; k < 10; k++)
         t = celfw_clock_frame(&c, &motion);
     CHECK(t == 0.36f, "time step: frame 9 at %.9g", (double)t);
+}
+
+/* Scene JSON gives the epoch as seconds since 1970 UTC ("canvas": {"epoch": ...}). */
+static void test_json_epoch(void)
+{
+    char path[] = "/tmp/test_clock_XXXXXX";
+    int fd = mkstemp(path);
+    const char *json = "{\"canvas\": {\"width\": 10, \"height\": 10, \"epoch\": 1795000000.25}, \"cels\": []}";
+    CHECK(fd >= 0 && write(fd, json, strlen(json)) == (ssize_t)strlen(json), "write %s", path);
+    close(fd);
+    static cs_scene s;
+    char err[SCENE_JSON_ERRLEN] = "";
+    int rc = scene_json_load(path, &s, err, sizeof err);
+    uint64_t want = 1795000000250000000ull;
+    uint64_t d = s.epoch_ns > want ? s.epoch_ns - want : want - s.epoch_ns;
+    CHECK(rc == 0 && d <= 256, "epoch %llu ns (want %llu): %s", (unsigned long long)s.epoch_ns,
+          (unsigned long long)want, err);
+    fd = open(path, O_WRONLY | O_TRUNC);
+    const char *bad = "{\"canvas\": {\"width\": 10, \"height\": 10, \"epoch\": -5}, \"cels\": []}";
+    CHECK(write(fd, bad, strlen(bad)) == (ssize_t)strlen(bad), "write");
+    close(fd);
+    rc = scene_json_load(path, &s, err, sizeof err);
+    CHECK(rc != 0 && strstr(err, "epoch") && strstr(err, "seconds since 1970"), "negative epoch refused: %s", err);
+    unlink(path);
 }
 
 int main(void)
@@ -211,6 +239,7 @@ int main(void)
     test_uptime();
     test_realtime();
     test_patches();
+    test_json_epoch();
     lx_scene_source_free(&src);
     return lx_test_report("test_clock");
 }
