@@ -183,8 +183,9 @@ static void heavy_scene(cs_scene *s)
  * Slow frames: a 16,000-point scene at 1280x720 takes far longer than the
  * 16.7 ms budget of 60 fps. Each slow frame is reported (the first three),
  * and the input is served between its lines: the scene's own 248 KB stream,
- * sent again while it plays, is applied within two frame times and 0.2 s
- * (before, celfw read 64 KB per frame: four frames and more).
+ * sent again while it plays, is applied within three frame times and 0.3 s
+ * (before, celfw read 64 KB per frame: four frames and more; measured 0.6 to
+ * 0.9 s against 0.05 to 0.08 s now).
  */
 static void test_slow_frames(void)
 {
@@ -225,7 +226,9 @@ static void test_slow_frames(void)
         double dt = now_s() - t0;
         worst = dt > worst ? dt : worst;
     }
-    CHECK(worst < 2 * slowest / 1e3 + 0.2, "248 KB applied within %.3f s while frames take up to %.1f ms", worst,
+    /* one frame to finish, the decode, and room for a loaded machine; reading
+     * 64 KB per frame, as celfw did, needs four frames and more */
+    CHECK(worst < 3 * slowest / 1e3 + 0.3, "248 KB applied within %.3f s while frames take up to %.1f ms", worst,
           slowest);
     fprintf(stderr, "  slow frames: 16,000 points at 1280x720, frames up to %.1f ms; a %zu-byte stream applied within %.3f s\n",
             slowest, b.len, worst);
