@@ -9,8 +9,10 @@
  * frames, so a frame never mixes two scenes. A frame slower than its budget
  * (a 16,000-point scene on a big panel) does not starve the input: between
  * lines, every few milliseconds, celfw reads what arrived and holds it (up
- * to CELFW_HOLD_MAX) until the frame is out, then decodes it. The display may come and go
- * (USB); the loop keeps its clock and counts frames it could not show.
+ * to CELFW_HOLD_MAX) until the frame is out, then decodes it. The display
+ * may come and go (USB); the loop keeps its clock and counts frames it could
+ * not show. Animation time comes from celfw_clock.c (integer nanoseconds,
+ * from the commit that brought the animation, or the stream's epoch).
  *
  * Everything worth knowing goes to stderr as one line per event, in a form
  * scripts can parse:
@@ -321,12 +323,16 @@ static int bench_gpio(celfw *fw)
 
 /* ----------------------------------------------------------------- loop */
 
+static celfw_input_sink sink_of(celfw *fw)
+{
+    celfw_input_sink sink = {fw, on_bytes, on_reset, on_note};
+    return sink;
+}
+
 /* Polls the input until `until` (once, if it has passed) and serves it. */
 static void serve(celfw *fw, uint64_t until)
 {
-    static const celfw_input_sink sink_proto = {NULL, on_bytes, on_reset, on_note};
-    celfw_input_sink sink = sink_proto;
-    sink.user = fw;
+    celfw_input_sink sink = sink_of(fw);
     struct pollfd pfd[2];
     int n = fw->in ? celfw_input_pollfds(fw->in, pfd, 2) : 0;
     uint64_t now = lx_now(fw->clk.mono);
@@ -365,9 +371,7 @@ static void release_held(celfw *fw)
 
 static void wait_and_serve(celfw *fw, uint64_t until)
 {
-    static const celfw_input_sink sink_proto = {NULL, on_bytes, on_reset, on_note};
-    celfw_input_sink sink = sink_proto;
-    sink.user = fw;
+    celfw_input_sink sink = sink_of(fw);
     if (fw->in)
         celfw_input_tick(fw->in, &sink);
     do {
