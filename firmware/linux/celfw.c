@@ -296,6 +296,18 @@ static int load_scene(celfw *fw)
         say("error", "scene %s", err);
         return EXIT_CONFIG;
     }
+    cs_status st;
+    cs_error where;
+    if (!fw->builtin[0] && (st = lx_scene_source_check(&fw->src, s, &where)) != CS_OK) {
+        /* the same check as a stream's commit: refuse now, not every frame */
+        char at[64] = "";
+        if (where.cel >= 0)
+            snprintf(at, sizeof at, " (cel %d, region %d, contour %d)", (int)where.cel, (int)where.region,
+                     (int)where.contour);
+        say("error", "scene %s (canvas %gx%g) cannot render at %dx%d: %s%s", spec, (double)s->canvas_w,
+            (double)s->canvas_h, fw->src.src.width, fw->src.src.height, cs_status_str(st), at);
+        return EXIT_CONFIG;
+    }
     memcpy(fw->scene[fw->front ^ 1], s, sizeof *s);
     celfw_clock_show(&fw->clk, NULL, s, fw->builtin[0] ? celfw_scene_period_ns(fw->builtin) : 0);
     return 0;

@@ -9,6 +9,7 @@
  */
 #include <math.h>
 #include <signal.h>
+#include <stdio.h>
 #include <time.h>
 #include <stdlib.h>
 #include <string.h>
@@ -150,6 +151,23 @@ static void test_unrenderable(UMockdevTestbed *tb)
     float t = at ? strtof(at + 7, NULL) : -1.0f;
     int bad = compare_panel_scene(dev, &demo, t, 320, 180);
     CHECK(bad == 0, "the panel still shows the demo at t=%g (%d pixels differ)", (double)t, bad);
+
+    /* The same scene as celfw's --scene at start: refused then, exit 2. */
+    char path[] = "/tmp/celfw-tiny-XXXXXX";
+    int tfd = mkstemp(path);
+    const char *json = "{\"canvas\": {\"width\": 1e-6, \"height\": 1e-6}, \"cels\": [{\"regions\": [{\"paint\": "
+                       "{\"pigment\": [1,0,0]}, \"contours\": [{\"degree\": 1, \"points\": [[0,0],[1e-6,0],[0,1e-6]]}]}]}]}";
+    CHECK(tfd >= 0 && write(tfd, json, strlen(json)) == (ssize_t)strlen(json), "write %s", path);
+    close(tfd);
+    char jpath[64];
+    snprintf(jpath, sizeof jpath, "%s.json", path);
+    CHECK(rename(path, jpath) == 0, "name it .json");
+    spawn(&c, (const char *[]){"--backend", "null", "--size", "320x180", "--scene", jpath, "--frames", "3", NULL},
+          false);
+    rc = wait_exit(&c, 10.0);
+    CHECK(rc == 2 && strstr(c.log, "celfw: error scene ") && strstr(c.log, "(canvas 1e-06x1e-06) cannot render at 320x180"),
+          "an unrenderable --scene at start: exit %d (want 2): %s", rc, c.log);
+    unlink(jpath);
     cels_buf_free(&b);
     fake_gud_unplug(dev);
     fake_gud_free(dev);
