@@ -264,6 +264,19 @@ static lx_status choose_format(gud_host *g, char *err, size_t errlen)
     return LX_OK;
 }
 
+/* Whether celfw can render a mode (a pitch of 0 once divided by zero); why not in why. */
+static bool mode_usable(const gud_mode *m, char *why, size_t n)
+{
+    if (m->hdisplay && m->vdisplay && m->hdisplay <= CS_CFG_MAX_WIDTH && m->vdisplay <= CS_CFG_MAX_HEIGHT)
+        return true;
+    if (why && (!m->hdisplay || !m->vdisplay))
+        snprintf(why, n, "mode %ux%u has no pixels", m->hdisplay, m->vdisplay);
+    else if (why)
+        snprintf(why, n, "mode %ux%u is larger than celfw renders (%dx%d at most)", m->hdisplay, m->vdisplay,
+                 CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+    return false;
+}
+
 static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, size_t errlen)
 {
     uint8_t buf[GUD_CONNECTOR_SIZE * 4];
@@ -289,9 +302,10 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
                  GUD_MODE_SIZE);
         return LX_ERR_PROTOCOL;
     }
-    /* The configured size if given, else the preferred mode, else the first. */
-    int count = n / GUD_MODE_SIZE, pick = -1;
-    char list[200] = "";
+    /* The configured size if given, else the preferred mode, else the first;
+     * never a mode celfw cannot render (a device may list nonsense). */
+    int count = n / GUD_MODE_SIZE, pick = -1, usable = 0;
+    char list[200] = "", bad[120] = "";
     size_t used = 0;
     for (int i = 0; i < count; i++) {
         gud_mode m;
@@ -299,6 +313,9 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
         if (used < sizeof list)
             used += (size_t)snprintf(list + used, sizeof list - used, "%s%ux%u", i ? " " : "",
                                      m.hdisplay, m.vdisplay);
+        if (!mode_usable(&m, bad[0] ? NULL : bad, sizeof bad))
+            continue;
+        usable++;
         bool take;
         if (want_w)
             take = pick < 0 && m.hdisplay == want_w && m.vdisplay == want_h;
@@ -310,6 +327,10 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
             g->mode = m;
         }
     }
+    if (pick < 0 && count > 0 && !usable) {
+        snprintf(err, errlen, "%s", bad); /* the device is broken, not the configuration */
+        return LX_ERR_PROTOCOL;
+    }
     if (pick < 0 && count > 0) {
         snprintf(err, errlen, "no %dx%d mode; the device offers %s", want_w, want_h, list);
         return LX_ERR_CONFIG;
@@ -318,6 +339,11 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
         /* No mode list (an EDID-only device): describe the size asked for. */
         int w = want_w, h = want_h;
         if (!w && g->desc.min_width == g->desc.max_width && g->desc.min_height == g->desc.max_height) {
+            if (g->desc.max_width > CS_CFG_MAX_WIDTH || g->desc.max_height > CS_CFG_MAX_HEIGHT) {
+                snprintf(err, errlen, "the device's size %ux%u is larger than celfw renders (%dx%d at most)",
+                         g->desc.max_width, g->desc.max_height, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+                return LX_ERR_PROTOCOL;
+            }
             w = (int)g->desc.max_width;
             h = (int)g->desc.max_height;
         }
@@ -330,16 +356,9 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
         g->mode.vdisplay = g->mode.vsync_start = g->mode.vsync_end = g->mode.vtotal = (uint16_t)h;
         g->mode.clock = (uint32_t)((uint64_t)w * (uint64_t)h * 60u / 1000u);
     }
-    if (!g->mode.hdisplay || !g->mode.vdisplay) {
-        snprintf(err, errlen, "mode %ux%u has no pixels", g->mode.hdisplay, g->mode.vdisplay);
-        return LX_ERR_PROTOCOL;
-    }
-    if (g->mode.hdisplay > CS_CFG_MAX_WIDTH || g->mode.vdisplay > CS_CFG_MAX_HEIGHT) {
-        snprintf(err, errlen, "mode %ux%u is larger than celfw renders (%dx%d at most)", g->mode.hdisplay,
-                 g->mode.vdisplay, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
-        return LX_ERR_PROTOCOL;
-    }
-        if (g->mode.hdisplay < g->desc.min_width || g->mode.hdisplay > g->desc.max_width ||
+    if (!mode_usable(&g->mode, err, errlen))
+        return LX_ERR_PROTOCOL; /* a size taken from the descriptor */
+    if (g->mode.hdisplay < g->desc.min_width || g->mode.hdisplay > g->desc.max_width ||
         g->mode.vdisplay < g->desc.min_height || g->mode.vdisplay > g->desc.max_height) {
         snprintf(err, errlen, "mode %ux%u is outside the device's %ux%u..%ux%u", g->mode.hdisplay,
                  g->mode.vdisplay, g->desc.min_width, g->desc.min_height, g->desc.max_width,
@@ -773,7 +792,12 @@ lx_status gud_open(lx_display **out, const gud_config *c, const lx_clock *clock,
         return LX_ERR_NO_DEVICE;
     }
     lx_status s = connect_device(g, err, errlen);
-    if (s != LX_OK && !(c->wait && s == LX_ERR_NO_DEVICE)) {
+    /* Waiting, a device that is there but unusable (a hostile or broken
+     * descriptor, a failed transfer) counts as absent: it may be replaced.
+     * A contradiction with the configuration (no mode of the size asked
+     * for) is the user's to fix. */
+    bool absent = s == LX_ERR_NO_DEVICE || s == LX_ERR_PROTOCOL || s == LX_ERR_IO || s == LX_ERR_TIMEOUT;
+    if (s != LX_OK && !(c->wait && absent)) {
         char msg[300];
         snprintf(msg, sizeof msg, "usb: %s", err);
         snprintf(err, errlen, "%s", msg);

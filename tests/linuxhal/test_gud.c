@@ -509,6 +509,13 @@ static void test_hostile(UMockdevTestbed *tb)
     o.nformats = 1;
     expect_open_error(tb, "full update of 256 MiB", &o, "more than celfw buffers");
 
+    /* No mode list and a descriptor of 100000 x 8: more than a uint16 mode holds. */
+    fake_gud_opts_default(&o);
+    o.no_modes = true;
+    o.width = 100000;
+    o.height = 8;
+    expect_open_error(tb, "EDID-only 100000 wide", &o, "the device's size 100000x8 is larger than celfw renders");
+
     /* max_buffer_size 0 means no limit (as in the kernel driver): usable. */
     rig z = {0};
     fake_gud_opts_default(&z.o);
@@ -571,7 +578,7 @@ static void test_hostile(UMockdevTestbed *tb)
         g_usleep(15000);
         s = show(&r, &scene, &st);
     }
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "no 96x48 mode; the device offers 0x48"),
+    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "mode 0x48 has no pixels"),
           "back 0 wide: down, and says why: %s (%s)", lx_status_str(s), r.d->err);
 
     next.width = 96;
