@@ -262,6 +262,7 @@ typedef struct cs_scene {
     float canvas_w, canvas_h;
     bool has_background;
     uint8_t blend;       /* cs_blend the scene asks for (imported SVG: sRGB); see cs_render_opts */
+    uint64_t epoch_ns;   /* wall-clock time of animation time 0, ns since 1970 UTC; 0: none */
     float background[3]; /* linear light */
     float stack_front[3];
     float stack_back[3];
@@ -402,6 +403,14 @@ typedef enum cs_blend {
 
 /* The blending space the scene asks for: CS_BLEND_LINEAR (the default) or CS_BLEND_SRGB. */
 cs_status cs_scene_set_blend(cs_scene *scene, cs_blend blend);
+
+/*
+ * The wall-clock instant (ns since 1970-01-01 UTC) at which the scene's
+ * animation time is 0, or 0 for none. The renderer never reads it: a board
+ * whose clock follows the wall clock (celfw --clock realtime) shows time
+ * now - epoch, so the boards of a video wall show the same instant.
+ */
+cs_status cs_scene_set_epoch(cs_scene *scene, uint64_t epoch_ns);
 
 typedef struct cs_render_opts {
     int width, height;  /* output size in pixels */
@@ -593,6 +602,19 @@ typedef struct cs_renderer {
  */
 cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                          const cs_render_opts *opts, cs_error *err);
+
+/*
+ * Whether `scene` can be rendered with `opts` (its canvas scaled to the
+ * output size within the coordinate limit, its segments and pieces within
+ * the workspace's capacities): prepares trial frames in r and ws (scratch,
+ * as for cs_frame_begin) at opts->time and, if the scene has keys, at its
+ * earliest and latest key time. Meant for a commit: a board checks the
+ * scene a stream brings before it swaps it in, so a scene that cannot
+ * render is refused once instead of failing frame after frame. Time
+ * between keys is not sampled (at most three trials, whatever the keys).
+ */
+cs_status cs_scene_check_render(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                                const cs_render_opts *opts, cs_error *err);
 
 /*
  * As cs_frame_begin, but cels [cache->cel_first, +cel_count) are not
@@ -790,6 +812,15 @@ cs_stream_event cs_stream_finish(cs_stream *s);
 
 /* Makes the ready commit the front scene (between frames). CS_ERR_STATE if none is ready. */
 cs_status cs_stream_swap(cs_stream *s);
+
+/*
+ * Drops the ready commit instead of swapping it in (the caller found it
+ * unusable, e.g. cs_scene_check_render failed): the front scene stays, the
+ * transaction counts as dropped, and cs_stream_last_error reports `status`
+ * with `what` (which must outlive the next feed) and `where`, at the end of
+ * the transaction. CS_ERR_STATE if no commit is ready.
+ */
+cs_status cs_stream_refuse(cs_stream *s, cs_status status, const char *what, const cs_error *where);
 
 /*
  * Whether the back store is in use: a transaction is being decoded into it,

@@ -359,6 +359,7 @@ void cs_scene_copy(cs_scene *dst, const cs_scene *src)
     dst->canvas_h = src->canvas_h;
     dst->has_background = src->has_background;
     dst->blend = src->blend;
+    dst->epoch_ns = src->epoch_ns;
     cs__copy3(dst->background, src->background);
     cs__copy3(dst->stack_front, src->stack_front);
     cs__copy3(dst->stack_back, src->stack_back);

@@ -253,6 +253,35 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
     return cs__frame_prepare(r, ws, scene, opts, 0, UINT32_MAX, 0, err);
 }
 
+cs_status cs_scene_check_render(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                                const cs_render_opts *opts, cs_error *err)
+{
+    if (!r || !ws || !scene || !opts) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    float t[3] = {opts->time, opts->time, opts->time};
+    if (scene->key_count > 0) {
+        t[1] = t[2] = scene->key_times[0];
+        for (uint32_t k = 1; k < scene->key_count && k < CS_CFG_MAX_KEYS; k++) {
+            if (scene->key_times[k] < t[1])
+                t[1] = scene->key_times[k];
+            if (scene->key_times[k] > t[2])
+                t[2] = scene->key_times[k];
+        }
+    }
+    cs_render_opts o = *opts;
+    for (int i = 0; i < 3; i++) {
+        if (i > 0 && (t[i] == t[0] || t[i] == t[i - 1]))
+            continue;
+        o.time = t[i];
+        cs_status st = cs_frame_begin(r, ws, scene, &o, err);
+        if (st != CS_OK)
+            return st;
+    }
+    return CS_OK;
+}
+
 cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                                 const cs_render_opts *opts, const cs_cache *cache,
                                 cs_error *err)

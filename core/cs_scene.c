@@ -88,6 +88,7 @@ cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h)
         return st;
     scene->has_background = false;
     scene->blend = CS_BLEND_LINEAR;
+    scene->epoch_ns = 0;
     for (int i = 0; i < 3; i++) {
         scene->background[i] = 0.0f;
         scene->stack_front[i] = 1.0f;
@@ -517,6 +518,14 @@ cs_status cs_scene_set_contour_operand(cs_scene *scene, int operand, cs_error *e
         return CS_ERR_CSG;
     }
     scene->contours[scene->contour_count - 1].operand = (uint8_t)operand;
+    return CS_OK;
+}
+
+cs_status cs_scene_set_epoch(cs_scene *scene, uint64_t epoch_ns)
+{
+    if (!scene)
+        return CS_ERR_ARG;
+    scene->epoch_ns = epoch_ns;
     return CS_OK;
 }
 

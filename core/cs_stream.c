@@ -86,6 +86,7 @@ static int fixed_size(uint32_t type)
     case CS_REC_CANVAS:
     case CS_REC_CEL_MOVE:
     case CS_REC_TRACK_REMOVE:
+    case CS_REC_EPOCH:
         return 8;
     case CS_REC_BACKGROUND:
     case CS_REC_CONTOUR:
@@ -374,6 +375,9 @@ static void finish_record(cs_stream *s)
         break;
     case CS_REC_BLEND:
         st = rd_u32(b) > 1u ? CS_ERR_STREAM_RECORD : cs_scene_set_blend(sc, (cs_blend)rd_u32(b));
+        break;
+    case CS_REC_EPOCH:
+        st = cs_scene_set_epoch(sc, (uint64_t)rd_u32(b) | (uint64_t)rd_u32(b + 4) << 32);
         break;
     case CS_REC_CEL:
         wire_affine(b + 4, &m);
@@ -944,6 +948,24 @@ cs_status cs_stream_swap(cs_stream *s)
     s->back = t;
     s->has_scene = true;
     s->commit_ready = false;
+    return CS_OK;
+}
+
+cs_status cs_stream_refuse(cs_stream *s, cs_status status, const char *what, const cs_error *where)
+{
+    if (!s || !s->commit_ready)
+        return CS_ERR_STATE;
+    s->commit_ready = false;
+    s->commits--;
+    s->dropped++;
+    s->last.status = status;
+    s->last.offset = s->txn_offset;
+    s->last.at = s->offset;
+    s->last.what = what ? what : "refused";
+    if (where)
+        s->last.where = *where;
+    else
+        cs__error(&s->last.where, CS_OK, -1, -1, -1, -1);
     return CS_OK;
 }
 

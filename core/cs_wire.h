@@ -11,7 +11,7 @@
 
 /* Format version written by this code; decoders accept any minor of their major. */
 #define CS_WIRE_MAJOR 1
-#define CS_WIRE_MINOR 2
+#define CS_WIRE_MINOR 3
 
 /* 16-byte headers: magic(4) major(1) minor(1) flags(2) word(4) crc32(4). */
 #define CS_WIRE_HEADER_SIZE 16
@@ -42,6 +42,7 @@
 #define CS_REC_BACKGROUND 0x0103u    /* f32 rgb[3], linear */
 #define CS_REC_NO_BACKGROUND 0x0104u /* empty */
 #define CS_REC_BLEND 0x0105u         /* u32 blend: 0 linear light, 1 sRGB (since 1.2) */
+#define CS_REC_EPOCH 0x0106u         /* u32 lo, hi: ns since 1970 UTC of animation time 0 (since 1.3) */
 /* Class 2: structure */
 #define CS_REC_CEL 0x0200u        /* u32 flags, f32 transform[6], front[3], back[3] */
 #define CS_REC_REGION 0x0201u     /* u32 fill rule, f32 pigment[3], medium[3], beta */

@@ -908,6 +908,17 @@ static int load_root(loader *L, const cJSON *root)
                                                                            : CS_BLEND_LINEAR);
         pop(L, at_blend);
     }
+    /* "epoch": seconds since 1970 UTC at animation time 0, for boards on the wall clock */
+    const cJSON *epoch = member(canvas, "epoch");
+    if (epoch != NULL) {
+        size_t at_epoch = push_key(L, "epoch");
+        /* up to 2262 (ns since 1970 in 63 bits); double keeps the ns to ~0.3 us */
+        if (!cJSON_IsNumber(epoch) || !(epoch->valuedouble > 0.0 && epoch->valuedouble < 9.2e9))
+            return fail(L, "expected seconds since 1970 UTC in (0, 9.2e9), got %s",
+                        cJSON_IsNumber(epoch) ? "a number out of range" : kind(epoch));
+        cs_scene_set_epoch(L->scene, (uint64_t)(epoch->valuedouble * 1e9));
+        pop(L, at_epoch);
+    }
     pop(L, at);
 
     float front[3] = {1.0f, 1.0f, 1.0f}, back[3] = {0.0f, 0.0f, 0.0f};

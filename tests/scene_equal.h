@@ -52,6 +52,8 @@ static __attribute__((unused)) bool scene_equal(const cs_scene *a, const cs_scen
         DIFF("background");
     if (a->blend != b->blend)
         DIFF("blend");
+    if (a->epoch_ns != b->epoch_ns)
+        DIFF("epoch");
     if (!SCENE_EQ_F(a->stack_front, b->stack_front) || !SCENE_EQ_F(a->stack_back, b->stack_back))
         DIFF("stack lights");
     if (a->cel_count != b->cel_count || a->region_count != b->region_count ||

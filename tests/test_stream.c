@@ -462,7 +462,7 @@ static void test_roundtrip_beta(void)
     encode(s, &b, true);
     printf("  beta scene: %zu bytes of stream\n", b.len);
     CHECK(b.len > 21 && b.data[5] == CS_WIRE_MINOR && b.data[21] == CS_WIRE_MINOR &&
-              CS_WIRE_MINOR == 2,
+              CS_WIRE_MINOR == 3,
           "stream and transaction headers say version 1.%d", CS_WIRE_MINOR);
     for (int chunking = 0; chunking < 4; chunking++) {
         result r;
@@ -1694,6 +1694,103 @@ static void test_busy(void)
     free(other);
 }
 
+/*
+ * A scene that decodes and validates but cannot render at the board's size
+ * (canvas 1e-6 scaled to 320x180: beyond the coordinate limit) is found by
+ * cs_scene_check_render at its commit and dropped with cs_stream_refuse: the
+ * error names the transaction, the scene on display stays, and the next
+ * transaction decodes as usual.
+ */
+static void test_refuse(void)
+{
+    cs_scene *s = new_scene(), *tiny = new_scene();
+    build_demo(s);
+    cs_scene_copy(tiny, s);
+    cs_error e;
+    CHECK(cs_scene_set_canvas(tiny, 1e-6f, 1e-6f) == CS_OK, "a valid canvas of 1e-6");
+    cels_buf b;
+    encode(s, &b, true);
+    size_t second = b.len;
+    cels_encode_scene(&b, tiny);
+    size_t third = b.len;
+    cels_encode_scene(&b, s);
+    cs_render_opts o = cs_render_defaults(320, 180);
+    cs_renderer r;
+    CHECK(cs_scene_check_render(&r, ws, s, &o, &e) == CS_OK, "the demo renders at 320x180");
+    cs_stream_init(&st, store_a, false, store_b);
+    size_t off = 0, used;
+    int commits = 0, refused = 0;
+    while (off < b.len || commits + refused < 3) {
+        cs_stream_event ev = cs_stream_feed(&st, b.data + off, b.len - off, &used);
+        off += used;
+        if (ev == CS_STREAM_COMMIT) {
+            cs_status c = cs_scene_check_render(&r, ws, st.back, &o, &e);
+            if (c == CS_OK) {
+                commits++;
+                cs_stream_swap(&st);
+                continue;
+            }
+            refused++;
+            CHECK(c == CS_ERR_RANGE && e.cel == -1, "tiny canvas: %s (cel %d)", status_name(c), (int)e.cel);
+            CHECK(cs_stream_refuse(&st, c, "cannot render", &e) == CS_OK, "refuse the commit");
+            const cs_stream_error *le = cs_stream_last_error(&st);
+            CHECK(le->status == CS_ERR_RANGE && le->offset == second && le->at == third &&
+                      !strcmp(le->what, "cannot render"),
+                  "refusal reported at %llu for the transaction at %llu (want %zu, %zu)",
+                  (unsigned long long)le->at, (unsigned long long)le->offset, third, second);
+            char why[128] = "";
+            CHECK(cs_stream_scene(&st) && scene_equal(s, cs_stream_scene(&st), why, sizeof why),
+                  "the demo stays on display: %s", why);
+            CHECK(cs_stream_refuse(&st, c, "again", &e) == CS_ERR_STATE, "nothing left to refuse");
+        } else if (ev == CS_STREAM_MORE && off >= b.len) {
+            break;
+        }
+    }
+    CHECK(commits == 2 && refused == 1 && st.commits == 2 && st.dropped == 1,
+          "two commits and one refusal (%d, %d; decoder counts %u, %u)", commits, refused, st.commits,
+          st.dropped);
+    cels_buf_free(&b);
+    free(s);
+    free(tiny);
+}
+
+/*
+ * EPOCH (1.3): the wall-clock instant of animation time 0 travels with the
+ * scene, a patch may set it alone, and it changes no pixel.
+ */
+static void test_epoch(void)
+{
+    cs_scene *s = new_scene(), *t = new_scene();
+    build_demo(s);
+    cs_scene_copy(t, s);
+    const uint64_t epoch = 1795000000123456789ull; /* 2026-11-18, to the ns; both halves non-zero */
+    CHECK(cs_scene_set_epoch(t, epoch) == CS_OK && t->epoch_ns == epoch && s->epoch_ns == 0, "set the epoch");
+    cels_buf b;
+    encode(t, &b, true);
+    result r;
+    decode(b.data, b.len, 7, NULL, &r);
+    char why[128] = "";
+    CHECK(r.commits == 1 && r.errors == 0 && r.scene && r.scene->epoch_ns == epoch &&
+              scene_equal(t, r.scene, why, sizeof why) && renders_equal(s, r.scene),
+          "epoch round trip: %d commits, %d errors, %s", r.commits, r.errors, why);
+    cels_buf_free(&b);
+    /* a patch of the epoch alone */
+    encode(s, &b, true);
+    cels_txn_begin(&b);
+    cels_rec_begin(&b, CS_REC_EPOCH);
+    cels_put_u32(&b, (uint32_t)epoch);
+    cels_put_u32(&b, (uint32_t)(epoch >> 32));
+    cels_rec_end(&b);
+    cels_rec_commit(&b);
+    cels_txn_end(&b);
+    decode(b.data, b.len, 1, NULL, &r);
+    CHECK(r.commits == 2 && r.errors == 0 && r.scene && scene_equal(t, r.scene, why, sizeof why),
+          "EPOCH patch: %d commits, %d errors, %s", r.commits, r.errors, why);
+    cels_buf_free(&b);
+    free(s);
+    free(t);
+}
+
 /* The host reader: a file with a good scene and a damaged patch. */
 static void test_reader(void)
 {
@@ -2397,6 +2494,8 @@ int main(int argc, char **argv)
     test_random_and_resync();
     test_valid_then_damaged();
     test_busy();
+    test_refuse();
+    test_epoch();
     test_patches();
     test_reader();
     test_edit_ops();

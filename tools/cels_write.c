@@ -230,6 +230,12 @@ int cels_encode_scene(cels_buf *b, const cs_scene *sc)
         cels_put_u32(b, sc->blend);
         cels_rec_end(b);
     }
+    if (sc->epoch_ns) {
+        cels_rec_begin(b, CS_REC_EPOCH);
+        cels_put_u32(b, (uint32_t)sc->epoch_ns);
+        cels_put_u32(b, (uint32_t)(sc->epoch_ns >> 32));
+        cels_rec_end(b);
+    }
     uint32_t next_region = 0, next_contour = 0;
     for (uint32_t ci = 0; ci < sc->cel_count; ci++) {
         const cs_cel *c = &sc->cels[ci];

@@ -6,8 +6,13 @@
  * frame at the animation clock's time, pulling lines as the display wants
  * them, then wait for the next frame slot while feeding whatever input
  * arrived to the stream decoder. A commit swaps the two scene stores between
- * frames, so a frame never mixes two scenes. The display may come and go
- * (USB); the loop keeps its clock and counts frames it could not show.
+ * frames, so a frame never mixes two scenes. A frame slower than its budget
+ * (a 16,000-point scene on a big panel) does not starve the input: between
+ * lines, every few milliseconds, celfw reads what arrived and holds the whole frames (up
+ * to CELFW_HOLD_MAX) until the picture is out, then applies them. The display
+ * may come and go (USB); the loop keeps its clock and counts frames it could
+ * not show. Animation time comes from celfw_clock.c (integer nanoseconds,
+ * from the commit that brought the animation, or the stream's epoch).
  *
  * Every input's bytes take one path (on_bytes): cut into whole frames per
  * connection or file (celfw_frame.c), checked against the trusted keys
@@ -36,6 +41,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "celfw_clock.h"
 #include "celfw_config.h"
 #include "celfw_input.h"
 #include "celfw_log.h"
@@ -53,6 +59,11 @@ enum { LOG_COMMIT, LOG_STREAM_ERROR, LOG_REFUSED, LOG_INPUT, LOG_KINDS };
 static const char *const log_kind_name[LOG_KINDS] = {"stream commit", "stream error", "stream refused",
                                                      "input"};
 
+/* Input is read between the lines of a frame at most this often... */
+#define CELFW_SERVE_NS 4000000u
+/* ...and held until the frame is out, up to this much (plus one read). */
+#define CELFW_HOLD_MAX (1u << 20)
+
 typedef struct celfw {
     celfw_config cfg;
     lx_display *disp;
@@ -64,10 +75,16 @@ typedef struct celfw {
     celfw_stream *stream;
     celfw_trust *trust;
     celfw_ratelimit limit[LOG_KINDS];
-    uint64_t iterations, frames, dropped, stream_bytes, stream_errors, commits, failures;
+    uint64_t frames, dropped, stream_bytes, stream_errors, commits, failures, slow;
     lx_frame_stats sum;
     bool display_up, render_warned;
-    double anim_t;
+    celfw_clock clk;         /* which animation time each frame shows */
+    char refusal[200];       /* why the last commit was refused */
+    bool in_frame;           /* a frame is rendering: whole frames are held, not decoded */
+    uint8_t *held;           /* held_frame records, each followed by its frame's bytes */
+    size_t held_n, held_cap;
+    uint64_t last_serve;
+    float anim_t;            /* the last frame's, as the renderer took it */
     uint64_t t0, last_log, frames_at_log;
 } celfw;
 
@@ -151,8 +168,26 @@ static void frame_error(celfw *fw, const celfw_frame *fr)
 }
 
 /*
+ * A committed scene that cannot render at the display's size (a canvas of
+ * 1e-6 scaled beyond the coordinate limit, more segments than the renderer
+ * holds) is refused here, before the swap, instead of failing every frame.
+ */
+static const char *check_commit(void *user, const cs_scene *next, cs_status *status, cs_error *where)
+{
+    celfw *fw = user;
+    cs_status st = lx_scene_source_check(&fw->src, next, where);
+    if (st == CS_OK)
+        return NULL;
+    *status = st;
+    snprintf(fw->refusal, sizeof fw->refusal, "commit refused: the scene (canvas %gx%g) cannot render at %dx%d",
+             (double)next->canvas_w, (double)next->canvas_h, fw->src.src.width, fw->src.src.height);
+    return fw->refusal;
+}
+
+/*
  * One whole frame of one input: the trust check, then the decoder. This is
- * the one place every transaction from every input passes.
+ * the one place every transaction from every input passes. `src` is NULL
+ * for a held frame whose sender has gone since.
  */
 static void apply_frame(celfw *fw, celfw_framer *src, const celfw_frame *fr)
 {
@@ -185,8 +220,10 @@ static void apply_frame(celfw *fw, celfw_framer *src, const celfw_frame *fr)
          * shown before it edits) */
         fw->front ^= 1;
         fw->builtin[0] = 0;
+        celfw_clock_show(&fw->clk, fw->scene[fw->front ^ 1], fw->scene[fw->front], 0);
         fw->commits++;
-        src->applied++; /* the sender's progress, for the input's time-out */
+        if (src)
+            src->applied++; /* the sender's progress, for the input's time-out */
         tell(fw, LOG_COMMIT, "stream commit %llu applied", (unsigned long long)fw->commits);
         char why[400];
         if (celfw_trust_applied(fw->trust, &tx, why, sizeof why) != 0)
@@ -195,6 +232,46 @@ static void apply_frame(celfw *fw, celfw_framer *src, const celfw_frame *fr)
     } else if (r == CELFW_STREAM_ERROR) {
         stream_error(fw, &err);
     }
+}
+
+/*
+ * A whole frame that arrived while a frame rendered: applying it then
+ * could swap scenes mid-frame, so it is copied here and applied in order
+ * once the frame is out. The record is followed by the frame's bytes,
+ * padded to keep the next record aligned.
+ */
+typedef struct held_frame {
+    celfw_framer *src;
+    celfw_frame_kind kind;
+    uint64_t offset;
+    size_t len;
+} held_frame;
+
+#define HELD_ALIGN(n) (((n) + 7u) & ~(size_t)7u)
+
+static void hold_frame(celfw *fw, celfw_framer *src, const celfw_frame *fr)
+{
+    size_t need = sizeof(held_frame) + HELD_ALIGN(fr->len);
+    if (fw->held_n + need > fw->held_cap) {
+        size_t cap = fw->held_cap ? fw->held_cap : 65536;
+        while (cap < fw->held_n + need)
+            cap *= 2;
+        uint8_t *q = realloc(fw->held, cap);
+        if (!q) {
+            /* cannot happen within CELFW_HOLD_MAX on a board that started;
+             * if it does, say what was lost */
+            fw->stream_errors++;
+            say("event", "out of memory holding a %zu-byte transaction at byte %llu during a frame: dropped",
+                fr->len, (unsigned long long)fr->offset);
+            return;
+        }
+        fw->held = q;
+        fw->held_cap = cap;
+    }
+    held_frame h = {src, fr->kind, fr->offset, fr->len};
+    memcpy(fw->held + fw->held_n, &h, sizeof h);
+    memcpy(fw->held + fw->held_n + sizeof h, fr->data, fr->len);
+    fw->held_n += need;
 }
 
 static void on_bytes(void *user, celfw_framer *src, const uint8_t *p, size_t n)
@@ -208,6 +285,8 @@ static void on_bytes(void *user, celfw_framer *src, const uint8_t *p, size_t n)
         n -= used;
         if (fr.kind == CELFW_FRAME_ERROR)
             frame_error(fw, &fr);
+        else if (fr.kind != CELFW_FRAME_NONE && fw->in_frame)
+            hold_frame(fw, src, &fr);
         else if (fr.kind != CELFW_FRAME_NONE)
             apply_frame(fw, src, &fr);
     } while (fr.kind != CELFW_FRAME_NONE);
@@ -217,9 +296,34 @@ static void on_reset(void *user, celfw_framer *src, const char *why)
 {
     (void)why;
     celfw *fw = user;
+    /* held frames of this sender still apply (they came whole), but its
+     * framer is about to serve someone else */
+    for (size_t at = 0; at < fw->held_n;) {
+        held_frame h;
+        memcpy(&h, fw->held + at, sizeof h);
+        if (h.src == src) {
+            h.src = NULL;
+            memcpy(fw->held + at, &h, sizeof h);
+        }
+        at += sizeof h + HELD_ALIGN(h.len);
+    }
     celfw_frame fr;
     if (celfw_framer_end(src, &fr))
         frame_error(fw, &fr);
+}
+
+/* The frame is out: apply what was held during it, in the order it came. */
+static void release_held(celfw *fw)
+{
+    fw->in_frame = false;
+    for (size_t at = 0; at < fw->held_n;) {
+        held_frame h;
+        memcpy(&h, fw->held + at, sizeof h);
+        celfw_frame fr = {.kind = h.kind, .data = fw->held + at + sizeof h, .len = h.len, .offset = h.offset};
+        apply_frame(fw, h.src, &fr);
+        at += sizeof h + HELD_ALIGN(h.len);
+    }
+    fw->held_n = 0;
 }
 
 static void on_note(void *user, const char *what)
@@ -236,23 +340,23 @@ static const char *display_state(const celfw *fw)
 
 static void status(celfw *fw, const char *kind, const char *extra)
 {
-    uint64_t now = lx_now(&lx_clock_monotonic);
+    uint64_t now = lx_now(fw->clk.mono);
     bool final = !strcmp(kind, "exit"); /* the exit line gives the whole run's rate */
     uint64_t since = final ? fw->t0 : fw->last_log, base = final ? 0 : fw->frames_at_log;
     double dt = (double)(now - since) / 1e9;
     double fps = dt > 0 ? (double)(fw->frames - base) / dt : 0.0;
     say(kind,
-        "%st=%.2f frames=%llu dropped=%llu misses=%llu stream_bytes=%llu stream_errors=%llu commits=%llu "
+        "%st=%.2f frames=%llu dropped=%llu misses=%llu slow=%llu stream_bytes=%llu stream_errors=%llu commits=%llu "
         "display=%s lines_sent=%llu rects=%llu bytes_raw=%llu bytes_wire=%llu gpio_writes=%llu "
         "retries=%llu errors=%llu fps=%.1f anim_t=%.9g",
         extra, (double)(now - fw->t0) / 1e9, (unsigned long long)fw->frames,
-        (unsigned long long)fw->dropped, (unsigned long long)fw->sum.line_misses,
+        (unsigned long long)fw->dropped, (unsigned long long)fw->sum.line_misses, (unsigned long long)fw->slow,
         (unsigned long long)fw->stream_bytes, (unsigned long long)fw->stream_errors,
         (unsigned long long)fw->commits, display_state(fw), (unsigned long long)fw->sum.lines_sent,
         (unsigned long long)fw->sum.rects, (unsigned long long)fw->sum.bytes_raw,
         (unsigned long long)fw->sum.bytes_wire, (unsigned long long)fw->sum.writes,
         (unsigned long long)fw->sum.retries, (unsigned long long)(fw->sum.errors + fw->failures), fps,
-        fw->anim_t);
+        (double)fw->anim_t);
     fw->last_log = now;
     fw->frames_at_log = fw->frames;
 }
@@ -318,7 +422,20 @@ static int load_scene(celfw *fw)
         say("error", "scene %s", err);
         return EXIT_CONFIG;
     }
+    cs_status st;
+    cs_error where;
+    if (!fw->builtin[0] && (st = lx_scene_source_check(&fw->src, s, &where)) != CS_OK) {
+        /* the same check as a stream's commit: refuse now, not every frame */
+        char at[64] = "";
+        if (where.cel >= 0)
+            snprintf(at, sizeof at, " (cel %d, region %d, contour %d)", (int)where.cel, (int)where.region,
+                     (int)where.contour);
+        say("error", "scene %s (canvas %gx%g) cannot render at %dx%d: %s%s", spec, (double)s->canvas_w,
+            (double)s->canvas_h, fw->src.src.width, fw->src.src.height, cs_status_str(st), at);
+        return EXIT_CONFIG;
+    }
     memcpy(fw->scene[fw->front ^ 1], s, sizeof *s);
+    celfw_clock_show(&fw->clk, NULL, s, fw->builtin[0] ? celfw_scene_period_ns(fw->builtin) : 0);
     return 0;
 }
 
@@ -371,48 +488,79 @@ static int open_trust(celfw *fw)
 
 /* ----------------------------------------------------------------- loop */
 
+static celfw_input_sink sink_of(celfw *fw)
+{
+    celfw_input_sink sink = {fw, on_bytes, on_reset, on_note};
+    return sink;
+}
+
+/* Polls the input until `until` (once, if it has passed) and serves it. */
+static void serve(celfw *fw, uint64_t until)
+{
+    celfw_input_sink sink = sink_of(fw);
+    struct pollfd pfd[CELFW_INPUT_MAX_FDS];
+    int n = fw->in ? celfw_input_pollfds(fw->in, pfd, CELFW_INPUT_MAX_FDS) : 0;
+    uint64_t now = lx_now(fw->clk.mono);
+    uint64_t left = until > now ? until - now : 0;
+    struct timespec ts = {(time_t)(left / 1000000000u), (long)(left % 1000000000u)};
+    if (ppoll(pfd, (nfds_t)n, &ts, NULL) > 0)
+        celfw_input_service(fw->in, pfd, n, &sink);
+}
+
+/* Between the lines of a frame: read what arrived, every CELFW_SERVE_NS. */
+static void serve_between_lines(void *user)
+{
+    celfw *fw = user;
+    if (!fw->in || fw->held_n >= CELFW_HOLD_MAX)
+        return; /* enough held: the rest waits in the socket buffers */
+    uint64_t now = lx_now(fw->clk.mono);
+    if (now - fw->last_serve < CELFW_SERVE_NS)
+        return;
+    fw->last_serve = now;
+    serve(fw, 0);
+}
+
 static void wait_and_serve(celfw *fw, uint64_t until)
 {
-    static const celfw_input_sink sink_proto = {NULL, on_bytes, on_reset, on_note};
-    celfw_input_sink sink = sink_proto;
-    sink.user = fw;
+    celfw_input_sink sink = sink_of(fw);
     if (fw->in)
         celfw_input_tick(fw->in, &sink);
     tell_held(fw, false);
     do {
-        struct pollfd pfd[CELFW_INPUT_MAX_FDS];
-        int n = fw->in ? celfw_input_pollfds(fw->in, pfd, CELFW_INPUT_MAX_FDS) : 0;
-        uint64_t now = lx_now(&lx_clock_monotonic);
-        uint64_t left = until > now ? until - now : 0;
-        struct timespec ts = {(time_t)(left / 1000000000u), (long)(left % 1000000000u)};
-        int r = ppoll(pfd, (nfds_t)n, &ts, NULL);
-        if (r > 0)
-            celfw_input_service(fw->in, pfd, n, &sink);
-    } while (!stop_signal && lx_now(&lx_clock_monotonic) < until);
+        serve(fw, until);
+    } while (!stop_signal && lx_now(fw->clk.mono) < until);
+    fw->last_serve = lx_now(fw->clk.mono);
 }
 
 static const char *run(celfw *fw)
 {
     const celfw_config *c = &fw->cfg;
     uint64_t period = c->fps > 0 ? (uint64_t)(1e9 / c->fps) : 0;
-    uint64_t next = lx_now(&lx_clock_monotonic);
+    uint64_t next = lx_now(fw->clk.mono);
     fw->t0 = fw->last_log = next;
     uint64_t log_every = (uint64_t)(c->log_interval * 1e9);
     uint64_t render_errors = 0;
     for (;;) {
-        uint64_t start = lx_now(&lx_clock_monotonic);
-        fw->anim_t = c->time_step > 0 ? (double)fw->iterations * c->time_step : (double)(start - fw->t0) / 1e9;
-        float t = (float)fw->anim_t;
-        fw->anim_t = t; /* report the value the renderer used */
+        uint64_t start = lx_now(fw->clk.mono);
+        float t = fw->anim_t = celfw_clock_frame(&fw->clk, fw->scene[fw->front]);
         if (fw->builtin[0] && celfw_scene_animated(fw->builtin))
             celfw_scene_build(fw->builtin, fw->scene[fw->front], t);
         lx_scene_source_set(&fw->src, fw->scene[fw->front], t);
         fw->disp->frame_start_ns = start;
         fw->disp->frame_period_ns = period;
         lx_frame_stats st = {0};
+        fw->in_frame = true;
         lx_status s = fw->disp->ops->present(fw->disp, &fw->src.src, &st);
+        release_held(fw);
         add_stats(&fw->sum, &st);
-        fw->iterations++;
+        uint64_t took = lx_now(fw->clk.mono) - start;
+        if (period && took > period && s == LX_OK) {
+            /* the lines went out as they were rendered; nothing was blanked */
+            fw->slow++;
+            if (fw->slow <= 3 || fw->slow % 1000 == 0)
+                say("event", "slow frame: %.1f ms for a %.1f ms budget (%llu so far); input served between lines",
+                    (double)took / 1e6, (double)period / 1e6, (unsigned long long)fw->slow);
+        }
         if (s == LX_OK) {
             fw->frames++;
             if (!fw->display_up)
@@ -442,7 +590,7 @@ static const char *run(celfw *fw)
                 say("event", "frame failed (%llu so far): %s: %s", (unsigned long long)fw->failures,
                     lx_status_str(s), fw->disp->err);
         }
-        uint64_t now = lx_now(&lx_clock_monotonic);
+        uint64_t now = lx_now(fw->clk.mono);
         if (log_every && now - fw->last_log >= log_every)
             status(fw, "status", "");
         if (stop_signal)
@@ -501,6 +649,10 @@ int main(int argc, char **argv)
         fw->disp->ops->close(fw->disp);
         return EXIT_DISPLAY;
     }
+    celfw_clock_init(&fw->clk, &lx_clock_monotonic, &lx_clock_realtime, fw->cfg.realtime, fw->cfg.time_step);
+    celfw_stream_set_check(fw->stream, check_commit, fw);
+    fw->src.between_lines = serve_between_lines;
+    fw->src.between_user = fw;
     if ((rc = load_scene(fw)) != 0) {
         fw->disp->ops->close(fw->disp);
         return rc;
@@ -545,5 +697,6 @@ int main(int argc, char **argv)
     lx_scene_source_free(&fw->src);
     free(fw->scene[0]);
     free(fw->scene[1]);
+    free(fw->held);
     return strcmp(why, "error") == 0 ? EXIT_DISPLAY : 0;
 }

@@ -181,6 +181,16 @@ static bool p_time_step(celfw_config *c, const char *v, char *err, size_t n)
     return parse_num(v, 0.0, 3600.0, &c->time_step, err, n);
 }
 
+static bool p_clock(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (strcmp(v, "monotonic") != 0 && strcmp(v, "realtime") != 0) {
+        snprintf(err, n, "'%s' is not a clock (monotonic or realtime)", v);
+        return false;
+    }
+    c->realtime = v[0] == 'r';
+    return true;
+}
+
 static bool p_panel(celfw_config *c, const char *v, char *err, size_t n)
 {
     return parse_size(v, &c->hub75.panel_w, &c->hub75.panel_h, err, n);
@@ -356,6 +366,7 @@ static const setting settings[] = {
     {"frames", "N", p_frames, "stop after N frames (default: run until SIGTERM)"},
     {"duration", "SECONDS", p_duration, "stop after this long"},
     {"time-step", "SECONDS", p_time_step, "animation time advances by this per frame instead of the clock"},
+    {"clock", "monotonic|realtime", p_clock, "animation time from the commit (default), or wall clock less the stream's epoch"},
     {"panel", "WxH", p_panel, "HUB75: one panel, 64x32 (1/16 scan) or 64x64 (1/32 scan), ..."},
     {"chain", "N", p_chain, "HUB75: panels in the chain (default 1)"},
     {"planes", "N", p_planes, "HUB75: colour depth in bit planes, 1..12 (default 8)"},

@@ -39,6 +39,7 @@ typedef struct celfw_config {
     uint64_t max_frames;   /* stop after this many frames; 0 = never */
     double duration;       /* stop after this many seconds; 0 = never */
     double time_step;      /* > 0: animation time = frame index * step, not the clock */
+    bool realtime;         /* --clock realtime: wall clock less the stream's epoch (celfw_clock.h) */
     bool bench_gpio;       /* measure GPIO write throughput, print refresh estimates, exit */
     hub75_config hub75;
     gud_config usb;

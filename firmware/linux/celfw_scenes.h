@@ -12,6 +12,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "celscan.h"
 
@@ -21,6 +22,9 @@ bool celfw_scene_build(const char *name, cs_scene *scene, float t);
 
 /* true if the named scene changes with time (must be rebuilt per frame). */
 bool celfw_scene_animated(const char *name);
+
+/* The period of a built-in scene that repeats (celfw's clock wraps its time), else 0. */
+uint64_t celfw_scene_period_ns(const char *name);
 
 /* The names, space separated, for messages. */
 const char *celfw_scene_names(void);

@@ -23,11 +23,19 @@
 
 struct celfw_stream {
     cs_stream st;
+    celfw_stream_check check;
+    void *check_user;
 };
 
 bool celfw_stream_available(void)
 {
     return true;
+}
+
+void celfw_stream_set_check(celfw_stream *s, celfw_stream_check check, void *user)
+{
+    s->check = check;
+    s->check_user = user;
 }
 
 celfw_stream *celfw_stream_new(void)
@@ -103,6 +111,14 @@ celfw_stream_result celfw_stream_frame(celfw_stream *s, const uint8_t *p, size_t
         if (ev == CS_STREAM_MORE && n == 0)
             ev = cs_stream_finish(&s->st);
         if (ev == CS_STREAM_COMMIT) {
+            cs_status why = CS_OK;
+            cs_error where;
+            const char *no = s->check ? s->check(s->check_user, next, &why, &where) : NULL;
+            if (no) {
+                cs_stream_refuse(&s->st, why, no, &where);
+                describe(cs_stream_last_error(&s->st), base, err);
+                return CELFW_STREAM_ERROR;
+            }
             cs_stream_swap(&s->st); /* celfw swaps its own two stores in step */
             return CELFW_STREAM_COMMIT;
         }

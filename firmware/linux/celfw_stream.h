@@ -51,6 +51,17 @@ void celfw_stream_free(celfw_stream *s);
 celfw_stream_result celfw_stream_frame(celfw_stream *s, const uint8_t *p, size_t n, uint64_t base,
                                        cs_scene *shown, cs_scene *next, celfw_stream_error *err);
 /*
+ * A check of every committed scene before it is reported as COMMIT (celfw:
+ * can it render at the display's size?). It returns NULL to accept, or why
+ * not (valid until the next frame) with a status and scene location; the
+ * commit is then dropped and reported as CELFW_STREAM_ERROR, and `shown`
+ * stays.
+ */
+typedef const char *(*celfw_stream_check)(void *user, const cs_scene *next, cs_status *status,
+                                          cs_error *where);
+void celfw_stream_set_check(celfw_stream *s, celfw_stream_check check, void *user);
+
+/*
  * Words a fault found outside the decoder (by the framer: `offset` is the
  * start of what was dropped, `at` the fault) as the decoder's are worded.
  */

@@ -1,10 +1,11 @@
 /*
- * lx_clock.c - the monotonic clock behind celfw's drivers, and status strings.
+ * lx_clock.c - the clocks behind celfw (monotonic; realtime), and status strings.
  *
  * nanosleep() on a loaded board overshoots by tens of microseconds, far more
  * than the shortest HUB75 bit plane, so the wait sleeps only while the target
  * is comfortably far away and spins on clock_gettime() for the rest.
  */
+#include <errno.h>
 #include <time.h>
 
 #include "lx_display.h"
@@ -33,6 +34,24 @@ static void mono_wait_until(void *user, uint64_t t)
 }
 
 const lx_clock lx_clock_monotonic = {NULL, mono_now, mono_wait_until};
+
+static uint64_t real_now(void *user)
+{
+    (void)user;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
+
+static void real_wait_until(void *user, uint64_t t)
+{
+    (void)user;
+    struct timespec ts = {(time_t)(t / 1000000000u), (long)(t % 1000000000u)};
+    while (clock_nanosleep(CLOCK_REALTIME, TIMER_ABSTIME, &ts, NULL) == EINTR) {
+    }
+}
+
+const lx_clock lx_clock_realtime = {NULL, real_now, real_wait_until};
 
 const char *lx_status_str(lx_status st)
 {

@@ -23,6 +23,10 @@ typedef struct lx_clock {
 
 /* CLOCK_MONOTONIC: sleeps for long waits and spins for the last stretch. */
 extern const lx_clock lx_clock_monotonic;
+/* CLOCK_REALTIME, ns since 1970-01-01 UTC: the shared time of a video wall's
+ * boards (celfw --clock realtime). It can jump when the time is set, so it
+ * never paces anything. */
+extern const lx_clock lx_clock_realtime;
 
 static inline uint64_t lx_now(const lx_clock *c) { return c->now_ns(c->user); }
 static inline void lx_wait_until(const lx_clock *c, uint64_t t) { c->wait_until_ns(c->user, t); }

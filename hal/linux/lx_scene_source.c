@@ -35,6 +35,8 @@ static lx_status line(void *user, int lane, int y, float *rgb)
      * the first one so celfw can report it, but carry on showing frames. */
     if (s->r[lane].sticky.status != CS_OK && s->err.status == CS_OK)
         s->err = s->r[lane].sticky;
+    if (s->between_lines)
+        s->between_lines(s->between_user);
     return LX_OK;
 }
 
@@ -67,6 +69,13 @@ void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time)
 {
     s->scene = scene;
     s->opts.time = time;
+}
+
+cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err)
+{
+    cs_render_opts o = s->opts;
+    o.time = 0.0f;
+    return cs_scene_check_render(&s->r[0], s->ws[0], scene, &o, err);
 }
 
 void lx_scene_source_free(lx_scene_source *s)

@@ -23,6 +23,10 @@ typedef struct lx_scene_source {
     cs_renderer r[LX_MAX_LANES];
     int lanes;
     cs_error err;             /* the first error of the frame, if any */
+    /* Called after every rendered line, if set: lets the program serve its
+     * input while a slow frame renders (it must not touch the scene). */
+    void (*between_lines)(void *user);
+    void *between_user;
 } lx_scene_source;
 
 /* Sets up lanes for width x height output. aa/subscanlines as in cs_render_opts. */
@@ -30,6 +34,9 @@ lx_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_
                                int subscanlines);
 /* Chooses the scene and the animation time of the next frame. */
 void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time);
+/* Whether `scene` can be rendered at this source's size (cs_scene_check_render
+ * in lane 0's workspace): only between frames. */
+cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err);
 void lx_scene_source_free(lx_scene_source *s);
 
 #endif /* LX_SCENE_SOURCE_H */

@@ -16,6 +16,14 @@
  * stays in the band, an unchanged one closes the band, which is then sent as
  * one full-width rectangle. Bands are bounded by max_band_bytes and by the
  * device's max_buffer_size, so memory never grows with the frame.
+ *
+ * Everything the device reports is input like any other: descriptor and
+ * mode list lengths, sizes (a 0-wide mode would divide by a zero pitch),
+ * formats and buffer limits are checked before they size anything, and a
+ * device may come back from a replug with a different face, so the band is
+ * sized again from its bytes, not its line count. A device that fails these
+ * checks is refused with a message naming the value; after a replug that
+ * means the display stays down and is retried.
  */
 #include <errno.h>
 #include <libusb.h>
@@ -29,6 +37,9 @@
 #include "gud_host.h"
 #include "gud_wire.h"
 #include "lx_damage.h"
+
+/* A full-update device takes whole frames: this bounds the buffer one costs. */
+#define GUD_MAX_FULL_FRAME (64u * 1024u * 1024u)
 
 typedef struct gud_host {
     lx_display d;
@@ -50,7 +61,7 @@ typedef struct gud_host {
     uint8_t *band, *zbuf, *rgb888;
     uint64_t *band_hash;
     int band_cap, band_y0, band_n;
-    size_t zcap;
+    size_t band_bytes, zcap;
     float *rgb;
     bool connected;
     uint64_t next_attempt_ns, connects;
@@ -253,6 +264,19 @@ static lx_status choose_format(gud_host *g, char *err, size_t errlen)
     return LX_OK;
 }
 
+/* Whether celfw can render a mode (a pitch of 0 once divided by zero); why not in why. */
+static bool mode_usable(const gud_mode *m, char *why, size_t n)
+{
+    if (m->hdisplay && m->vdisplay && m->hdisplay <= CS_CFG_MAX_WIDTH && m->vdisplay <= CS_CFG_MAX_HEIGHT)
+        return true;
+    if (why && (!m->hdisplay || !m->vdisplay))
+        snprintf(why, n, "mode %ux%u has no pixels", m->hdisplay, m->vdisplay);
+    else if (why)
+        snprintf(why, n, "mode %ux%u is larger than celfw renders (%dx%d at most)", m->hdisplay, m->vdisplay,
+                 CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+    return false;
+}
+
 static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, size_t errlen)
 {
     uint8_t buf[GUD_CONNECTOR_SIZE * 4];
@@ -273,9 +297,15 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
         snprintf(err, errlen, "reading modes: %s", g->why);
         return s;
     }
-    /* The configured size if given, else the preferred mode, else the first. */
-    int count = n / GUD_MODE_SIZE, pick = -1;
-    char list[200] = "";
+    if (n % GUD_MODE_SIZE != 0) {
+        snprintf(err, errlen, "the mode list is %d bytes, not a whole number of %d-byte modes", n,
+                 GUD_MODE_SIZE);
+        return LX_ERR_PROTOCOL;
+    }
+    /* The configured size if given, else the preferred mode, else the first;
+     * never a mode celfw cannot render (a device may list nonsense). */
+    int count = n / GUD_MODE_SIZE, pick = -1, usable = 0;
+    char list[200] = "", bad[120] = "";
     size_t used = 0;
     for (int i = 0; i < count; i++) {
         gud_mode m;
@@ -283,6 +313,9 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
         if (used < sizeof list)
             used += (size_t)snprintf(list + used, sizeof list - used, "%s%ux%u", i ? " " : "",
                                      m.hdisplay, m.vdisplay);
+        if (!mode_usable(&m, bad[0] ? NULL : bad, sizeof bad))
+            continue;
+        usable++;
         bool take;
         if (want_w)
             take = pick < 0 && m.hdisplay == want_w && m.vdisplay == want_h;
@@ -294,6 +327,10 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
             g->mode = m;
         }
     }
+    if (pick < 0 && count > 0 && !usable) {
+        snprintf(err, errlen, "%s", bad); /* the device is broken, not the configuration */
+        return LX_ERR_PROTOCOL;
+    }
     if (pick < 0 && count > 0) {
         snprintf(err, errlen, "no %dx%d mode; the device offers %s", want_w, want_h, list);
         return LX_ERR_CONFIG;
@@ -302,6 +339,11 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
         /* No mode list (an EDID-only device): describe the size asked for. */
         int w = want_w, h = want_h;
         if (!w && g->desc.min_width == g->desc.max_width && g->desc.min_height == g->desc.max_height) {
+            if (g->desc.max_width > CS_CFG_MAX_WIDTH || g->desc.max_height > CS_CFG_MAX_HEIGHT) {
+                snprintf(err, errlen, "the device's size %ux%u is larger than celfw renders (%dx%d at most)",
+                         g->desc.max_width, g->desc.max_height, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+                return LX_ERR_PROTOCOL;
+            }
             w = (int)g->desc.max_width;
             h = (int)g->desc.max_height;
         }
@@ -314,6 +356,8 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
         g->mode.vdisplay = g->mode.vsync_start = g->mode.vsync_end = g->mode.vtotal = (uint16_t)h;
         g->mode.clock = (uint32_t)((uint64_t)w * (uint64_t)h * 60u / 1000u);
     }
+    if (!mode_usable(&g->mode, err, errlen))
+        return LX_ERR_PROTOCOL; /* a size taken from the descriptor */
     if (g->mode.hdisplay < g->desc.min_width || g->mode.hdisplay > g->desc.max_width ||
         g->mode.vdisplay < g->desc.min_height || g->mode.vdisplay > g->desc.max_height) {
         snprintf(err, errlen, "mode %ux%u is outside the device's %ux%u..%ux%u", g->mode.hdisplay,
@@ -353,9 +397,15 @@ static lx_status setup_buffers(gud_host *g, char *err, size_t errlen)
     size_t cap = g->cfg.max_band_bytes;
     if (g->desc.max_buffer_size && g->desc.max_buffer_size < cap)
         cap = g->desc.max_buffer_size;
-    g->pitch = (size_t)g->width * g->bpp;
-    if (g->full_update)
+    g->pitch = (size_t)g->width * g->bpp; /* width and bpp were checked: never 0 */
+    if (g->full_update) {
         cap = g->pitch * (size_t)g->height; /* the whole frame goes in one transfer */
+        if (cap > GUD_MAX_FULL_FRAME) {
+            snprintf(err, errlen, "a full-update frame of %zu bytes is more than celfw buffers (%u)", cap,
+                     GUD_MAX_FULL_FRAME);
+            return LX_ERR_PROTOCOL;
+        }
+    }
     if (cap < g->pitch) {
         snprintf(err, errlen, "the device buffer (%zu bytes) cannot take one %zu-byte line", cap, g->pitch);
         return LX_ERR_PROTOCOL;
@@ -363,18 +413,20 @@ static lx_status setup_buffers(gud_host *g, char *err, size_t errlen)
     int lines = (int)(cap / g->pitch);
     if (lines > g->height)
         lines = g->height;
-    if (lines != g->band_cap) {
+    size_t bytes = (size_t)lines * g->pitch;
+    if (lines != g->band_cap || bytes != g->band_bytes) { /* a replug may change the format */
         free(g->band);
         free(g->zbuf);
         free(g->band_hash);
         g->band_cap = lines;
-        size_t bytes = (size_t)lines * g->pitch;
+        g->band_bytes = bytes;
         g->zcap = (size_t)LZ4_compressBound((int)bytes);
         g->band = malloc(bytes);
         g->zbuf = malloc(g->zcap);
         g->band_hash = malloc((size_t)lines * sizeof *g->band_hash);
         if (!g->band || !g->zbuf || !g->band_hash) {
             g->band_cap = 0;
+            g->band_bytes = 0;
             return LX_ERR_NOMEM;
         }
     }
@@ -716,9 +768,9 @@ lx_status gud_open(lx_display **out, const gud_config *c, const lx_clock *clock,
         snprintf(err, errlen, "usb: waiting for an absent display needs its size (--size WxH)");
         return LX_ERR_CONFIG;
     }
-    if (c->width < 0 || c->height < 0 || c->width > CS_CFG_MAX_WIDTH || c->height > 16384) {
-        snprintf(err, errlen, "usb: size %dx%d out of range (width at most %d)", c->width, c->height,
-                 CS_CFG_MAX_WIDTH);
+    if (c->width < 0 || c->height < 0 || c->width > CS_CFG_MAX_WIDTH || c->height > CS_CFG_MAX_HEIGHT) {
+        snprintf(err, errlen, "usb: size %dx%d out of range (%dx%d at most)", c->width, c->height,
+                 CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
         return LX_ERR_CONFIG;
     }
     gud_host *g = calloc(1, sizeof *g);
@@ -740,7 +792,12 @@ lx_status gud_open(lx_display **out, const gud_config *c, const lx_clock *clock,
         return LX_ERR_NO_DEVICE;
     }
     lx_status s = connect_device(g, err, errlen);
-    if (s != LX_OK && !(c->wait && s == LX_ERR_NO_DEVICE)) {
+    /* Waiting, a device that is there but unusable (a hostile or broken
+     * descriptor, a failed transfer) counts as absent: it may be replaced.
+     * A contradiction with the configuration (no mode of the size asked
+     * for) is the user's to fix. */
+    bool absent = s == LX_ERR_NO_DEVICE || s == LX_ERR_PROTOCOL || s == LX_ERR_IO || s == LX_ERR_TIMEOUT;
+    if (s != LX_OK && !(c->wait && absent)) {
         char msg[300];
         snprintf(msg, sizeof msg, "usb: %s", err);
         snprintf(err, errlen, "%s", msg);

@@ -34,7 +34,7 @@ typedef struct gud_config {
     int retries;            /* extra attempts per band after a stall or timeout */
     unsigned reconnect_ms;  /* between attempts while the device is away */
     size_t max_band_bytes;  /* largest rectangle, before compression */
-    bool wait;              /* open even if the device is absent (needs width/height) */
+    bool wait;              /* open even if the device is absent or unusable (needs width/height) */
 } gud_config;
 
 void gud_config_default(gud_config *c);

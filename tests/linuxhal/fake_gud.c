@@ -182,8 +182,12 @@ static int control(fake_gud *g, uint8_t *buf, int buflen)
             gud_descriptor d = {g->o.magic, g->o.version, g->o.flags, g->o.compression,
                                 g->o.max_buffer_size, (uint32_t)g->o.width, (uint32_t)g->o.width,
                                 (uint32_t)g->o.height, (uint32_t)g->o.height};
+            if (g->o.any_size) {
+                d.min_width = d.min_height = 0;
+                d.max_width = d.max_height = 65535;
+            }
             gud_descriptor_encode(out, &d);
-            n = GUD_DESCRIPTOR_SIZE;
+            n = g->o.descriptor_len ? g->o.descriptor_len : GUD_DESCRIPTOR_SIZE;
             break;
         }
         case GUD_REQ_GET_FORMATS:
@@ -202,12 +206,12 @@ static int control(fake_gud *g, uint8_t *buf, int buflen)
             break;
         case GUD_REQ_GET_CONNECTOR_MODES:
             if (!g->o.no_modes) {
-                gud_mode m = {(uint32_t)(g->o.width * g->o.height * 60 / 1000),
+                gud_mode m = {(uint32_t)((uint64_t)g->o.width * (uint64_t)g->o.height * 60u / 1000u),
                               (uint16_t)g->o.width, (uint16_t)g->o.width, (uint16_t)g->o.width,
                               (uint16_t)g->o.width, (uint16_t)g->o.height, (uint16_t)g->o.height,
                               (uint16_t)g->o.height, (uint16_t)g->o.height, GUD_MODE_FLAG_PREFERRED};
                 gud_mode_encode(out, &m);
-                n = GUD_MODE_SIZE;
+                n = g->o.modes_len ? g->o.modes_len : GUD_MODE_SIZE;
             }
             break;
         default:
@@ -573,6 +577,18 @@ void fake_gud_replug(fake_gud *g, int devnum)
     g_mutex_unlock(&g->mu);
     add_to_sysfs(g);
     umockdev_testbed_uevent(g->tb, g->syspath, "add");
+}
+
+void fake_gud_set_opts(fake_gud *g, const fake_gud_opts *o)
+{
+    g_mutex_lock(&g->mu);
+    uint16_t vid = g->o.vid, pid = g->o.pid;
+    g->o = *o;
+    g->o.vid = vid;
+    g->o.pid = pid;
+    free(g->fb); /* the panel memory follows the mode at the next commit */
+    g->fb = NULL;
+    g_mutex_unlock(&g->mu);
 }
 
 void fake_gud_framebuffer(fake_gud *g, uint8_t *out, size_t len)

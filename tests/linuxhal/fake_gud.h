@@ -14,6 +14,10 @@
  * never complete, so the host times out and discards them), refuse a control
  * request with a GUD status, and unplug/replug (old file descriptors die with
  * ENODEV, as on a real disconnect; the device comes back at a new address).
+ * Hostile devices: any size in the mode (0 wide, 0 high, 65535 wide), unknown
+ * formats only, a descriptor or mode list cut to a length that lies, a
+ * buffer limit smaller than a line, and a different face after a replug
+ * (fake_gud_set_opts).
  */
 #ifndef FAKE_GUD_H
 #define FAKE_GUD_H
@@ -35,6 +39,9 @@ typedef struct fake_gud_opts {
     uint32_t magic;           /* GUD_MAGIC unless testing a wrong one */
     uint8_t version;          /* 1 */
     bool no_modes;            /* list no modes (EDID-only device) */
+    int descriptor_len;       /* bytes GET_DESCRIPTOR returns; 0 = all 30 */
+    int modes_len;            /* bytes GET_CONNECTOR_MODES returns; 0 = the whole list */
+    bool any_size;            /* descriptor limits 0x0..65535x65535 instead of the mode's size */
 } fake_gud_opts;
 
 /* Defaults: 1d50:614d, 320x180, RGB565 + XRGB8888, LZ4, no flags. */
@@ -74,5 +81,7 @@ void fake_gud_refuse(fake_gud *g, uint8_t request, uint8_t status, int times);
 void fake_gud_unplug(fake_gud *g);
 /* Plugs it back in at a new device number (an add uevent goes out). */
 void fake_gud_replug(fake_gud *g, int devnum);
+/* What the device reports from its next replug on (its vid:pid stay). */
+void fake_gud_set_opts(fake_gud *g, const fake_gud_opts *o);
 
 #endif /* FAKE_GUD_H */

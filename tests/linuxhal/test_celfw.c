@@ -35,6 +35,7 @@
 
 #include "cels_sign.h"
 #include "cels_write.h"
+#include "celfw_child.h"
 #include "celfw_input.h"
 #include "celfw_scenes.h"
 #include "fake_gud.h"
@@ -42,133 +43,7 @@
 #include "lx_test.h"
 #include "scene_json.h"
 
-static const char *celfw_path;
 static cs_scene scene;
-static cs_workspace ws;
-
-typedef struct child {
-    pid_t pid;
-    int err_fd, in_fd;
-    char log[65536];
-    size_t len, seen;
-} child;
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec / 1e9;
-}
-
-/* Starts celfw with args (NULL-terminated); stdin is a pipe if want_stdin. */
-static bool spawn(child *c, const char *const *args, bool want_stdin)
-{
-    int ep[2], ip[2] = {-1, -1};
-    memset(c, 0, sizeof *c);
-    if (pipe(ep) != 0 || (want_stdin && pipe(ip) != 0))
-        return false;
-    const char *argv[40];
-    int n = 0;
-    argv[n++] = celfw_path;
-    for (int i = 0; args[i] && n < 39; i++)
-        argv[n++] = args[i];
-    argv[n] = NULL;
-    c->pid = fork();
-    if (c->pid == 0) {
-        dup2(ep[1], 2);
-        if (want_stdin)
-            dup2(ip[0], 0);
-        else
-            close(0);
-        close(ep[0]);
-        if (want_stdin)
-            close(ip[1]);
-        execv(celfw_path, (char *const *)argv);
-        _exit(127);
-    }
-    close(ep[1]);
-    c->err_fd = ep[0];
-    fcntl(c->err_fd, F_SETFL, O_NONBLOCK);
-    if (want_stdin) {
-        close(ip[0]);
-        c->in_fd = ip[1];
-    } else {
-        c->in_fd = -1;
-    }
-    return c->pid > 0;
-}
-
-static void drain(child *c)
-{
-    for (;;) {
-        if (c->len + 1 >= sizeof c->log)
-            return;
-        ssize_t r = read(c->err_fd, c->log + c->len, sizeof c->log - 1 - c->len);
-        if (r <= 0)
-            return;
-        c->len += (size_t)r;
-        c->log[c->len] = 0;
-    }
-}
-
-/* Waits for a log line containing needle (after the last one found); copies it out. */
-static bool wait_line(child *c, const char *needle, double timeout, char *out, size_t outlen)
-{
-    double end = now_s() + timeout;
-    do {
-        drain(c);
-        char *hit = strstr(c->log + c->seen, needle);
-        if (hit) {
-            char *bol = hit;
-            while (bol > c->log && bol[-1] != '\n')
-                bol--;
-            char *eol = strchr(hit, '\n');
-            if (!eol)
-                goto again; /* line not complete yet */
-            if (out)
-                snprintf(out, outlen, "%.*s", (int)(eol - bol), bol);
-            c->seen = (size_t)(eol - c->log);
-            return true;
-        }
-    again:
-        g_usleep(5000);
-    } while (now_s() < end);
-    return false;
-}
-
-/* Waits for exit; kills after the timeout. Returns the exit status, or -1. */
-static int wait_exit(child *c, double timeout)
-{
-    double end = now_s() + timeout;
-    int st;
-    for (;;) {
-        drain(c);
-        pid_t r = waitpid(c->pid, &st, WNOHANG);
-        if (r == c->pid)
-            break;
-        if (now_s() > end) {
-            kill(c->pid, SIGKILL);
-            waitpid(c->pid, &st, 0);
-            drain(c);
-            fprintf(stderr, "  celfw did not exit; its log:\n%s\n", c->log);
-            return -1;
-        }
-        g_usleep(5000);
-    }
-    drain(c);
-    close(c->err_fd);
-    if (c->in_fd >= 0)
-        close(c->in_fd);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-}
-
-static unsigned long long field(const char *line, const char *key)
-{
-    char k[64];
-    snprintf(k, sizeof k, " %s=", key);
-    const char *p = strstr(line, k);
-    return p ? strtoull(p + strlen(k), NULL, 10) : ~0ull;
-}
 
 /* Runs celfw to completion; checks its exit status and that stderr says `needle`. */
 static void expect_failure(const char *what, const char *const *args, int code, const char *needle)
@@ -231,50 +106,11 @@ static void test_config_errors(void)
     unlink(path);
 }
 
-/* The truth for the panel: the frame of `s` at time t, rendered by the core, as RGB565. */
-static int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h)
-{
-    cs_render_opts o = cs_render_defaults(w, h);
-    o.subscanlines = 4;
-    o.time = t;
-    cs_renderer r;
-    cs_error e;
-    uint8_t *want = malloc((size_t)w * (size_t)h * 2u), *got = malloc((size_t)w * (size_t)h * 2u);
-    float *line = malloc((size_t)w * 3u * sizeof(float));
-    cs_frame_begin(&r, &ws, s, &o, &e);
-    for (int y = 0; y < h; y++) {
-        cs_render_line(&r, y, line);
-        cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, want + (size_t)y * (size_t)w * 2u);
-    }
-    fake_gud_framebuffer(dev, got, (size_t)w * (size_t)h * 2u);
-    int bad = 0;
-    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
-        bad += memcmp(got + 2 * i, want + 2 * i, 2) != 0;
-    free(want);
-    free(got);
-    free(line);
-    return bad;
-}
-
 /* The same for a built-in scene of celfw. */
 static int compare_panel(fake_gud *dev, const char *name, float t, int w, int h)
 {
     celfw_scene_build(name, &scene, t);
     return compare_panel_scene(dev, &scene, t, w, h);
-}
-
-static int tcp_connect(int port)
-{
-    int fd = socket(AF_INET, SOCK_STREAM, 0);
-    struct sockaddr_in a = {0};
-    a.sin_family = AF_INET;
-    a.sin_port = htons((uint16_t)port);
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (connect(fd, (struct sockaddr *)&a, sizeof a) != 0) {
-        close(fd);
-        return -1;
-    }
-    return fd;
 }
 
 static void test_usb_tcp(UMockdevTestbed *tb)
@@ -328,18 +164,6 @@ static void test_usb_tcp(UMockdevTestbed *tb)
     CHECK(!ds.display_on && !ds.controller_on, "display disabled at exit");
     fake_gud_unplug(dev);
     fake_gud_free(dev);
-}
-
-static bool send_all(int fd, const uint8_t *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w <= 0)
-            return false;
-        p += w;
-        n -= (size_t)w;
-    }
-    return true;
 }
 
 /*
@@ -980,7 +804,7 @@ int main(void)
         fprintf(stderr, "test_celfw: run under umockdev-wrapper (LD_PRELOAD=libumockdev-preload.so)\n");
         return 2;
     }
-    celfw_path = getenv("CELFW") ? getenv("CELFW") : "build/host/celfw";
+    const char *celfw_path = celfw_child_path();
     if (access(celfw_path, X_OK) != 0) {
         fprintf(stderr, "test_celfw: %s not built (set CELFW)\n", celfw_path);
         return 2;

@@ -455,6 +455,143 @@ static void test_odd_devices(UMockdevTestbed *tb)
     rig_close(&f, s == LX_OK);
 }
 
+/*
+ * Hostile devices: every size, length and limit the device reports is
+ * checked before it sizes anything. Each of these once could crash the host
+ * (a 0-wide mode divided by a zero pitch) or make it allocate what the
+ * device asked for; each must be refused with a message naming the value.
+ */
+static void test_hostile(UMockdevTestbed *tb)
+{
+    static const struct {
+        const char *what;
+        int w, h, descriptor_len, modes_len;
+        uint32_t max_buffer;
+        const char *needle;
+    } bad[] = {
+        {"0 wide", 0, 180, 0, 0, 0, "mode 0x180 has no pixels"},
+        {"0 high", 320, 0, 0, 0, 0, "mode 320x0 has no pixels"},
+        {"0 by 0", 0, 0, 0, 0, 0, "mode 0x0 has no pixels"},
+        {"0 wide at most", 0, 180, 0, 0, 0, "unusable display descriptor (version 1, 0x180..0x180)"},
+        {"65535 wide", 65535, 180, 0, 0, 0, "mode 65535x180 is larger than celfw renders"},
+        {"65535 high", 320, 65535, 0, 0, 0, "mode 320x65535 is larger than celfw renders"},
+        {"short descriptor", 320, 180, 12, 0, 0, "descriptor of 12 bytes"},
+        {"empty descriptor", 320, 180, 1, 0, 0, "descriptor of 1 bytes"},
+        {"mode list of 30 bytes", 320, 180, 0, 30, 0, "the mode list is 30 bytes"},
+        {"mode list of 7 bytes", 320, 180, 0, 7, 0, "the mode list is 7 bytes"},
+        {"buffer of 16 bytes", 320, 180, 0, 0, 16, "the device buffer (16 bytes) cannot take one 640-byte line"},
+        {"buffer of 1 byte", 320, 180, 0, 0, 1, "the device buffer (1 bytes)"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        fake_gud_opts o;
+        fake_gud_opts_default(&o);
+        o.width = bad[i].w;
+        o.height = bad[i].h;
+        o.descriptor_len = bad[i].descriptor_len;
+        o.modes_len = bad[i].modes_len;
+        o.max_buffer_size = bad[i].max_buffer;
+        o.any_size = i < 3; /* limits that let the empty modes through to their own check */
+        expect_open_error(tb, bad[i].what, &o, bad[i].needle);
+    }
+    fake_gud_opts o;
+    fake_gud_opts_default(&o);
+    o.formats[0] = 0x7f;
+    o.formats[1] = 0xee;
+    expect_open_error(tb, "unknown formats only", &o, "no pixel format celfw can send");
+
+    /* A full-update device whose frame would be 4096 x 16384 x 4 bytes. */
+    fake_gud_opts_default(&o);
+    o.flags = GUD_FLAG_FULL_UPDATE;
+    o.compression = 0;
+    o.width = 4096;
+    o.height = 16384;
+    o.formats[0] = GUD_FORMAT_XRGB8888;
+    o.nformats = 1;
+    expect_open_error(tb, "full update of 256 MiB", &o, "more than celfw buffers");
+
+    /* No mode list and a descriptor of 100000 x 8: more than a uint16 mode holds. */
+    fake_gud_opts_default(&o);
+    o.no_modes = true;
+    o.width = 100000;
+    o.height = 8;
+    expect_open_error(tb, "EDID-only 100000 wide", &o, "the device's size 100000x8 is larger than celfw renders");
+
+    /* max_buffer_size 0 means no limit (as in the kernel driver): usable. */
+    rig z = {0};
+    fake_gud_opts_default(&z.o);
+    z.o.max_buffer_size = 0;
+    gud_config_default(&z.cfg);
+    char err[300];
+    lx_status s = rig_open(&z, tb, err, sizeof err);
+    lx_frame_stats st;
+    CHECK(s == LX_OK, "max buffer 0 (no limit): %s", err);
+    if (s == LX_OK) {
+        celfw_scene_build("demo", &scene, 0.0f);
+        CHECK(show(&z, &scene, &st) == LX_OK && compare(&z, &scene) == 0, "no buffer limit: frame matches");
+    }
+    rig_close(&z, s == LX_OK);
+
+    /*
+     * A device that comes back with another face: first RGB565, then
+     * XRGB8888 only (twice the bytes per line, the same band of lines: the
+     * band must grow with it), then 0 wide (refused; the display stays down
+     * and is retried), then itself again.
+     */
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    r.o.width = 96;
+    r.o.height = 48;
+    r.o.formats[0] = GUD_FORMAT_RGB565;
+    r.o.nformats = 1;
+    gud_config_default(&r.cfg);
+    r.cfg.reconnect_ms = 10;
+    s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "replug rig: %s", err);
+    if (s != LX_OK)
+        return rig_close(&r, false);
+    /* a moving scene, so that every frame talks to the device and finds it gone */
+    float t = 0.0f;
+    celfw_scene_build("anim", &scene, t);
+    CHECK(show(&r, &scene, &st) == LX_OK && compare(&r, &scene) == 0, "RGB565 frame");
+    fake_gud_opts next = r.o;
+    next.formats[0] = GUD_FORMAT_XRGB8888;
+    fake_gud_unplug(r.dev);
+    celfw_scene_build("anim", &scene, t += 0.1f);
+    CHECK(show(&r, &scene, &st) == LX_ERR_NO_DEVICE, "unplugged");
+    fake_gud_set_opts(r.dev, &next);
+    fake_gud_replug(r.dev, 6);
+    for (int i = 0; i < 100 && (s = show(&r, &scene, &st)) != LX_OK; i++)
+        g_usleep(10000);
+    gud_info info;
+    gud_get_info(r.d, &info);
+    CHECK(s == LX_OK && info.format == GUD_FORMAT_XRGB8888 && compare(&r, &scene) == 0,
+          "back as XRGB8888: %s, format 0x%02x", lx_status_str(s), info.format);
+
+    next.width = 0;
+    next.any_size = true;
+    fake_gud_unplug(r.dev);
+    celfw_scene_build("anim", &scene, t += 0.1f);
+    CHECK(show(&r, &scene, &st) == LX_ERR_NO_DEVICE, "unplugged again");
+    fake_gud_set_opts(r.dev, &next);
+    fake_gud_replug(r.dev, 7);
+    for (int i = 0; i < 10; i++) {
+        g_usleep(15000);
+        s = show(&r, &scene, &st);
+    }
+    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "mode 0x48 has no pixels"),
+          "back 0 wide: down, and says why: %s (%s)", lx_status_str(s), r.d->err);
+
+    next.width = 96;
+    next.any_size = false;
+    fake_gud_unplug(r.dev);
+    fake_gud_set_opts(r.dev, &next);
+    fake_gud_replug(r.dev, 8);
+    for (int i = 0; i < 100 && (s = show(&r, &scene, &st)) != LX_OK; i++)
+        g_usleep(10000);
+    CHECK(s == LX_OK && compare(&r, &scene) == 0, "back whole: %s (%s)", lx_status_str(s), r.d->err);
+    rig_close(&r, true);
+}
+
 static void test_missing(void)
 {
     gud_config c;
@@ -534,6 +671,7 @@ int main(void)
     test_faults(tb);
     test_unplug(tb);
     test_odd_devices(tb);
+    test_hostile(tb);
     measure(tb, 480, 272, GUD_FORMAT_RGB565);
     measure(tb, 800, 480, GUD_FORMAT_RGB565);
     measure(tb, 800, 480, GUD_FORMAT_XRGB8888);
