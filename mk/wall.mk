@@ -1,0 +1,20 @@
+# mk/wall.mk - video walls: viewports of one output across several boards.
+#
+#   make test-wall   the tiles of a 2x2 and a 3x1 wall, rendered through
+#                    viewports, against the single render of the whole wall,
+#                    float for float, in every AA mode; celsim --viewport's
+#                    command line (part of `make test`)
+#
+# The test loads scenes with the host scene JSON loader (host-sim/scene_json.c).
+WALL_TEST_OBJ := $(HOST)/obj/tests/wall_tiles.o $(HOST)/obj/host-sim/scene_json.o \
+        $(HOST)/obj/host-sim/paint_json.o
+$(HOST)/obj/tests/wall_tiles.o: HOST_CFLAGS += -Itests
+
+$(HOST)/wall_tiles: $(WALL_TEST_OBJ) $(HOST)/libcelscan.a
+	$(Q)$(CC) -o $@ $^ $(PKG_LIBS) -lm
+
+.PHONY: test-wall
+test-wall: $(HOST)/wall_tiles $(HOST)/celsim
+	$(Q)sh tests/run.sh -- "$(HOST)/wall_tiles scenes" "sh tests/cli_viewport.sh $(HOST)"
+
+TEST_TARGETS += test-wall
