@@ -3,7 +3,7 @@
 #   make test-wall   the tiles of a 2x2 and a 3x1 wall, rendered through
 #                    viewports, against the single render of the whole wall,
 #                    float for float, in every AA mode; celsim --viewport's
-#                    command line (part of `make test`)
+#                    and celfw --wall/--viewport's command lines (part of `make test`)
 #
 # The test loads scenes with the host scene JSON loader (host-sim/scene_json.c).
 WALL_TEST_OBJ := $(HOST)/obj/tests/wall_tiles.o $(HOST)/obj/host-sim/scene_json.o \
@@ -14,7 +14,7 @@ $(HOST)/wall_tiles: $(WALL_TEST_OBJ) $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(PKG_LIBS) -lm
 
 .PHONY: test-wall
-test-wall: $(HOST)/wall_tiles $(HOST)/celsim
+test-wall: $(HOST)/wall_tiles $(HOST)/celsim $(HOST)/celfw
 	$(Q)sh tests/run.sh -- "$(HOST)/wall_tiles scenes" "sh tests/cli_viewport.sh $(HOST)"
 
 TEST_TARGETS += test-wall

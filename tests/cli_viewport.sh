@@ -7,8 +7,12 @@
 # around them: a viewport covering the whole output gives the whole render's
 # frame CRC, a tile's CRC does not, a wall wider than a line renders through a
 # viewport (and is refused without one), and a viewport that does not fit is
-# a usage error (status 2) naming it. Last line: "cli_viewport: N passed, M failed".
+# a usage error (status 2) naming it. celfw --wall/--viewport: a board of a
+# wall runs (its display the viewport's size), and a wall without a viewport,
+# a viewport that does not fit and a display of another size are refused
+# with status 2 and the reason. Last line: "cli_viewport: N passed, M failed".
 bin=$1/celsim
+fw=$1/celfw
 pass=0
 fail=0
 ok() { pass=$((pass + 1)); }
@@ -36,6 +40,21 @@ rc=$?
 out=$("$bin" render scenes/demo.json --viewport 1,2,3 --crc 2>&1)
 rc=$?
 [ $rc -eq 2 ] && echo "$out" | grep -q 'expects X,Y,W,H' && ok || ko "malformed viewport: rc $rc: $out"
+
+# celfw: "expect STATUS TEXT -- celfw args": the exit status and a line of stderr.
+expect() {
+    want=$1 text=$2
+    shift 3
+    out=$("$fw" --backend null --frames 2 --fps 0 --log-interval 0 "$@" 2>&1)
+    rc=$?
+    [ $rc -eq "$want" ] && echo "$out" | grep -q -- "$text" && ok || ko "celfw $*: rc $rc: $out"
+}
+expect 0 'display=640x360' -- --wall 1280x720 --viewport 640,360,640,360 --aa 16
+expect 2 'needs both --wall WxH and --viewport' -- --wall 1280x720 --size 640x360
+expect 2 'does not fit in the 1280x720 wall' -- --wall 1280x720 --viewport 700,0,640,360
+expect 2 "differs from the viewport's 640x360" -- --size 320x180 --wall 1280x720 \
+    --viewport 0,0,640,360
+expect 2 'is not a viewport X,Y,W,H' -- --wall 1280x720 --viewport 0,0,0,360
 
 echo "cli_viewport: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -34,6 +34,7 @@
 #include "celfw_input.h"
 #include "celfw_scenes.h"
 #include "celfw_stream.h"
+#include "celfw_wall.h"
 #include "gud_host.h"
 #include "hub75.h"
 #include "lx_display.h"
@@ -224,7 +225,7 @@ static int load_scene(celfw *fw)
         }
         snprintf(fw->builtin, sizeof fw->builtin, "%s", spec + 8);
     } else if (!strcmp(spec, "none") || !spec[0]) {
-        cs_scene_init(s, (float)fw->disp->width, (float)fw->disp->height);
+        cs_scene_init(s, (float)fw->src.opts.width, (float)fw->src.opts.height);
     } else if (!celfw_scene_json(spec, s, err, sizeof err)) {
         say("error", "scene %s", err);
         return EXIT_CONFIG;
@@ -383,6 +384,11 @@ int main(int argc, char **argv)
         say("error", "out of memory for %dx%d", fw->disp->width, fw->disp->height);
         fw->disp->ops->close(fw->disp);
         return EXIT_DISPLAY;
+    }
+    if ((rc = celfw_wall_setup(&fw->src, &fw->cfg, fw->disp, err, sizeof err)) != 0) {
+        say("error", "%s", err);
+        fw->disp->ops->close(fw->disp);
+        return rc;
     }
     if ((rc = load_scene(fw)) != 0) {
         fw->disp->ops->close(fw->disp);

@@ -305,6 +305,27 @@ static bool p_usb_wait(celfw_config *c, const char *v, char *err, size_t n)
     return parse_bool(v, &c->usb.wait, err, n);
 }
 
+static bool p_wall(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (!cli_size(v, CS_CFG_MAX_WALL, CS_CFG_MAX_WALL, &c->wall_w, &c->wall_h)) {
+        snprintf(err, n, "'%s' is not a wall size WxH (1..%d each)", v, CS_CFG_MAX_WALL);
+        return false;
+    }
+    return true;
+}
+
+static bool p_viewport(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (!cli_viewport(v, &c->view[0], &c->view[1], &c->view[2], &c->view[3]) ||
+        c->view[2] > CS_CFG_MAX_WIDTH || c->view[3] > CS_CFG_MAX_HEIGHT) {
+        snprintf(err, n, "'%s' is not a viewport X,Y,W,H (W 1..%d, H 1..%d)", v, CS_CFG_MAX_WIDTH,
+                 CS_CFG_MAX_HEIGHT);
+        c->view[2] = 0;
+        return false;
+    }
+    return true;
+}
+
 static bool p_bench(celfw_config *c, const char *v, char *err, size_t n)
 {
     return parse_bool(v, &c->bench_gpio, err, n);
@@ -321,6 +342,8 @@ static const setting settings[] = {
     {"frames", "N", p_frames, "stop after N frames (default: run until SIGTERM)"},
     {"duration", "SECONDS", p_duration, "stop after this long"},
     {"time-step", "SECONDS", p_time_step, "animation time advances by this per frame instead of the clock"},
+    {"wall", "WxH", p_wall, "video wall: the whole output's size, of which this board shows --viewport"},
+    {"viewport", "X,Y,W,H", p_viewport, "video wall: this board's window of the wall (W x H = the display)"},
     {"panel", "WxH", p_panel, "HUB75: one panel, 64x32 (1/16 scan) or 64x64 (1/32 scan), ..."},
     {"chain", "N", p_chain, "HUB75: panels in the chain (default 1)"},
     {"planes", "N", p_planes, "HUB75: colour depth in bit planes, 1..12 (default 8)"},
@@ -502,9 +525,30 @@ int celfw_config_parse(celfw_config *c, int argc, char **argv, char *err, size_t
 
 bool celfw_config_check(celfw_config *c, char *err, size_t errlen)
 {
+    if ((c->view[2] > 0) != (c->wall_w > 0)) {
+        snprintf(err, errlen, "a video wall needs both --wall WxH and --viewport X,Y,W,H");
+        return false;
+    }
+    if (c->view[2] > 0) {
+        if (c->view[0] > c->wall_w - c->view[2] || c->view[1] > c->wall_h - c->view[3]) {
+            snprintf(err, errlen, "viewport %d,%d,%d,%d does not fit in the %dx%d wall", c->view[0],
+                     c->view[1], c->view[2], c->view[3], c->wall_w, c->wall_h);
+            return false;
+        }
+        if (c->backend == CELFW_NULL && c->width &&
+            (c->width != c->view[2] || c->height != c->view[3])) {
+            snprintf(err, errlen, "size %dx%d differs from the viewport's %dx%d", c->width,
+                     c->height, c->view[2], c->view[3]);
+            return false;
+        }
+    }
     char why[256];
     switch (c->backend) {
     case CELFW_NULL:
+        if (!c->width && c->view[2] > 0) { /* the board is its viewport */
+            c->width = c->view[2];
+            c->height = c->view[3];
+        }
         if (!c->width) {
             snprintf(err, errlen, "backend null needs --size WxH");
             return false;

@@ -34,6 +34,8 @@ typedef struct celfw_config {
     double duration;       /* stop after this many seconds; 0 = never */
     double time_step;      /* > 0: animation time = frame index * step, not the clock */
     bool bench_gpio;       /* measure GPIO write throughput, print refresh estimates, exit */
+    int wall_w, wall_h;    /* a video wall's whole size; 0 = no wall */
+    int view[4];           /* this board's viewport X, Y, W, H of the wall (W = 0: none) */
     hub75_config hub75;
     gud_config usb;
     char config_file[256];
