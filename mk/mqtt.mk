@@ -1,0 +1,8 @@
+# mk/mqtt.mk - the fleet: celfw's MQTT input (firmware/linux/celfw_mqtt.c), celc
+# publish, and their tests against a real mosquitto broker.
+#
+#   make test-fleet    a broker on a loopback port with passwords, an ACL and TLS,
+#                      three celfw signs and celc publish (part of `make test`)
+#
+# Included after mk/linuxhal.mk: celfw links libmosquitto too.
+LX_PKGS += libmosquitto
