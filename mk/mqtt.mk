@@ -6,3 +6,4 @@
 #
 # Included after mk/linuxhal.mk: celfw links libmosquitto too.
 LX_PKGS += libmosquitto
+
