@@ -7,3 +7,9 @@
 # Included after mk/linuxhal.mk: celfw links libmosquitto too.
 LX_PKGS += libmosquitto
 
+
+.PHONY: test-fleet
+test-fleet: $(HOST)/celfw $(HOST)/celc
+	$(Q)sh tests/fleet_broker.sh $(HOST) $(BUILD)/fleet-test
+
+TEST_TARGETS += test-fleet

@@ -1,14 +1,23 @@
 /*
  * celfw_mqtt.c - the MQTT fleet input (see celfw_mqtt.h).
  *
- * Two threads meet here. libmosquitto's loop thread runs the callbacks:
- * they copy each message and each event note into a small queue under a
- * mutex and write to an eventfd. celfw's thread polls that eventfd with its
+ * Two threads meet here. A network thread of this file runs libmosquitto
+ * (mosquitto_loop, and every connect and reconnect, blocking there and
+ * never in celfw's frame loop) and so its callbacks: they copy each message
+ * and each event note into a small queue under a mutex and write to an
+ * eventfd. celfw's thread polls that eventfd with its
  * other descriptors, takes the queue whole and feeds the messages to the
  * input sink; it alone touches the decoder and the display. The queue is
  * bounded (CELFW_MQTT_QUEUE messages, MAX_MESSAGE bytes each): a broker
  * that sends faster than celfw takes loses the oldest messages, which are
  * counted and reported, never memory without end.
+ *
+ * The thread is ours, not mosquitto_loop_start's: that loop gives up for
+ * good on errors it deems fatal (a TLS failure while the broker restarts
+ * was one, in this test's runs), and a sign must never stop trying. Here
+ * every failure waits 1, 2, ... 10 s and tries again. mosquitto_threaded_set
+ * tells libmosquitto that celfw's thread publishes (status) concurrently:
+ * it queues and wakes the network thread, which does all socket I/O.
  *
  * Retained content comes again with every reconnect. A message whose bytes
  * are those last delivered on its topic (same length and CRC-32) is not fed
@@ -53,7 +62,11 @@ typedef struct mqtt_msg {
 struct celfw_mqtt {
     struct mosquitto *mosq;
     int efd;
+    pthread_t thread;
+    bool thread_started;
     pthread_mutex_t lock;
+    pthread_cond_t wakeup;   /* ends the network thread's back-off wait early (stop) */
+    bool stop;
     /* Shared with the loop thread, under lock. */
     mqtt_msg q[CELFW_MQTT_QUEUE];
     unsigned q_head, q_count;
@@ -137,14 +150,11 @@ static void on_connect(struct mosquitto *mosq, void *user, int rc)
 static void on_disconnect(struct mosquitto *mosq, void *user, int rc)
 {
     (void)mosq;
+    (void)rc; /* the network thread says why, once */
     celfw_mqtt *m = user;
     pthread_mutex_lock(&m->lock);
-    bool was = m->connected;
     m->connected = false;
     pthread_mutex_unlock(&m->lock);
-    if (rc != 0 && was)
-        queue_note(m, "mqtt connection to %s:%d lost (%s); picture kept, reconnecting", m->host,
-                   m->port, mosquitto_strerror(rc));
 }
 
 static void on_subscribe(struct mosquitto *mosq, void *user, int mid, int n, const int *granted)
@@ -193,6 +203,84 @@ static void on_message(struct mosquitto *mosq, void *user, const struct mosquitt
         (mqtt_msg){topic, copy, (size_t)msg->payloadlen};
     pthread_mutex_unlock(&m->lock);
     wake(m);
+}
+
+/* Network thread: waits `seconds` unless told to stop; returns whether to go on. */
+static bool backoff(celfw_mqtt *m, unsigned seconds)
+{
+    struct timespec until;
+    clock_gettime(CLOCK_REALTIME, &until);
+    until.tv_sec += (time_t)seconds;
+    pthread_mutex_lock(&m->lock);
+    while (!m->stop && pthread_cond_timedwait(&m->wakeup, &m->lock, &until) == 0)
+        ;
+    bool go = !m->stop;
+    pthread_mutex_unlock(&m->lock);
+    return go;
+}
+
+static bool stopping(celfw_mqtt *m)
+{
+    pthread_mutex_lock(&m->lock);
+    bool s = m->stop;
+    pthread_mutex_unlock(&m->lock);
+    return s;
+}
+
+/*
+ * The network thread: connect (blocking, here), run the client's loop
+ * while the connection lasts, and after any failure wait 1, 2, ... 10 s
+ * and reconnect. A failure is logged once per outage, not per attempt.
+ */
+static void *net_thread(void *arg)
+{
+    celfw_mqtt *m = arg;
+    unsigned delay = 0;
+    bool up = false, tried = false, told = false;
+    while (!stopping(m)) {
+        if (!up) {
+            int rc = tried ? mosquitto_reconnect(m->mosq)
+                           : mosquitto_connect(m->mosq, m->host, m->port, KEEPALIVE_S);
+            tried = true;
+            if (rc != MOSQ_ERR_SUCCESS) {
+                delay = delay < 10 ? delay + 1 : 10;
+                if (!told)
+                    queue_note(m, "mqtt %s:%d: %s; retrying every 1..10 s, picture kept", m->host,
+                               m->port, rc == MOSQ_ERR_ERRNO ? strerror(errno)
+                                                             : mosquitto_strerror(rc));
+                told = true;
+                if (!backoff(m, delay))
+                    break;
+                continue;
+            }
+            up = true;
+        }
+        pthread_mutex_lock(&m->lock);
+        bool was = m->connected;
+        pthread_mutex_unlock(&m->lock);
+        int rc = mosquitto_loop(m->mosq, 1000, 1);
+        pthread_mutex_lock(&m->lock);
+        bool connected = m->connected;
+        pthread_mutex_unlock(&m->lock);
+        if (connected) { /* CONNACK accepted: the next outage starts from 1 s */
+            delay = 0;
+            told = false;
+        }
+        if (rc != MOSQ_ERR_SUCCESS) {
+            up = false;
+            pthread_mutex_lock(&m->lock);
+            m->connected = false;
+            pthread_mutex_unlock(&m->lock);
+            if (was && !stopping(m))
+                queue_note(m, "mqtt connection to %s:%d lost (%s); picture kept, reconnecting",
+                           m->host, m->port,
+                           rc == MOSQ_ERR_ERRNO ? strerror(errno) : mosquitto_strerror(rc));
+            delay = delay < 10 ? delay + 1 : 10;
+            if (!backoff(m, delay))
+                break;
+        }
+    }
+    return NULL;
 }
 
 bool celfw_mqtt_spec(const char *spec)
@@ -367,6 +455,7 @@ int celfw_mqtt_open(celfw_mqtt **out, const char *spec, const celfw_mqtt_config 
         return -1;
     }
     pthread_mutex_init(&m->lock, NULL);
+    pthread_cond_init(&m->wakeup, NULL);
     mosquitto_lib_init();
     m->efd = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
     /* A clean session: what a sign missed while away is the retained content. */
@@ -400,22 +489,14 @@ int celfw_mqtt_open(celfw_mqtt **out, const char *spec, const celfw_mqtt_config 
     mosquitto_disconnect_callback_set(m->mosq, on_disconnect);
     mosquitto_subscribe_callback_set(m->mosq, on_subscribe);
     mosquitto_message_callback_set(m->mosq, on_message);
-    /* Backoff 1, 2, 3 ... 10 s: libmosquitto's exponential mode grows 1, 4, 9 ...,
-     * which leaves a sign dark for long after a short broker restart. */
-    mosquitto_reconnect_delay_set(m->mosq, 1, 10, false);
-    rc = mosquitto_loop_start(m->mosq);
-    if (rc == MOSQ_ERR_SUCCESS) {
-        /* A broker that is not up yet is not an error: the loop retries. */
-        int c = mosquitto_connect_async(m->mosq, m->host, m->port, KEEPALIVE_S);
-        if (c != MOSQ_ERR_SUCCESS)
-            queue_note(m, "mqtt %s:%d: %s; retrying", m->host, m->port,
-                       c == MOSQ_ERR_ERRNO ? strerror(errno) : mosquitto_strerror(c));
-    } else {
-        snprintf(err, errlen, "input %s: cannot start the MQTT thread: %s", spec,
-                 mosquitto_strerror(rc));
+    mosquitto_threaded_set(m->mosq, true);
+    /* A broker that is not up yet is not an error: the thread keeps trying. */
+    if (pthread_create(&m->thread, NULL, net_thread, m) != 0) {
+        snprintf(err, errlen, "input %s: cannot start the MQTT thread", spec);
         celfw_mqtt_close(m);
         return -1;
     }
+    m->thread_started = true;
     *out = m;
     return 0;
 }
@@ -533,12 +614,17 @@ void celfw_mqtt_close(celfw_mqtt *m)
             if (s)
                 mosquitto_publish(m->mosq, NULL, m->status_topic, (int)strlen(s), s, 1, true);
             cJSON_free(s);
-            /* Let the loop send it (QoS 1 needs no answer to leave). */
-            struct timespec ts = {0, 50000000};
+            /* Let the network thread send it (QoS 1 needs no answer to leave). */
+            struct timespec ts = {0, 100000000};
             nanosleep(&ts, NULL);
         }
+        pthread_mutex_lock(&m->lock);
+        m->stop = true;
+        pthread_cond_signal(&m->wakeup);
+        pthread_mutex_unlock(&m->lock);
         mosquitto_disconnect(m->mosq);
-        mosquitto_loop_stop(m->mosq, false);
+        if (m->thread_started) /* within a loop timeout (1 s) */
+            pthread_join(m->thread, NULL);
         mosquitto_destroy(m->mosq);
         mosquitto_lib_cleanup();
     }
@@ -546,6 +632,7 @@ void celfw_mqtt_close(celfw_mqtt *m)
         free(m->q[(m->q_head + i) % CELFW_MQTT_QUEUE].data);
     if (m->efd >= 0)
         close(m->efd);
+    pthread_cond_destroy(&m->wakeup);
     pthread_mutex_destroy(&m->lock);
     free(m);
 }
