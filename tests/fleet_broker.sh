@@ -76,7 +76,7 @@ crc_of() { python3 -c 'import sys, zlib; print("%08X" % zlib.crc32(open(sys.argv
 
 # ---------------------------------------------------------------- users and ACL
 : >"$W/passwd"
-for u in ops s1 s2 s3; do
+for u in ops s1 s2 s3 s4; do
     mosquitto_passwd -b "$W/passwd" "$u" "pw-$u-secret" 2>/dev/null
 done
 chmod 600 "$W/passwd"
@@ -278,9 +278,29 @@ check "celfw refuses a password file others can read (rc $rc)" \
     sh -c "[ $rc -eq 3 ] && echo '$out' | grep -q 'chmod 600'"
 chmod 600 "$W/s1.pw"
 
-# 7. Signed streams (issue 23), where this build has them.
-if "$CELC" keygen --help >/dev/null 2>&1; then
-    echo "fleet_broker: signed-stream checks need wiring to celc keygen/sign and celfw --trust"
+# 7. Signed streams (issue 23), where this build has them: a sign that trusts
+# the operator's key applies only what that key signed, delivered by MQTT.
+if "$CELC" keygen -o "$W/operator" >/dev/null 2>&1 && "$CELC" keygen -o "$W/intruder" >/dev/null 2>&1; then
+    "$CELC" sign "$W/demo.cels" -o "$W/demo.signed.cels" --key "$W/operator.key" >/dev/null 2>&1 &&
+        "$CELC" sign "$W/motion.cels" -o "$W/motion.forged.cels" --key "$W/intruder.key" >/dev/null 2>&1 ||
+        ko "celc sign"
+    mkdir -p "$W/state"
+    chmod 700 "$W/state"
+    sign_conf s4
+    "$CELFW" --config "$W/s4.conf" --backend null --size 32x16 --fps 20 --log-interval 1 \
+        --duration 60 --input "mqtt://127.0.0.1:$PORT" --mqtt-topic groups/secure \
+        --trust "$W/operator.pub" --state-dir "$W/state" 2>>"$W/s4.log" &
+    pids="$pids $!"
+    check "s4 (trusting the operator) connects" wait_log "$W/s4.log" "mqtt connected to" 8
+    for f in motion.cels motion.forged.cels demo.signed.cels; do
+        "$CELC" publish "$W/$f" --broker "mqtt://127.0.0.1:$PORT" --topic groups/secure \
+            --credentials "$W/ops.cred" >/dev/null 2>&1 || ko "publish $f"
+        sleep 0.5
+    done
+    check "s4 refuses the unsigned publish" grep -q "refused.*unsigned" "$W/s4.log"
+    check "s4 refuses the intruder's publish" grep -q "refused.*unknown key" "$W/s4.log"
+    check "s4 applies the operator's signed publish, once" \
+        test "$(count_log "$W/s4.log" "stream commit")" = 1
 else
     echo "fleet_broker: signed, unsigned and forged publishes skipped (no celc keygen in this build)"
 fi
