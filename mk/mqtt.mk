@@ -4,8 +4,9 @@
 #   make test-fleet    a broker on a loopback port with passwords, an ACL and TLS,
 #                      three celfw signs and celc publish (part of `make test`)
 #
-# Included after mk/linuxhal.mk: celfw links libmosquitto too.
-LX_PKGS += libmosquitto
+# Included after mk/linuxhal.mk: celfw links libmosquitto, and libsodium for the
+# BLAKE2b digest that names a message's content.
+LX_PKGS += libmosquitto libsodium
 
 
 .PHONY: test-fleet

@@ -6,8 +6,8 @@
  * that connects or reconnects gets it at once. Each message is one cel
  * stream, handed to celfw's input sink as one byte sequence followed by a
  * reset: the same decoder and the same checks as the same bytes over TCP.
- * The sign publishes a retained status to signs/<id>/status (online, last
- * applied content, frame rate, last error) and leaves a last will that marks
+ * The sign publishes a retained status to signs/<id>/status (online, the
+ * applied content's BLAKE2b-128 digest and topic, frame rate, last error) and leaves a last will that marks
  * it offline, so `mosquitto_sub -t 'signs/+/status'` shows the fleet.
  *
  * libmosquitto runs its threaded loop (connect, TLS, keepalive, reconnect
