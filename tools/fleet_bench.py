@@ -121,10 +121,15 @@ def main():
         for k in range(1, a.publishes + 1):
             time.sleep(0.5)
             t0 = time.monotonic()
-            subprocess.run([celc, "publish", streams[(k - 1) % 2], "--broker",
-                            f"mqtt://127.0.0.1:{port}", "--topic", "groups/bench", "--retain"],
-                           check=True, stdout=subprocess.DEVNULL)
+            # The signs' lines are read while celc runs, not after: their time is
+            # when they came.
+            pub = subprocess.Popen([celc, "publish", streams[(k - 1) % 2], "--broker",
+                                    f"mqtt://127.0.0.1:{port}", "--topic", "groups/bench",
+                                    "--retain"], stdout=subprocess.DEVNULL)
             pump(t0 + a.timeout, lambda: all(k in c for c in commits.values()))
+            if pub.wait() != 0:
+                print(f"publish {k}: celc publish failed", file=sys.stderr)
+                return 1
             got = [c[k] - t0 for c in commits.values() if k in c]
             if len(got) < a.signs:
                 print(f"publish {k}: only {len(got)} of {a.signs} signs applied it", file=sys.stderr)
