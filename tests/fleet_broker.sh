@@ -21,6 +21,7 @@
 #     (no commit, no stream error), reconnect and report online again;
 #   - the ACL: a client without a password, with a wrong one, and a sign's
 #     own password publishing content are refused (and no sign changes);
+#   - a 40 MB message, beyond what a sign takes, never reaches it;
 #   - a broker certificate from another CA is refused by celc publish over TLS;
 #   - credentials stay off the command line, and a password file others can
 #     read is refused.
@@ -267,6 +268,19 @@ check "a sign's password publishing content is refused by the ACL (rc $rc: $out)
     sh -c "[ $rc -eq 1 ] && echo '$out' | grep -q -i 'not authori'"
 sleep 0.5
 check "no sign changed after the refused publish" test "$(count_log "$W/s3.log" "stream commit")" = "$before"
+
+# A message bigger than a sign takes (32 MiB; the sign says so in its MQTT 5
+# CONNECT) is dropped by the broker for it: no feed, no disconnect.
+head -c 40000000 /dev/zero >"$W/big.bin"
+lost=$(count_log "$W/s1.log" "lost")
+fed=$(count_log "$W/s1.log" "mqtt message on")
+mosquitto_pub -h 127.0.0.1 -p "$PORT" -u ops -P pw-ops-secret -t groups/lobby -q 1 \
+    -f "$W/big.bin" >/dev/null 2>&1 || ko "publishing 40 MB"
+rm -f "$W/big.bin"
+sleep 1
+check "a 40 MB message is kept from the signs, which stay connected" \
+    test "$(count_log "$W/s1.log" "mqtt message on")" = "$fed" -a "$(count_log "$W/s1.log" "lost")" = "$lost" \
+    -a "$(count_log "$W/s1.log" "bytes, more than")" = 0
 
 # 5. TLS: a broker whose certificate another CA signed is not trusted.
 out=$("$CELC" publish "$W/demo.cels" --broker "mqtts://localhost:$TPORT" --topic groups/lobby \

@@ -5,12 +5,15 @@
  * (mosquitto_loop, and every connect and reconnect, blocking there and
  * never in celfw's frame loop) and so its callbacks: they copy each message
  * and each event note into a small queue under a mutex and write to an
- * eventfd. celfw's thread polls that eventfd with its
- * other descriptors, takes the queue whole and feeds the messages to the
- * input sink; it alone touches the decoder and the display. The queue is
- * bounded (CELFW_MQTT_QUEUE messages, MAX_MESSAGE bytes each): a broker
- * that sends faster than celfw takes loses the oldest messages, which are
- * counted and reported, never memory without end.
+ * eventfd. celfw's thread polls that eventfd with its other descriptors,
+ * takes the queue whole and feeds the messages to the input sink; it alone
+ * touches the decoder and the display. The queue is bounded
+ * (CELFW_MQTT_QUEUE messages, MAX_QUEUED bytes): a broker that sends faster
+ * than celfw takes loses the oldest messages, which are counted and
+ * reported, never memory without end. The sign speaks MQTT 5 and tells the
+ * broker the largest packet it takes (MAX_MESSAGE and a little), so the
+ * broker drops bigger messages for it rather than sending them
+ * (libmosquitto would hold a whole packet in memory first).
  *
  * The thread is ours, not mosquitto_loop_start's: that loop gives up for
  * good on errors it deems fatal (a TLS failure while the broker restarts
@@ -37,6 +40,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <mosquitto.h>
+#include <mqtt_protocol.h>
 #include <stdarg.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -53,7 +57,8 @@
 
 #define CELFW_MQTT_QUEUE 16
 #define MAX_NOTES 16
-#define MAX_MESSAGE (64u << 20) /* a scene transaction is at most 16 MiB (CS_CFG_STREAM_MAX_TXN) */
+#define MAX_MESSAGE (32u << 20) /* a scene transaction is at most 16 MiB (CS_CFG_STREAM_MAX_TXN) */
+#define MAX_QUEUED (64u << 20)  /* bytes waiting for celfw's thread, all messages together */
 #define KEEPALIVE_S 10
 #define STATUS_MIN_NS 250000000ull /* events closer than this share one status message */
 #define DIGEST_BYTES 16              /* BLAKE2b-128: names a content, 32 hex digits */
@@ -82,6 +87,7 @@ typedef struct mqtt_msg {
 
 struct celfw_mqtt {
     struct mosquitto *mosq;
+    mosquitto_property *props; /* CONNECT: the largest packet this sign takes */
     int efd;
     pthread_t thread;
     bool thread_started;
@@ -91,6 +97,7 @@ struct celfw_mqtt {
     /* Shared with the loop thread, under lock. */
     mqtt_msg q[CELFW_MQTT_QUEUE];
     unsigned q_head, q_count;
+    size_t q_bytes;
     uint64_t q_dropped;
     char notes[MAX_NOTES][240];
     unsigned n_head, n_count;
@@ -213,7 +220,10 @@ static void on_message(struct mosquitto *mosq, void *user, const struct mosquitt
     }
     memcpy(copy, msg->payload, (size_t)msg->payloadlen);
     pthread_mutex_lock(&m->lock);
-    if (m->q_count == CELFW_MQTT_QUEUE) { /* celfw is behind: the oldest goes */
+    while (m->q_count == CELFW_MQTT_QUEUE ||
+           (m->q_count > 0 && m->q_bytes + (size_t)msg->payloadlen > MAX_QUEUED)) {
+        /* celfw is behind: the oldest goes */
+        m->q_bytes -= m->q[m->q_head].len;
         free(m->q[m->q_head].data);
         m->q_head = (m->q_head + 1) % CELFW_MQTT_QUEUE;
         m->q_count--;
@@ -221,6 +231,7 @@ static void on_message(struct mosquitto *mosq, void *user, const struct mosquitt
     }
     m->q[(m->q_head + m->q_count++) % CELFW_MQTT_QUEUE] =
         (mqtt_msg){topic, copy, (size_t)msg->payloadlen};
+    m->q_bytes += (size_t)msg->payloadlen;
     pthread_mutex_unlock(&m->lock);
     wake(m);
 }
@@ -259,8 +270,9 @@ static void *net_thread(void *arg)
     bool up = false, tried = false, told = false;
     while (!stopping(m)) {
         if (!up) {
-            int rc = tried ? mosquitto_reconnect(m->mosq)
-                           : mosquitto_connect(m->mosq, m->host, m->port, KEEPALIVE_S);
+            int rc = tried ? mosquitto_reconnect(m->mosq) /* the same properties */
+                           : mosquitto_connect_bind_v5(m->mosq, m->host, m->port, KEEPALIVE_S,
+                                                       NULL, m->props);
             tried = true;
             if (rc != MOSQ_ERR_SUCCESS) {
                 delay = delay < 10 ? delay + 1 : 10;
@@ -486,6 +498,11 @@ int celfw_mqtt_open(celfw_mqtt **out, const char *spec, const celfw_mqtt_config 
     /* A clean session: what a sign missed while away is the retained content. */
     m->mosq = mosquitto_new(m->id, true, m);
     int rc = m->efd < 0 || !m->mosq ? MOSQ_ERR_NOMEM : MOSQ_ERR_SUCCESS;
+    if (rc == MOSQ_ERR_SUCCESS)
+        rc = mosquitto_int_option(m->mosq, MOSQ_OPT_PROTOCOL_VERSION, MQTT_PROTOCOL_V5);
+    if (rc == MOSQ_ERR_SUCCESS) /* the payload, and room for the topic and headers */
+        rc = mosquitto_property_add_int32(&m->props, MQTT_PROP_MAXIMUM_PACKET_SIZE,
+                                          MAX_MESSAGE + 65536u);
     char *will = rc == MOSQ_ERR_SUCCESS ? status_json(m, false) : NULL;
     if (rc == MOSQ_ERR_SUCCESS)
         rc = will ? mosquitto_will_set(m->mosq, m->status_topic, (int)strlen(will), will, 1, true)
@@ -546,6 +563,7 @@ void celfw_mqtt_service(celfw_mqtt *m, const celfw_input_sink *sink)
     pthread_mutex_lock(&m->lock);
     for (; m->q_count; m->q_count--, m->q_head = (m->q_head + 1) % CELFW_MQTT_QUEUE)
         msgs[nm++] = m->q[m->q_head];
+    m->q_bytes = 0;
     for (; m->n_count; m->n_count--, m->n_head = (m->n_head + 1) % MAX_NOTES)
         memcpy(notes[nn++], m->notes[m->n_head], sizeof notes[0]);
     announce = m->announce;
@@ -650,6 +668,7 @@ void celfw_mqtt_close(celfw_mqtt *m)
         if (m->thread_started) /* within a loop timeout (1 s) */
             pthread_join(m->thread, NULL);
         mosquitto_destroy(m->mosq);
+        mosquitto_property_free_all(&m->props);
         mosquitto_lib_cleanup();
     }
     for (unsigned i = 0; i < m->q_count; i++)
