@@ -312,6 +312,12 @@ static void *net_thread(void *arg)
                 break;
         }
     }
+    if (up) { /* a clean goodbye: what celfw queued last (its offline status), then DISCONNECT */
+        mosquitto_disconnect(m->mosq);
+        for (int i = 0; i < 10 && mosquitto_want_write(m->mosq); i++)
+            if (mosquitto_loop(m->mosq, 100, 1) != MOSQ_ERR_SUCCESS)
+                break;
+    }
     return NULL;
 }
 
@@ -350,7 +356,19 @@ static bool parse_spec(celfw_mqtt *m, const char *rest, char *topic, size_t topi
     return true;
 }
 
-/* A secret file: regular, not readable by group or others. */
+/* A secret file's mode: regular, not readable by group or others. */
+static bool secret_mode_ok(const char *what, const char *path, const struct stat *st, char *err,
+                           size_t errlen)
+{
+    if (!S_ISREG(st->st_mode) || (st->st_mode & 077) != 0) {
+        snprintf(err, errlen, "%s %s: mode %04o lets others read it; chmod 600 it", what, path,
+                 (unsigned)(st->st_mode & 07777));
+        return false;
+    }
+    return true;
+}
+
+/* The key is opened by libmosquitto (OpenSSL): its mode is checked by path. */
 static bool secret_file_ok(const char *what, const char *path, char *err, size_t errlen)
 {
     struct stat st;
@@ -358,28 +376,28 @@ static bool secret_file_ok(const char *what, const char *path, char *err, size_t
         snprintf(err, errlen, "%s %s: %s", what, path, strerror(errno));
         return false;
     }
-    if (!S_ISREG(st.st_mode) || (st.st_mode & 077) != 0) {
-        snprintf(err, errlen, "%s %s: mode %04o lets others read it; chmod 600 it", what, path,
-                 (unsigned)(st.st_mode & 07777));
-        return false;
-    }
-    return true;
+    return secret_mode_ok(what, path, &st, err, errlen);
 }
 
+/* The password file's first line; its mode is checked on the file read. */
 static bool read_password(const char *path, char *out, size_t n, char *err, size_t errlen)
 {
-    if (!secret_file_ok("mqtt-password-file", path, err, errlen))
-        return false;
     FILE *f = fopen(path, "r");
-    if (!f || !fgets(out, (int)n, f)) {
-        snprintf(err, errlen, "mqtt-password-file %s: %s", path, f ? "empty" : strerror(errno));
+    struct stat st;
+    if (!f || fstat(fileno(f), &st) != 0) {
+        snprintf(err, errlen, "mqtt-password-file %s: %s", path, strerror(errno));
         if (f)
             fclose(f);
         return false;
     }
+    bool ok = secret_mode_ok("mqtt-password-file", path, &st, err, errlen);
+    if (ok && !fgets(out, (int)n, f)) {
+        snprintf(err, errlen, "mqtt-password-file %s: empty", path);
+        ok = false;
+    }
     fclose(f);
-    out[strcspn(out, "\r\n")] = 0;
-    return true;
+    out[ok ? strcspn(out, "\r\n") : 0] = 0;
+    return ok;
 }
 
 static char *status_json(celfw_mqtt *m, bool online)
@@ -653,19 +671,15 @@ void celfw_mqtt_close(celfw_mqtt *m)
         if (connected) {
             /* A clean goodbye: the will only fires on a broken connection. */
             char *s = status_json(m, false);
-            if (s)
+            if (s) /* the network thread sends it before it disconnects */
                 mosquitto_publish(m->mosq, NULL, m->status_topic, (int)strlen(s), s, 1, true);
             cJSON_free(s);
-            /* Let the network thread send it (QoS 1 needs no answer to leave). */
-            struct timespec ts = {0, 100000000};
-            nanosleep(&ts, NULL);
         }
         pthread_mutex_lock(&m->lock);
         m->stop = true;
         pthread_cond_signal(&m->wakeup);
         pthread_mutex_unlock(&m->lock);
-        mosquitto_disconnect(m->mosq);
-        if (m->thread_started) /* within a loop timeout (1 s) */
+        if (m->thread_started) /* within a loop timeout (1 s) and the goodbye */
             pthread_join(m->thread, NULL);
         mosquitto_destroy(m->mosq);
         mosquitto_property_free_all(&m->props);
