@@ -23,6 +23,9 @@
 #     own password publishing content are refused (and no sign changes);
 #   - a 40 MB message, beyond what a sign takes, never reaches it;
 #   - a broker certificate from another CA is refused by celc publish over TLS;
+#   - mutual TLS: a sign's client certificate and key (config file) open a
+#     listener that requires one, and without them it stays out; a sign with
+#     a wrong password is refused, and says so once, not at every retry;
 #   - credentials stay off the command line, and a password file others can
 #     read is refused.
 #   - signed, unsigned and forged publishes: only when this build has the
@@ -71,6 +74,11 @@ digest_of() { python3 -c 'import hashlib, sys; print(hashlib.blake2b(open(sys.ar
         printf 'subjectAltName=DNS:localhost,IP:127.0.0.1\n' >san.ext &&
         openssl x509 -req -in server.csr -CA ca.crt -CAkey ca.key -CAcreateserial \
             -out server.crt -days 2 -extfile san.ext 2>/dev/null &&
+        openssl req -newkey rsa:2048 -nodes -keyout client.key -out client.csr \
+            -subj /CN=s1 2>/dev/null &&
+        openssl x509 -req -in client.csr -CA ca.crt -CAkey ca.key -CAcreateserial \
+            -out client.crt -days 2 2>/dev/null &&
+        chmod 600 client.key &&
         openssl req -x509 -newkey rsa:2048 -nodes -keyout rogue.key -out rogue.crt -days 2 \
             -subj /CN=rogue-ca 2>/dev/null
 ) || { echo "fleet_broker: FAIL openssl could not make the certificates"; echo "fleet_broker: 0 passed, 1 failed"; exit 1; }
@@ -94,6 +102,7 @@ EOF
 
 PORT=0
 TPORT=0
+MPORT=0
 start_broker() {
     cat >"$W/mosquitto.conf" <<EOF
 per_listener_settings false
@@ -108,6 +117,11 @@ listener $TPORT 127.0.0.1
 cafile $W/ca.crt
 certfile $W/server.crt
 keyfile $W/server.key
+listener $MPORT 127.0.0.1
+cafile $W/ca.crt
+certfile $W/server.crt
+keyfile $W/server.key
+require_certificate true
 EOF
     /usr/sbin/mosquitto -c "$W/mosquitto.conf" 2>>"$W/broker.err" &
     BROKER=$!
@@ -129,7 +143,8 @@ tries=0
 while :; do
     PORT=$(free_port)
     TPORT=$(free_port)
-    [ "$PORT" != "$TPORT" ] && start_broker && break
+    MPORT=$(free_port)
+    [ "$PORT" != "$TPORT" ] && [ "$PORT" != "$MPORT" ] && [ "$TPORT" != "$MPORT" ] && start_broker && break
     tries=$((tries + 1))
     [ $tries -lt 5 ] || { ko "mosquitto would not start: $(cat "$W/broker.err" "$W/broker.log" 2>/dev/null | tail -3)"; echo "fleet_broker: $pass passed, $fail failed"; exit 1; }
 done
@@ -287,6 +302,35 @@ out=$("$CELC" publish "$W/demo.cels" --broker "mqtts://localhost:$TPORT" --topic
     --credentials "$W/rogue.cred" --timeout 3 2>&1)
 rc=$?
 check "celc publish refuses a broker certificate from another CA (rc $rc: $out)" test $rc -eq 1
+
+# Mutual TLS: a listener that wants a client certificate takes s1 with its
+# certificate and key (from the config file), and not without them.
+cp "$W/s1.conf" "$W/s1m.conf"
+printf 'mqtt-cert = %s/client.crt\nmqtt-key = %s/client.key\n' "$W" "$W" >>"$W/s1m.conf"
+"$CELFW" --config "$W/s1m.conf" --backend null --size 8x8 --fps 10 --duration 20 \
+    --input "mqtts://localhost:$MPORT" 2>"$W/s1m.log" &
+m1=$!
+pids="$pids $m1"
+"$CELFW" --config "$W/s1.conf" --backend null --size 8x8 --fps 10 --duration 20 \
+    --input "mqtts://localhost:$MPORT" 2>"$W/s1n.log" &
+m2=$!
+pids="$pids $m2"
+# And a sign with a wrong password: refused by the broker, said once per outage.
+printf 'wrong\n' >"$W/s1bad.pw"
+chmod 600 "$W/s1bad.pw"
+sed "s|$W/s1.pw|$W/s1bad.pw|" "$W/s1.conf" >"$W/s1bad.conf"
+"$CELFW" --config "$W/s1bad.conf" --backend null --size 8x8 --fps 10 --duration 20 \
+    --input "mqtt://127.0.0.1:$PORT" 2>"$W/s1bad.log" &
+m3=$!
+pids="$pids $m3"
+check "a client certificate from the config file opens a listener that requires one" \
+    wait_log "$W/s1m.log" "mqtt connected to" 8
+check "no client certificate: the sign says it cannot connect" wait_log "$W/s1n.log" "retrying every" 5
+check "no client certificate: not connected" sh -c "! grep -q 'mqtt connected to' '$W/s1n.log'"
+sleep 3.2 # two retries at least (1 s, 2 s)
+check "a sign's wrong password is refused by the broker, said once ($(count_log "$W/s1bad.log" refused) lines)" \
+    test "$(count_log "$W/s1bad.log" "refused the connection")" = 1
+kill $m1 $m2 $m3 2>/dev/null
 
 # 6. Credentials only from the config file, and only from private files.
 out=$("$CELFW" --backend null --size 8x8 --frames 1 --mqtt-password-file "$W/s1.pw" 2>&1)

@@ -102,6 +102,7 @@ struct celfw_mqtt {
     char notes[MAX_NOTES][240];
     unsigned n_head, n_count;
     bool connected, announce;
+    bool told;                 /* network thread only: this outage was logged */
     /* celfw's thread only. */
     char host[256];
     int port;
@@ -158,8 +159,10 @@ static void on_connect(struct mosquitto *mosq, void *user, int rc)
 {
     celfw_mqtt *m = user;
     if (rc != 0) {
-        queue_note(m, "mqtt %s:%d refused the connection: %s; retrying", m->host, m->port,
-                   mosquitto_connack_string(rc));
+        if (!m->told)
+            queue_note(m, "mqtt %s:%d refused the connection: %s; retrying every 1..10 s",
+                       m->host, m->port, mosquitto_reason_string(rc)); /* MQTT 5 reason */
+        m->told = true;
         return;
     }
     char *subs[CELFW_MQTT_MAX_TOPICS + 1];
@@ -267,7 +270,7 @@ static void *net_thread(void *arg)
 {
     celfw_mqtt *m = arg;
     unsigned delay = 0;
-    bool up = false, tried = false, told = false;
+    bool up = false, tried = false;
     while (!stopping(m)) {
         if (!up) {
             int rc = tried ? mosquitto_reconnect(m->mosq) /* the same properties */
@@ -276,11 +279,11 @@ static void *net_thread(void *arg)
             tried = true;
             if (rc != MOSQ_ERR_SUCCESS) {
                 delay = delay < 10 ? delay + 1 : 10;
-                if (!told)
+                if (!m->told)
                     queue_note(m, "mqtt %s:%d: %s; retrying every 1..10 s, picture kept", m->host,
                                m->port, rc == MOSQ_ERR_ERRNO ? strerror(errno)
                                                              : mosquitto_strerror(rc));
-                told = true;
+                m->told = true;
                 if (!backoff(m, delay))
                     break;
                 continue;
@@ -296,17 +299,23 @@ static void *net_thread(void *arg)
         pthread_mutex_unlock(&m->lock);
         if (connected) { /* CONNACK accepted: the next outage starts from 1 s */
             delay = 0;
-            told = false;
+            m->told = false;
         }
         if (rc != MOSQ_ERR_SUCCESS) {
             up = false;
             pthread_mutex_lock(&m->lock);
             m->connected = false;
             pthread_mutex_unlock(&m->lock);
-            if (was && !stopping(m))
+            const char *why = rc == MOSQ_ERR_ERRNO ? strerror(errno) : mosquitto_strerror(rc);
+            if (was && !stopping(m)) {
                 queue_note(m, "mqtt connection to %s:%d lost (%s); picture kept, reconnecting",
-                           m->host, m->port,
-                           rc == MOSQ_ERR_ERRNO ? strerror(errno) : mosquitto_strerror(rc));
+                           m->host, m->port, why);
+            } else if (!was && !m->told && !stopping(m)) {
+                /* e.g. a TLS listener that wants a client certificate closes here */
+                queue_note(m, "mqtt %s:%d closed the connection before accepting it (%s); "
+                           "retrying every 1..10 s, picture kept", m->host, m->port, why);
+                m->told = true;
+            }
             delay = delay < 10 ? delay + 1 : 10;
             if (!backoff(m, delay))
                 break;
