@@ -345,6 +345,18 @@ check "celfw refuses a password file others can read (rc $rc)" \
     sh -c "[ $rc -eq 3 ] && echo '$out' | grep -q 'chmod 600'"
 chmod 600 "$W/s1.pw"
 
+# Malformed fleet settings are refused before anything starts.
+out=$("$CELFW" --backend null --size 8x8 --frames 1 --input "mqtt://127.0.0.1:$PORT" 2>&1)
+rc=$?
+check "an mqtt input without sign-id is refused (rc $rc)" sh -c "[ $rc -eq 2 ] && echo '$out' | grep -q 'needs sign-id'"
+for spec in "mqtt://127.0.0.1" "mqtt://127.0.0.1:0/t" "mqtt://:$PORT" "mqtt://[::1/t"; do
+    out=$("$CELFW" --backend null --size 8x8 --frames 1 --sign-id x --input "$spec" 2>&1)
+    rc=$?
+    check "input $spec is refused (rc $rc)" sh -c "[ $rc -eq 3 ] && echo '$out' | grep -q 'expected mqtt\[s\]://HOST:PORT'"
+done
+out=$("$CELFW" --backend null --size 8x8 --frames 1 --sign-id 'a/b' 2>&1)
+check "a sign id with a '/' is refused" sh -c "echo '$out' | grep -q 'is not a sign id'"
+
 # 7. Signed streams (issue 23), where this build has them: a sign that trusts
 # the operator's key applies only what that key signed, delivered by MQTT.
 if "$CELC" keygen -o "$W/operator" >/dev/null 2>&1 && "$CELC" keygen -o "$W/intruder" >/dev/null 2>&1; then
