@@ -614,6 +614,7 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
  * options, is refused with CS_ERR_STATE: the caller falls back to NULL. The
  * cache does not know about animation: it is the caller's promise that the
  * cached cels (and the lights they use) did not change since the build.
+ * A frame with a viewport takes no cache (CS_ERR_STATE).
  */
 cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                                 const cs_render_opts *opts, const cs_cache *cache,
@@ -626,6 +627,7 @@ cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene
  * rendered with it. If the runs do not fit, returns CS_ERR_CAP_CACHE with
  * cache->bytes_needed set to the size that would have fitted, and the cache
  * is unusable (cache->status != CS_OK): render those cels directly.
+ * Options with a viewport are refused (CS_ERR_ARG).
  */
 cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspace *ws,
                          const cs_scene *scene, const cs_render_opts *opts, uint32_t cel_first,
