@@ -688,8 +688,16 @@ void celfw_mqtt_close(celfw_mqtt *m)
         m->stop = true;
         pthread_cond_signal(&m->wakeup);
         pthread_mutex_unlock(&m->lock);
-        if (m->thread_started) /* within a loop timeout (1 s) and the goodbye */
-            pthread_join(m->thread, NULL);
+        if (m->thread_started) {
+            /* Done within a loop timeout (1 s) and the goodbye, unless it is
+             * stuck in a connect (a name lookup, an unanswered SYN): then celfw
+             * exits without it rather than hang, and leaves the client alone. */
+            struct timespec until;
+            clock_gettime(CLOCK_REALTIME, &until);
+            until.tv_sec += 3;
+            if (pthread_timedjoin_np(m->thread, NULL, &until) != 0)
+                return;
+        }
         mosquitto_destroy(m->mosq);
         mosquitto_property_free_all(&m->props);
         mosquitto_lib_cleanup();
