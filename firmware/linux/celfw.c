@@ -48,6 +48,7 @@
 #include "celfw_scenes.h"
 #include "celfw_stream.h"
 #include "celfw_trust.h"
+#include "celfw_wall.h"
 #include "gud_host.h"
 #include "hub75.h"
 #include "lx_display.h"
@@ -76,6 +77,7 @@ typedef struct celfw {
     celfw_trust *trust;
     celfw_ratelimit limit[LOG_KINDS];
     uint64_t frames, dropped, stream_bytes, stream_errors, commits, failures, slow;
+    uint64_t applied_seq;    /* the shown stream's signature sequence; 0 if unsigned */
     lx_frame_stats sum;
     bool display_up, render_warned;
     celfw_clock clk;         /* which animation time each frame shows */
@@ -152,11 +154,20 @@ static void tell_held(celfw *fw, bool final)
 
 /* ------------------------------------------------------------- stream */
 
+/* Tells the input what the sign shows (a fleet input publishes it):
+ * after a commit or an error, and with the frame rate from status(). */
+static void report(celfw *fw, const char *error, double fps)
+{
+    celfw_report r = {fw->commits, fw->stream_errors, fps, error, fw->applied_seq};
+    celfw_input_report(fw->in, &r);
+}
+
 static void stream_error(celfw *fw, const celfw_stream_error *err)
 {
     fw->stream_errors++;
     tell(fw, LOG_STREAM_ERROR, "stream error at byte %llu: %s; scene kept", (unsigned long long)err->offset,
          err->what);
+    report(fw, err->what, -1.0);
 }
 
 /* What the framer dropped (stray bytes, a cut or oversized frame), worded as the decoder words it. */
@@ -203,10 +214,12 @@ static void apply_frame(celfw *fw, celfw_framer *src, const celfw_frame *fr)
             return;
         }
         if (v != CELFW_TRUST_PASS) {
+            char what[300];
+            snprintf(what, sizeof what, "%s: %s", celfw_verdict_word(v), tx.why);
             fw->stream_errors++;
-            tell(fw, LOG_REFUSED, "stream refused at byte %llu: %s: %s (transaction at byte %llu dropped); "
-                 "scene kept", (unsigned long long)fr->offset, celfw_verdict_word(v), tx.why,
-                 (unsigned long long)fr->offset);
+            tell(fw, LOG_REFUSED, "stream refused at byte %llu: %s (transaction at byte %llu dropped); "
+                 "scene kept", (unsigned long long)fr->offset, what, (unsigned long long)fr->offset);
+            report(fw, what, -1.0);
             return;
         }
     }
@@ -229,6 +242,8 @@ static void apply_frame(celfw *fw, celfw_framer *src, const celfw_frame *fr)
         if (celfw_trust_applied(fw->trust, &tx, why, sizeof why) != 0)
             say("error", "the commit is shown but its sequence was not saved (a restart would accept "
                 "it again): %s", why);
+        fw->applied_seq = tx.key >= 0 ? tx.sequence : 0;
+        report(fw, NULL, -1.0);
     } else if (r == CELFW_STREAM_ERROR) {
         stream_error(fw, &err);
     }
@@ -359,6 +374,8 @@ static void status(celfw *fw, const char *kind, const char *extra)
         (double)fw->anim_t);
     fw->last_log = now;
     fw->frames_at_log = fw->frames;
+    if (!final)
+        report(fw, NULL, fps);
 }
 
 static void add_stats(lx_frame_stats *a, const lx_frame_stats *b)
@@ -417,7 +434,7 @@ static int load_scene(celfw *fw)
         }
         snprintf(fw->builtin, sizeof fw->builtin, "%s", spec + 8);
     } else if (!strcmp(spec, "none") || !spec[0]) {
-        cs_scene_init(s, (float)fw->disp->width, (float)fw->disp->height);
+        cs_scene_init(s, (float)fw->src.opts.width, (float)fw->src.opts.height);
     } else if (!celfw_scene_json(spec, s, err, sizeof err)) {
         say("error", "scene %s", err);
         return EXIT_CONFIG;
@@ -649,6 +666,11 @@ int main(int argc, char **argv)
         fw->disp->ops->close(fw->disp);
         return EXIT_DISPLAY;
     }
+    if ((rc = celfw_wall_setup(&fw->src, &fw->cfg, fw->disp, err, sizeof err)) != 0) {
+        say("error", "%s", err);
+        fw->disp->ops->close(fw->disp);
+        return rc;
+    }
     celfw_clock_init(&fw->clk, &lx_clock_monotonic, &lx_clock_realtime, fw->cfg.realtime, fw->cfg.time_step);
     celfw_stream_set_check(fw->stream, check_commit, fw);
     fw->src.between_lines = serve_between_lines;
@@ -661,7 +683,7 @@ int main(int argc, char **argv)
         fw->disp->ops->close(fw->disp);
         return rc;
     }
-    if (celfw_input_open(&fw->in, fw->cfg.input, err, sizeof err) != 0) {
+    if (celfw_input_open_with(&fw->in, fw->cfg.input, &fw->cfg.mqtt, err, sizeof err) != 0) {
         say("error", "%s", err);
         fw->disp->ops->close(fw->disp);
         return EXIT_INPUT;

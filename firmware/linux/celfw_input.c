@@ -29,9 +29,10 @@
 #include <unistd.h>
 
 #include "celfw_input.h"
+#include "celfw_mqtt.h"
 #include "cli_num.h"
 
-typedef enum kind { IN_NONE, IN_STDIN, IN_FILE, IN_TCP, IN_TTY } kind;
+typedef enum kind { IN_NONE, IN_STDIN, IN_FILE, IN_TCP, IN_TTY, IN_MQTT } kind;
 
 /* One byte sequence being read: the tty, stdin, a file, or a TCP client. */
 typedef struct session {
@@ -52,6 +53,7 @@ struct celfw_input {
     char desc[300];
     char spec[256];          /* tty: reopened from this after the port goes away */
     time_t next_reopen;
+    celfw_mqtt *mqtt;        /* IN_MQTT: the fleet input (celfw_mqtt.c) */
     uint8_t buf[65536]; /* one read's worth: bounds the time a read takes from a frame */
 };
 
@@ -210,6 +212,12 @@ static int open_tty(celfw_input *in, const char *spec, char *err, size_t errlen)
 
 int celfw_input_open(celfw_input **out, const char *spec, char *err, size_t errlen)
 {
+    return celfw_input_open_with(out, spec, NULL, err, errlen);
+}
+
+int celfw_input_open_with(celfw_input **out, const char *spec, const celfw_mqtt_config *mc,
+                          char *err, size_t errlen)
+{
     celfw_input *in = calloc(1, sizeof *in);
     if (!in)
         return -1;
@@ -242,6 +250,11 @@ int celfw_input_open(celfw_input **out, const char *spec, char *err, size_t errl
     } else if (!strncmp(spec, "tty:", 4)) {
         in->k = IN_TTY;
         r = open_tty(in, spec + 4, err, errlen);
+    } else if (celfw_mqtt_spec(spec) && mc) {
+        in->k = IN_MQTT;
+        r = celfw_mqtt_open(&in->mqtt, spec, mc, err, errlen);
+        if (r == 0)
+            snprintf(in->desc, sizeof in->desc, "%s", celfw_mqtt_describe(in->mqtt));
     } else {
         snprintf(err, errlen, "input '%s': expected none, stdin, file:PATH, tcp:[HOST:]PORT or tty:DEV[:BAUD]",
                  spec);
@@ -267,6 +280,8 @@ bool celfw_input_public(const celfw_input *in)
 
 int celfw_input_pollfds(celfw_input *in, struct pollfd *pfd, int max)
 {
+    if (in->k == IN_MQTT)
+        return celfw_mqtt_pollfds(in->mqtt, pfd, max);
     int n = 0;
     if (in->one.fd >= 0 && n < max)
         pfd[n++] = (struct pollfd){in->one.fd, POLLIN, 0};
@@ -359,6 +374,10 @@ static void read_session(celfw_input *in, session *s, const celfw_input_sink *si
 
 void celfw_input_service(celfw_input *in, const struct pollfd *pfd, int n, const celfw_input_sink *sink)
 {
+    if (in->k == IN_MQTT) {
+        celfw_mqtt_service(in->mqtt, sink);
+        return;
+    }
     for (int i = 0; i < n; i++) {
         if (!pfd[i].revents)
             continue;
@@ -378,6 +397,8 @@ void celfw_input_service(celfw_input *in, const struct pollfd *pfd, int n, const
 
 void celfw_input_tick(celfw_input *in, const celfw_input_sink *sink)
 {
+    if (in->k == IN_MQTT)
+        celfw_mqtt_tick(in->mqtt);
     if (in->k == IN_TCP && in->timeout_ns) {
         uint64_t now = now_ns();
         for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS; i++) {
@@ -410,10 +431,17 @@ const char *celfw_input_describe(const celfw_input *in)
     return in->desc;
 }
 
+void celfw_input_report(celfw_input *in, const celfw_report *r)
+{
+    if (in && in->k == IN_MQTT)
+        celfw_mqtt_report(in->mqtt, r);
+}
+
 void celfw_input_close(celfw_input *in)
 {
     if (!in)
         return;
+    celfw_mqtt_close(in->mqtt);
     if (in->one.fd > 0)
         close(in->one.fd);
     celfw_framer_free(&in->one.fr);

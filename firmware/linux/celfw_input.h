@@ -39,9 +39,18 @@ typedef struct celfw_input_sink {
 
 typedef struct celfw_input celfw_input;
 
+struct celfw_mqtt_config;
+struct celfw_report;
+
 /* Opens spec (none, stdin, file:PATH, tcp:[HOST:]PORT, tcp:[ADDR]:PORT, tty:DEV[:BAUD]);
  * tcp:PORT listens on 127.0.0.1 only. */
 int celfw_input_open(celfw_input **in, const char *spec, char *err, size_t errlen);
+/* As celfw_input_open, also mqtt[s]://HOST:PORT[/TOPIC] with its settings
+ * (celfw_mqtt.h; mc may be NULL for the other specs). */
+int celfw_input_open_with(celfw_input **in, const char *spec, const struct celfw_mqtt_config *mc,
+                          char *err, size_t errlen);
+/* celfw's state for inputs that report it (MQTT's status topic); others ignore it. */
+void celfw_input_report(celfw_input *in, const struct celfw_report *r);
 /* A TCP client that gets no transaction applied for this long is dropped (default 10 s). */
 void celfw_input_set_timeout(celfw_input *in, double seconds);
 /* Whether the input listens beyond loopback (a network can reach it). */
