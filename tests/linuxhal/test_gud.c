@@ -38,7 +38,9 @@ static void logger(void *user, const char *fmt, ...)
 static uint8_t *expected(const cs_scene *s, int w, int h, uint8_t format)
 {
     unsigned bpp = gud_format_bpp(format);
-    cs_render_opts o = {w, h, CS_AA_SUBSCAN, 4, 0.0f, CS_BLEND_LINEAR, false};
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.subscanlines = 4;
+    o.blend = CS_BLEND_LINEAR;
     cs_renderer r;
     cs_error e;
     uint8_t *img = calloc((size_t)w * (size_t)h, bpp);

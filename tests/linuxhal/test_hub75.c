@@ -34,7 +34,9 @@ static cs_workspace ws;
 /* The truth: the scene rendered in one in-order pass, quantised to `planes` bits. */
 static uint16_t *expected_levels(const cs_scene *s, int w, int h, int planes)
 {
-    cs_render_opts o = {w, h, CS_AA_SUBSCAN, 4, 0.0f, CS_BLEND_LINEAR, false};
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.subscanlines = 4;
+    o.blend = CS_BLEND_LINEAR;
     cs_renderer r;
     cs_error e;
     uint16_t *lv = calloc((size_t)w * (size_t)h * 3u, sizeof *lv);
