@@ -404,7 +404,7 @@ typedef enum cs_blend {
 cs_status cs_scene_set_blend(cs_scene *scene, cs_blend blend);
 
 typedef struct cs_render_opts {
-    int width, height;  /* output size in pixels */
+    int width, height;  /* output size in pixels: the whole wall when a viewport is set */
     cs_aa_mode aa;
     int subscanlines;   /* for CS_AA_SUBSCAN: 1..CS_CFG_MAX_SUBSCANLINES */
     float time;         /* seconds, for animation */
@@ -415,6 +415,15 @@ typedef struct cs_render_opts {
     bool no_grey;       /* true: keep transmittance per channel even when every paint of
                            the frame transmits grey. Bit-identical output, only slower:
                            for tests and for measuring what the grey path saves. */
+    /* The viewport: the window [view_x, view_x + view_w) x [view_y, view_y + view_h)
+     * of the width x height output is all that is rendered (one board of a video
+     * wall). The frame is prepared in the whole output's device coordinates, so
+     * every pixel of the window comes out with the bits the whole render gives
+     * it (see cs_line.c for the one condition: --aa N with N a power of two);
+     * lines are view_w pixels (<= CS_CFG_MAX_WIDTH) while the whole may be up to
+     * CS_CFG_MAX_WALL on a side. Line y and the sink's y count from view_y.
+     * view_w = view_h = 0: the whole output. */
+    int view_x, view_y, view_w, view_h;
 } cs_render_opts;
 
 /*
@@ -581,6 +590,9 @@ typedef struct cs_renderer {
     uint32_t cel_begin, cel_end;  /* cels rendered live: [begin, end) minus the cache's */
     const cs_cache *cache;        /* pre-combined cels composited in their place, or NULL */
     uint32_t opaque_px;           /* pixels of the line whose stack is opaque */
+    int32_t vx, vy, vw, vh;       /* the window rendered (the whole output without a viewport);
+                                     line pixel i is device column vx + i */
+    float clip_lo, clip_hi;       /* crossings are clamped to these device x (see cs_line.c) */
     bool record;                  /* the early-out is on: opaque runs are skipped */
     bool grey;                    /* every T of the frame is grey: kept in channel 0 alone */
 } cs_renderer;
@@ -602,6 +614,7 @@ cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene
  * options, is refused with CS_ERR_STATE: the caller falls back to NULL. The
  * cache does not know about animation: it is the caller's promise that the
  * cached cels (and the lights they use) did not change since the build.
+ * A frame with a viewport takes no cache (CS_ERR_STATE).
  */
 cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                                 const cs_render_opts *opts, const cs_cache *cache,
@@ -614,6 +627,7 @@ cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene
  * rendered with it. If the runs do not fit, returns CS_ERR_CAP_CACHE with
  * cache->bytes_needed set to the size that would have fitted, and the cache
  * is unusable (cache->status != CS_OK): render those cels directly.
+ * Options with a viewport are refused (CS_ERR_ARG).
  */
 cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspace *ws,
                          const cs_scene *scene, const cs_render_opts *opts, uint32_t cel_first,

@@ -51,7 +51,9 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
     cache->line_first = 0;
     cache->runs = 0;
     cache->grey = false;
-    if (!ws || !scene || !opts || (!buffer && size > 0) || cel_count == 0 ||
+    /* A viewport's board renders a window of the lines: no cache for it. */
+    if (!ws || !scene || !opts || (!buffer && size > 0) || cel_count == 0 || opts->view_w ||
+        opts->view_h ||
         cel_first >= scene->cel_count || cel_count > scene->cel_count - cel_first) {
         cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
         return CS_ERR_ARG;

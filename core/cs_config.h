@@ -173,4 +173,13 @@
 #define CS_CFG_MAX_HEIGHT 16384
 #endif
 
+/*
+ * Largest whole output (a video wall) a viewport may be cut from, on either
+ * side. Nothing is sized by it: lines are the viewport's width. It keeps
+ * device columns within the int16 segment origins and exact float integers.
+ */
+#ifndef CS_CFG_MAX_WALL
+#define CS_CFG_MAX_WALL 16384
+#endif
+
 #endif /* CS_CONFIG_H */

@@ -107,7 +107,8 @@ typedef struct exact_ctx {
     cs_workspace *ws;
     const cs_region *region;
     float row_top, row_bot;
-    int32_t width;
+    int32_t x0, width;   /* the window: device columns [x0, x0 + width) */
+    int32_t wall;        /* the whole output's width, where cuts stop (see put_cell) */
     int32_t lo, hi;      /* accumulator entries written: [lo, hi) */
     uint32_t bands_left; /* CS_CFG_EXACT_MAX_BANDS countdown */
     bool overflow;
@@ -819,13 +820,17 @@ static inline float on_grid(float h)
     return (h + 8.0f) - 8.0f;
 }
 
-/* A cell of an edge: height dy of it in column c, whose part right of
- * the edge has area dy - m. */
+/* A cell of an edge: height dy of it in device column c, whose part right
+ * of the edge has area dy - m. Edges are cut at the columns of the whole
+ * output, viewport or not, so that every cell of the window has the bits
+ * the whole render gives it; the cells left of the window only add their
+ * heights (multiples of 2^-20, so the sums are exact in any grouping). */
 static inline void put_cell(exact_ctx *cx, float sign, int32_t c, float dy, float m)
 {
     if (!(dy > 0.0f))
         return;
     cs_workspace *ws = cx->ws;
+    c -= cx->x0;
     if (c < 0) { /* left of the screen: all of it is to the right */
         cs__acc_cover(ws, 0, sign * dy);
         touch(cx, 0, 1);
@@ -847,7 +852,7 @@ static void add_cell(exact_ctx *cx, const cs_segment *s, float sign, int32_t c,
                      const cs_exact_end *a, float y0, const cs_exact_end *b, float y1)
 {
     float dy = y1 - y0;
-    if (!(dy > 0.0f) || c < 0 || c >= cx->width) { /* no moment needed */
+    if (!(dy > 0.0f) || c < cx->x0 || c - cx->x0 >= cx->width) { /* no moment needed */
         put_cell(cx, sign, c, dy, 0.0f);
         return;
     }
@@ -884,7 +889,7 @@ static void cut_at_x(const cs_segment *s, const cs_exact_end *a, float ya, const
 static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, const cs_exact_end *top,
                          float y0, const cs_exact_end *bot, float y1)
 {
-    float width = (float)cx->width;
+    float width = (float)cx->wall;
     cs_exact_end a = *top, k_end;
     float x0 = a.x, x1 = bot->x;
     bool inc = x1 > x0;
@@ -905,7 +910,7 @@ static void add_monotone(exact_ctx *cx, const cs_segment *s, float sign, const c
  * where y is linear in x; each cell's moment is its trapezoid. */
 static void add_line(exact_ctx *cx, float sign, float x0, float y0, float x1, float y1)
 {
-    float width = (float)cx->width, xa = x0, ya = y0;
+    float width = (float)cx->wall, xa = x0, ya = y0;
     if (x1 > x0) {
         float dydx = (y1 - y0) / (x1 - x0);
         float k = cs__maxf((float)(cs__floori(x0) + 1), 0.0f);
@@ -982,7 +987,7 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
  */
 static void add_poly_arc(exact_ctx *cx, float sign, int p, const float *bx, const float *by)
 {
-    float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = (float)cx->width;
+    float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = (float)cx->wall;
     bool inc = x1 > x0;
     float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
                   : cs__minf((float)(-cs__floori(-x0) - 1), width);
@@ -1079,7 +1084,7 @@ static void add_poly_parts(exact_ctx *cx, const cs_segment *s, float sign,
     float span = cs__absf(bot->x - top->x);
     int32_t n = 1;
     if (span > POLY_ARC_COLUMNS)
-        n = (int32_t)(cs__minf(span, (float)cx->width + 2.0f) * (2.0f / POLY_ARC_COLUMNS)) + 1;
+        n = (int32_t)(cs__minf(span, (float)cx->wall + 2.0f) * (2.0f / POLY_ARC_COLUMNS)) + 1;
     cs_exact_end a = *top, b;
     float ya = y0;
     for (int32_t i = 1; i <= n; i++) {
@@ -1127,17 +1132,17 @@ static CS__HOT_INLINE void add_edge_inline(exact_ctx *cx, const cs_exact_piece *
     cs_workspace *ws = cx->ws;
     const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
     if (e->hidden) { /* only what it adds right of its opaque pixels matters */
-        int32_t c = (int32_t)e->xmin;
+        int32_t c = (int32_t)e->xmin - cx->x0;
         cs__acc_cover(ws, c, sign * (yb - ya));
         touch(cx, c, c + 1);
         return;
     }
-    if (e->xmax <= 0.0f) {
+    if (e->xmax <= (float)cx->x0) { /* its cells' heights sum to the band's exactly */
         cs__acc_cover(ws, 0, sign * (yb - ya));
         touch(cx, 0, 1);
         return;
     }
-    if (e->xmin >= (float)cx->width) {
+    if (e->xmin >= (float)(cx->x0 + cx->width)) {
         touch(cx, cx->width, cx->width + 1);
         return;
     }
@@ -1464,7 +1469,9 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     cx.region = region;
     cx.row_top = (float)y;
     cx.row_bot = (float)(y + 1);
-    cx.width = r->opts.width;
+    cx.x0 = r->vx;
+    cx.width = r->vw;
+    cx.wall = r->opts.width;
     cx.lo = INT32_MAX;
     cx.hi = INT32_MIN;
     cx.bands_left = CS_CFG_EXACT_MAX_BANDS;
@@ -1479,7 +1486,7 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
         int32_t pa = s->px_lo, pb = s->px_hi;
         e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
         if (e->hidden)
-            hide(e, act[i], pc, pa);
+            hide(e, act[i], pc, pa + r->vx); /* in device columns, as placed arcs */
         else
             place_arc(&cx, e, act[i]);
         ord[i] = i;

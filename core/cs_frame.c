@@ -39,7 +39,7 @@
  * range is widened by half a pixel, so that a crossing rounded just past
  * it still counts, and kept within the line.
  */
-static void segment_xbounds(cs_segment *s, float width)
+static void segment_xbounds(cs_segment *s, float x0, float width)
 {
     static const float ratio[4][4][4] = {
         /* [p][i][j] = C(i,j) / C(p,j) */
@@ -49,7 +49,7 @@ static void segment_xbounds(cs_segment *s, float width)
         {{1, 0, 0, 0}, {1, 1.0f / 3.0f, 0, 0}, {1, 2.0f / 3.0f, 1.0f / 3.0f, 0}, {1, 1, 1, 1}},
     };
     int p = s->degree;
-    float lo = width, hi = 0.0f;
+    float lo = x0 + width, hi = x0;
     for (int i = 0; i <= p; i++) {
         float bx = 0.0f, bw = 0.0f;
         for (int j = 0; j <= i; j++) {
@@ -57,16 +57,16 @@ static void segment_xbounds(cs_segment *s, float width)
             bw += ratio[p][i][j] * s->w[j];
         }
         if (!(bw > 0.0f)) { /* not expected; then claim the whole line */
-            lo = 0.0f;
-            hi = width;
+            lo = x0;
+            hi = x0 + width;
             break;
         }
         float x = (float)s->ox + bx / bw;
         lo = cs__minf(lo, x);
         hi = cs__maxf(hi, x);
     }
-    lo = cs__clampf(lo, 0.0f, width);
-    hi = cs__clampf(hi, 0.0f, width);
+    lo = cs__clampf(lo, x0, x0 + width) - x0;
+    hi = cs__clampf(hi, x0, x0 + width) - x0;
     int32_t a = cs__floori(lo - 0.5f), b = cs__floori(hi + 0.5f) + 1;
     s->px_lo = (uint16_t)(a < 0 ? 0 : a);
     s->px_hi = (uint16_t)(b > (int32_t)width ? (int32_t)width : b);
@@ -141,14 +141,29 @@ cs_render_opts cs_render_defaults(int width, int height)
     o.blend = CS_BLEND_SCENE;
     o.no_early_out = false;
     o.no_grey = false;
+    o.view_x = o.view_y = o.view_w = o.view_h = 0;
     return o;
+}
+
+/* Whether the options ask for a viewport rather than the whole output. */
+static bool windowed(const cs_render_opts *o)
+{
+    return o->view_w != 0 || o->view_h != 0;
 }
 
 static cs_status check_opts(const cs_render_opts *o)
 {
-    if (o->width < 1 || o->width > CS_CFG_MAX_WIDTH || o->height < 1 ||
-        o->height > CS_CFG_MAX_HEIGHT)
+    if (!windowed(o)) {
+        if (o->width < 1 || o->width > CS_CFG_MAX_WIDTH || o->height < 1 ||
+            o->height > CS_CFG_MAX_HEIGHT)
+            return CS_ERR_SIZE;
+    } else if (o->width < 1 || o->width > CS_CFG_MAX_WALL || o->height < 1 ||
+               o->height > CS_CFG_MAX_WALL || o->view_w < 1 || o->view_w > CS_CFG_MAX_WIDTH ||
+               o->view_h < 1 || o->view_h > CS_CFG_MAX_HEIGHT || o->view_x < 0 ||
+               o->view_y < 0 || o->view_x > o->width - o->view_w ||
+               o->view_y > o->height - o->view_h) {
         return CS_ERR_SIZE;
+    }
     if (o->aa != CS_AA_NONE && o->aa != CS_AA_SUBSCAN && (o->aa != CS_AA_EXACT || !CS_CFG_EXACT))
         return CS_ERR_ARG;
     if (o->aa == CS_AA_SUBSCAN && (o->subscanlines < 1 || o->subscanlines > CS_CFG_MAX_SUBSCANLINES))
@@ -260,7 +275,8 @@ cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene
     if (cache && opts) {
         const cs_render_opts *c = &cache->opts;
         cs_blend blend = opts->blend == CS_BLEND_SCENE && scene ? (cs_blend)scene->blend : opts->blend;
-        if (cache->status != CS_OK || c->width != opts->width || c->height != opts->height ||
+        if (cache->status != CS_OK || windowed(opts) || c->width != opts->width ||
+            c->height != opts->height ||
             c->aa != opts->aa || c->blend != blend ||
             (opts->aa == CS_AA_SUBSCAN && c->subscanlines != opts->subscanlines) || !scene ||
             cache->cel_first + cache->cel_count > scene->cel_count) {
@@ -297,6 +313,15 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     r->cel_begin = cel_begin;
     r->cel_end = cel_end < scene->cel_count ? cel_end : scene->cel_count;
     cs__error(&r->sticky, CS_OK, -1, -1, -1, -1);
+    bool win = windowed(opts);
+    r->vx = win ? opts->view_x : 0;
+    r->vy = win ? opts->view_y : 0;
+    r->vw = win ? opts->view_w : opts->width;
+    r->vh = win ? opts->view_h : opts->height;
+    /* One column left of the window stands for everything left of it (the
+     * whole output clamps at its own left edge, column 0): see cs_line.c. */
+    r->clip_lo = (float)(r->vx > 0 ? r->vx - 1 : 0);
+    r->clip_hi = (float)(r->vx + r->vw);
     r->sx = (float)opts->width / scene->canvas_w;
     r->sy = (float)opts->height / scene->canvas_h;
     if (!(r->sx <= CS_CFG_COORD_LIMIT && r->sy <= CS_CFG_COORD_LIMIT)) {
@@ -306,7 +331,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     /* The line code clears what it touches; start from a clean slate in case
      * an earlier frame was abandoned part way through a line. The runs are
      * set up afresh by every line. */
-    for (int x = 0; x < opts->width + 2; x++)
+    for (int x = 0; x < r->vw + 2; x++)
         ws->area[x] = ws->cover[x] = 0.0f;
     for (uint32_t w = 0; w < sizeof ws->touched / sizeof ws->touched[0]; w++)
         ws->touched[w] = 0u;
@@ -327,7 +352,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         r->behind[k] = scene->has_background ? card * stack[k] : stack[3 + k];
     }
 
-    float width = (float)opts->width;
+    float view_x = (float)r->vx, view_w = (float)r->vw;
     bool grey = !opts->no_grey && (!cache || cache->grey);
     for (uint32_t ci = r->cel_begin; ci < r->cel_end; ci++) {
         if (cache && ci >= cache->cel_first && ci - cache->cel_first < cache->cel_count)
@@ -385,7 +410,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                     uint8_t operand = reg->csg_len ? c->operand : 0;
                     for (uint32_t i = 0; i < n && st == CS_OK; i++) {
                         uint32_t next = first + (i + 1) % n;
-                        segment_xbounds(&ws->segments[first + i], width);
+                        segment_xbounds(&ws->segments[first + i], view_x, view_w);
                         st = split_segment(r, first + i, cs__segment_y(&ws->segments[next], 0.0f),
                                            operand);
                     }

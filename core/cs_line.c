@@ -54,22 +54,35 @@
  */
 #include "cs_runs.h"
 
-/* Adds span [xa, xb) with weight w to the accumulators (xa, xb in [0, W]). */
-static void add_span(cs_workspace *ws, float xa, float xb, float w)
+/*
+ * Adds span [xa, xb) with weight w to the accumulators of the window that
+ * starts at device column x0 (xa, xb in [r->clip_lo, r->clip_hi]). The
+ * arithmetic is on device x, as the whole output's render does it; only
+ * the accumulator index is shifted. A span entering from the left of the
+ * window (from column x0 - 1, where crossings further left are clamped)
+ * puts its +w on the window's first entry rather than on its own column:
+ * the running cover is then the same sum of multiples of w (exact: w is
+ * 1/2^k, or the window is the whole line), and no area lands on a pixel
+ * of the window that the whole render would not give it.
+ */
+static void add_span(cs_workspace *ws, float xa, float xb, float w, int32_t x0)
 {
     int32_t ia = cs__floori(xa), ib = cs__floori(xb);
     if (ia == ib) {
-        cs__acc_area(ws, ia, w * (xb - xa));
+        if (ia >= x0)
+            cs__acc_area(ws, ia - x0, w * (xb - xa));
         return;
     }
-    cs__acc_area(ws, ia, w * ((float)(ia + 1) - xa));
-    cs__acc_cover(ws, ia + 1, w);
-    cs__acc_cover(ws, ib, -w);
-    cs__acc_area(ws, ib, w * (xb - (float)ib));
+    if (ia >= x0)
+        cs__acc_area(ws, ia - x0, w * ((float)(ia + 1) - xa));
+    cs__acc_cover(ws, ia + 1 - x0, w);
+    cs__acc_cover(ws, ib - x0, -w);
+    cs__acc_area(ws, ib - x0, w * (xb - (float)ib));
 }
 
-/* Pixel-centre sampling: pixels i with xa <= i + 0.5 < xb. */
-static void add_span_centres(cs_workspace *ws, float xa, float xb)
+/* Pixel-centre sampling: pixels i with xa <= i + 0.5 < xb, those left of
+ * the window x0 counted from its first entry (integers: exact). */
+static void add_span_centres(cs_workspace *ws, float xa, float xb, int32_t x0)
 {
     int32_t i0 = cs__floori(xa - 0.5f);
     if ((float)i0 + 0.5f < xa)
@@ -77,9 +90,9 @@ static void add_span_centres(cs_workspace *ws, float xa, float xb)
     int32_t i1 = cs__floori(xb - 0.5f);
     if ((float)i1 + 0.5f < xb)
         i1++;
-    if (i1 > i0) {
-        cs__acc_cover(ws, i0, 1.0f);
-        cs__acc_cover(ws, i1, -1.0f);
+    if (i1 > i0 && i1 > x0) {
+        cs__acc_cover(ws, (i0 > x0 ? i0 : x0) - x0, 1.0f);
+        cs__acc_cover(ws, i1 - x0, -1.0f);
     }
 }
 
@@ -153,12 +166,12 @@ static inline float straight_root(const cs_segment *s, const cs_piece *pc, float
 
 /*
  * The crossing of piece pc with scanline ys, which it spans: x clamped to
- * [0, width], and the guess for the next sub-scanline's root. A curved
+ * [lo, hi] (r->clip_lo, r->clip_hi), and the guess for the next sub-scanline's root. A curved
  * piece's root is sought by Newton's iteration from `guess` when `warm`,
  * by the full bracketed solve on its first sub-scanline of the line.
  */
 static inline void piece_crossing(const cs_workspace *ws, const cs_piece *pc, float ys,
-                                  float step, float width, bool warm, float guess,
+                                  float step, float lo, float hi, bool warm, float guess,
                                   cs_crossing *c)
 {
     const cs_segment *s = &ws->segments[pc->segment];
@@ -180,7 +193,7 @@ static inline void piece_crossing(const cs_workspace *ws, const cs_piece *pc, fl
         c->guess = slope != 0.0f ? cs__clampf(u + step * w / slope, pc->u0, pc->u1) : u;
     }
     float x = (float)s->ox + cs__horner(s->x, s->degree, u) / w;
-    c->x = cs__clampf(x, 0.0f, width);
+    c->x = cs__clampf(x, lo, hi);
     c->dir = pc->dir;
     c->operand = pc->operand;
 }
@@ -279,7 +292,7 @@ static int32_t crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, 
                             uint32_t live, int y, int sub, int samples)
 {
     cs_workspace *ws = r->ws;
-    float width = (float)r->opts.width;
+    float lo = r->clip_lo, hi = r->clip_hi;
     float step = 1.0f / (float)samples, ys = sample_y(y, sub, step);
     /* Pieces that cross every sub-scanline of the line are interpolated
      * (interp_setup); the first sub-scanline sets them up. */
@@ -299,7 +312,7 @@ static int32_t crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, 
                 cs_crossing *c = &ws->crossings[count++];
                 *c = ws->crossings[j];
                 float x = c->guess + at * (c->a1 + at * (c->a2 + at * c->a3));
-                c->x = cs__clampf(x, 0.0f, width);
+                c->x = cs__clampf(x, lo, hi);
                 continue;
             }
             guess = ws->crossings[j].guess;
@@ -320,7 +333,7 @@ static int32_t crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, 
         if (!(ys < pc->y_bot))
             continue; /* ended, or passed between two sub-scanlines */
         cs_crossing *c = &ws->crossings[count++];
-        piece_crossing(ws, pc, ys, step, width, warm, guess, c);
+        piece_crossing(ws, pc, ys, step, lo, hi, warm, guess, c);
         c->piece = (uint16_t)k;
         c->a3 = CS__NAN; /* not interpolated, unless: */
         if (setup && ys_last < pc->y_bot)
@@ -366,16 +379,18 @@ static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *re
         if (!inside || !(xb > xa))
             continue;
         if (centres)
-            add_span_centres(ws, xa, xb);
+            add_span_centres(ws, xa, xb, r->vx);
         else
-            add_span(ws, xa, xb, weight);
+            add_span(ws, xa, xb, weight, r->vx);
         if (!any)
             first = xa;
         any = true;
         last = xb;
     }
     if (any) {
-        int32_t a = cs__floori(first), b = cs__floori(last) + 1;
+        int32_t a = cs__floori(first) - r->vx, b = cs__floori(last) + 1 - r->vx;
+        if (a < 0) /* entered from the left of the window */
+            a = 0;
         if (a < *lo)
             *lo = a;
         if (b > *hi)
@@ -443,8 +458,8 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
         live = (uint32_t)count;
         accumulate_spans(r, live, region, weight, centres, &lo, &hi);
     }
-    if (hi > r->opts.width)
-        hi = r->opts.width;
+    if (hi > r->vw)
+        hi = r->vw;
     *lo_out = lo;
     *hi_out = hi;
 }
@@ -603,8 +618,8 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
                     if (x + 1u < e)
                         cs__run_split(ws, grey, x, x + 1u);
                     float E[3], A[3];
-                    paint_at(fp->r, fp->region, fp->front, fp->cel->back, (float)x + 0.5f,
-                             fp->py, E, A);
+                    paint_at(fp->r, fp->region, fp->front, fp->cel->back,
+                             (float)((int32_t)x + fp->r->vx) + 0.5f, fp->py, E, A);
                     if (fp->direct)
                         composite_direct(fp->r, grey, x, x + 1u, c, E, A, fp->snap);
                     else
@@ -671,7 +686,7 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
     fp.py = (float)y + 0.5f;
     fp.direct = direct;
     fp.snap = direct && region_may_hide(r, reg);
-    uint32_t width = (uint32_t)r->opts.width;
+    uint32_t width = (uint32_t)r->vw;
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
     float run = 0.0f;
     pending p;
@@ -733,7 +748,7 @@ static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
     if (!r->record || r->opaque_px == 0u)
         return false;
     cs_workspace *ws = r->ws;
-    uint32_t a = (uint32_t)r->opts.width, b = 0u;
+    uint32_t a = (uint32_t)r->vw, b = 0u;
     for (uint32_t i = 0; i < n; i++) {
         const cs_segment *s = &ws->segments[ws->pieces[act[i]].segment];
         a = s->px_lo < a ? s->px_lo : a;
@@ -885,7 +900,7 @@ static void composite_ranges(cs_renderer *r, cel_ranges *s, bool snap)
 void cs__line_stack(cs_renderer *r, int y)
 {
     cs_workspace *ws = r->ws;
-    uint32_t width = (uint32_t)r->opts.width;
+    uint32_t width = (uint32_t)r->vw;
     update_active(r, y);
     /* One clear run: E = 0, T = 1, nothing of a cel. */
     for (uint32_t w = 0; w <= width >> 5; w++)
@@ -959,7 +974,7 @@ void cs__line_stack(cs_renderer *r, int y)
 static CS__SPECIALISE void finish_line_as(cs_renderer *r, bool grey)
 {
     cs_workspace *ws = r->ws;
-    uint32_t width = (uint32_t)r->opts.width;
+    uint32_t width = (uint32_t)r->vw;
     float L0 = r->behind[0], L1 = r->behind[1], L2 = r->behind[2];
     bool srgb = r->opts.blend == CS_BLEND_SRGB;
     uint32_t prev = UINT32_MAX;
@@ -997,7 +1012,7 @@ static void finish_line(cs_renderer *r)
 
 cs_status cs_render_line_runs(cs_renderer *r, int y)
 {
-    if (!r || !r->ws || y < 0 || y >= r->opts.height)
+    if (!r || !r->ws || y < r->vy || y - r->vy >= r->vh)
         return CS_ERR_ARG;
     cs__line_stack(r, y);
     finish_line(r);
@@ -1015,7 +1030,7 @@ int cs_line_run(const cs_renderer *r, int x, float rgb_linear[3])
 void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out)
 {
     const cs_workspace *ws = r->ws;
-    cs__pixfmt_runs(fmt, ws->stack_E, ws->run_end, (uint32_t)r->opts.width, out);
+    cs__pixfmt_runs(fmt, ws->stack_E, ws->run_end, (uint32_t)r->vw, out);
 }
 
 const uint8_t *cs_line_pixels_scratch(cs_renderer *r, cs_pixfmt fmt)
@@ -1036,7 +1051,7 @@ cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear)
     if (st != CS_OK)
         return st;
     const cs_workspace *ws = r->ws;
-    uint32_t width = (uint32_t)r->opts.width;
+    uint32_t width = (uint32_t)r->vw;
     for (uint32_t s = 0; s < width;) {
         uint32_t e = ws->run_end[s];
         float c0 = ws->stack_E[3 * s], c1 = ws->stack_E[3 * s + 1], c2 = ws->stack_E[3 * s + 2];
@@ -1069,10 +1084,10 @@ cs_status cs_render_frame(cs_renderer *r, float *line, cs_line_sink sink, void *
 {
     if (!r || !line || !sink)
         return CS_ERR_ARG;
-    for (int y = 0; y < r->opts.height; y++) {
+    for (int y = r->vy; y < r->vy + r->vh; y++) {
         cs_status st = cs_render_line(r, y, line);
         if (st == CS_OK)
-            st = sink(user, y, line, r->opts.width);
+            st = sink(user, y - r->vy, line, r->vw);
         if (st != CS_OK)
             return st;
     }

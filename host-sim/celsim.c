@@ -58,6 +58,9 @@ static const char usage_text[] =
     "options:\n"
     "  -o, --output FILE       PNG to write (may be omitted with --crc or --repeat)\n"
     "  --size WxH              output size in pixels (default: the canvas size, rounded)\n"
+    "  --viewport X,Y,W,H      render only that window of the output (one board of a video\n"
+    "                          wall whose size is --size, which may then exceed the line\n"
+    "                          maximum): the image is WxH, bit for bit that part of the whole\n"
     "  --time SECONDS          scene time for animation (default 0)\n"
     "  --aa none|N|exact       vertical anti-aliasing: one sample per pixel, N\n"
     "                          sub-scanlines (1..64), or exact area (default 16)\n"
@@ -77,6 +80,7 @@ typedef struct options {
     const char *scene;
     const char *out;
     int width, height; /* 0: canvas size */
+    int view[4];       /* --viewport X, Y, W, H; W = 0: none */
     float time;
     cs_aa_mode aa;
     int subscanlines;
@@ -127,8 +131,9 @@ static int parse_render_args(int argc, char **argv, options *o)
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *v;
-        static const char *const valued[] = {"-o",     "--output", "--size",   "--time",
-                                             "--aa",   "--encoding", "--repeat", "--blend"};
+        static const char *const valued[] = {"-o",       "--output", "--size",
+                                             "--time",   "--aa",     "--encoding",
+                                             "--repeat", "--blend",  "--viewport"};
         const char *name = NULL;
         for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
             if (is_option(a, valued[k]))
@@ -148,9 +153,13 @@ static int parse_render_args(int argc, char **argv, options *o)
         } else if (name && strcmp(name, "--size") == 0) {
             if (!cli_size(v, 1000000, 1000000, &o->width, &o->height))
                 return usage_error("--size expects WxH, got '%s'", v);
-            if (o->width > CS_CFG_MAX_WIDTH || o->height > CS_CFG_MAX_HEIGHT)
+            if (o->width > CS_CFG_MAX_WALL || o->height > CS_CFG_MAX_WALL)
                 return usage_error("--size %s is beyond the configured maximum %dx%d", v,
-                                   CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+                                   CS_CFG_MAX_WALL, CS_CFG_MAX_WALL);
+        } else if (name && strcmp(name, "--viewport") == 0) {
+            if (!cli_viewport(v, &o->view[0], &o->view[1], &o->view[2], &o->view[3]))
+                return usage_error("--viewport expects X,Y,W,H (whole pixels, W and H at "
+                                   "least 1), got '%s'", v);
         } else if (name && strcmp(name, "--time") == 0) {
             double t;
             if (!cli_real(v, '\0', -1e9, 1e9, &t))
@@ -198,6 +207,14 @@ static int parse_render_args(int argc, char **argv, options *o)
         return usage_error("render needs a SCENE file (see celsim --help)");
     if (o->out == NULL && !o->crc && o->repeat == 0)
         return usage_error("render needs -o OUT.png (or --crc or --repeat)");
+    /* A line is at most CS_CFG_MAX_WIDTH pixels; only a viewport's whole may be wider. */
+    if (o->view[2] == 0 && (o->width > CS_CFG_MAX_WIDTH || o->height > CS_CFG_MAX_HEIGHT))
+        return usage_error("--size %dx%d is beyond the configured maximum %dx%d (a wider wall "
+                           "needs --viewport)", o->width, o->height, CS_CFG_MAX_WIDTH,
+                           CS_CFG_MAX_HEIGHT);
+    if (o->view[2] > 0 && (o->view[2] > CS_CFG_MAX_WIDTH || o->view[3] > CS_CFG_MAX_HEIGHT))
+        return usage_error("--viewport %dx%d is beyond the configured maximum %dx%d",
+                           o->view[2], o->view[3], CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
     return 0;
 }
 
@@ -356,24 +373,38 @@ static int render(const options *o, sim_state *s)
         ro.height = h < 1.0 ? 1 : (int)h;
     }
 
-    sim_display_config cfg = {ro.width, ro.height,
+    /* The image is the viewport's, when there is one: the wall's window. */
+    int ow = ro.width, oh = ro.height;
+    if (o->view[2] > 0) {
+        if (o->view[0] > ro.width - o->view[2] || o->view[1] > ro.height - o->view[3]) {
+            fprintf(stderr, "celsim: --viewport %d,%d,%d,%d does not fit in the %dx%d output\n",
+                    o->view[0], o->view[1], o->view[2], o->view[3], ro.width, ro.height);
+            return EXIT_USAGE;
+        }
+        ro.view_x = o->view[0];
+        ro.view_y = o->view[1];
+        ro.view_w = ow = o->view[2];
+        ro.view_h = oh = o->view[3];
+    }
+
+    sim_display_config cfg = {ow, oh,
                               o->linear ? CS_PIX_RGB16_LINEAR : CS_PIX_RGB888_SRGB};
     sim_display_data data;
     hal_display dev;
     size_t image_bytes = sim_display_image_bytes(&cfg);
-    size_t line_bytes = image_bytes / (size_t)ro.height;
+    size_t line_bytes = image_bytes / (size_t)oh;
     s->image = malloc(image_bytes);
     s->bytes = malloc(line_bytes);
     if (o->crc)
-        s->panel = malloc((size_t)ro.width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT));
+        s->panel = malloc((size_t)ow * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT));
     int runs = o->repeat > 0 ? o->repeat : 1;
     s->times = malloc((size_t)runs * sizeof *s->times);
     if (!s->image || !s->bytes || (o->crc && !s->panel) || !s->times) {
-        fprintf(stderr, "celsim: out of memory for a %dx%d frame\n", ro.width, ro.height);
+        fprintf(stderr, "celsim: out of memory for a %dx%d frame\n", ow, oh);
         return EXIT_LOAD;
     }
     if (sim_display_init(&dev, &cfg, &data, s->image, image_bytes) != 0) {
-        fprintf(stderr, "celsim: cannot set up a %dx%d display\n", ro.width, ro.height);
+        fprintf(stderr, "celsim: cannot set up a %dx%d display\n", ow, oh);
         return EXIT_LOAD;
     }
 
@@ -422,7 +453,7 @@ static int render(const options *o, sim_state *s)
 
     if (o->out != NULL) {
         char err[1024];
-        if (png_write_rgb(o->out, ro.width, ro.height, cfg.pixfmt, s->image, line_bytes, err,
+        if (png_write_rgb(o->out, ow, oh, cfg.pixfmt, s->image, line_bytes, err,
                           sizeof err) != 0) {
             fprintf(stderr, "celsim: %s\n", err);
             return EXIT_LOAD;

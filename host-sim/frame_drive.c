@@ -35,8 +35,11 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
     d->hal_y = -1;
     d->err = (cs_error){CS_OK, -1, -1, -1, -1};
 
+    /* With a viewport the display is the window, and its rows count from view_y. */
+    bool win = opts->view_w != 0 || opts->view_h != 0;
+    int y0 = win ? opts->view_y : 0, rows = win ? opts->view_h : opts->height;
     int rc = hal_display_get_geometry(d->dev, &d->geo);
-    if (rc == 0 && (d->geo.width != opts->width || d->geo.height != opts->height))
+    if (rc == 0 && (d->geo.width != (win ? opts->view_w : opts->width) || d->geo.height != rows))
         rc = -EINVAL;
     if (rc != 0) {
         d->hal_rc = rc;
@@ -55,8 +58,8 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
     }
     /* Lines go from the core's runs straight to display bytes: each run of
      * equal pixels is converted once (cs_line_pixels). */
-    for (int y = 0; y < opts->height && st == CS_OK; y++) {
-        st = cs_render_line_runs(r, y);
+    for (int y = 0; y < rows && st == CS_OK; y++) {
+        st = cs_render_line_runs(r, y0 + y);
         if (st == CS_OK)
             st = drive_line(d, r, y);
     }

@@ -43,7 +43,8 @@ enum {
 
 /*
  * Renders the scene at opts->time into d->dev, whose geometry must match
- * opts->width x opts->height. Returns one of the FRAME_DRIVE_* values.
+ * opts->width x opts->height, or the viewport's view_w x view_h when one is
+ * set (the display's row 0 is then the wall's row view_y). Returns one of the FRAME_DRIVE_* values.
  */
 int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                        const cs_render_opts *opts);

@@ -7,16 +7,18 @@
 # celc reuses celsim's scene JSON loader (host-sim/scene_json.c, paint_json.c)
 # and the host stream writer (tools/cels_write.c).
 #
+# celc publish sends a stream to an MQTT broker (tools/celc_publish.c, libmosquitto).
+#
 # celc import / celc text are the SVG and text importer (tools/celc_import.c
 # over tools/svg/, built by mk/svg.mk into libsvgimport.a).
 CELC_SRC := tools/celc.c tools/cels_write.c host-sim/scene_json.c host-sim/paint_json.c \
-        tools/celc_import.c tools/cli_num.c
+        tools/celc_import.c tools/cli_num.c tools/celc_publish.c
 CELC_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELC_SRC))
 $(HOST)/obj/tools/celc.o: HOST_CFLAGS += -Itools
 
 $(HOST)/celc: $(CELC_OBJ) $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $(CELC_OBJ) $(HOST)/libsvgimport.a $(HOST)/libcelscan.a $(PKG_LIBS) \
-		$(SVG_LIBS)
+		$(SVG_LIBS) $(shell pkg-config --libs libmosquitto 2>/dev/null)
 
 HOST_PROGRAMS += $(HOST)/celc
 

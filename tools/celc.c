@@ -29,6 +29,7 @@
 #include <unistd.h>
 
 #include "celc_import.h"
+#include "celc_publish.h"
 #include "cels_write.h"
 #include "celscan.h"
 #include "scene_json.h"
@@ -39,6 +40,8 @@ static const char usage_text[] =
     "usage: celc compile SCENE.json -o OUT.cels [-v]\n"
     "       celc import DRAWING.svg -o OUT.json|OUT.cels [options]   (celc import --help)\n"
     "       celc text \"STRING\" -o OUT.json [options]                 (celc text --help)\n"
+    "       celc publish FILE.cels|SCENE.json --broker mqtt[s]://HOST:PORT --topic T [--retain]\n"
+    "                    [--credentials FILE]                        (celc publish --help)\n"
     "\n"
     "compile   turns authoring JSON (with its \"animate\" tracks) into a cel stream\n"
     "          (docs/STREAM.md): a stream header and one transaction that defines\n"
@@ -48,6 +51,7 @@ static const char usage_text[] =
     "import    turns an SVG drawing into scene JSON or straight into a stream: paths,\n"
     "          shapes, transforms, styles, gradients, strokes as regions, text\n"
     "text      sets a string in a font (FreeType) as scene JSON\n"
+    "publish   sends a stream (a scene JSON compiled first) to an MQTT broker's topic, QoS 1\n"
     "\n"
     "exit status: 0 ok, 1 scene refused or file error, 2 usage error\n";
 
@@ -116,6 +120,54 @@ static int write_atomically(const char *path, const uint8_t *data, size_t len)
     return ok ? 0 : EXIT_FAIL;
 }
 
+/* Loads and encodes the scene JSON at `in` into b; *scene_out gets the
+ * store (the caller frees it and b), or NULL on failure. */
+static int compile(const char *in, cels_buf *b, cs_scene **scene_out)
+{
+    cels_buf_init(b);
+    *scene_out = NULL;
+    /* The store is half a megabyte: heap, not stack. */
+    cs_scene *scene = calloc(1, sizeof *scene);
+    if (scene == NULL) {
+        fprintf(stderr, "celc: out of memory for the scene store\n");
+        return EXIT_FAIL;
+    }
+    char err[SCENE_JSON_ERRLEN];
+    if (scene_json_load(in, scene, err, sizeof err) != 0) {
+        fprintf(stderr, "celc: %s\n", err);
+        free(scene);
+        return EXIT_FAIL;
+    }
+    cels_stream_header(b);
+    int rc = 0;
+    if (cels_encode_scene(b, scene) != 0) {
+        fprintf(stderr, "celc: out of memory encoding %s\n", in);
+        rc = EXIT_FAIL;
+    } else if (b->len - 2 * CS_WIRE_HEADER_SIZE - CS_WIRE_TRAILER_SIZE > CS_CFG_STREAM_MAX_TXN) {
+        /* The stream header, then the transaction's header, body and trailer. */
+        fprintf(stderr, "celc: %s: the scene's transaction body is %zu bytes, more than a decoder "
+                        "accepts (%u)\n",
+                in, b->len - 2 * CS_WIRE_HEADER_SIZE - CS_WIRE_TRAILER_SIZE,
+                (unsigned)CS_CFG_STREAM_MAX_TXN);
+        rc = EXIT_FAIL;
+    }
+    if (rc != 0) {
+        cels_buf_free(b);
+        free(scene);
+        return rc;
+    }
+    *scene_out = scene;
+    return 0;
+}
+
+int celc_compile_scene(const char *path, cels_buf *b)
+{
+    cs_scene *scene;
+    int rc = compile(path, b, &scene);
+    free(scene);
+    return rc;
+}
+
 static int compile_main(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
@@ -146,35 +198,11 @@ static int compile_main(int argc, char **argv)
     if (out == NULL || out[0] == '\0')
         return usage_error("compile needs -o OUT.cels (or -o - for standard output)");
 
-    /* The store is half a megabyte: heap, not stack. */
-    cs_scene *scene = calloc(1, sizeof *scene);
-    if (scene == NULL) {
-        fprintf(stderr, "celc: out of memory for the scene store\n");
-        return EXIT_FAIL;
-    }
-    char err[SCENE_JSON_ERRLEN];
-    if (scene_json_load(in, scene, err, sizeof err) != 0) {
-        fprintf(stderr, "celc: %s\n", err);
-        free(scene);
-        return EXIT_FAIL;
-    }
     cels_buf b;
-    cels_buf_init(&b);
-    cels_stream_header(&b);
-    int rc = 0;
-    if (cels_encode_scene(&b, scene) != 0) {
-        fprintf(stderr, "celc: out of memory encoding %s\n", in);
-        rc = EXIT_FAIL;
-    } else if (b.len - 2 * CS_WIRE_HEADER_SIZE - CS_WIRE_TRAILER_SIZE > CS_CFG_STREAM_MAX_TXN) {
-        /* The stream header, then the transaction's header, body and trailer. */
-        fprintf(stderr, "celc: %s: the scene's transaction body is %zu bytes, more than a decoder "
-                        "accepts (%u)\n",
-                in, b.len - 2 * CS_WIRE_HEADER_SIZE - CS_WIRE_TRAILER_SIZE,
-                (unsigned)CS_CFG_STREAM_MAX_TXN);
-        rc = EXIT_FAIL;
-    } else {
+    cs_scene *scene = NULL;
+    int rc = compile(in, &b, &scene);
+    if (rc == 0)
         rc = write_atomically(out, b.data, b.len);
-    }
     if (rc == 0 && verbose)
         fprintf(stderr,
                 "celc: %s -> %s: %u cels, %u regions, %u contours, %u points, %u functions, "
@@ -205,5 +233,9 @@ int main(int argc, char **argv)
         return celc_import_main(argc - 1, argv + 1);
     if (strcmp(cmd, "text") == 0)
         return celc_text_main(argc - 1, argv + 1);
-    return usage_error("unknown command '%s' (compile, import or text; see celc --help)", cmd);
+    /* MQTT delivery to a fleet of signs lives in tools/celc_publish.c. */
+    if (strcmp(cmd, "publish") == 0)
+        return celc_publish_main(argc - 1, argv + 1);
+    return usage_error("unknown command '%s' (compile, import, text or publish; see celc --help)",
+                       cmd);
 }

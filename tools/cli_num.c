@@ -91,6 +91,21 @@ bool cli_size(const char *s, long wmax, long hmax, int *w, int *h)
     return true;
 }
 
+bool cli_viewport(const char *s, int *x, int *y, int *w, int *h)
+{
+    long v[4];
+    for (int k = 0; k < 4; k++) {
+        s = cli_int(s, 10, k < 3 ? ',' : '\0', k < 2 ? 0 : 1, CS_CFG_MAX_WALL, &v[k]);
+        if (!s)
+            return false;
+    }
+    *x = (int)v[0];
+    *y = (int)v[1];
+    *w = (int)v[2];
+    *h = (int)v[3];
+    return true;
+}
+
 bool cli_aa(const char *s, cs_aa_mode *mode, int *subscanlines)
 {
     long n;

@@ -35,6 +35,10 @@ const char *cli_real(const char *s, char end, double lo, double hi, double *out)
 /* "WxH": two whole numbers, 1..wmax and 1..hmax. */
 bool cli_size(const char *s, long wmax, long hmax, int *w, int *h);
 
+/* "X,Y,W,H": a viewport, X and Y 0..CS_CFG_MAX_WALL, W and H 1..CS_CFG_MAX_WALL
+ * (whether it fits the output is the renderer's check, cs_render_opts). */
+bool cli_viewport(const char *s, int *x, int *y, int *w, int *h);
+
 /*
  * An anti-aliasing mode as the programs' --aa takes it: "none", "exact",
  * or a number of sub-scanlines 1..CS_CFG_MAX_SUBSCANLINES (*subscanlines is

@@ -34,6 +34,7 @@
 #include "celfw_input.h"
 #include "celfw_scenes.h"
 #include "celfw_stream.h"
+#include "celfw_wall.h"
 #include "gud_host.h"
 #include "hub75.h"
 #include "lx_display.h"
@@ -89,6 +90,14 @@ static void backend_log(void *user, const char *fmt, ...)
 
 /* ------------------------------------------------------------- stream */
 
+/* Tells the input what the sign shows (a fleet input publishes it):
+ * after a commit or an error, and with the frame rate from status(). */
+static void report(celfw *fw, const char *error, double fps)
+{
+    celfw_report r = {fw->commits, fw->stream_errors, fps, error, 0};
+    celfw_input_report(fw->in, &r);
+}
+
 static void on_bytes(void *user, const uint8_t *p, size_t n)
 {
     celfw *fw = user;
@@ -110,10 +119,12 @@ static void on_bytes(void *user, const uint8_t *p, size_t n)
             fw->builtin[0] = 0;
             fw->commits++;
             say("event", "stream commit %llu applied", (unsigned long long)fw->commits);
+            report(fw, NULL, -1.0);
         } else if (r == CELFW_STREAM_ERROR) {
             fw->stream_errors++;
             say("event", "stream error at byte %llu: %s; scene kept", (unsigned long long)err.offset,
                 err.what);
+            report(fw, err.what, -1.0);
         } else if (used == 0) {
             break;
         }
@@ -129,6 +140,7 @@ static void on_reset(void *user, const char *why)
         fw->stream_errors++;
         say("event", "stream error at byte %llu: %s; scene kept", (unsigned long long)err.offset,
             err.what);
+        report(fw, err.what, -1.0);
     }
 }
 
@@ -166,6 +178,8 @@ static void status(celfw *fw, const char *kind, const char *extra)
         fw->anim_t);
     fw->last_log = now;
     fw->frames_at_log = fw->frames;
+    if (!final)
+        report(fw, NULL, fps);
 }
 
 static void add_stats(lx_frame_stats *a, const lx_frame_stats *b)
@@ -224,7 +238,7 @@ static int load_scene(celfw *fw)
         }
         snprintf(fw->builtin, sizeof fw->builtin, "%s", spec + 8);
     } else if (!strcmp(spec, "none") || !spec[0]) {
-        cs_scene_init(s, (float)fw->disp->width, (float)fw->disp->height);
+        cs_scene_init(s, (float)fw->src.opts.width, (float)fw->src.opts.height);
     } else if (!celfw_scene_json(spec, s, err, sizeof err)) {
         say("error", "scene %s", err);
         return EXIT_CONFIG;
@@ -384,11 +398,16 @@ int main(int argc, char **argv)
         fw->disp->ops->close(fw->disp);
         return EXIT_DISPLAY;
     }
+    if ((rc = celfw_wall_setup(&fw->src, &fw->cfg, fw->disp, err, sizeof err)) != 0) {
+        say("error", "%s", err);
+        fw->disp->ops->close(fw->disp);
+        return rc;
+    }
     if ((rc = load_scene(fw)) != 0) {
         fw->disp->ops->close(fw->disp);
         return rc;
     }
-    if (celfw_input_open(&fw->in, fw->cfg.input, err, sizeof err) != 0) {
+    if (celfw_input_open_with(&fw->in, fw->cfg.input, &fw->cfg.mqtt, err, sizeof err) != 0) {
         say("error", "%s", err);
         fw->disp->ops->close(fw->disp);
         return EXIT_INPUT;

@@ -24,6 +24,18 @@ typedef struct setting {
     const char *help;
 } setting;
 
+/* Settings that say where credentials are: the config file only, never the
+ * command line, which other users of the board can read (/proc/PID/cmdline). */
+static bool file_only(const setting *s)
+{
+    static const char *const names[] = {"mqtt-username", "mqtt-password-file", "mqtt-ca",
+                                        "mqtt-cert", "mqtt-key"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (!strcmp(s->name, names[i]))
+            return true;
+    return false;
+}
+
 /* Numbers are read strictly (cli_num.h): decimal, or hex after 0x. */
 static bool parse_int(const char *v, long lo, long hi, long *out, char *err, size_t errlen)
 {
@@ -111,8 +123,9 @@ static bool p_aa(celfw_config *c, const char *v, char *err, size_t n)
 static bool p_input(celfw_config *c, const char *v, char *err, size_t n)
 {
     if (strcmp(v, "none") && strcmp(v, "stdin") && strncmp(v, "file:", 5) && strncmp(v, "tcp:", 4) &&
-        strncmp(v, "tty:", 4)) {
-        snprintf(err, n, "'%s' is not an input (none, stdin, file:PATH, tcp:[HOST:]PORT, tty:DEVICE[:BAUD])", v);
+        strncmp(v, "tty:", 4) && !celfw_mqtt_spec(v)) {
+        snprintf(err, n, "'%s' is not an input (none, stdin, file:PATH, tcp:[HOST:]PORT, tty:DEVICE[:BAUD], "
+                 "mqtt[s]://HOST:PORT[/TOPIC])", v);
         return false;
     }
     snprintf(c->input, sizeof c->input, "%s", v);
@@ -305,6 +318,85 @@ static bool p_usb_wait(celfw_config *c, const char *v, char *err, size_t n)
     return parse_bool(v, &c->usb.wait, err, n);
 }
 
+static bool p_wall(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (!cli_size(v, CS_CFG_MAX_WALL, CS_CFG_MAX_WALL, &c->wall_w, &c->wall_h)) {
+        snprintf(err, n, "'%s' is not a wall size WxH (1..%d each)", v, CS_CFG_MAX_WALL);
+        return false;
+    }
+    return true;
+}
+
+static bool p_viewport(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (!cli_viewport(v, &c->view[0], &c->view[1], &c->view[2], &c->view[3]) ||
+        c->view[2] > CS_CFG_MAX_WIDTH || c->view[3] > CS_CFG_MAX_HEIGHT) {
+        snprintf(err, n, "'%s' is not a viewport X,Y,W,H (W 1..%d, H 1..%d)", v, CS_CFG_MAX_WIDTH,
+                 CS_CFG_MAX_HEIGHT);
+        c->view[2] = 0;
+        return false;
+    }
+    return true;
+}
+
+/* A copy of v into dst (of size cap), refused if it does not fit. */
+static bool set_text(char *dst, size_t cap, const char *v, const char *what, char *err, size_t n)
+{
+    if (!v[0] || strlen(v) >= cap) {
+        snprintf(err, n, "'%s' is not a %s (1..%zu characters)", v, what, cap - 1);
+        return false;
+    }
+    memcpy(dst, v, strlen(v) + 1);
+    return true;
+}
+
+/* A sign id names topics: letters, digits, '-', '_' and '.' only. */
+static bool p_sign_id(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (v[strspn(v, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.")]) {
+        snprintf(err, n, "'%s' is not a sign id (letters, digits, '-', '_', '.')", v);
+        return false;
+    }
+    return set_text(c->mqtt.sign_id, sizeof c->mqtt.sign_id, v, "sign id", err, n);
+}
+
+static bool p_mqtt_topic(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (c->mqtt.topic_count >= CELFW_MQTT_MAX_TOPICS) {
+        snprintf(err, n, "at most %d group topics", CELFW_MQTT_MAX_TOPICS);
+        return false;
+    }
+    if (!set_text(c->mqtt.topics[c->mqtt.topic_count], sizeof c->mqtt.topics[0], v, "topic", err, n))
+        return false;
+    c->mqtt.topic_count++;
+    return true;
+}
+
+static bool p_mqtt_username(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return set_text(c->mqtt.username, sizeof c->mqtt.username, v, "user name", err, n);
+}
+
+static bool p_mqtt_password(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return set_text(c->mqtt.password_file, sizeof c->mqtt.password_file, v, "file name", err, n);
+}
+
+static bool p_mqtt_ca(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return set_text(c->mqtt.ca_file, sizeof c->mqtt.ca_file, v, "file name", err, n);
+}
+
+static bool p_mqtt_cert(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return set_text(c->mqtt.cert_file, sizeof c->mqtt.cert_file, v, "file name", err, n);
+}
+
+static bool p_mqtt_key(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return set_text(c->mqtt.key_file, sizeof c->mqtt.key_file, v, "file name", err, n);
+}
+
 static bool p_bench(celfw_config *c, const char *v, char *err, size_t n)
 {
     return parse_bool(v, &c->bench_gpio, err, n);
@@ -315,12 +407,22 @@ static const setting settings[] = {
     {"size", "WxH", p_size, "render size (null: required; usb: default the device's mode)"},
     {"fps", "N", p_fps, "frames per second (default 30); 0 = unpaced. HUB75 is always unpaced"},
     {"aa", "none|N", p_aa, "anti-aliasing: pixel centres, or N sub-scanlines (default 4)"},
-    {"input", "SPEC", p_input, "cel stream: none, stdin, file:PATH, tcp:[HOST:]PORT, tty:DEV[:BAUD]"},
+    {"input", "SPEC", p_input, "cel stream: none, stdin, file:PATH, tcp:[HOST:]PORT, tty:DEV[:BAUD], "
+     "mqtt[s]://HOST:PORT[/TOPIC]"},
+    {"sign-id", "ID", p_sign_id, "MQTT: client id; status on signs/ID/status, own topic signs/ID by default"},
+    {"mqtt-topic", "TOPIC", p_mqtt_topic, "MQTT: a group topic to take content from too (repeatable)"},
+    {"mqtt-username", "NAME", p_mqtt_username, "MQTT: broker user name"},
+    {"mqtt-password-file", "PATH", p_mqtt_password, "MQTT: file holding the password (mode 0600)"},
+    {"mqtt-ca", "PATH", p_mqtt_ca, "MQTT: CA certificate the broker's must chain to (mqtts)"},
+    {"mqtt-cert", "PATH", p_mqtt_cert, "MQTT: client certificate (mqtts)"},
+    {"mqtt-key", "PATH", p_mqtt_key, "MQTT: client key (mqtts; mode 0600)"},
     {"scene", "SPEC", p_scene, "scene until the stream commits one: builtin:demo|anim|bars, FILE.json, none"},
     {"log-interval", "SECONDS", p_log, "seconds between status lines (default 5; 0 = at exit only)"},
     {"frames", "N", p_frames, "stop after N frames (default: run until SIGTERM)"},
     {"duration", "SECONDS", p_duration, "stop after this long"},
     {"time-step", "SECONDS", p_time_step, "animation time advances by this per frame instead of the clock"},
+    {"wall", "WxH", p_wall, "video wall: the whole output's size, of which this board shows --viewport"},
+    {"viewport", "X,Y,W,H", p_viewport, "video wall: this board's window of the wall (W x H = the display)"},
     {"panel", "WxH", p_panel, "HUB75: one panel, 64x32 (1/16 scan) or 64x64 (1/32 scan), ..."},
     {"chain", "N", p_chain, "HUB75: panels in the chain (default 1)"},
     {"planes", "N", p_planes, "HUB75: colour depth in bit planes, 1..12 (default 8)"},
@@ -351,7 +453,8 @@ void celfw_usage(FILE *out)
                  "celfw renders a cel stream continuously on a Linux board's display.\n"
                  "Settings (also valid as 'SETTING = VALUE' lines in the config file):\n");
     for (size_t i = 0; i < sizeof settings / sizeof settings[0]; i++)
-        fprintf(out, "  --%-17s %-20s %s\n", settings[i].name, settings[i].arg, settings[i].help);
+        fprintf(out, "  --%-17s %-20s %s%s\n", settings[i].name, settings[i].arg, settings[i].help,
+                file_only(&settings[i]) ? " (config file only)" : "");
     fprintf(out, "  --%-17s %-20s %s\n", "config", "FILE", "read settings from FILE first");
     fprintf(out, "\nStatus goes to stderr as 'celfw: status key=value ...' lines; SIGTERM stops cleanly.\n"
                  "Exit status: 0 done, 2 bad configuration, 3 input failed, 4 display failed.\n");
@@ -492,6 +595,11 @@ int celfw_config_parse(celfw_config *c, int argc, char **argv, char *err, size_t
             snprintf(err, errlen, "unknown option '--%s' (celfw --help lists them)", name);
             return -1;
         }
+        if (file_only(st)) {
+            snprintf(err, errlen, "--%s may only be set in the config file (credentials stay off the "
+                     "command line, where other users can read them)", name);
+            return -1;
+        }
         char label[80];
         snprintf(label, sizeof label, "--%s", name);
         if (!apply(c, st, value, label, err, errlen))
@@ -502,9 +610,35 @@ int celfw_config_parse(celfw_config *c, int argc, char **argv, char *err, size_t
 
 bool celfw_config_check(celfw_config *c, char *err, size_t errlen)
 {
+    c->mqtt.status_interval = c->log_interval;
+    if (celfw_mqtt_spec(c->input) && !c->mqtt.sign_id[0]) {
+        snprintf(err, errlen, "input %s needs sign-id (the client id and status topic)", c->input);
+        return false;
+    }
+    if ((c->view[2] > 0) != (c->wall_w > 0)) {
+        snprintf(err, errlen, "a video wall needs both --wall WxH and --viewport X,Y,W,H");
+        return false;
+    }
+    if (c->view[2] > 0) {
+        if (c->view[0] > c->wall_w - c->view[2] || c->view[1] > c->wall_h - c->view[3]) {
+            snprintf(err, errlen, "viewport %d,%d,%d,%d does not fit in the %dx%d wall", c->view[0],
+                     c->view[1], c->view[2], c->view[3], c->wall_w, c->wall_h);
+            return false;
+        }
+        if (c->backend == CELFW_NULL && c->width &&
+            (c->width != c->view[2] || c->height != c->view[3])) {
+            snprintf(err, errlen, "size %dx%d differs from the viewport's %dx%d", c->width,
+                     c->height, c->view[2], c->view[3]);
+            return false;
+        }
+    }
     char why[256];
     switch (c->backend) {
     case CELFW_NULL:
+        if (!c->width && c->view[2] > 0) { /* the board is its viewport */
+            c->width = c->view[2];
+            c->height = c->view[3];
+        }
         if (!c->width) {
             snprintf(err, errlen, "backend null needs --size WxH");
             return false;

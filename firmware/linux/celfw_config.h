@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "celfw_mqtt.h"
 #include "celscan.h"
 #include "gud_host.h"
 #include "hub75.h"
@@ -27,13 +28,17 @@ typedef struct celfw_config {
     bool fps_set;          /* fps was given (HUB75 is rescanned unpaced, so it may not be) */
     cs_aa_mode aa;
     int subscanlines;
-    char input[256];       /* none | stdin | file:PATH | tcp:[HOST:]PORT | tty:DEVICE[:BAUD] */
+    char input[256];       /* none | stdin | file:PATH | tcp:[HOST:]PORT | tty:DEVICE[:BAUD] |
+                              mqtt[s]://HOST:PORT[/TOPIC] */
     char scene[256];       /* builtin:NAME | PATH.json | none */
     double log_interval;   /* seconds between status lines; 0 = only at exit */
     uint64_t max_frames;   /* stop after this many frames; 0 = never */
     double duration;       /* stop after this many seconds; 0 = never */
     double time_step;      /* > 0: animation time = frame index * step, not the clock */
     bool bench_gpio;       /* measure GPIO write throughput, print refresh estimates, exit */
+    int wall_w, wall_h;    /* a video wall's whole size; 0 = no wall */
+    celfw_mqtt_config mqtt; /* sign-id, group topics, broker credentials */
+    int view[4];           /* this board's viewport X, Y, W, H of the wall (W = 0: none) */
     hub75_config hub75;
     gud_config usb;
     char config_file[256];

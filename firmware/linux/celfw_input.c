@@ -21,9 +21,10 @@
 #include <unistd.h>
 
 #include "celfw_input.h"
+#include "celfw_mqtt.h"
 #include "cli_num.h"
 
-typedef enum kind { IN_NONE, IN_STDIN, IN_FILE, IN_TCP, IN_TTY } kind;
+typedef enum kind { IN_NONE, IN_STDIN, IN_FILE, IN_TCP, IN_TTY, IN_MQTT } kind;
 
 struct celfw_input {
     kind k;
@@ -34,6 +35,7 @@ struct celfw_input {
     uint64_t session_bytes;
     char spec[256];          /* tty: reopened from this after the port goes away */
     time_t next_reopen;
+    celfw_mqtt *mqtt;        /* IN_MQTT: the fleet input (celfw_mqtt.c) */
     uint8_t buf[65536]; /* one read's worth: bounds the time a read takes from a frame */
 };
 
@@ -150,6 +152,12 @@ static int open_tty(celfw_input *in, const char *spec, char *err, size_t errlen)
 
 int celfw_input_open(celfw_input **out, const char *spec, char *err, size_t errlen)
 {
+    return celfw_input_open_with(out, spec, NULL, err, errlen);
+}
+
+int celfw_input_open_with(celfw_input **out, const char *spec, const celfw_mqtt_config *mc,
+                          char *err, size_t errlen)
+{
     celfw_input *in = calloc(1, sizeof *in);
     if (!in)
         return -1;
@@ -177,6 +185,11 @@ int celfw_input_open(celfw_input **out, const char *spec, char *err, size_t errl
     } else if (!strncmp(spec, "tty:", 4)) {
         in->k = IN_TTY;
         r = open_tty(in, spec + 4, err, errlen);
+    } else if (celfw_mqtt_spec(spec) && mc) {
+        in->k = IN_MQTT;
+        r = celfw_mqtt_open(&in->mqtt, spec, mc, err, errlen);
+        if (r == 0)
+            snprintf(in->desc, sizeof in->desc, "%s", celfw_mqtt_describe(in->mqtt));
     } else {
         snprintf(err, errlen, "input '%s': expected none, stdin, file:PATH, tcp:[HOST:]PORT or tty:DEV[:BAUD]",
                  spec);
@@ -192,6 +205,8 @@ int celfw_input_open(celfw_input **out, const char *spec, char *err, size_t errl
 
 int celfw_input_pollfds(celfw_input *in, struct pollfd *pfd, int max)
 {
+    if (in->k == IN_MQTT)
+        return celfw_mqtt_pollfds(in->mqtt, pfd, max);
     int n = 0;
     if (in->fd >= 0 && n < max)
         pfd[n++] = (struct pollfd){in->fd, POLLIN, 0};
@@ -217,6 +232,10 @@ static void end_session(celfw_input *in, const celfw_input_sink *sink, const cha
 
 void celfw_input_service(celfw_input *in, const struct pollfd *pfd, int n, const celfw_input_sink *sink)
 {
+    if (in->k == IN_MQTT) {
+        celfw_mqtt_service(in->mqtt, sink);
+        return;
+    }
     for (int i = 0; i < n; i++) {
         if (!pfd[i].revents)
             continue;
@@ -266,6 +285,8 @@ void celfw_input_service(celfw_input *in, const struct pollfd *pfd, int n, const
 
 void celfw_input_tick(celfw_input *in, const celfw_input_sink *sink)
 {
+    if (in->k == IN_MQTT)
+        celfw_mqtt_tick(in->mqtt);
     /* a USB serial adapter that was pulled out may come back: try once a second */
     if (in->k != IN_TTY || in->fd >= 0)
         return;
@@ -287,10 +308,17 @@ const char *celfw_input_describe(const celfw_input *in)
     return in->desc;
 }
 
+void celfw_input_report(celfw_input *in, const celfw_report *r)
+{
+    if (in && in->k == IN_MQTT)
+        celfw_mqtt_report(in->mqtt, r);
+}
+
 void celfw_input_close(celfw_input *in)
 {
     if (!in)
         return;
+    celfw_mqtt_close(in->mqtt);
     if (in->fd > 0)
         close(in->fd);
     if (in->listen_fd >= 0)

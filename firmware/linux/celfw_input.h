@@ -24,8 +24,17 @@ typedef struct celfw_input_sink {
 
 typedef struct celfw_input celfw_input;
 
+struct celfw_mqtt_config;
+struct celfw_report;
+
 /* Opens spec (none, stdin, file:PATH, tcp:[HOST:]PORT, tty:DEV[:BAUD]). */
 int celfw_input_open(celfw_input **in, const char *spec, char *err, size_t errlen);
+/* As celfw_input_open, also mqtt[s]://HOST:PORT[/TOPIC] with its settings
+ * (celfw_mqtt.h; mc may be NULL for the other specs). */
+int celfw_input_open_with(celfw_input **in, const char *spec, const struct celfw_mqtt_config *mc,
+                          char *err, size_t errlen);
+/* celfw's state for inputs that report it (MQTT's status topic); others ignore it. */
+void celfw_input_report(celfw_input *in, const struct celfw_report *r);
 /* The descriptors to poll now (at most 2). */
 int celfw_input_pollfds(celfw_input *in, struct pollfd *pfd, int max);
 /* Handles what poll reported for those descriptors. */

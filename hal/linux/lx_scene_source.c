@@ -26,7 +26,7 @@ static lx_status line(void *user, int lane, int y, float *rgb)
     lx_scene_source *s = user;
     if (lane < 0 || lane >= s->lanes)
         return LX_ERR_RENDER;
-    cs_status st = cs_render_line(&s->r[lane], y, rgb);
+    cs_status st = cs_render_line(&s->r[lane], s->opts.view_y + y, rgb);
     if (st != CS_OK) {
         s->err.status = st;
         return LX_ERR_RENDER;
@@ -60,6 +60,21 @@ lx_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_
     s->src.user = s;
     s->src.begin = begin;
     s->src.line = line;
+    return LX_OK;
+}
+
+lx_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, int x, int y)
+{
+    int w = s->src.width, h = s->src.height;
+    if (wall_w < 1 || wall_h < 1 || wall_w > CS_CFG_MAX_WALL || wall_h > CS_CFG_MAX_WALL || x < 0 ||
+        y < 0 || x > wall_w - w || y > wall_h - h)
+        return LX_ERR_CONFIG;
+    s->opts.width = wall_w;
+    s->opts.height = wall_h;
+    s->opts.view_x = x;
+    s->opts.view_y = y;
+    s->opts.view_w = w;
+    s->opts.view_h = h;
     return LX_OK;
 }
 

@@ -28,6 +28,13 @@ typedef struct lx_scene_source {
 /* Sets up lanes for width x height output. aa/subscanlines as in cs_render_opts. */
 lx_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_mode aa,
                                int subscanlines);
+/*
+ * Makes the output one board's viewport of a wall_w x wall_h video wall: the
+ * window at (x, y) of the source's width x height, rendered bit for bit as
+ * the whole wall's render has it (cs_render_opts.view_*). The display's
+ * line y is the wall's line y + y. LX_ERR_CONFIG if it does not fit.
+ */
+lx_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, int x, int y);
 /* Chooses the scene and the animation time of the next frame. */
 void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time);
 void lx_scene_source_free(lx_scene_source *s);

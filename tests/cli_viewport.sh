@@ -1,0 +1,60 @@
+#!/bin/sh
+# cli_viewport.sh - celsim render --viewport through the simulated display.
+#
+#   sh tests/cli_viewport.sh BUILD_HOST_DIR
+#
+# The tiles' bits are wall_tiles.c's subject; this checks the command line
+# around them: a viewport covering the whole output gives the whole render's
+# frame CRC, a tile's CRC does not, a wall wider than a line renders through a
+# viewport (and is refused without one), and a viewport that does not fit is
+# a usage error (status 2) naming it. celfw --wall/--viewport: a board of a
+# wall runs (its display the viewport's size), and a wall without a viewport,
+# a viewport that does not fit and a display of another size are refused
+# with status 2 and the reason. Last line: "cli_viewport: N passed, M failed".
+bin=$1/celsim
+fw=$1/celfw
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+ko() { fail=$((fail + 1)); echo "cli_viewport: FAIL $*"; }
+crc() { "$bin" render "$@" --crc 2>&1; }
+
+for aa in none 16 exact; do
+    whole=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa)
+    full=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa --viewport 0,0,641,363)
+    tile=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa --viewport 213,0,214,363)
+    [ -n "$whole" ] && [ "$whole" = "$full" ] && ok || ko "--aa $aa: whole '$whole', full viewport '$full'"
+    [ "$tile" != "$whole" ] && case $tile in "frame crc32 "*) true;; *) false;; esac && ok ||
+        ko "--aa $aa: tile gave '$tile'"
+done
+
+out=$("$bin" render scenes/demo.json --size 6000x200 --viewport 5000,0,1000,200 --crc 2>&1)
+case $out in "frame crc32 "*) ok ;; *) ko "6000-wide wall viewport: $out" ;; esac
+out=$("$bin" render scenes/demo.json --size 6000x200 --crc 2>&1)
+rc=$?
+[ $rc -eq 2 ] && echo "$out" | grep -q 'needs --viewport' && ok || ko "6000 wide without viewport: rc $rc: $out"
+out=$("$bin" render scenes/demo.json --size 640x360 --viewport 600,0,41,10 --crc 2>&1)
+rc=$?
+[ $rc -eq 2 ] && echo "$out" | grep -q 'does not fit in the 640x360 output' && ok ||
+    ko "viewport past the edge: rc $rc: $out"
+out=$("$bin" render scenes/demo.json --viewport 1,2,3 --crc 2>&1)
+rc=$?
+[ $rc -eq 2 ] && echo "$out" | grep -q 'expects X,Y,W,H' && ok || ko "malformed viewport: rc $rc: $out"
+
+# celfw: "expect STATUS TEXT -- celfw args": the exit status and a line of stderr.
+expect() {
+    want=$1 text=$2
+    shift 3
+    out=$("$fw" --backend null --frames 2 --fps 0 --log-interval 0 "$@" 2>&1)
+    rc=$?
+    [ $rc -eq "$want" ] && echo "$out" | grep -q -- "$text" && ok || ko "celfw $*: rc $rc: $out"
+}
+expect 0 'display=640x360' -- --wall 1280x720 --viewport 640,360,640,360 --aa 16
+expect 2 'needs both --wall WxH and --viewport' -- --wall 1280x720 --size 640x360
+expect 2 'does not fit in the 1280x720 wall' -- --wall 1280x720 --viewport 700,0,640,360
+expect 2 "differs from the viewport's 640x360" -- --size 320x180 --wall 1280x720 \
+    --viewport 0,0,640,360
+expect 2 'is not a viewport X,Y,W,H' -- --wall 1280x720 --viewport 0,0,0,360
+
+echo "cli_viewport: $pass passed, $fail failed"
+[ $fail -eq 0 ]
