@@ -18,6 +18,7 @@
 #include "../tools/svg/sv.h"
 #include "../tools/svg/sv_import.h"
 #include "../tools/svg/sv_internal.h"
+#include "../tools/svg/sv_font.h"
 #include "../tools/svg/sv_text.h"
 #include "svg_check.h"
 
@@ -866,6 +867,47 @@ static void test_svg_text(void)
     sv_doc_free(&d3);
 }
 
+/* fontconfig's choice as a browser's: family list, weight, style, per-glyph fallback */
+static void test_fonts(void)
+{
+    static const struct {
+        const char *family;
+        int weight;
+        bool italic;
+        unsigned long cp;
+        const char *want; /* in the file name (fonts-noto-core, fonts-noto-cjk) */
+    } cases[] = {
+        {"Noto Sans", 400, false, 'A', "NotoSans-Regular."},
+        {"'Noto Sans'", 700, false, 'A', "NotoSans-Bold."},
+        {"Noto Sans", 400, true, 'A', "NotoSans-Italic."},
+        {"\"No Such Face\", Noto Serif, sans-serif", 400, false, 'A', "NotoSerif-Regular."},
+        {"Noto Sans", 400, false, 0x5203, "CJK"}, /* 刃: not in Noto Sans, from a CJK face */
+        {"monospace", 400, false, 'A', "Mono"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char file[512] = "";
+        int rc = sv_font_match(cases[i].family, cases[i].weight, cases[i].italic, NULL,
+                               cases[i].cp, file, sizeof file);
+        SVC_CHECK(rc == 0 && strstr(file, cases[i].want), "font for '%s' %d%s U+%04lX: %s (want %s)",
+                  cases[i].family, cases[i].weight, cases[i].italic ? " italic" : "", cases[i].cp,
+                  file, cases[i].want);
+    }
+    /* in an import: the CJK characters of a Latin family get outlines (no .notdef box of
+       two contours: U+6D77 has many) */
+    const char *cjk = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='40'>"
+                      "<text x='0' y='30' font-family='Noto Sans' font-size='20'>A\xe6\xb5\xb7"
+                      "</text></svg>";
+    sv_doc d;
+    char err[200];
+    SVC_CHECK(sv_import_buffer(cjk, strlen(cjk), NULL, &d, err, sizeof err) == 0, "%s", err);
+    int contours = 0;
+    for (int c = 0; c < d.ncels; c++)
+        for (int r = 0; r < d.cels[c].nregions; r++)
+            contours += d.cels[c].regions[r].ncontours;
+    SVC_CHECK(contours >= 2 + 5, "A and U+6D77 set from two faces (%d contours)", contours);
+    sv_doc_free(&d);
+}
+
 void test_svg_unit(const svg_test_opts *o)
 {
     (void)o;
@@ -882,5 +924,6 @@ void test_svg_unit(const svg_test_opts *o)
     test_import_doc();
     test_glyphs();
     test_svg_text();
+    test_fonts();
     printf("svg-unit: %s\n", svc_fail == before ? "all checks pass" : "FAILURES above");
 }

@@ -302,7 +302,7 @@ typedef struct sv_import_opts {
     double tolerance;
     double nominal_px; /* 0 = 1024 */
     double current_color[3]; /* for a root-level currentColor; default black */
-    const char *font_path;   /* for <text>; NULL = DejaVu Sans */
+    const char *font_path;   /* for <text>: every glyph from this file; NULL = fontconfig's choice */
     /* One cel per painted fill or stroke (SVG's per-shape "over", conflation
      * seams included) instead of packing opaque regions into shared cels. */
     bool one_cel_per_shape;

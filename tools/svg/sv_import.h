@@ -120,7 +120,7 @@ typedef struct sv_style {
     double dash_offset;
     double font_size;
     char font_family[128];
-    int font_weight; /* 400 normal, 700 bold */
+    int font_weight; /* 1..1000: 400 normal, 700 bold */
     bool font_italic;
     int text_anchor; /* 0 start, 1 middle, 2 end */
     /* not inherited */

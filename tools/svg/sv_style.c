@@ -576,10 +576,18 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
         snprintf(s->font_family, sizeof s->font_family, "%s", v);
     } else if (!strcmp(name, "font-weight")) {
         INH(font_weight);
-        /* a number (100..900) or a keyword; strtod, since atoi's overflow is undefined */
-        s->font_weight = (!strcmp(v, "bold") || !strcmp(v, "bolder") || strtod(v, NULL) >= 600.0)
-                             ? 700
-                             : 400;
+        /* a number (1..1000) or a keyword; strtod, since atoi's overflow is undefined */
+        double w = strtod(v, NULL);
+        if (!strcmp(v, "bold"))
+            s->font_weight = 700;
+        else if (!strcmp(v, "bolder")) /* CSS Fonts 4's table, in short */
+            s->font_weight = parent->font_weight < 600 ? 700 : 900;
+        else if (!strcmp(v, "lighter"))
+            s->font_weight = parent->font_weight < 600 ? 100 : 400;
+        else if (w >= 1 && w <= 1000)
+            s->font_weight = (int)w;
+        else
+            s->font_weight = 400;
     } else if (!strcmp(name, "font-style")) {
         INH(font_italic);
         s->font_italic = !strcmp(v, "italic") || !strcmp(v, "oblique");

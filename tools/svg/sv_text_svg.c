@@ -2,149 +2,349 @@
  * sv_text_svg.c - layout of SVG <text>: runs of glyph outlines in user space.
  *
  * Character data and <tspan>s are taken in document order (the element tree
- * keeps character data as "#text" children for this). Each run is set with
- * FreeType (sv_text.c) in the font its style maps to, at the pen position,
- * and the pen advances by the run's advance. x or y on the element or a
- * tspan starts a new text chunk at that absolute position; dx/dy shift the
- * pen; text-anchor then moves each chunk by half or all of its width. Only
- * the first value of each of x/y/dx/dy is used (per-glyph lists are warned).
- * White space follows xml:space: by default newlines and tabs become spaces,
- * runs of spaces collapse across tspans, and the text is trimmed at both
- * ends; "preserve" keeps every space.
+ * keeps character data as "#text" children for this) and flattened into one
+ * list of characters, each remembering the element it belongs to. White
+ * space follows xml:space: by default newlines are removed, tabs become
+ * spaces, runs of spaces collapse across tspans, and the text is trimmed at
+ * both ends; "preserve" keeps every space.
  *
- * Font families map to the DejaVu faces installed by fonts-dejavu-core
- * (sans, serif, mono; bold; italic/oblique), which is also what librsvg's
- * fontconfig picks here for the generic families.
+ * Positions follow SVG 1.1 section 10.5: the i-th value of x, y, dx, dy on
+ * an element belongs to the i-th character inside it, the innermost element
+ * with a value for that character wins, and rotate's last value holds for
+ * the characters after it. An absolute x or y starts a new text chunk, and
+ * text-anchor moves each chunk by half or all of its advance.
+ *
+ * Each character is set in the face fontconfig picks for its style and
+ * script (sv_font.c: the family list, weight, style, xml:lang, and per
+ * character fallback). Each stretch of characters of one element in one
+ * face, up to the next absolute position, is shaped by HarfBuzz (GPOS
+ * kerning, ligatures, marks, Arabic joining, in the script and language it
+ * guesses or xml:lang gives); its glyphs go at the pen, each turned by its
+ * character's rotate angle about its origin. Bidi reordering across runs
+ * of different direction is not done (each stretch keeps its own).
  */
+#include <ft2build.h>
+#include FT_FREETYPE_H
+#include <hb-ft.h>
+#include <hb.h>
+
 #include <ctype.h>
 #include <math.h>
 
+#include "sv_font.h"
 #include "sv_import.h"
 #include "sv_internal.h"
 #include "sv_text.h"
 
-typedef struct pending {
+enum { POS_X, POS_Y, POS_DX, POS_DY, POS_ROT, POS_N };
+static const char *const pos_attr[POS_N] = {"x", "y", "dx", "dy", "rotate"};
+
+#define MAX_TSPAN_DEPTH 32
+
+/* An element with positioning lists, and how many characters it has given out. */
+typedef struct frame {
+    double *v[POS_N];
+    int n[POS_N];
+    int count;
+} frame;
+
+typedef struct ch {
+    unsigned long cp;
+    int owner; /* index into layout.owners */
+    bool has[4];
+    double v[4]; /* absolute x, y, then dx, dy */
+    double rot;  /* degrees */
+} ch;
+
+typedef struct owner {
     const sv_node *node;
     sv_style style;
-    char *text;
-    bool set_x, set_y;
-    double x, y, dx, dy;
-    bool new_chunk;
-} pending;
+    const char *lang;
+} owner;
 
 typedef struct layout {
-    pending *p;
+    ch *c;
     int n, cap;
+    owner *own;
+    int nown, capown;
+    frame stack[MAX_TSPAN_DEPTH];
+    int depth;
     bool preserve, last_space;
     const sv_css *css;
     double vp_w, vp_h;
     sv_doc *doc;
 } layout;
 
-static const char *family_font(const sv_style *s, bool *mapped)
+/* A list of lengths (numbers with units or percentages); malloc'd, count returned. */
+static int parse_lengths(const char *a, double ref, const sv_style *s, double **out)
 {
-    const char *f = s->font_family;
-    bool mono = strstr(f, "ono") != NULL, serif = strstr(f, "erif") && !strstr(f, "ans");
-    bool bold = s->font_weight >= 600, it = s->font_italic;
-    *mapped = !(strstr(f, "DejaVu") || strstr(f, "sans") || strstr(f, "Sans") || serif || mono);
-    if (mono)
-        return bold ? (it ? "DejaVuSansMono-BoldOblique.ttf" : "DejaVuSansMono-Bold.ttf")
-                    : (it ? "DejaVuSansMono-Oblique.ttf" : "DejaVuSansMono.ttf");
-    if (serif)
-        return bold ? (it ? "DejaVuSerif-BoldItalic.ttf" : "DejaVuSerif-Bold.ttf")
-                    : (it ? "DejaVuSerif-Italic.ttf" : "DejaVuSerif.ttf");
-    return bold ? (it ? "DejaVuSans-BoldOblique.ttf" : "DejaVuSans-Bold.ttf")
-                : (it ? "DejaVuSans-Oblique.ttf" : "DejaVuSans.ttf");
+    int n = 0, cap = 0;
+    double *v = NULL;
+    const char *p = a;
+    for (;;) {
+        p = sv_skip_wsp_comma(p);
+        if (!*p)
+            break;
+        const char *e = p;
+        while (*e && !isspace((unsigned char)*e) && *e != ',')
+            e++;
+        char tok[64];
+        size_t len = (size_t)(e - p) < sizeof tok - 1 ? (size_t)(e - p) : sizeof tok - 1;
+        memcpy(tok, p, len);
+        tok[len] = 0;
+        double x;
+        if (!sv_parse_length(tok, s->font_size, ref, &x) || !isfinite(x))
+            break; /* SVG: an error ends the list */
+        SV_GROW(v, n, cap);
+        v[n++] = x;
+        p = e;
+    }
+    *out = v;
+    return n;
 }
 
-/* Reads the first length of an attribute list; warns if there are more. */
-static bool first_len(layout *L, const sv_node *n, const char *name, double ref,
-                      const sv_style *s, double *v)
+static void push_frame(layout *L, const sv_node *n, const sv_style *s)
 {
-    const char *a = sv_attr(n, name);
-    if (!a)
-        return false;
-    double vals[2];
-    int k = sv_parse_numbers(a, vals, 2);
-    if (k == 0)
-        return false;
-    if (k > 1)
-        sv_doc_warn(L->doc, "<%s> (line %d): per-glyph %s positions not supported, first used",
-                    n->name, n->line, name);
-    if (!sv_parse_length(a, s->font_size, ref, v))
-        *v = vals[0];
-    return true;
+    frame *f = &L->stack[L->depth++];
+    memset(f, 0, sizeof *f);
+    for (int a = 0; a < POS_N; a++) {
+        const char *v = sv_attr(n, pos_attr[a]);
+        if (!v)
+            continue;
+        double ref = (a == POS_X || a == POS_DX) ? L->vp_w : L->vp_h;
+        if (a == POS_ROT) { /* plain numbers; an invalid list is ignored whole */
+            int k = 0, cap = 0;
+            const char *p = v;
+            double x;
+            for (p = sv_skip_wsp_comma(p); *p; p = sv_skip_wsp_comma(p)) {
+                if (!sv_parse_number(&p, &x) || !isfinite(x)) {
+                    k = 0;
+                    break;
+                }
+                SV_GROW(f->v[a], k, cap);
+                f->v[a][k++] = x;
+            }
+            f->n[a] = k;
+        } else {
+            f->n[a] = parse_lengths(v, ref, s, &f->v[a]);
+        }
+    }
 }
 
-static void add_run(layout *L, const sv_node *owner, const sv_style *s, const char *raw,
-                    size_t len, pending *pos)
+static void pop_frame(layout *L)
 {
-    char *t = sv_xrealloc(NULL, len + 1);
-    size_t k = 0;
-    for (size_t i = 0; i < len; i++) {
-        char ch = raw[i];
-        if (ch == '\n' || ch == '\r') {
+    frame *f = &L->stack[--L->depth];
+    for (int a = 0; a < POS_N; a++)
+        free(f->v[a]);
+}
+
+/* Next code point of UTF-8 text (U+FFFD for malformed bytes). */
+static unsigned long utf8_next(const unsigned char **s, const unsigned char *end)
+{
+    const unsigned char *p = *s;
+    unsigned long c = *p++;
+    int extra = c >= 0xf0 ? 3 : c >= 0xe0 ? 2 : c >= 0xc0 ? 1 : 0;
+    if (c >= 0x80 && extra == 0) {
+        *s = p;
+        return 0xfffd;
+    }
+    c &= extra == 3 ? 0x07 : extra == 2 ? 0x0f : extra == 1 ? 0x1f : 0x7f;
+    for (int i = 0; i < extra; i++) {
+        if (p >= end || (*p & 0xc0) != 0x80) {
+            *s = p;
+            return 0xfffd;
+        }
+        c = (c << 6) | (*p++ & 0x3f);
+    }
+    *s = p;
+    return c;
+}
+
+static void add_char(layout *L, unsigned long cp, int owner_index)
+{
+    SV_GROW(L->c, L->n, L->cap);
+    ch *c = &L->c[L->n++];
+    memset(c, 0, sizeof *c);
+    c->cp = cp;
+    c->owner = owner_index;
+    for (int a = 0; a < 4; a++)
+        for (int d = L->depth - 1; d >= 0; d--) {
+            const frame *f = &L->stack[d];
+            if (f->count < f->n[a]) {
+                c->has[a] = true;
+                c->v[a] = f->v[a][f->count];
+                break;
+            }
+        }
+    for (int d = L->depth - 1; d >= 0; d--) {
+        const frame *f = &L->stack[d];
+        if (f->n[POS_ROT] > 0) {
+            c->rot = f->v[POS_ROT][f->count < f->n[POS_ROT] ? f->count : f->n[POS_ROT] - 1];
+            break;
+        }
+    }
+    for (int d = 0; d < L->depth; d++)
+        L->stack[d].count++;
+}
+
+static void add_text(layout *L, const char *raw, size_t len, int owner_index)
+{
+    const unsigned char *s = (const unsigned char *)raw, *end = s + len;
+    while (s < end) {
+        unsigned long cp = utf8_next(&s, end);
+        if (cp == '\n' || cp == '\r') {
             if (!L->preserve)
                 continue; /* SVG 1.1 default: newlines are removed */
-            ch = ' ';
+            cp = ' ';
         }
-        if (ch == '\t')
-            ch = ' ';
-        if (ch == ' ' && !L->preserve) {
+        if (cp == '\t')
+            cp = ' ';
+        if (cp == ' ' && !L->preserve) {
             if (L->last_space)
                 continue;
             L->last_space = true;
-        } else if (ch != ' ') {
+        } else if (cp != ' ') {
             L->last_space = false;
         }
-        t[k++] = ch;
+        add_char(L, cp, owner_index);
     }
-    t[k] = 0;
-    if (k == 0 && !pos->set_x && !pos->set_y && !pos->dx && !pos->dy) {
-        free(t);
-        return;
-    }
-    SV_GROW(L->p, L->n, L->cap);
-    pending *r = &L->p[L->n++];
-    *r = *pos;
-    r->node = owner;
-    r->style = *s;
-    r->text = t;
-    memset(pos, 0, sizeof *pos); /* positions apply once, to the next run */
 }
 
-static void walk(layout *L, const sv_node *n, const sv_style *s, pending *pos)
+static int add_owner(layout *L, const sv_node *n, const sv_style *s, const char *lang)
 {
+    SV_GROW(L->own, L->nown, L->capown);
+    L->own[L->nown].node = n;
+    L->own[L->nown].style = *s;
+    L->own[L->nown].lang = lang;
+    return L->nown++;
+}
+
+static const char *lang_of(const sv_node *n, const char *inherited)
+{
+    const char *l = sv_attr(n, "xml:lang");
+    if (!l)
+        l = sv_attr(n, "lang");
+    return l ? l : inherited;
+}
+
+static void walk(layout *L, const sv_node *n, const sv_style *s, const char *lang)
+{
+    int me = -1;
     for (int i = 0; i < n->nkids; i++) {
         const sv_node *k = n->kids[i];
         if (!strcmp(k->name, "#text")) {
-            add_run(L, n, s, k->text, k->textlen, pos);
+            if (me < 0)
+                me = add_owner(L, n, s, lang);
+            add_text(L, k->text, k->textlen, me);
         } else if (!strcmp(k->name, "tspan") || !strcmp(k->name, "a")) {
+            if (L->depth >= MAX_TSPAN_DEPTH) {
+                sv_doc_warn(L->doc, "<%s> (line %d): tspans nested deeper than %d, not drawn",
+                            k->name, k->line, MAX_TSPAN_DEPTH);
+                continue;
+            }
             sv_style ks;
             sv_style_compute(&ks, s, k, L->css, sqrt((L->vp_w * L->vp_w + L->vp_h * L->vp_h) / 2),
                              L->doc);
             if (ks.display_none)
                 continue;
-            double v;
-            if (first_len(L, k, "x", L->vp_w, &ks, &v)) {
-                pos->set_x = pos->new_chunk = true;
-                pos->x = v;
-            }
-            if (first_len(L, k, "y", L->vp_h, &ks, &v)) {
-                pos->set_y = pos->new_chunk = true;
-                pos->y = v;
-            }
-            if (first_len(L, k, "dx", L->vp_w, &ks, &v))
-                pos->dx += v;
-            if (first_len(L, k, "dy", L->vp_h, &ks, &v))
-                pos->dy += v;
-            walk(L, k, &ks, pos);
+            push_frame(L, k, &ks);
+            walk(L, k, &ks, lang_of(k, lang));
+            pop_frame(L);
+            me = -1; /* text after the tspan is a new run of this element */
         } else if (strncmp(k->name, "ns:", 3) != 0 && strcmp(k->name, "title") != 0 &&
                    strcmp(k->name, "desc") != 0) {
             sv_doc_warn(L->doc, "<%s> (line %d) in <text>: not supported, not drawn", k->name,
                         k->line);
         }
     }
+}
+
+/* Glyph `gi` of the face at the origin, turned by `rot` degrees, then at (x, y). */
+static void set_glyph(FT_Face face, unsigned gi, double scale, double rot, double x, double y,
+                      sv_path *out)
+{
+    if (FT_Load_Glyph(face, gi, FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP) ||
+        face->glyph->format != FT_GLYPH_FORMAT_OUTLINE)
+        return;
+    sv_path gp;
+    sv_path_init(&gp);
+    sv_text_outline_path((const struct FT_Outline_ *)&face->glyph->outline, scale, 0, 0, &gp);
+    double r = rot * M_PI / 180, cs = cos(r), sn = sin(r);
+    sv_affine m = {cs, sn, -sn, cs, x, y};
+    sv_path_transform(&gp, m);
+    sv_path_append(out, &gp);
+    sv_path_free(&gp);
+}
+
+/* HarfBuzz fonts of the faces used, at one unit per font unit. */
+typedef struct shaper {
+    FT_Face ft[16];
+    hb_font_t *hb[16];
+    int n;
+} shaper;
+
+static hb_font_t *hb_for(shaper *sh, FT_Face face)
+{
+    for (int i = 0; i < sh->n; i++)
+        if (sh->ft[i] == face)
+            return sh->hb[i];
+    if (sh->n == 16) { /* more faces in one <text> than that: drop the oldest */
+        hb_font_destroy(sh->hb[0]);
+        memmove(sh->ft, sh->ft + 1, 15 * sizeof *sh->ft);
+        memmove(sh->hb, sh->hb + 1, 15 * sizeof *sh->hb);
+        sh->n = 15;
+    }
+    hb_face_t *hf = hb_ft_face_create_referenced(face);
+    hb_font_t *f = hb_font_create(hf);
+    hb_face_destroy(hf);
+    hb_font_set_scale(f, face->units_per_EM, face->units_per_EM);
+    sh->ft[sh->n] = face;
+    sh->hb[sh->n] = f;
+    return sh->hb[sh->n++];
+}
+
+typedef struct chunk {
+    double start, end; /* pen x where it starts and after its last glyph */
+    int anchor;
+} chunk;
+
+/*
+ * Shapes characters [i0, i1) of L (one element, one face, no absolute
+ * position after i0) and sets their glyphs into `out` from the pen, which
+ * it advances. Per-character dx, dy and rotate apply to the first glyph of
+ * the character's cluster.
+ */
+static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font_t *font,
+                          double *penx, double *peny, sv_path *out)
+{
+    const owner *o = &L->own[L->c[i0].owner];
+    hb_buffer_t *buf = hb_buffer_create();
+    for (int i = i0; i < i1; i++)
+        hb_buffer_add(buf, (hb_codepoint_t)L->c[i].cp, (unsigned)(i - i0));
+    hb_buffer_set_content_type(buf, HB_BUFFER_CONTENT_TYPE_UNICODE);
+    if (o->lang)
+        hb_buffer_set_language(buf, hb_language_from_string(o->lang, -1));
+    hb_buffer_guess_segment_properties(buf);
+    hb_shape(font, buf, NULL, 0);
+    unsigned n;
+    hb_glyph_info_t *info = hb_buffer_get_glyph_infos(buf, &n);
+    hb_glyph_position_t *pos = hb_buffer_get_glyph_positions(buf, &n);
+    double scale = o->style.font_size / face->units_per_EM;
+    unsigned last = (unsigned)-1;
+    for (unsigned g = 0; g < n; g++) {
+        const ch *c = &L->c[i0 + (int)info[g].cluster];
+        if (info[g].cluster != last) {
+            if (c->has[POS_DX])
+                *penx += c->v[POS_DX];
+            if (c->has[POS_DY])
+                *peny += c->v[POS_DY];
+            last = info[g].cluster;
+        }
+        set_glyph(face, info[g].codepoint, scale, c->rot, *penx + pos[g].x_offset * scale,
+                  *peny - pos[g].y_offset * scale, out);
+        *penx += pos[g].x_advance * scale;
+    }
+    hb_buffer_destroy(buf);
 }
 
 int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css *css,
@@ -160,88 +360,79 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
     const char *sp = sv_attr(text, "xml:space");
     L.preserve = sp && !strcmp(sp, "preserve");
     L.last_space = true; /* leading spaces go */
-    pending pos;
-    memset(&pos, 0, sizeof pos);
-    double v;
-    pos.new_chunk = true;
-    pos.set_x = pos.set_y = true;
-    if (first_len(&L, text, "x", vp_w, style, &v))
-        pos.x = v;
-    if (first_len(&L, text, "y", vp_h, style, &v))
-        pos.y = v;
-    if (first_len(&L, text, "dx", vp_w, style, &v))
-        pos.dx = v;
-    if (first_len(&L, text, "dy", vp_h, style, &v))
-        pos.dy = v;
-    walk(&L, text, style, &pos);
+    const char *lang = NULL;
+    for (const sv_node *a = text; a && !lang; a = a->parent)
+        lang = lang_of(a, NULL);
+    push_frame(&L, text, style);
+    walk(&L, text, style, lang);
+    pop_frame(&L);
     if (!L.preserve) /* trailing spaces go too */
-        for (int i = L.n - 1; i >= 0; i--) {
-            size_t k = strlen(L.p[i].text);
-            while (k > 0 && L.p[i].text[k - 1] == ' ')
-                L.p[i].text[--k] = 0;
-            if (k > 0)
-                break;
-        }
-    sv_text_run *runs = sv_xrealloc(NULL, (size_t)(L.n ? L.n : 1) * sizeof *runs);
-    double *adv = sv_xrealloc(NULL, (size_t)(L.n ? L.n : 1) * sizeof *adv);
-    double *px = sv_xrealloc(NULL, (size_t)(L.n ? L.n : 1) * sizeof *px);
-    double penx = 0, peny = 0;
-    int chunk_start = 0;
-    for (int i = 0; i <= L.n; i++) {
-        /* close the chunk before an absolutely positioned run: apply text-anchor */
-        if (i == L.n || (i > 0 && L.p[i].new_chunk)) {
-            int anchor = chunk_start < L.n ? L.p[chunk_start].style.text_anchor : 0;
-            double w = 0;
-            for (int k = chunk_start; k < i; k++)
-                w += adv[k];
-            double shift = anchor == 1 ? -w / 2 : anchor == 2 ? -w : 0;
-            for (int k = chunk_start; k < i; k++) {
-                sv_affine t = {1, 0, 0, 1, px[k] + shift, 0};
-                sv_path_transform(&runs[k].path, t);
-            }
-            chunk_start = i;
-        }
-        if (i == L.n)
-            break;
-        pending *r = &L.p[i];
-        if (r->set_x)
-            penx = r->x;
-        if (r->set_y)
-            peny = r->y;
-        penx += r->dx;
-        peny += r->dy;
-        runs[i].node = r->node;
-        runs[i].style = sv_xrealloc(NULL, sizeof(sv_style));
-        *runs[i].style = r->style;
-        sv_path_init(&runs[i].path);
-        char path[512];
-        bool mapped = false;
-        if (font_path)
-            snprintf(path, sizeof path, "%s", font_path);
-        else
-            snprintf(path, sizeof path, "/usr/share/fonts/truetype/dejavu/%s",
-                     family_font(&r->style, &mapped));
-        if (mapped)
-            sv_doc_warn(doc, "<text> (line %d): font-family '%s' set in %s", text->line,
-                        r->style.font_family, path);
-        sv_text_metrics m;
+        while (L.n > 0 && L.c[L.n - 1].cp == ' ')
+            L.n--;
+
+    sv_fonts *F = sv_fonts_new(font_path);
+    shaper sh = {.n = 0};
+    size_t cnt = (size_t)(L.n ? L.n : 1);
+    FT_Face *faces = sv_xrealloc(NULL, cnt * sizeof *faces);
+    for (int i = 0; i < L.n; i++) {
+        const owner *o = &L.own[L.c[i].owner];
         char err[300];
-        adv[i] = 0;
-        /* the run at the pen's y; x is placed with the chunk's anchor */
-        if (sv_text_path(r->text, path, r->style.font_size, 0, peny, &runs[i].path, NULL, &m, err,
-                         sizeof err) < 0)
+        faces[i] = sv_font_face(F, o->style.font_family, o->style.font_weight,
+                                o->style.font_italic, o->lang, L.c[i].cp, NULL, err, sizeof err);
+        if (!faces[i])
             sv_doc_warn(doc, "<text> (line %d): %s", text->line, err);
-        else
-            adv[i] = m.advance;
-        px[i] = penx;
-        penx += adv[i];
-        free(r->text);
     }
-    free(adv);
-    free(px);
-    free(L.p);
+    /* segments [i, j): one element, one face, absolute positions only at i */
+    sv_text_run *runs = sv_xrealloc(NULL, cnt * sizeof *runs);
+    int *run_chunk = sv_xrealloc(NULL, cnt * sizeof *run_chunk);
+    chunk *chunks = sv_xrealloc(NULL, cnt * sizeof *chunks);
+    int nr = 0, nch = 0;
+    double penx = 0, peny = 0;
+    for (int i = 0, j; i < L.n; i = j) {
+        const ch *c = &L.c[i];
+        for (j = i + 1; j < L.n && L.c[j].owner == c->owner && faces[j] == faces[i] &&
+                        !L.c[j].has[POS_X] && !L.c[j].has[POS_Y];
+             j++)
+            ;
+        if (c->has[POS_X])
+            penx = c->v[POS_X];
+        if (c->has[POS_Y])
+            peny = c->v[POS_Y];
+        if (nch == 0 || c->has[POS_X] || c->has[POS_Y]) {
+            chunks[nch].start = chunks[nch].end = penx;
+            chunks[nch++].anchor = L.own[c->owner].style.text_anchor;
+        }
+        if (nr == 0 || runs[nr - 1].node != L.own[c->owner].node || run_chunk[nr - 1] != nch - 1) {
+            runs[nr].node = L.own[c->owner].node;
+            runs[nr].style = sv_xrealloc(NULL, sizeof(sv_style));
+            *runs[nr].style = L.own[c->owner].style;
+            sv_path_init(&runs[nr].path);
+            run_chunk[nr++] = nch - 1;
+        }
+        if (faces[i])
+            shape_segment(&L, i, j, faces[i], hb_for(&sh, faces[i]), &penx, &peny,
+                          &runs[nr - 1].path);
+        chunks[nch - 1].end = penx;
+    }
+    /* text-anchor: each chunk moves by half or all of its advance */
+    for (int r = 0; r < nr; r++) {
+        const chunk *k = &chunks[run_chunk[r]];
+        double w = k->end - k->start;
+        if (k->anchor != 0) {
+            sv_affine t = {1, 0, 0, 1, k->anchor == 1 ? -w / 2 : -w, 0};
+            sv_path_transform(&runs[r].path, t);
+        }
+    }
+    for (int i = 0; i < sh.n; i++)
+        hb_font_destroy(sh.hb[i]);
+    sv_fonts_free(F);
+    free(faces);
+    free(run_chunk);
+    free(chunks);
+    free(L.c);
+    free(L.own);
     *out = runs;
-    return L.n;
+    return nr;
 }
 
 void sv_text_runs_free(sv_text_run *runs, int n)
