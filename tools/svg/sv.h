@@ -247,6 +247,8 @@ typedef struct sv_doc {
 
 void sv_doc_init(sv_doc *doc);
 void sv_doc_free(sv_doc *doc);
+/* Frees what a region owns (contours, bands, source), not the struct itself. */
+void sv_region_free(sv_region *r);
 void sv_doc_warn(sv_doc *doc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 size_t sv_doc_point_count(const sv_doc *doc);
 size_t sv_doc_region_count(const sv_doc *doc);

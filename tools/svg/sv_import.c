@@ -42,6 +42,7 @@
 #include "sv_gradient.h"
 #include "sv_import.h"
 #include "sv_internal.h"
+#include "sv_pattern.h"
 #include "sv_text.h"
 
 typedef struct item {
@@ -84,6 +85,7 @@ typedef struct imp {
 } imp;
 
 static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc);
+static void add_clip_part(sv_clip *clip, const sv_path *p, int rule);
 
 static void desc(const sv_node *n, char *buf, size_t len)
 {
@@ -160,8 +162,8 @@ static double attr_len(const sv_node *n, const char *name, const sv_style *s, do
 }
 
 /* SVG 1.1 section 7.8: the viewBox onto the viewport under preserveAspectRatio. */
-static sv_affine viewbox_map(const double vb[4], const char *par, double x, double y, double w,
-                             double h)
+sv_affine sv_viewbox_map(const double vb[4], const char *par, double x, double y, double w,
+                         double h)
 {
     double sx = w / vb[2], sy = h / vb[3];
     char align[16] = "xMidYMid";
@@ -410,6 +412,165 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
     it->translucent = translucent;
 }
 
+/* ------------------------------------------------------------ patterns */
+
+/*
+ * A <pattern> paint is drawn as its content: for every tile that meets the
+ * painted area, the pattern's children are rendered as ordinary regions
+ * with the tile's transform, clipped exactly to the tile (a convex polygon
+ * cut into the geometry) and to the area: cut in too when the area is one
+ * convex polygon, else by a CSG intersection with the area (an IR clip),
+ * which tiles wholly inside the area do without. Opacity multiplies into
+ * the content as group opacity does (one layer). The expansion is bounded:
+ * at most SV_PATTERN_MAX_TILES tiles and CS_CFG_MAX_REGIONS regions per
+ * paint, else the paint is left out with a warning naming the limit.
+ */
+#define SV_PATTERN_MAX_TILES 4096
+
+static bool inside_area(const sv_path *p, int rule, sv_pt q)
+{
+    int w = 0;
+    for (int i = 0; i < p->n; i++)
+        w += sv_subpath_winding(&p->sub[i], q);
+    return rule == CS_FILL_EVENODD ? (w & 1) != 0 : w != 0;
+}
+
+static bool box_meets(const double a[4], const double b[4])
+{
+    return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+}
+
+/* The tile (box tb, corners q) lies in the area: corners inside, no boundary near. */
+static bool tile_inside(const sv_path *area, int rule, const sv_pt q[4], const double tb[4])
+{
+    for (int k = 0; k < 4; k++)
+        if (!inside_area(area, rule, q[k]))
+            return false;
+    for (int i = 0; i < area->n; i++)
+        for (int k = 0; k < area->sub[i].n; k++) {
+            const sv_seg *g = &area->sub[i].seg[k];
+            double sb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+            for (int m = 0; m <= g->degree; m++) {
+                sb[0] = fmin(sb[0], g->p[m].x);
+                sb[1] = fmin(sb[1], g->p[m].y);
+                sb[2] = fmax(sb[2], g->p[m].x);
+                sb[3] = fmax(sb[3], g->p[m].y);
+            }
+            if (sb[0] <= tb[2] && tb[0] <= sb[2] && sb[1] <= tb[3] && tb[1] <= sb[3])
+                return false;
+        }
+    return true;
+}
+
+static int area_clip(imp *im, const sv_path *area, int rule, int parent)
+{
+    sv_clip clip;
+    memset(&clip, 0, sizeof clip);
+    clip.parent = parent;
+    add_clip_part(&clip, area, rule);
+    im->doc->clips = sv_xrealloc(im->doc->clips, (size_t)(im->doc->nclips + 1) * sizeof clip);
+    im->doc->clips[im->doc->nclips] = clip;
+    return im->doc->nclips++;
+}
+
+/* True when the paint is a pattern: drawn here, or left out with a warning. */
+static bool paint_pattern(imp *im, const sv_node *n, const sv_paint_spec *ps, double opacity,
+                          const double ubox[4], const ctx *pc, const sv_path *area, int rule,
+                          const char *what)
+{
+    sv_node *t = ps->kind == SV_PAINT_URL ? find_id(im, ps->url) : NULL;
+    if (!t || strcmp(t->name, "pattern") != 0)
+        return false;
+    char d[160];
+    desc(n, d, sizeof d);
+    sv_pattern pat;
+    if (!(opacity > 0) || area->n == 0 ||
+        !sv_pattern_resolve(t, find_id, im, ubox, pc->vp_w, pc->vp_h, &pat, im->doc))
+        return true; /* SVG: such a pattern paints nothing */
+    for (int i = 0; i < im->depth; i++)
+        if (im->stack[i] == pat.content) {
+            sv_doc_warn(im->doc, "%s: %s pattern #%s is used inside itself, not painted", d,
+                        what, ps->url);
+            return true;
+        }
+    if (im->depth >= 64)
+        return true; /* render() warns about the depth */
+    /* the tiles meeting the area's box, taken back to user space */
+    double abox[4], ub[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    sv_path_bbox(area, abox);
+    sv_affine inv;
+    if (!sv_affine_invert(pc->ctm, &inv))
+        return true;
+    for (int k = 0; k < 4; k++) {
+        sv_pt q = sv_affine_apply(inv, sv_pt_make(abox[k & 1 ? 2 : 0], abox[k & 2 ? 3 : 1]));
+        ub[0] = fmin(ub[0], q.x);
+        ub[1] = fmin(ub[1], q.y);
+        ub[2] = fmax(ub[2], q.x);
+        ub[3] = fmax(ub[3], q.y);
+    }
+    long i0, i1, j0, j1;
+    if (!sv_pattern_tile_range(&pat, ub, &i0, &i1, &j0, &j1) ||
+        (double)(i1 - i0) * (double)(j1 - j0) > SV_PATTERN_MAX_TILES) {
+        sv_doc_warn(im->doc, "%s: %s pattern #%s needs more than %d tiles, not painted", d, what,
+                    ps->url, SV_PATTERN_MAX_TILES);
+        return true;
+    }
+    ctx c = *pc;
+    c.alpha = opacity;
+    if (opacity < 1 && c.layer == 0)
+        c.layer = ++im->next_layer; /* the tile's content is translucent as a group */
+    clip_poly whole = {NULL, 0};
+    bool convex = c.nclips < MAX_CLIPS - 1 && sv_path_convex_polygon(area, &whole.v, &whole.n);
+    if (convex)
+        c.clips[c.nclips++] = &whole;
+    int shape_clip = -1, start = im->nitems;
+    sv_style cs;
+    style_of(im, pat.content, &cs);
+    sv_affine tm = sv_affine_mul(pc->ctm, pat.transform);
+    im->stack[im->depth++] = pat.content;
+    for (long j = j0; j < j1; j++)
+        for (long i = i0; i < i1; i++) {
+            double tx = pat.x + (double)i * pat.w, ty = pat.y + (double)j * pat.h;
+            sv_pt q[4] = {sv_affine_apply(tm, sv_pt_make(tx, ty)),
+                          sv_affine_apply(tm, sv_pt_make(tx + pat.w, ty)),
+                          sv_affine_apply(tm, sv_pt_make(tx + pat.w, ty + pat.h)),
+                          sv_affine_apply(tm, sv_pt_make(tx, ty + pat.h))};
+            double tb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+            for (int k = 0; k < 4; k++) {
+                tb[0] = fmin(tb[0], q[k].x);
+                tb[1] = fmin(tb[1], q[k].y);
+                tb[2] = fmax(tb[2], q[k].x);
+                tb[3] = fmax(tb[3], q[k].y);
+            }
+            if (!box_meets(tb, abox))
+                continue;
+            ctx tc = c;
+            tc.ctm = sv_affine_mul(pc->ctm, sv_pattern_content_map(&pat, i, j));
+            clip_poly tile = {q, 4};
+            if (tc.nclips < MAX_CLIPS)
+                tc.clips[tc.nclips++] = &tile;
+            if (!convex && !tile_inside(area, rule, q, tb)) {
+                if (shape_clip < 0)
+                    shape_clip = area_clip(im, area, rule, pc->ir_clip);
+                tc.ir_clip = shape_clip;
+            }
+            for (int k = 0; k < pat.content->nkids; k++)
+                render(im, pat.content->kids[k], &cs, &tc);
+            if (im->nitems - start > CS_CFG_MAX_REGIONS) {
+                for (int k = start; k < im->nitems; k++)
+                    sv_region_free(&im->items[k].reg);
+                im->nitems = start;
+                sv_doc_warn(im->doc, "%s: %s pattern #%s expands to more than %d regions, not "
+                            "painted", d, what, ps->url, CS_CFG_MAX_REGIONS);
+                i = i1;
+                j = j1;
+            }
+        }
+    im->depth--;
+    free(whole.v);
+    return true;
+}
+
 /* Fill and stroke of one shape, given its user-space path. */
 static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
                         sv_path *up)
@@ -431,7 +592,9 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
         sv_path_append(&cp, up);
         sv_path_transform(&cp, c.ctm);
         sv_paint paint;
-        if (resolve_paint(im, n, &s->fill, s, s->fill_opacity * opacity, ubox, &c, &cp,
+        if (!paint_pattern(im, n, &s->fill, s->fill_opacity * opacity, ubox, &c, &cp,
+                           s->fill_rule, "fill") &&
+            resolve_paint(im, n, &s->fill, s, s->fill_opacity * opacity, ubox, &c, &cp,
                           s->fill_rule, "fill", &paint))
             add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
         sv_path_free(&cp);
@@ -459,7 +622,9 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
         sv_path_transform(&outline, c.ctm);
         /* objectBoundingBox for strokes is still the fill's box (SVG 1.1) */
         sv_paint paint;
-        if (resolve_paint(im, n, &s->stroke, s, s->stroke_opacity * opacity, ubox, &c, &outline,
+        if (!paint_pattern(im, n, &s->stroke, s->stroke_opacity * opacity, ubox, &c, &outline,
+                           CS_FILL_NONZERO, "stroke") &&
+            resolve_paint(im, n, &s->stroke, s, s->stroke_opacity * opacity, ubox, &c, &outline,
                           CS_FILL_NONZERO, "stroke", &paint))
             add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
                        "stroke");
@@ -694,7 +859,7 @@ static void render_viewport(imp *im, sv_node *n, const sv_style *s, ctx *c, doub
         return;
     double vb[4];
     if (get_viewbox(n, vb)) {
-        c->ctm = sv_affine_mul(c->ctm, viewbox_map(vb, sv_attr(n, "preserveAspectRatio"), x, y, w, h));
+        c->ctm = sv_affine_mul(c->ctm, sv_viewbox_map(vb, sv_attr(n, "preserveAspectRatio"), x, y, w, h));
         c->vp_w = vb[2];
         c->vp_h = vb[3];
     } else {

@@ -30,6 +30,10 @@ typedef enum sv_color_kind {
 sv_color_kind sv_parse_color(const char *s, double rgb[3], double *alpha);
 int sv_named_color_count(void);
 
+/* SVG 1.1 section 7.8: viewBox vb onto viewport (x, y, w, h) under preserveAspectRatio par. */
+sv_affine sv_viewbox_map(const double vb[4], const char *par, double x, double y, double w,
+                         double h);
+
 /* Length units; percentages need the reference length `percent_of`. */
 bool sv_parse_length(const char *s, double font_size, double percent_of, double *v);
 

@@ -12,10 +12,10 @@ void sv_doc_init(sv_doc *doc)
     memset(doc, 0, sizeof *doc);
 }
 
-static void free_region(sv_region *r)
+void sv_region_free(sv_region *r)
 {
     for (int i = 0; i < r->nbands; i++)
-        free_region(&r->bands[i]);
+        sv_region_free(&r->bands[i]);
     free(r->bands);
     for (int i = 0; i < r->ncontours; i++)
         sv_contour_free(&r->contours[i]);
@@ -27,7 +27,7 @@ void sv_doc_free(sv_doc *doc)
 {
     for (int c = 0; c < doc->ncels; c++) {
         for (int r = 0; r < doc->cels[c].nregions; r++)
-            free_region(&doc->cels[c].regions[r]);
+            sv_region_free(&doc->cels[c].regions[r]);
         free(doc->cels[c].regions);
         free(doc->cels[c].name);
     }
