@@ -42,6 +42,7 @@
 #include "sv_gradient.h"
 #include "sv_import.h"
 #include "sv_internal.h"
+#include "sv_mask.h"
 #include "sv_pattern.h"
 #include "sv_text.h"
 
@@ -49,6 +50,7 @@ typedef struct item {
     sv_region reg;
     int layer; /* 0, or the group-opacity layer the region belongs to */
     bool translucent;
+    bool stroke; /* a stroke's outline (not in an objectBoundingBox) */
 } item;
 
 typedef struct clip_poly {
@@ -81,6 +83,10 @@ typedef struct imp {
     int next_layer;
     const sv_node *stack[64];
     int depth;
+    /* elements whose mask reference closed a cycle: drawn unmasked from then on, as resvg
+     * drops such a reference once for the whole document */
+    const sv_node **unmasked;
+    int nunmasked, capunmasked;
     double tol; /* stroke tolerance, canvas units */
 } imp;
 
@@ -410,6 +416,7 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
     it->reg = r;
     it->layer = c->layer;
     it->translucent = translucent;
+    it->stroke = !strcmp(what, "stroke");
 }
 
 /* ------------------------------------------------------------ patterns */
@@ -630,6 +637,216 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
                        "stroke");
         sv_path_free(&outline);
     }
+}
+
+/* --------------------------------------------------------------- masks */
+
+/*
+ * mask="url(#m)" on an element (sv_mask.c has the model): the element's
+ * regions, items [start, nitems), are replaced by their parts under each
+ * painted region of the mask's content, which is rendered like any drawing
+ * (user space or the bounding box for its units, clipped to the mask's x,
+ * y, width, height), with the mask's own mask applied to it first. The
+ * copies share one layer (cel), so front content hides back content as in
+ * the group SVG masks as a whole.
+ */
+static double frac_attr(const sv_node *n, const char *name, double dflt)
+{
+    const char *v = sv_attr(n, name);
+    double x;
+    if (!v || !sv_parse_number(&v, &x) || !isfinite(x))
+        return dflt;
+    return *v == '%' ? x / 100 : x;
+}
+
+static bool mask_alpha(const sv_node *m)
+{
+    const char *t = sv_attr(m, "mask-type"), *st = sv_attr(m, "style");
+    const char *p = st ? strstr(st, "mask-type") : NULL;
+    if (p) {
+        p += strlen("mask-type");
+        while (*p == ' ' || *p == ':')
+            p++;
+        t = p;
+    }
+    return t && !strncmp(t, "alpha", 5);
+}
+
+/* User-space box of the fills among items [start, nitems) (all of them if none is a fill). */
+static bool items_box(const imp *im, int start, sv_affine ctm, double box[4])
+{
+    sv_affine inv;
+    if (!sv_affine_invert(ctm, &inv))
+        return false;
+    bool fills = false;
+    for (int i = start; i < im->nitems; i++)
+        fills |= !im->items[i].stroke;
+    box[0] = box[1] = INFINITY;
+    box[2] = box[3] = -INFINITY;
+    for (int i = start; i < im->nitems; i++) {
+        const sv_region *r = &im->items[i].reg;
+        if (fills && im->items[i].stroke)
+            continue;
+        for (int k = 0; k < r->ncontours; k++)
+            for (int j = 0; j < r->contours[k].count; j++) {
+                const double *q = &r->contours[k].pts[3 * j];
+                sv_pt u = sv_affine_apply(inv, sv_pt_make(q[0], q[1]));
+                box[0] = fmin(box[0], u.x);
+                box[1] = fmin(box[1], u.y);
+                box[2] = fmax(box[2], u.x);
+                box[3] = fmax(box[3], u.y);
+            }
+    }
+    return box[0] <= box[2];
+}
+
+static void drop_items(imp *im, int start)
+{
+    for (int i = start; i < im->nitems; i++)
+        sv_region_free(&im->items[i].reg);
+    im->nitems = start;
+}
+
+/* Whether the masks on masks from `id` lead back to mask m (resvg then drops m's own mask). */
+static bool mask_chain_returns(imp *im, const sv_node *m, const char *id)
+{
+    char cur[128];
+    snprintf(cur, sizeof cur, "%s", id);
+    for (int step = 0; step < 16; step++) {
+        sv_node *e = find_id(im, cur);
+        if (!e || strcmp(e->name, "mask") != 0)
+            return false;
+        if (e == m) {
+            char d[160];
+            desc(m, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: its mask leads back to itself, ignored", d);
+            return true;
+        }
+        sv_style es;
+        style_of(im, e, &es);
+        if (!es.mask[0])
+            return false;
+        snprintf(cur, sizeof cur, "%s", es.mask);
+    }
+    return true; /* a chain that long is a cycle that does not pass through m */
+}
+
+static bool is_unmasked(const imp *im, const sv_node *n)
+{
+    for (int i = 0; i < im->nunmasked; i++)
+        if (im->unmasked[i] == n)
+            return true;
+    return false;
+}
+
+static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, int start,
+                       const sv_path *up)
+{
+    char d[160];
+    desc(n, d, sizeof d);
+    sv_node *m = find_id(im, id);
+    if (!m || strcmp(m->name, "mask") != 0) {
+        sv_doc_warn(im->doc, "%s: mask #%s not found, drawn unmasked", d, id);
+        return;
+    }
+    for (int i = 0; i < im->depth; i++)
+        if (im->stack[i] == m) {
+            sv_doc_warn(im->doc, "%s: mask #%s used inside itself, drawn unmasked", d, id);
+            SV_GROW(im->unmasked, im->nunmasked, im->capunmasked);
+            im->unmasked[im->nunmasked++] = n;
+            return;
+        }
+    if (im->depth >= 64) {
+        drop_items(im, start);
+        return;
+    }
+    double bbox[4] = {0, 0, 0, 0};
+    bool have_box = up ? true : items_box(im, start, c->ctm, bbox);
+    if (up)
+        tight_bbox(up, bbox);
+    const char *units = sv_attr(m, "maskUnits"), *cunits = sv_attr(m, "maskContentUnits");
+    bool obb = !units || strcmp(units, "userSpaceOnUse") != 0;
+    bool content_obb = cunits && !strcmp(cunits, "objectBoundingBox");
+    double bw = bbox[2] - bbox[0], bh = bbox[3] - bbox[1];
+    if ((obb || content_obb) && !(have_box && bw > 0 && bh > 0)) {
+        drop_items(im, start); /* objectBoundingBox on a flat box: nothing shows */
+        return;
+    }
+    sv_style ms;
+    style_of(im, m, &ms);
+    double x, y, w, h;
+    if (obb) {
+        x = bbox[0] + frac_attr(m, "x", -0.1) * bw;
+        y = bbox[1] + frac_attr(m, "y", -0.1) * bh;
+        w = frac_attr(m, "width", 1.2) * bw;
+        h = frac_attr(m, "height", 1.2) * bh;
+    } else {
+        x = attr_len(m, "x", &ms, c->vp_w, -0.1 * c->vp_w);
+        y = attr_len(m, "y", &ms, c->vp_h, -0.1 * c->vp_h);
+        w = attr_len(m, "width", &ms, c->vp_w, 1.2 * c->vp_w);
+        h = attr_len(m, "height", &ms, c->vp_h, 1.2 * c->vp_h);
+    }
+    if (!(w > 0 && h > 0)) {
+        drop_items(im, start);
+        return;
+    }
+    /* the mask's content, clipped to its region */
+    sv_pt q[4] = {sv_affine_apply(c->ctm, sv_pt_make(x, y)),
+                  sv_affine_apply(c->ctm, sv_pt_make(x + w, y)),
+                  sv_affine_apply(c->ctm, sv_pt_make(x + w, y + h)),
+                  sv_affine_apply(c->ctm, sv_pt_make(x, y + h))};
+    clip_poly region = {q, 4};
+    ctx mc;
+    memset(&mc, 0, sizeof mc);
+    mc.ctm = c->ctm;
+    if (content_obb) {
+        sv_affine b = {bw, 0, 0, bh, bbox[0], bbox[1]};
+        mc.ctm = sv_affine_mul(mc.ctm, b);
+    }
+    mc.alpha = 1;
+    mc.ir_clip = -1;
+    mc.vp_w = c->vp_w;
+    mc.vp_h = c->vp_h;
+    mc.clips[mc.nclips++] = &region;
+    int mstart = im->nitems;
+    im->stack[im->depth++] = m;
+    for (int i = 0; i < m->nkids; i++)
+        render(im, m->kids[i], &ms, &mc);
+    /* a mask on the mask masks its content, in the masked element's user space */
+    if (ms.mask[0] && !mask_chain_returns(im, m, ms.mask))
+        apply_mask(im, m, ms.mask, c, mstart, NULL);
+    im->depth--;
+
+    /* take the content and the mask's regions out of the list, put the copies in */
+    int ncontent = mstart - start, nmask = im->nitems - mstart;
+    item *content = sv_xrealloc(NULL, (size_t)(ncontent + nmask + 1) * sizeof *content);
+    memcpy(content, im->items + start, (size_t)(ncontent + nmask) * sizeof *content);
+    const item *mask = content + ncontent;
+    im->nitems = start;
+    sv_mask_mode mode = {!mask_alpha(m)};
+    for (int k = 1; k < nmask; k++) /* a front mask shape that lets some through hides the back one */
+        for (int j = 0; j < k; j++)
+            if (box_meets(mask[j].reg.bbox, mask[k].reg.bbox) && mask[k].translucent) {
+                sv_doc_warn(im->doc, "%s: mask #%s has overlapping translucent shapes: "
+                            "approximated (the front one decides)", d, id);
+                j = k = nmask;
+            }
+    int layer = c->layer ? c->layer : ++im->next_layer;
+    for (int i = 0; i < ncontent; i++)
+        for (int k = 0; k < nmask; k++) {
+            sv_region r;
+            if (!sv_mask_region(im->doc, &content[i].reg, &mask[k].reg, mode, d, &r))
+                continue;
+            SV_GROW(im->items, im->nitems, im->capitems);
+            item *it = &im->items[im->nitems++];
+            it->reg = r;
+            it->layer = layer;
+            it->translucent = r.paint.beta < 1 || r.paint.gradient >= 0;
+            it->stroke = content[i].stroke;
+        }
+    for (int i = 0; i < ncontent + nmask; i++)
+        sv_region_free(&content[i].reg);
+    free(content);
 }
 
 /* ------------------------------------------------------------ clipping */
@@ -914,10 +1131,6 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
         desc(n, d, sizeof d);
         sv_doc_warn(im->doc, "%s: filter #%s not supported, drawn unfiltered", d, s.filter);
     }
-    if (s.mask[0]) {
-        desc(n, d, sizeof d);
-        sv_doc_warn(im->doc, "%s: mask #%s not supported, drawn unmasked", d, s.mask);
-    }
     /* group opacity: one layer (cel) for the whole subtree */
     if (!shape && s.opacity < 1) {
         if (c.layer == 0)
@@ -932,6 +1145,7 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     bool used_slot = false;
     if (s.clip_path[0])
         apply_clip(im, n, &s, &c, have_path ? &up : NULL, &slot, &used_slot);
+    int mask_start = im->nitems;
     im->stack[im->depth++] = n;
     if (shape) {
         if (have_path)
@@ -990,6 +1204,8 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
         sv_doc_warn(im->doc, "%s: element not supported, not drawn", d);
     }
     im->depth--;
+    if (s.mask[0] && !is_unmasked(im, n))
+        apply_mask(im, n, s.mask, &c, mask_start, have_path ? &up : NULL);
     if (used_slot)
         free(slot.v);
     sv_path_free(&up);
@@ -1162,6 +1378,7 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
 
     free(im.items);
     free(im.ids);
+    free(im.unmasked);
     sv_css_free(&im.css);
     sv_xml_free(root);
     return 0;
