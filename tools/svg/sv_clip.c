@@ -20,11 +20,16 @@
 
 #include "sv_internal.h"
 
-/* f(t) = a X + b Y + c W for the homogeneous segment. */
+/*
+ * f(t) = a X + b Y + c W for the homogeneous segment. A value within the
+ * rounding error of its terms is 0: a piece lying on the line (a rectangle
+ * cut by its own edge) must not cross it back and forth on noise.
+ */
 static double side(const sv_seg *s, double t, double a, double b, double c)
 {
     sv_pt p = sv_seg_eval(s, t);
-    return a * p.x + b * p.y + c;
+    double f = a * p.x + b * p.y + c;
+    return fabs(f) <= 1e-12 * (fabs(a * p.x) + fabs(b * p.y) + fabs(c)) ? 0 : f;
 }
 
 /*
