@@ -426,13 +426,16 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
  * painted area, the pattern's children are rendered as ordinary regions
  * with the tile's transform, clipped exactly to the tile (a convex polygon
  * cut into the geometry) and to the area: cut in too when the area is one
- * convex polygon, else by a CSG intersection with the area (an IR clip),
- * which tiles wholly inside the area do without. Opacity multiplies into
- * the content as group opacity does (one layer). The expansion is bounded:
- * at most SV_PATTERN_MAX_TILES tiles and CS_CFG_MAX_REGIONS regions per
- * paint, else the paint is left out with a warning naming the limit.
+ * convex polygon; else, in tiles at the area's edge, a solid convex polygon
+ * of content becomes the area cut to it, and other content is intersected
+ * with the area by CSG (an IR clip). Opacity multiplies into the content as
+ * group opacity does (one layer). The expansion is bounded: at most
+ * SV_PATTERN_MAX_TILES tiles, CS_CFG_MAX_REGIONS regions and half the
+ * scene's control points per paint, else the paint is left out with a
+ * warning naming the limit.
  */
 #define SV_PATTERN_MAX_TILES 4096
+#define SV_PATTERN_MAX_POINTS (CS_CFG_MAX_POINTS / 2)
 
 static bool inside_area(const sv_path *p, int rule, sv_pt q)
 {
@@ -480,8 +483,66 @@ static int area_clip(imp *im, const sv_path *area, int rule, int parent)
     return im->doc->nclips++;
 }
 
-/* True when the paint is a pattern: drawn here, or left out with a warning. */
-static bool paint_pattern(imp *im, const sv_node *n, const sv_paint_spec *ps, double opacity,
+/*
+ * A tile region at the area's edge, cut to the area: a solid convex polygon
+ * (a tile's rectangle, the usual content) becomes the area clipped exactly
+ * to it; anything else is intersected with the area by CSG (the clip made
+ * once per paint). Returns the control points the CSG adds.
+ */
+static long clip_to_area(imp *im, item *it, const sv_path *area, int rule, int *shape_clip,
+                         const ctx *pc, const char *d)
+{
+    sv_region *r = &it->reg;
+    if (r->clip != pc->ir_clip) {
+        sv_doc_warn(im->doc, "%s: pattern content with a clip-path of its own is not cut to "
+                    "the painted area", d);
+        return 0;
+    }
+    if (r->ncontours == 1 && r->contours[0].degree == 1 && r->paint.gradient < 0) {
+        const sv_contour *k = &r->contours[0];
+        sv_path poly;
+        sv_path_init(&poly);
+        for (int i = 0; i < k->count; i++)
+            (i ? sv_path_line : sv_path_move)(&poly, k->pts[3 * i], k->pts[3 * i + 1]);
+        sv_path_close(&poly);
+        sv_pt *v;
+        int nv;
+        bool cvx = sv_path_convex_polygon(&poly, &v, &nv);
+        sv_path_free(&poly);
+        if (cvx) {
+            sv_path cut;
+            sv_path_init(&cut);
+            sv_path_append(&cut, area);
+            sv_path_clip_polygon(&cut, v, nv);
+            free(v);
+            for (int i = 0; i < r->ncontours; i++)
+                sv_contour_free(&r->contours[i]);
+            free(r->contours);
+            r->contours = NULL;
+            r->ncontours = 0;
+            sv_path_to_contours(&cut, &r->contours, &r->ncontours);
+            sv_path_free(&cut);
+            r->fill_rule = rule;
+            return 0;
+        }
+    }
+    if (*shape_clip < 0)
+        *shape_clip = area_clip(im, area, rule, pc->ir_clip);
+    r->clip = *shape_clip;
+    long n = 0;
+    const sv_clip *c = &im->doc->clips[*shape_clip];
+    for (int p = 0; p < c->nparts; p++)
+        for (int i = 0; i < c->parts[p].ncontours; i++)
+            n += c->parts[p].contours[i].count;
+    return n;
+}
+
+/*
+ * True when the paint is a pattern: drawn here, or left out with a warning.
+ * A pattern that cannot apply (objectBoundingBox on a flat box) turns *ps
+ * into its fallback colour (or none) and returns false.
+ */
+static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double opacity,
                           const double ubox[4], const ctx *pc, const sv_path *area, int rule,
                           const char *what)
 {
@@ -491,8 +552,17 @@ static bool paint_pattern(imp *im, const sv_node *n, const sv_paint_spec *ps, do
     char d[160];
     desc(n, d, sizeof d);
     sv_pattern pat;
-    if (!(opacity > 0) || area->n == 0 ||
-        !sv_pattern_resolve(t, find_id, im, ubox, pc->vp_w, pc->vp_h, &pat, im->doc))
+    if (!(opacity > 0) || area->n == 0)
+        return true;
+    sv_pattern_status st = sv_pattern_resolve(t, find_id, im, ubox, pc->vp_w, pc->vp_h, &pat,
+                                              im->doc);
+    if (st == SV_PATTERN_INVALID) {
+        ps->kind = ps->fallback_kind;
+        memcpy(ps->rgb, ps->fallback_rgb, sizeof ps->rgb);
+        ps->alpha = 1;
+        return false;
+    }
+    if (st != SV_PATTERN_OK)
         return true; /* SVG: such a pattern paints nothing */
     for (int i = 0; i < im->depth; i++)
         if (im->stack[i] == pat.content) {
@@ -531,6 +601,7 @@ static bool paint_pattern(imp *im, const sv_node *n, const sv_paint_spec *ps, do
     if (convex)
         c.clips[c.nclips++] = &whole;
     int shape_clip = -1, start = im->nitems;
+    long points = 0;
     sv_style cs;
     style_of(im, pat.content, &cs);
     sv_affine tm = sv_affine_mul(pc->ctm, pat.transform);
@@ -556,19 +627,30 @@ static bool paint_pattern(imp *im, const sv_node *n, const sv_paint_spec *ps, do
             clip_poly tile = {q, 4};
             if (tc.nclips < MAX_CLIPS)
                 tc.clips[tc.nclips++] = &tile;
-            if (!convex && !tile_inside(area, rule, q, tb)) {
-                if (shape_clip < 0)
-                    shape_clip = area_clip(im, area, rule, pc->ir_clip);
-                tc.ir_clip = shape_clip;
-            }
+            int before = im->nitems;
             for (int k = 0; k < pat.content->nkids; k++)
                 render(im, pat.content->kids[k], &cs, &tc);
-            if (im->nitems - start > CS_CFG_MAX_REGIONS) {
+            if (!convex && !tile_inside(area, rule, q, tb)) {
+                int kept = before;
+                for (int k = before; k < im->nitems; k++) {
+                    points += clip_to_area(im, &im->items[k], area, rule, &shape_clip, pc, d);
+                    if (im->items[k].reg.ncontours > 0)
+                        im->items[kept++] = im->items[k];
+                    else
+                        sv_region_free(&im->items[k].reg);
+                }
+                im->nitems = kept;
+            }
+            for (int k = before; k < im->nitems; k++)
+                for (int m = 0; m < im->items[k].reg.ncontours; m++)
+                    points += im->items[k].reg.contours[m].count;
+            if (im->nitems - start > CS_CFG_MAX_REGIONS || points > SV_PATTERN_MAX_POINTS) {
                 for (int k = start; k < im->nitems; k++)
                     sv_region_free(&im->items[k].reg);
                 im->nitems = start;
-                sv_doc_warn(im->doc, "%s: %s pattern #%s expands to more than %d regions, not "
-                            "painted", d, what, ps->url, CS_CFG_MAX_REGIONS);
+                sv_doc_warn(im->doc, "%s: %s pattern #%s expands to more than %d regions or %d "
+                            "control points, not painted", d, what, ps->url, CS_CFG_MAX_REGIONS,
+                            SV_PATTERN_MAX_POINTS);
                 i = i1;
                 j = j1;
             }
@@ -599,9 +681,10 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
         sv_path_append(&cp, up);
         sv_path_transform(&cp, c.ctm);
         sv_paint paint;
-        if (!paint_pattern(im, n, &s->fill, s->fill_opacity * opacity, ubox, &c, &cp,
-                           s->fill_rule, "fill") &&
-            resolve_paint(im, n, &s->fill, s, s->fill_opacity * opacity, ubox, &c, &cp,
+        sv_paint_spec spec = s->fill;
+        if (!paint_pattern(im, n, &spec, s->fill_opacity * opacity, ubox, &c, &cp, s->fill_rule,
+                           "fill") &&
+            resolve_paint(im, n, &spec, s, s->fill_opacity * opacity, ubox, &c, &cp,
                           s->fill_rule, "fill", &paint))
             add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
         sv_path_free(&cp);
@@ -629,9 +712,10 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
         sv_path_transform(&outline, c.ctm);
         /* objectBoundingBox for strokes is still the fill's box (SVG 1.1) */
         sv_paint paint;
-        if (!paint_pattern(im, n, &s->stroke, s->stroke_opacity * opacity, ubox, &c, &outline,
+        sv_paint_spec spec = s->stroke;
+        if (!paint_pattern(im, n, &spec, s->stroke_opacity * opacity, ubox, &c, &outline,
                            CS_FILL_NONZERO, "stroke") &&
-            resolve_paint(im, n, &s->stroke, s, s->stroke_opacity * opacity, ubox, &c, &outline,
+            resolve_paint(im, n, &spec, s, s->stroke_opacity * opacity, ubox, &c, &outline,
                           CS_FILL_NONZERO, "stroke", &paint))
             add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
                        "stroke");

@@ -49,7 +49,7 @@ static double coord(const sv_node *const *chain, int n, const char *name, bool o
     return isfinite(x) ? x : 0;
 }
 
-bool sv_pattern_resolve(const sv_node *p, sv_find_fn find, void *ctx, const double bbox[4],
+sv_pattern_status sv_pattern_resolve(const sv_node *p, sv_find_fn find, void *ctx, const double bbox[4],
                         double vp_w, double vp_h, sv_pattern *out, sv_doc *doc)
 {
     const sv_node *chain[CHAIN_MAX];
@@ -80,14 +80,14 @@ bool sv_pattern_resolve(const sv_node *p, sv_find_fn find, void *ctx, const doub
     out->h = coord(chain, n, "height", obb, vp_h);
     if (obb) {
         if (!(bw > 0 && bh > 0))
-            return false; /* objectBoundingBox on a flat box paints nothing */
+            return SV_PATTERN_INVALID;
         out->x = bbox[0] + out->x * bw;
         out->y = bbox[1] + out->y * bh;
         out->w *= bw;
         out->h *= bh;
     }
     if (!(out->w > 0 && out->h > 0 && isfinite(out->w) && isfinite(out->h)))
-        return false;
+        return SV_PATTERN_NONE;
     out->transform = sv_affine_identity();
     const char *tr = chain_attr(chain, n, "patternTransform");
     sv_affine inv;
@@ -103,12 +103,12 @@ bool sv_pattern_resolve(const sv_node *p, sv_find_fn find, void *ctx, const doub
     out->par = chain_attr(chain, n, "preserveAspectRatio");
     out->content_bbox = !out->has_viewbox && cunits && !strcmp(cunits, "objectBoundingBox");
     if (out->content_bbox && !(bw > 0 && bh > 0))
-        return false;
+        return SV_PATTERN_INVALID;
     for (int i = 0; i < n && !out->content; i++)
         for (int k = 0; k < chain[i]->nkids && !out->content; k++)
             if (chain[i]->kids[k]->name[0] != '#')
                 out->content = chain[i];
-    return out->content != NULL;
+    return out->content ? SV_PATTERN_OK : SV_PATTERN_NONE;
 }
 
 sv_affine sv_pattern_content_map(const sv_pattern *p, long i, long j)

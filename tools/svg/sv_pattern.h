@@ -18,14 +18,18 @@ typedef struct sv_pattern {
     double bbox[4];         /* the element's user-space bounding box */
 } sv_pattern;
 
+typedef enum sv_pattern_status {
+    SV_PATTERN_OK = 0,
+    SV_PATTERN_NONE,   /* paints nothing: a zero-size tile, no children in the chain */
+    SV_PATTERN_INVALID /* objectBoundingBox units on a flat box: the paint's fallback applies */
+} sv_pattern_status;
+
 /*
  * Resolves pattern element `p` (attributes and children through its href
  * chain, first element that sets each) for an element with user-space
- * bounding box `bbox`, in a viewport of vp_w x vp_h. False when SVG says it
- * paints nothing: a zero-size tile, objectBoundingBox units on a flat box,
- * or no children anywhere in the chain.
+ * bounding box `bbox`, in a viewport of vp_w x vp_h.
  */
-bool sv_pattern_resolve(const sv_node *p, sv_find_fn find, void *ctx, const double bbox[4],
+sv_pattern_status sv_pattern_resolve(const sv_node *p, sv_find_fn find, void *ctx, const double bbox[4],
                         double vp_w, double vp_h, sv_pattern *out, sv_doc *doc);
 
 /* Pattern space of tile (i, j)'s content to the element's user space. */
