@@ -414,6 +414,26 @@ static void test_masks(cs_scene *scene, float *img)
         SVC_CHECK(found && sv_doc_region_count(&d) == 1, "mask cycle warned, one region drawn");
         sv_doc_free(&d);
     }
+    /* 40 shapes under a mask of 40 shapes would be 1600 regions: warned, left out */
+    char *big = malloc(16384);
+    int len = snprintf(big, 16384, "<svg xmlns='http://www.w3.org/2000/svg' width='64' "
+                                   "height='64'><mask id='m'>");
+    for (int i = 0; i < 40; i++)
+        len += snprintf(big + len, 16384 - (size_t)len,
+                        "<rect x='%d' width='1' height='64' fill='#fff'/>", i);
+    len += snprintf(big + len, 16384 - (size_t)len, "</mask><g mask='url(#m)'>");
+    for (int i = 0; i < 40; i++)
+        len += snprintf(big + len, 16384 - (size_t)len,
+                        "<rect y='%d' width='64' height='1' fill='#fff'/>", i);
+    snprintf(big + len, 16384 - (size_t)len, "</g></svg>");
+    if (import(big, &d)) {
+        bool found = false;
+        for (int w = 0; w < d.nwarnings; w++)
+            found |= strstr(d.warnings[w], "needs 1600 regions") != NULL;
+        SVC_CHECK(found && sv_doc_region_count(&d) == 0, "mask expansion limit warned");
+        sv_doc_free(&d);
+    }
+    free(big);
 }
 
 /* ----------------------------------------------------------------- JSON */

@@ -915,6 +915,12 @@ static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, 
                             "approximated (the front one decides)", d, id);
                 j = k = nmask;
             }
+    if ((long)ncontent * nmask > CS_CFG_MAX_REGIONS) {
+        sv_doc_warn(im->doc, "%s: mask #%s needs %ld regions (%d masked by %d mask shapes; "
+                    "limit %d), not drawn", d, id, (long)ncontent * nmask, ncontent, nmask,
+                    CS_CFG_MAX_REGIONS);
+        ncontent = 0;
+    }
     int layer = c->layer ? c->layer : ++im->next_layer;
     for (int i = 0; i < ncontent; i++)
         for (int k = 0; k < nmask; k++) {
@@ -928,7 +934,7 @@ static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, 
             it->translucent = r.paint.beta < 1 || r.paint.gradient >= 0;
             it->stroke = content[i].stroke;
         }
-    for (int i = 0; i < ncontent + nmask; i++)
+    for (int i = 0; i < mstart - start + nmask; i++)
         sv_region_free(&content[i].reg);
     free(content);
 }
