@@ -45,6 +45,10 @@ int sv_text_path(const char *text, const char *font_path, double size, double x,
 int sv_text_add_region(cs_scene *scene, const char *text, const char *font_path, double size,
                        double x, double y, const cs_paint *paint, char *err, size_t errlen);
 
+/* Next code point of UTF-8 text, advancing *s (U+FFFD for malformed bytes); `end` bounds
+ * the text, or NULL for a NUL-terminated one. */
+unsigned long sv_utf8_next(const unsigned char **s, const unsigned char *end);
+
 /* The outline of an FT_Outline-like glyph given as FreeType would decompose it (tests). */
 struct FT_Outline_;
 int sv_text_outline_path(const struct FT_Outline_ *outline, double scale, double x, double y,

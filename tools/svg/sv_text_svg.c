@@ -138,28 +138,6 @@ static void pop_frame(layout *L)
         free(f->v[a]);
 }
 
-/* Next code point of UTF-8 text (U+FFFD for malformed bytes). */
-static unsigned long utf8_next(const unsigned char **s, const unsigned char *end)
-{
-    const unsigned char *p = *s;
-    unsigned long c = *p++;
-    int extra = c >= 0xf0 ? 3 : c >= 0xe0 ? 2 : c >= 0xc0 ? 1 : 0;
-    if (c >= 0x80 && extra == 0) {
-        *s = p;
-        return 0xfffd;
-    }
-    c &= extra == 3 ? 0x07 : extra == 2 ? 0x0f : extra == 1 ? 0x1f : 0x7f;
-    for (int i = 0; i < extra; i++) {
-        if (p >= end || (*p & 0xc0) != 0x80) {
-            *s = p;
-            return 0xfffd;
-        }
-        c = (c << 6) | (*p++ & 0x3f);
-    }
-    *s = p;
-    return c;
-}
-
 static void add_char(layout *L, unsigned long cp, int owner_index)
 {
     SV_GROW(L->c, L->n, L->cap);
@@ -191,7 +169,7 @@ static void add_text(layout *L, const char *raw, size_t len, int owner_index)
 {
     const unsigned char *s = (const unsigned char *)raw, *end = s + len;
     while (s < end) {
-        unsigned long cp = utf8_next(&s, end);
+        unsigned long cp = sv_utf8_next(&s, end);
         if (cp == '\n' || cp == '\r') {
             if (!L->preserve)
                 continue; /* SVG 1.1 default: newlines are removed */
