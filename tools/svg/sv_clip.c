@@ -77,6 +77,18 @@ void sv_path_clip_halfplane(sv_path *p, double a, double b, double c)
         const sv_subpath *sp = &p->sub[i];
         if (sp->n == 0)
             continue;
+        /* wholly inside (the control points hold the curve): kept as it is, with no search */
+        bool inside = true;
+        for (int k = 0; k < sp->n && inside; k++)
+            for (int m = 0; m <= sp->seg[k].degree; m++)
+                inside &= a * sp->seg[k].p[m].x + b * sp->seg[k].p[m].y + c > 0;
+        if (inside) {
+            sv_path_move(&out, sp->seg[0].p[0].x, sp->seg[0].p[0].y);
+            for (int k = 0; k < sp->n; k++)
+                sv_path_add_seg(&out, &sp->seg[k]);
+            sv_path_close(&out);
+            continue;
+        }
         int emitted = 0;
         bool prev_outside = false;
         sv_pt first = sp->seg[0].p[0];

@@ -87,6 +87,9 @@ typedef struct imp {
      * drops such a reference once for the whole document */
     const sv_node **unmasked;
     int nunmasked, capunmasked;
+    /* regions made and tiles visited inside patterns and masks, over the whole import:
+     * nested expansions multiply, so one budget bounds them all (SV_EXPAND_BUDGET) */
+    long expanded;
     double tol; /* stroke tolerance, canvas units */
 } imp;
 
@@ -435,6 +438,7 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
  * warning naming the limit.
  */
 #define SV_PATTERN_MAX_TILES 4096
+#define SV_EXPAND_BUDGET (1L << 16)
 #define SV_PATTERN_MAX_POINTS (CS_CFG_MAX_POINTS / 2)
 
 static bool inside_area(const sv_path *p, int rule, sv_pt q)
@@ -575,6 +579,21 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
     /* the tiles meeting the area's box, taken back to user space */
     double abox[4], ub[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     sv_path_bbox(area, abox);
+    for (int k = 0; k < pc->nclips; k++) { /* only what the context's convex clips let show */
+        double cb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+        for (int m = 0; m < pc->clips[k]->n; m++) {
+            cb[0] = fmin(cb[0], pc->clips[k]->v[m].x);
+            cb[1] = fmin(cb[1], pc->clips[k]->v[m].y);
+            cb[2] = fmax(cb[2], pc->clips[k]->v[m].x);
+            cb[3] = fmax(cb[3], pc->clips[k]->v[m].y);
+        }
+        abox[0] = fmax(abox[0], cb[0]);
+        abox[1] = fmax(abox[1], cb[1]);
+        abox[2] = fmin(abox[2], cb[2]);
+        abox[3] = fmin(abox[3], cb[3]);
+    }
+    if (!(abox[0] < abox[2] && abox[1] < abox[3]))
+        return true;
     sv_affine inv;
     if (!sv_affine_invert(pc->ctm, &inv))
         return true;
@@ -627,9 +646,16 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
             clip_poly tile = {q, 4};
             if (tc.nclips < MAX_CLIPS)
                 tc.clips[tc.nclips++] = &tile;
+            if (im->expanded > SV_EXPAND_BUDGET) {
+                sv_doc_warn(im->doc, "%s: %s pattern #%s: patterns and masks of the drawing "
+                            "expand to more than %ld regions and tiles, the rest not painted",
+                            d, what, ps->url, SV_EXPAND_BUDGET);
+                break;
+            }
             int before = im->nitems;
             for (int k = 0; k < pat.content->nkids; k++)
                 render(im, pat.content->kids[k], &cs, &tc);
+            im->expanded += 1 + im->nitems - before;
             if (!convex && !tile_inside(area, rule, q, tb)) {
                 int kept = before;
                 for (int k = before; k < im->nitems; k++) {
@@ -672,8 +698,11 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
                                                           s->stroke_width > 0;
     if (fill && stroke && s->opacity < 1 && c.layer == 0)
         c.layer = ++im->next_layer; /* fill and stroke composite as a group */
-    double ubox[4];
-    tight_bbox(up, ubox);
+    double ubox[4]; /* the tight box costs 256 samples a curve: only paint servers use it */
+    if (s->fill.kind == SV_PAINT_URL || s->stroke.kind == SV_PAINT_URL)
+        tight_bbox(up, ubox);
+    else
+        sv_path_bbox(up, ubox);
     char d[160];
     if (fill) {
         sv_path cp;
@@ -892,10 +921,17 @@ static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, 
     mc.vp_w = c->vp_w;
     mc.vp_h = c->vp_h;
     mc.clips[mc.nclips++] = &region;
+    if (im->expanded > SV_EXPAND_BUDGET) {
+        sv_doc_warn(im->doc, "%s: mask #%s: patterns and masks of the drawing expand to more "
+                    "than %ld regions and tiles, not drawn", d, id, SV_EXPAND_BUDGET);
+        drop_items(im, start);
+        return;
+    }
     int mstart = im->nitems;
     im->stack[im->depth++] = m;
     for (int i = 0; i < m->nkids; i++)
         render(im, m->kids[i], &ms, &mc);
+    im->expanded += 1 + im->nitems - mstart;
     /* a mask on the mask masks its content, in the masked element's user space */
     if (ms.mask[0] && !mask_chain_returns(im, m, ms.mask))
         apply_mask(im, m, ms.mask, c, mstart, NULL);
