@@ -4,6 +4,8 @@
 #   make build/host/svgimport     the importer on its own (import, text, render)
 #   make test-svg                 unit, coverage and librsvg comparison checks
 #   make svg-rsvg-full            every installed icon against rsvg-convert (report only)
+#   make svg-conformance          resvg's conformance suite (../shared/conformance/resvg), per category
+#   make svg-conformance-doc      the same, written to docs/SVG-CONFORMANCE.md
 #   make fuzz-svg                 libFuzzer on the importer for FUZZ_TIME s (default 60)
 #   make fuzz-svg-smoke           a short run of it (FUZZ_SVG_SMOKE_TIME, default 20 s), in `make test`
 #
@@ -50,6 +52,25 @@ test-svg: $(HOST)/tests/test_svg
 svg-rsvg-full: $(HOST)/tests/test_svg
 	$(Q)$(HOST)/tests/test_svg --only rsvg --all --outdir $(BUILD)/svg-full
 
+# resvg's conformance suite, beside the project and never copied into it:
+# each test through `celc import` and `celsim render` in a process of its
+# own (10 s, 512 MB), against the reference over white (tests/svg_conformance.c).
+# The run fails if a test crashes or runs over its limits, or if fewer than
+# SVG_CONF_FLOOR tests pass; without the suite it says so and skips.
+SVG_CONF_SUITE ?= $(CURDIR)/../shared/conformance/resvg
+SVG_CONF_FLOOR ?= 510
+SVG_CONF_RUN = $(HOST)/tests/svg_conformance $(SVG_CONF_SUITE) --celc $(HOST)/celc \
+        --celsim $(HOST)/celsim --notes tests/svg_conformance_notes.txt --outdir $(BUILD)/svg-conformance
+$(HOST)/tests/svg_conformance: $(HOST)/obj/tests/svg_conformance.o $(HOST)/obj/tools/cli_num.o \
+        $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) -o $@ $^ $(SVG_LIBS)
+.PHONY: svg-conformance svg-conformance-doc
+svg-conformance: $(HOST)/tests/svg_conformance $(HOST)/celc $(HOST)/celsim
+	$(Q)$(SVG_CONF_RUN) --floor $(SVG_CONF_FLOOR)
+svg-conformance-doc: $(HOST)/tests/svg_conformance $(HOST)/celc $(HOST)/celsim
+	$(Q)$(SVG_CONF_RUN) --report docs/SVG-CONFORMANCE.md
+
 # Demo: imported artwork and text through the product's own path: `celc
 # import` / `celc text` to scene JSON and to a cel stream, rendered by celsim
 # (imported scenes ask for sRGB blending in their JSON, as SVG renderers blend).
@@ -95,5 +116,5 @@ fuzz-svg-smoke: $(FUZZ)/fuzz_svg
 	$(call run_fuzzer,fuzz_svg,$(FUZZ_SVG_SMOKE_TIME),fuzz-svg-smoke)
 
 HOST_PROGRAMS += $(HOST)/svgimport
-TEST_TARGETS += test-svg fuzz-svg-smoke
+TEST_TARGETS += test-svg fuzz-svg-smoke svg-conformance
 DEMO_TARGETS += svg-demo
