@@ -38,6 +38,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 
 #include "sv_gradient.h"
 #include "sv_import.h"
@@ -58,6 +59,7 @@ typedef struct clip_poly {
 #define MAX_CLIPS 8
 typedef struct ctx {
     sv_affine ctm;
+    bool via_use; /* inside a <use> instance: counts against SV_MAX_USE_COPIES */
     int layer;
     double alpha; /* opacities of enclosing layers, multiplied into paints */
     const clip_poly *clips[MAX_CLIPS];
@@ -70,20 +72,39 @@ typedef struct imp {
     sv_doc *doc;
     sv_import_opts opts;
     sv_css css;
+    /* id -> element, open addressing (a file may hold 10^5 ids), capids a power of 2 */
     struct idmap {
         const char *id;
         sv_node *node;
     } *ids;
-    int nids, capids;
+    size_t nids, capids;
     item *items;
     int nitems, capitems;
     int next_layer;
-    const sv_node *stack[64];
+    const sv_node *stack[SV_MAX_DEPTH];
     int depth;
     double tol; /* stroke tolerance, canvas units */
+    /* what the limits of sv.h count */
+    long use_copies, points, contours, clip_points;
+    /* the first error; once set, the walk only returns */
+    char *err;
+    size_t errlen;
+    bool failed;
 } imp;
 
 static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc);
+
+/* Ends the import: a limit of sv.h was reached (the first error is kept). */
+static void __attribute__((format(printf, 2, 3))) fail(imp *im, const char *fmt, ...)
+{
+    if (im->failed)
+        return;
+    im->failed = true;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(im->err, im->errlen, fmt, ap);
+    va_end(ap);
+}
 
 static void desc(const sv_node *n, char *buf, size_t len)
 {
@@ -94,13 +115,48 @@ static void desc(const sv_node *n, char *buf, size_t len)
         snprintf(buf, len, "<%s> (line %d)", n->name, n->line);
 }
 
+static size_t id_hash(const char *s)
+{
+    size_t h = 14695981039346656037u; /* FNV-1a */
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * 1099511628211u;
+    return h;
+}
+
+/* The slot of `id`: where it is, or the empty one where it would go. */
+static struct idmap *id_slot(const imp *im, const char *id)
+{
+    size_t mask = im->capids - 1;
+    for (size_t i = id_hash(id) & mask;; i = (i + 1) & mask)
+        if (!im->ids[i].id || strcmp(im->ids[i].id, id) == 0)
+            return &im->ids[i];
+}
+
 static sv_node *find_id(void *ctxp, const char *id)
 {
     imp *im = ctxp;
-    for (int i = 0; i < im->nids; i++)
-        if (strcmp(im->ids[i].id, id) == 0)
-            return im->ids[i].node;
-    return NULL;
+    return im->capids ? id_slot(im, id)->node : NULL;
+}
+
+static void add_id(imp *im, const char *id, sv_node *n)
+{
+    if (2 * (im->nids + 1) > im->capids) { /* at most half full */
+        struct idmap *old = im->ids;
+        size_t oldcap = im->capids;
+        im->capids = oldcap ? 2 * oldcap : 64;
+        im->ids = sv_xrealloc(NULL, im->capids * sizeof *im->ids);
+        memset(im->ids, 0, im->capids * sizeof *im->ids);
+        for (size_t i = 0; i < oldcap; i++)
+            if (old[i].id)
+                *id_slot(im, old[i].id) = old[i];
+        free(old);
+    }
+    struct idmap *slot = id_slot(im, id);
+    if (!slot->id) { /* the first of duplicate ids wins */
+        slot->id = id;
+        slot->node = n;
+        im->nids++;
+    }
 }
 
 static sv_node *find_href(imp *im, const sv_node *n)
@@ -135,11 +191,8 @@ static void style_of(void *ctxp, const sv_node *n, sv_style *out)
 static void collect(imp *im, sv_node *n)
 {
     const char *id = sv_attr(n, "id");
-    if (id && !find_id(im, id)) { /* the first of duplicate ids wins */
-        SV_GROW(im->ids, im->nids, im->capids);
-        im->ids[im->nids].id = id;
-        im->ids[im->nids++].node = n;
-    }
+    if (id)
+        add_id(im, id, n);
     if (strcmp(n->name, "style") == 0 && n->text) {
         const char *type = sv_attr(n, "type");
         if (!type || strcmp(type, "text/css") == 0)
@@ -366,16 +419,81 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
  * where the core's paint functions cannot draw it; `opacity` is what
  * multiplies the gradient's own stop opacities.
  */
+/*
+ * Geometry beyond the core's coordinate limit (a huge stroke-width, a far
+ * transform) is cut to the canvas and as much again around it: nothing
+ * outside is ever seen. The cut computes points between far ends, whose
+ * rounding grows with their distance (2^-52 of it), so it is done up to
+ * FAR_LIMIT (1e-7 canvas units of error); geometry reaching further, or not
+ * finite, is left out. All of it is warned. False when nothing is left.
+ */
+#define FAR_LIMIT 1e9
+static bool within_limits(imp *im, sv_path *cp, const sv_node *n, const char *what)
+{
+    double box[4], lim = 0.5 * CS_CFG_COORD_LIMIT;
+    sv_path_bbox(cp, box);
+    double far = fmax(fmax(fabs(box[0]), fabs(box[1])), fmax(fabs(box[2]), fabs(box[3])));
+    if (far <= lim)
+        return true;
+    char d[160];
+    desc(n, d, sizeof d);
+    if (!(far <= FAR_LIMIT)) {
+        sv_doc_warn(im->doc, "%s: %s reaches %g canvas units, too far to cut to the canvas "
+                    "exactly (limit %g), not drawn", d, what, far, FAR_LIMIT);
+        return false;
+    }
+    double w = im->doc->width, h = im->doc->height;
+    sv_path_clip_halfplane(cp, 1, 0, fmin(w, lim));          /* x >= -w */
+    sv_path_clip_halfplane(cp, -1, 0, fmin(2 * w, lim));     /* x <= 2w */
+    sv_path_clip_halfplane(cp, 0, 1, fmin(h, lim));          /* y >= -h */
+    sv_path_clip_halfplane(cp, 0, -1, fmin(2 * h, lim));     /* y <= 2h */
+    sv_doc_warn(im->doc, "%s: %s reaches %g canvas units, beyond the core's limit of %g: cut to "
+                "the canvas and its surroundings", d, what, far, (double)CS_CFG_COORD_LIMIT);
+    return cp->n > 0;
+}
+
+/* Counts a region against the scene store's capacities; false (and the import fails) beyond. */
+static bool within_capacity(imp *im, const sv_region *r, const sv_node *n)
+{
+    long pts = 0;
+    for (int i = 0; i < r->ncontours; i++)
+        pts += r->contours[i].count;
+    im->points += pts;
+    im->contours += r->ncontours;
+    const char *what = NULL;
+    long cap = 0;
+    if (im->nitems + 1 > CS_CFG_MAX_REGIONS)
+        what = "regions (CS_CFG_MAX_REGIONS)", cap = CS_CFG_MAX_REGIONS;
+    else if (im->contours > CS_CFG_MAX_CONTOURS)
+        what = "contours (CS_CFG_MAX_CONTOURS)", cap = CS_CFG_MAX_CONTOURS;
+    else if (im->points > CS_CFG_MAX_POINTS)
+        what = "control points (CS_CFG_MAX_POINTS)", cap = CS_CFG_MAX_POINTS;
+    if (!what)
+        return true;
+    char d[160];
+    desc(n, d, sizeof d);
+    fail(im, "%s: the drawing needs more than the scene store's %ld %s", d, cap, what);
+    return false;
+}
+
 static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, double opacity,
                        const ctx *c, const sv_node *n, const char *what)
 {
     for (int k = 0; k < c->nclips; k++)
         sv_path_clip_polygon(cp, c->clips[k]->v, c->clips[k]->n);
+    if (!within_limits(im, cp, n, what))
+        return;
     sv_region r;
     memset(&r, 0, sizeof r);
     sv_path_to_contours(cp, &r.contours, &r.ncontours);
     if (r.ncontours == 0)
         return;
+    if (!within_capacity(im, &r, n)) {
+        for (int i = 0; i < r.ncontours; i++)
+            sv_contour_free(&r.contours[i]);
+        free(r.contours);
+        return;
+    }
     r.fill_rule = rule;
     r.paint = *paint;
     r.clip = c->ir_clip;
@@ -443,15 +561,29 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
             dashed &= s->dash[i] >= 0;
         sv_path dashes;
         sv_path_init(&dashes);
-        if (dashed)
-            sv_path_dash(up, s->dash, s->ndash, s->dash_offset, &dashes);
+        if (dashed && sv_path_dash(up, s->dash, s->ndash, s->dash_offset, SV_MAX_DASHES,
+                                   &dashes) < 0) {
+            sv_path_free(&dashes);
+            desc(n, d, sizeof d);
+            fail(im, "%s: stroke-dasharray makes more than %d dashes (SV_MAX_DASHES: the scene "
+                 "store's control points hold no more)", d, SV_MAX_DASHES);
+            return;
+        }
         double scale = sv_affine_max_scale(c.ctm);
         sv_stroke_style st = {s->stroke_width, s->cap, s->join, s->miter_limit,
-                              scale > 0 ? im->tol / scale : im->tol};
+                              scale > 0 ? im->tol / scale : im->tol,
+                              CS_CFG_MAX_POINTS - im->points + 1};
         sv_path outline;
         sv_path_init(&outline);
         int missed = sv_stroke_path(dashed ? &dashes : up, &st, &outline);
         sv_path_free(&dashes);
+        if (missed < 0) {
+            sv_path_free(&outline);
+            desc(n, d, sizeof d);
+            fail(im, "%s: the stroke's outline needs more than the scene store's %ld control "
+                 "points left (CS_CFG_MAX_POINTS)", d, CS_CFG_MAX_POINTS - im->points);
+            return;
+        }
         if (missed) {
             desc(n, d, sizeof d);
             sv_doc_warn(im->doc, "%s: stroke outline above tolerance in %d pieces", d, missed);
@@ -636,9 +768,16 @@ static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, con
     sv_path_init(&parts.all);
     sv_path_init(&parts.nz);
     clip_geometry(im, cp, s, c->ctm, ubox, c, &parts);
+    for (int i = 0; i < parts.all.n; i++)
+        im->clip_points += parts.all.sub[i].n;
+    if (im->clip_points > SV_MAX_CLIP_POINTS)
+        fail(im, "%s: clip paths applied take more than %d control points (SV_MAX_CLIP_POINTS)",
+             d, SV_MAX_CLIP_POINTS);
     sv_pt *poly;
     int np;
-    if (parts.only_shapes && parts.nchildren == 1 && c->nclips < MAX_CLIPS &&
+    if (im->failed) {
+        /* nothing more is drawn */
+    } else if (parts.only_shapes && parts.nchildren == 1 && c->nclips < MAX_CLIPS &&
         sv_path_convex_polygon(&parts.all, &poly, &np)) {
         slot->v = poly;
         slot->n = np;
@@ -693,6 +832,20 @@ static void render_viewport(imp *im, sv_node *n, const sv_style *s, ctx *c, doub
     if (!(w > 0 && h > 0))
         return;
     double vb[4];
+    const char *vbs = sv_attr(n, "viewBox");
+    if (vbs && sv_parse_numbers(vbs, vb, 4) == 4 && (vb[2] == 0 || vb[3] == 0)) {
+        /* SVG 1.1 7.7: a zero width or height disables rendering of the element */
+        char d[160];
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: viewBox \"%s\" has a zero width or height, nothing drawn", d, vbs);
+        return;
+    }
+    if (vbs && !get_viewbox(n, vb)) {
+        char d[160];
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: viewBox \"%s\" is not four numbers with a positive size, "
+                    "ignored", d, vbs);
+    }
     if (get_viewbox(n, vb)) {
         c->ctm = sv_affine_mul(c->ctm, viewbox_map(vb, sv_attr(n, "preserveAspectRatio"), x, y, w, h));
         c->vp_w = vb[2];
@@ -716,13 +869,22 @@ static bool switch_accepts(const sv_node *k)
 
 static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
 {
+    if (im->failed)
+        return;
+    char d[160];
+    if (pc->via_use && ++im->use_copies > SV_MAX_USE_COPIES) {
+        desc(n, d, sizeof d);
+        fail(im, "%s: <use> instantiates more than %d elements (SV_MAX_USE_COPIES)", d,
+             SV_MAX_USE_COPIES);
+        return;
+    }
     const char *name = n->name;
     if (strncmp(name, "ns:", 3) == 0 || name[0] == '#' || is_nonrendering(name))
         return; /* editor metadata, character data and definitions draw nothing by themselves */
-    char d[160];
-    if (im->depth >= 64) {
+    if (im->depth >= SV_MAX_DEPTH - 1) { /* a <use> of a symbol takes two levels */
         desc(n, d, sizeof d);
-        sv_doc_warn(im->doc, "%s: nesting deeper than 64, not drawn", d);
+        fail(im, "%s: elements nested deeper than %d through <use> (SV_MAX_DEPTH)", d,
+             SV_MAX_DEPTH);
         return;
     }
     sv_style s;
@@ -798,6 +960,7 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             sv_affine tu = {1, 0, 0, 1, attr_len(n, "x", &s, c.vp_w, 0),
                             attr_len(n, "y", &s, c.vp_h, 0)};
             c.ctm = sv_affine_mul(c.ctm, tu);
+            c.via_use = true;
             if (!strcmp(target->name, "symbol") || !strcmp(target->name, "svg")) {
                 sv_style ts;
                 sv_style_compute(&ts, &s, target, &im->css, 0, im->doc);
@@ -944,6 +1107,8 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     imp im;
     memset(&im, 0, sizeof im);
     im.doc = doc;
+    im.err = err;
+    im.errlen = errlen;
     if (opts)
         im.opts = *opts;
     collect(&im, root);
@@ -993,13 +1158,16 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
         render_viewport(&im, root, &rs, &c, 0, 0, w, h);
     pack_cels(&im);
     doc->blend_srgb = true; /* SVG blends in sRGB: the scene JSON asks for it */
-    sv_doc_plan(doc);
+    if (!im.failed)
+        sv_doc_plan(doc);
+    else
+        sv_doc_free(doc); /* the error says why; a part of the drawing is no result */
 
     free(im.items);
     free(im.ids);
     sv_css_free(&im.css);
     sv_xml_free(root);
-    return 0;
+    return im.failed ? -1 : 0;
 }
 
 int sv_import_file(const char *path, const sv_import_opts *opts, sv_doc *doc, char *err,
