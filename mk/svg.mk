@@ -20,7 +20,7 @@ SVG_LIB_SRC := $(sort $(wildcard tools/svg/sv_*.c))
 SVG_LIB_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_LIB_SRC))
 SVG_CELC_OBJ := $(HOST)/obj/tools/celc_import.o $(HOST)/obj/tools/cli_num.o
 SVG_TEST_SRC := tests/test_svg.c tests/test_svg_unit.c tests/test_svg_cov.c \
-        tests/test_svg_beta.c tests/test_svg_rsvg.c tests/svg_refscan.c
+        tests/test_svg_beta.c tests/test_svg_rsvg.c tests/test_svg_hostile.c tests/svg_refscan.c
 SVG_TEST_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_TEST_SRC))
 # celsim's scene loader, to check that the JSON the importer writes loads
 # into the scene its cs_scene back end builds

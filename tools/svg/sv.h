@@ -313,6 +313,12 @@ int sv_path_dash(const sv_path *in, const double *dash, int n, double offset, in
 #define SV_MAX_DASHES (CS_CFG_MAX_POINTS / 4)
 /* control points of every clip path applied (each element's clip is its own copy) */
 #define SV_MAX_CLIP_POINTS (4 * CS_CFG_MAX_POINTS)
+/* stops of one gradient; beyond, the rest are warned and ignored (every region
+ * painted with it costs each stop a style computation and a copy) */
+#define SV_MAX_STOPS 128
+/* text set in the drawing, all told: a glyph with ink takes a contour at
+ * least, and UTF-8 and white space take up to about 4 bytes a glyph */
+#define SV_MAX_TEXT_BYTES (4 * CS_CFG_MAX_CONTOURS)
 #define SV_MAX_WARNINGS 1000 /* kept in sv_doc.warnings; one more says how many were left out */
 
 typedef struct sv_import_opts {

@@ -85,7 +85,7 @@ typedef struct imp {
     int depth;
     double tol; /* stroke tolerance, canvas units */
     /* what the limits of sv.h count */
-    long use_copies, points, contours, clip_points;
+    long use_copies, points, contours, clip_points, text_bytes;
     /* the first error; once set, the walk only returns */
     char *err;
     size_t errlen;
@@ -859,6 +859,15 @@ static void render_viewport(imp *im, sv_node *n, const sv_style *s, ctx *c, doub
     render_children(im, n, s, c);
 }
 
+/* Character data in a <text> element and its descendants (bounded by SV_MAX_DEPTH). */
+static size_t text_bytes(const sv_node *n)
+{
+    size_t sum = 0;
+    for (int i = 0; i < n->nkids; i++)
+        sum += !strcmp(n->kids[i]->name, "#text") ? n->kids[i]->textlen : text_bytes(n->kids[i]);
+    return sum;
+}
+
 static bool switch_accepts(const sv_node *k)
 {
     if (sv_attr(k, "requiredExtensions"))
@@ -976,6 +985,13 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             }
         }
     } else if (!strcmp(name, "text")) {
+        im->text_bytes += (long)text_bytes(n);
+        if (im->text_bytes > SV_MAX_TEXT_BYTES) {
+            desc(n, d, sizeof d);
+            fail(im, "%s: more than %d bytes of text in the drawing (SV_MAX_TEXT_BYTES)", d,
+                 SV_MAX_TEXT_BYTES);
+            goto done;
+        }
         sv_text_run *runs;
         int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
                                     im->doc);
@@ -987,6 +1003,7 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
         desc(n, d, sizeof d);
         sv_doc_warn(im->doc, "%s: element not supported, not drawn", d);
     }
+done:
     im->depth--;
     if (used_slot)
         free(slot.v);
