@@ -93,7 +93,8 @@ svg-demo: $(HOST)/celc $(HOST)/celsim
 
 # Fuzzing (FUZZ, FUZZ_CC from mk/stream.mk): the importer, celsim's loader
 # (the JSON round trip) and the core, under coverage and sanitizers. Seeds:
-# the demo sign and every 40th small icon of the themes the tests install.
+# the demo sign, every 40th small icon of the themes the tests install and
+# every 4th small test of the conformance suite (when it is beside the project).
 FUZZ_SVG_SMOKE_TIME ?= 20
 FUZZ_SVG_SRC := tests/fuzz_svg.c $(SVG_LIB_SRC) host-sim/scene_json.c host-sim/paint_json.c
 FUZZ_SVG_CFLAGS := $(FUZZ_BASE_CFLAGS) -D_GNU_SOURCE -Icore -Ihost-sim -Itools/svg -Itools \
@@ -106,6 +107,8 @@ $(FUZZ)/fuzz_svg: $(patsubst %.c,$(FUZZ)/svg/%.o,$(FUZZ_SVG_SRC) $(CORE_SRC))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
 
 FUZZ_SEEDS_fuzz_svg = cp scenes/svg/*.svg $(FUZZ)/fuzz_svg.corpus/ && \
+        { [ ! -d $(SVG_CONF_SUITE) ] || find $(SVG_CONF_SUITE) -name '*.svg' -size -3k | LC_ALL=C sort | \
+          awk 'NR % 4 == 0' | while read -r f; do cp "$$f" "$(FUZZ)/fuzz_svg.corpus/c$$(echo "$$f" | cksum | cut -d' ' -f1).svg"; done; } && \
         find /usr/share/icons -name '*.svg' -size -6k 2>/dev/null | LC_ALL=C sort | awk 'NR % 40 == 0' | \
         while read -r f; do cp "$$f" "$(FUZZ)/fuzz_svg.corpus/$$(echo "$$f" | cksum | cut -d' ' -f1).svg"; done
 FUZZ_OPTS_fuzz_svg = -timeout=10 -dict=$(CURDIR)/tests/fuzz_svg.dict -max_len=16384 -rss_limit_mb=2048

@@ -35,6 +35,15 @@ static double side(const sv_seg *s, double t, double a, double b, double c)
 static int crossings(const sv_seg *s, double a, double b, double c, double *ts)
 {
     enum { N = 48 };
+    /* a curve lies in its control points' hull (weights > 0): one side, no crossing */
+    bool pos = false, neg = false;
+    for (int k = 0; k <= s->degree; k++) {
+        double v = a * s->p[k].x + b * s->p[k].y + c;
+        pos |= v > 0;
+        neg |= v < 0;
+    }
+    if (!pos || !neg)
+        return 0;
     int n = 0;
     double t0 = 0, f0 = side(s, 0, a, b, c);
     for (int i = 1; i <= N; i++) {
