@@ -156,12 +156,17 @@ bool sv_path_convex_polygon(const sv_path *clip, sv_pt **poly, int *n)
     }
     if (m > 1 && v[0].x == v[m - 1].x && v[0].y == v[m - 1].y)
         m--;
-    /* drop collinear vertices, then require one turning direction */
-    double sign = 0;
+    /*
+     * Skip collinear vertices, then require one turning direction and one
+     * turn in all: a pentagram turns one way at every vertex, but twice
+     * around (it self-intersects, and is no convex polygon).
+     */
+    double sign = 0, turn = 0;
     bool ok = m >= 3;
     for (int k = 0; ok && k < m; k++) {
         sv_pt e1 = sv_sub(v[(k + 1) % m], v[k]), e2 = sv_sub(v[(k + 2) % m], v[(k + 1) % m]);
         double cr = sv_cross(e1, e2);
+        turn += atan2(cr, sv_dot(e1, e2));
         if (fabs(cr) <= 1e-12 * (sv_len(e1) * sv_len(e2) + 1e-300))
             continue;
         if (sign == 0)
@@ -169,7 +174,7 @@ bool sv_path_convex_polygon(const sv_path *clip, sv_pt **poly, int *n)
         else if ((cr > 0) != (sign > 0))
             ok = false;
     }
-    if (!ok || sign == 0) {
+    if (!ok || sign == 0 || fabs(fabs(turn) - 2 * M_PI) > 0.5) {
         free(v);
         return false;
     }

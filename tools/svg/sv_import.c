@@ -604,10 +604,9 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
 /*
  * The clip path's children in canvas units, as parts of an IR clip (see
  * sv_clip in sv.h): a clipPath is the union of its children, each under its
- * own clip-rule. Nonzero children, and evenodd ones of one contour (where the
- * rules agree), go into one part, each turned so its largest subpath winds
- * positively: with no child winding negatively, their summed winding is
- * non-zero exactly on the union. An evenodd child of several contours joins
+ * own clip-rule. Nonzero children go into one part, each turned so its
+ * largest subpath winds positively: with no child winding negatively, their
+ * summed winding is non-zero exactly on the union. An evenodd child joins
  * an evenodd part whose children's boxes its box does not meet (without
  * overlap, parity is union), or starts one. `all` gets every child unchanged
  * (the convex test).
@@ -716,7 +715,7 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
             sv_path_transform(&p, km);
             sv_path_append(&out->all, &p);
             out->nchildren++;
-            if (ks.clip_rule == CS_FILL_EVENODD && p.n > 1) {
+            if (ks.clip_rule == CS_FILL_EVENODD) { /* even one contour: it may cross itself */
                 add_evenodd(out, &p);
                 sv_path_free(&p);
                 continue;
