@@ -824,12 +824,54 @@ static bool is_nonrendering(const char *name)
     return false;
 }
 
-/* A nested viewport (svg element or an instantiated symbol). */
+/* The overflow property (attribute or style declaration): whether it lets content show. */
+static bool overflow_visible(const sv_node *n)
+{
+    const char *v = sv_attr(n, "overflow");
+    const char *st = sv_attr(n, "style");
+    char *own = NULL;
+    if (st) {
+        sv_decl *d;
+        int nd = sv_css_parse_decls(st, &d);
+        for (int i = 0; i < nd; i++)
+            if (!strcmp(d[i].name, "overflow")) {
+                free(own);
+                own = sv_xstrdup(d[i].value);
+            }
+        sv_decls_free(d, nd);
+    }
+    if (own)
+        v = own;
+    bool vis = v && (!strcmp(v, "visible") || !strcmp(v, "auto"));
+    free(own);
+    return vis;
+}
+
+/*
+ * A nested viewport (svg element or an instantiated symbol). Its content is
+ * clipped to the viewport (overflow hidden, the default there): a
+ * parallelogram on the canvas, so a convex clip cut into the geometry.
+ */
 static void render_viewport(imp *im, sv_node *n, const sv_style *s, ctx *c, double x, double y,
                             double w, double h)
 {
     if (!(w > 0 && h > 0))
         return;
+    sv_pt corner[4];
+    clip_poly vp = {corner, 4};
+    if (n->parent && !overflow_visible(n)) {
+        double cx[4] = {x, x + w, x + w, x}, cy[4] = {y, y, y + h, y + h};
+        for (int i = 0; i < 4; i++)
+            corner[i] = sv_affine_apply(c->ctm, sv_pt_make(cx[i], cy[i]));
+        if (c->nclips < MAX_CLIPS) {
+            c->clips[c->nclips++] = &vp;
+        } else {
+            char d[160];
+            desc(n, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: more than %d nested clips, viewport not clipped", d,
+                        MAX_CLIPS);
+        }
+    }
     double vb[4];
     const char *vbs = sv_attr(n, "viewBox");
     if (vbs && sv_parse_numbers(vbs, vb, 4) == 4 && (vb[2] == 0 || vb[3] == 0)) {
@@ -973,7 +1015,8 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
                 sv_style ts;
                 sv_style_compute(&ts, &s, target, &im->css, 0, im->doc);
                 im->stack[im->depth++] = target;
-                render_viewport(im, target, &ts, &c, 0, 0,
+                render_viewport(im, target, &ts, &c, attr_len(target, "x", &s, c.vp_w, 0),
+                                attr_len(target, "y", &s, c.vp_h, 0),
                                 attr_len(n, "width", &s, c.vp_w,
                                          attr_len(target, "width", &s, c.vp_w, c.vp_w)),
                                 attr_len(n, "height", &s, c.vp_h,
