@@ -161,9 +161,9 @@ static void add_id(imp *im, const char *id, sv_node *n)
 
 static sv_node *find_href(imp *im, const sv_node *n)
 {
-    const char *h = sv_attr(n, "xlink:href");
+    const char *h = sv_attr(n, "href"); /* SVG 2: it takes precedence over xlink:href */
     if (!h)
-        h = sv_attr(n, "href");
+        h = sv_attr(n, "xlink:href");
     return (h && h[0] == '#') ? find_id(im, h + 1) : NULL;
 }
 
@@ -1014,6 +1014,12 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             if (!strcmp(target->name, "symbol") || !strcmp(target->name, "svg")) {
                 sv_style ts;
                 sv_style_compute(&ts, &s, target, &im->css, 0, im->doc);
+                if (ts.opacity < 1) { /* the instance is a group: its opacity as a layer */
+                    if (c.layer == 0)
+                        c.layer = ++im->next_layer;
+                    c.alpha *= ts.opacity;
+                    ts.opacity = 1;
+                }
                 im->stack[im->depth++] = target;
                 render_viewport(im, target, &ts, &c, attr_len(target, "x", &s, c.vp_w, 0),
                                 attr_len(target, "y", &s, c.vp_h, 0),
@@ -1189,6 +1195,9 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
         h = w * vb[3] / vb[2]; /* one dimension given: keep the viewBox's aspect */
     if (has_vb && hs && !strchr(hs, '%') && !(ws && !strchr(ws, '%')))
         w = h * vb[2] / vb[3];
+    /* neither a viewBox nor a usable width and height: the drawing's extent decides (below) */
+    bool sized = has_vb || (ws && !strchr(ws, '%') && sv_parse_length(ws, 12, 0, &x) && x > 0 &&
+                            hs && !strchr(hs, '%') && sv_parse_length(hs, 12, 0, &x) && x > 0);
     doc->width = w;
     doc->height = h;
     double nominal = im.opts.nominal_px > 0 ? im.opts.nominal_px : 1024;
@@ -1213,8 +1222,27 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     if (rs.mask[0])
         sv_doc_warn(doc, "<svg>: mask #%s not supported, drawn unmasked", rs.mask);
     im.stack[im.depth++] = root;
-    if (!rs.display_none)
+    /* SVG 1.1 7.1: zero disables rendering, a negative size is an error */
+    bool empty = (ws && sv_parse_length(ws, 12, 0, &x) && x <= 0) ||
+                 (hs && sv_parse_length(hs, 12, 0, &x) && x <= 0);
+    if (empty)
+        sv_doc_warn(doc, "<svg>: width \"%s\" height \"%s\" is not a positive size, nothing "
+                    "drawn", ws ? ws : "", hs ? hs : "");
+    if (!rs.display_none && !empty)
         render_viewport(&im, root, &rs, &c, 0, 0, w, h);
+    if (!sized && im.nitems > 0) {
+        double ew = 0, eh = 0;
+        for (int i = 0; i < im.nitems; i++) {
+            ew = fmax(ew, im.items[i].reg.bbox[2]);
+            eh = fmax(eh, im.items[i].reg.bbox[3]);
+        }
+        if (ew > 0 && eh > 0) {
+            doc->width = ew;
+            doc->height = eh;
+            sv_doc_warn(doc, "<svg>: no viewBox and no usable width and height: the canvas is "
+                        "the drawing's extent, %g x %g", ew, eh);
+        }
+    }
     pack_cels(&im);
     doc->blend_srgb = true; /* SVG blends in sRGB: the scene JSON asks for it */
     if (!im.failed)
