@@ -86,6 +86,8 @@ typedef struct imp {
     double tol; /* stroke tolerance, canvas units */
     /* what the limits of sv.h count */
     long use_copies, points, contours, clip_points, text_bytes;
+    const sv_node *clipping[MAX_CLIPS]; /* clipPaths being applied: references back are cycles */
+    int nclipping;
     /* the first error; once set, the walk only returns */
     char *err;
     size_t errlen;
@@ -624,6 +626,9 @@ typedef struct clip_parts {
     int neo;
     int nchildren;
     bool only_shapes;
+    /* clip-path on the clipPath, or on its only child: both intersect the clip */
+    char self_clip[128], child_clip[128];
+    int nclipped_children;
 } clip_parts;
 
 static void add_evenodd(clip_parts *out, sv_path *p)
@@ -663,8 +668,22 @@ static void orient_positive(sv_path *p)
         sv_path_reverse(p);
 }
 
-static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ctm,
-                          const double ubox[4], const ctx *pc, clip_parts *out)
+/* A clip child's path into the parts (in canvas units by km) under its clip-rule. */
+static void add_clip_child(clip_parts *out, sv_path *p, sv_affine km, int rule)
+{
+    sv_path_transform(p, km);
+    sv_path_append(&out->all, p);
+    out->nchildren++;
+    if (rule == CS_FILL_EVENODD) { /* even one contour: it may cross itself */
+        add_evenodd(out, p);
+        return;
+    }
+    orient_positive(p);
+    sv_path_append(&out->nz, p);
+}
+
+static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox[4],
+                          const ctx *pc, clip_parts *out)
 {
     const char *units = sv_attr(cp, "clipPathUnits");
     sv_affine m = ctm, t;
@@ -676,12 +695,9 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
         m = sv_affine_mul(m, b);
     }
     char d[160];
-    sv_style cs;
-    sv_style_compute(&cs, ps, cp, &im->css, 0, NULL);
-    if (cs.clip_path[0]) {
-        desc(cp, d, sizeof d);
-        sv_doc_warn(im->doc, "%s: clip-path on a clipPath not supported, ignored", d);
-    }
+    sv_style cs; /* its properties come from where it is defined, not from where it is used */
+    style_of(im, cp, &cs);
+    snprintf(out->self_clip, sizeof out->self_clip, "%s", cs.clip_path);
     for (int i = 0; i < cp->nkids; i++) {
         sv_node *k = cp->kids[i];
         sv_node *shape = k;
@@ -704,24 +720,29 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
         sv_style_compute(&ks, &cs, shape, &im->css, 0, NULL);
         if (ks.display_none || !ks.visible)
             continue;
+        if (ks.clip_path[0] && shape == k) {
+            out->nclipped_children++;
+            snprintf(out->child_clip, sizeof out->child_clip, "%s", ks.clip_path);
+        }
         sv_path p;
         sv_path_init(&p);
         if (shape_path(im, shape, &ks, pc, &p)) {
-            if (ks.clip_path[0] && shape == k) {
-                desc(k, d, sizeof d);
-                sv_doc_warn(im->doc, "%s: clip-path on a clipPath child not supported, ignored",
-                            d);
+            add_clip_child(out, &p, km, ks.clip_rule);
+        } else if (!strcmp(shape->name, "text")) {
+            /* glyph outlines; the clip takes their union, as of any shapes */
+            sv_text_run *runs;
+            int nr = sv_svg_text_layout(shape, &ks, &im->css, pc->vp_w, pc->vp_h,
+                                        im->opts.font_path, &runs, im->doc);
+            sv_path glyphs;
+            sv_path_init(&glyphs);
+            for (int r = 0; r < nr; r++)
+                sv_path_append(&glyphs, &runs[r].path);
+            sv_text_runs_free(runs, nr);
+            if (glyphs.n > 0) {
+                out->only_shapes = false; /* several contours: never a convex cut */
+                add_clip_child(out, &glyphs, km, CS_FILL_NONZERO);
             }
-            sv_path_transform(&p, km);
-            sv_path_append(&out->all, &p);
-            out->nchildren++;
-            if (ks.clip_rule == CS_FILL_EVENODD) { /* even one contour: it may cross itself */
-                add_evenodd(out, &p);
-                sv_path_free(&p);
-                continue;
-            }
-            orient_positive(&p);
-            sv_path_append(&out->nz, &p);
+            sv_path_free(&glyphs);
         } else if (strcmp(shape->name, "title") && strcmp(shape->name, "desc") &&
                    shape->name[0] != '#' && strncmp(shape->name, "ns:", 3) != 0) {
             out->only_shapes = false;
@@ -729,6 +750,13 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
             sv_doc_warn(im->doc, "%s: not supported in a clipPath, left out of the clip", d);
         }
         sv_path_free(&p);
+    }
+    if (out->nclipped_children > 0 && out->nchildren > 1) {
+        /* (child AND its clip) OR sibling is no chain of intersections */
+        desc(cp, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: clip-path on a child among several children not supported, "
+                    "ignored", d);
+        out->child_clip[0] = 0;
     }
 }
 
@@ -747,15 +775,32 @@ static void add_clip_part(sv_clip *clip, const sv_path *p, int rule)
  * exactly into the geometry; anything else becomes an IR clip that the back
  * ends intersect by CSG (sv_doc_plan warns where they cannot).
  */
-static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, const sv_path *up,
+/*
+ * Applies clip-path #id to the context. A clip path's own clip-path (on the
+ * clipPath, or on its only child) intersects it too, so it joins the chain;
+ * a reference back into a clip path being applied is ignored, as resvg
+ * does, and warned. `slot` NULL: no convex cut (the nested ones).
+ */
+static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const sv_path *up,
                        clip_poly *slot, bool *used_slot)
 {
     char d[160];
     desc(n, d, sizeof d);
-    sv_node *cp = find_id(im, s->clip_path);
+    sv_node *cp = find_id(im, id);
     if (!cp || strcmp(cp->name, "clipPath") != 0) {
         /* SVG 1.1: a reference to a non-existent object is an error; rsvg ignores it */
-        sv_doc_warn(im->doc, "%s: clip-path #%s not found, ignored", d, s->clip_path);
+        sv_doc_warn(im->doc, "%s: clip-path #%s not found, ignored", d, id);
+        return;
+    }
+    for (int i = 0; i < im->nclipping; i++)
+        if (im->clipping[i] == cp) {
+            sv_doc_warn(im->doc, "%s: clip-path #%s refers back to itself, reference ignored", d,
+                        id);
+            return;
+        }
+    if (im->nclipping == MAX_CLIPS) {
+        sv_doc_warn(im->doc, "%s: clip-path #%s nested more than %d deep, ignored", d, id,
+                    MAX_CLIPS);
         return;
     }
     double ubox[4] = {0, 0, 0, 0};
@@ -766,7 +811,7 @@ static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, con
     parts.only_shapes = true;
     sv_path_init(&parts.all);
     sv_path_init(&parts.nz);
-    clip_geometry(im, cp, s, c->ctm, ubox, c, &parts);
+    clip_geometry(im, cp, c->ctm, ubox, c, &parts);
     for (int i = 0; i < parts.all.n; i++)
         im->clip_points += parts.all.sub[i].n;
     if (im->clip_points > SV_MAX_CLIP_POINTS)
@@ -776,8 +821,8 @@ static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, con
     int np;
     if (im->failed) {
         /* nothing more is drawn */
-    } else if (parts.only_shapes && parts.nchildren == 1 && c->nclips < MAX_CLIPS &&
-        sv_path_convex_polygon(&parts.all, &poly, &np)) {
+    } else if (slot && parts.only_shapes && parts.nchildren == 1 && c->nclips < MAX_CLIPS &&
+               sv_path_convex_polygon(&parts.all, &poly, &np)) {
         slot->v = poly;
         slot->n = np;
         *used_slot = true;
@@ -794,6 +839,12 @@ static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, con
         im->doc->clips[im->doc->nclips] = clip;
         c->ir_clip = im->doc->nclips++;
     }
+    im->clipping[im->nclipping++] = cp;
+    if (parts.self_clip[0])
+        apply_clip(im, cp, parts.self_clip, c, up, NULL, NULL);
+    if (parts.child_clip[0])
+        apply_clip(im, cp, parts.child_clip, c, up, NULL, NULL);
+    im->nclipping--;
     sv_path_free(&parts.all);
     sv_path_free(&parts.nz);
     for (int i = 0; i < parts.neo; i++) {
@@ -978,7 +1029,7 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     clip_poly slot = {NULL, 0};
     bool used_slot = false;
     if (s.clip_path[0])
-        apply_clip(im, n, &s, &c, have_path ? &up : NULL, &slot, &used_slot);
+        apply_clip(im, n, s.clip_path, &c, have_path ? &up : NULL, &slot, &used_slot);
     im->stack[im->depth++] = n;
     if (shape) {
         if (have_path)
@@ -1228,8 +1279,14 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     if (empty)
         sv_doc_warn(doc, "<svg>: width \"%s\" height \"%s\" is not a positive size, nothing "
                     "drawn", ws ? ws : "", hs ? hs : "");
+    clip_poly slot = {NULL, 0};
+    bool used_slot = false;
+    if (rs.clip_path[0] && !empty)
+        apply_clip(&im, root, rs.clip_path, &c, NULL, &slot, &used_slot);
     if (!rs.display_none && !empty)
         render_viewport(&im, root, &rs, &c, 0, 0, w, h);
+    if (used_slot)
+        free(slot.v);
     if (!sized && im.nitems > 0) {
         double ew = 0, eh = 0;
         for (int i = 0; i < im.nitems; i++) {
