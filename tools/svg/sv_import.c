@@ -530,9 +530,83 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
     it->translucent = translucent;
 }
 
-/* Fill and stroke of one shape, given its user-space path. */
+static void paint_fill(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
+                       const sv_path *up, double opacity, const double ubox[4])
+{
+    const ctx c = *pc;
+    sv_path cp;
+    sv_path_init(&cp);
+    sv_path_append(&cp, up);
+    sv_path_transform(&cp, c.ctm);
+    sv_paint paint;
+    if (resolve_paint(im, n, &s->fill, s, s->fill_opacity * opacity, ubox, &c, &cp,
+                      s->fill_rule, "fill", &paint))
+        add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
+    sv_path_free(&cp);
+}
+
+static void paint_stroke(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
+                         const sv_path *up, double opacity, const double ubox[4])
+{
+    const ctx c = *pc;
+    char d[160];
+    /* a negative dash length is an error, and SVG then strokes solid */
+    bool dashed = s->has_dash;
+    for (int i = 0; i < s->ndash; i++)
+        dashed &= s->dash[i] >= 0;
+    sv_path dashes;
+    sv_path_init(&dashes);
+    if (dashed && sv_path_dash(up, s->dash, s->ndash, s->dash_offset, SV_MAX_DASHES,
+                               &dashes) < 0) {
+        sv_path_free(&dashes);
+        desc(n, d, sizeof d);
+        fail(im, "%s: stroke-dasharray makes more than %d dashes (SV_MAX_DASHES: the scene "
+             "store's control points hold no more)", d, SV_MAX_DASHES);
+        return;
+    }
+    double scale = sv_affine_max_scale(c.ctm);
+    sv_stroke_style st = {s->stroke_width, s->cap, s->join, s->miter_limit,
+                          scale > 0 ? im->tol / scale : im->tol,
+                          CS_CFG_MAX_POINTS - im->points + 1};
+    sv_path outline;
+    sv_path_init(&outline);
+    int missed = sv_stroke_path(dashed ? &dashes : up, &st, &outline);
+    sv_path_free(&dashes);
+    if (missed < 0) {
+        sv_path_free(&outline);
+        desc(n, d, sizeof d);
+        fail(im, "%s: the stroke's outline needs more than the scene store's %ld control "
+             "points left (CS_CFG_MAX_POINTS)", d, CS_CFG_MAX_POINTS - im->points);
+        return;
+    }
+    if (missed) {
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: stroke outline above tolerance in %d pieces", d, missed);
+    }
+    sv_path_transform(&outline, c.ctm);
+    /* objectBoundingBox for strokes is still the fill's box (SVG 1.1) */
+    sv_paint paint;
+    if (resolve_paint(im, n, &s->stroke, s, s->stroke_opacity * opacity, ubox, &c, &outline,
+                      CS_FILL_NONZERO, "stroke", &paint))
+        add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
+                   "stroke");
+    sv_path_free(&outline);
+}
+
+/*
+ * Markers (SVG 1.1 11.6) on the vertices of a path, line, polyline or
+ * polygon: each an instance of the marker's content, oriented and scaled at
+ * the vertex and clipped to the marker's viewport.
+ */
+static void render_markers(imp *im, const sv_node *n, const sv_style *s, const ctx *c,
+                           const sv_path *up);
+
+/*
+ * Fill, stroke and markers of one shape, given its user-space path, in the
+ * order paint-order says; `markers` for the shapes that take them.
+ */
 static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
-                        sv_path *up)
+                        sv_path *up, bool markers)
 {
     if (!s->visible)
         return;
@@ -540,64 +614,22 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
     double opacity = c.alpha * s->opacity;
     bool fill = s->fill.kind != SV_PAINT_NONE, stroke = s->stroke.kind != SV_PAINT_NONE &&
                                                           s->stroke_width > 0;
-    if (fill && stroke && s->opacity < 1 && c.layer == 0)
-        c.layer = ++im->next_layer; /* fill and stroke composite as a group */
+    bool marked = markers && (s->marker[0][0] || s->marker[1][0] || s->marker[2][0]);
+    if (((fill && stroke) || marked) && s->opacity < 1 && c.layer == 0)
+        c.layer = ++im->next_layer; /* fill, stroke and markers composite as a group */
+    if (marked && s->opacity < 1) { /* the markers' content takes it from the context */
+        c.alpha *= s->opacity;
+        opacity = c.alpha;
+    }
     double ubox[4];
     tight_bbox(up, ubox);
-    char d[160];
-    if (fill) {
-        sv_path cp;
-        sv_path_init(&cp);
-        sv_path_append(&cp, up);
-        sv_path_transform(&cp, c.ctm);
-        sv_paint paint;
-        if (resolve_paint(im, n, &s->fill, s, s->fill_opacity * opacity, ubox, &c, &cp,
-                          s->fill_rule, "fill", &paint))
-            add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
-        sv_path_free(&cp);
-    }
-    if (stroke) {
-        /* a negative dash length is an error, and SVG then strokes solid */
-        bool dashed = s->has_dash;
-        for (int i = 0; i < s->ndash; i++)
-            dashed &= s->dash[i] >= 0;
-        sv_path dashes;
-        sv_path_init(&dashes);
-        if (dashed && sv_path_dash(up, s->dash, s->ndash, s->dash_offset, SV_MAX_DASHES,
-                                   &dashes) < 0) {
-            sv_path_free(&dashes);
-            desc(n, d, sizeof d);
-            fail(im, "%s: stroke-dasharray makes more than %d dashes (SV_MAX_DASHES: the scene "
-                 "store's control points hold no more)", d, SV_MAX_DASHES);
-            return;
-        }
-        double scale = sv_affine_max_scale(c.ctm);
-        sv_stroke_style st = {s->stroke_width, s->cap, s->join, s->miter_limit,
-                              scale > 0 ? im->tol / scale : im->tol,
-                              CS_CFG_MAX_POINTS - im->points + 1};
-        sv_path outline;
-        sv_path_init(&outline);
-        int missed = sv_stroke_path(dashed ? &dashes : up, &st, &outline);
-        sv_path_free(&dashes);
-        if (missed < 0) {
-            sv_path_free(&outline);
-            desc(n, d, sizeof d);
-            fail(im, "%s: the stroke's outline needs more than the scene store's %ld control "
-                 "points left (CS_CFG_MAX_POINTS)", d, CS_CFG_MAX_POINTS - im->points);
-            return;
-        }
-        if (missed) {
-            desc(n, d, sizeof d);
-            sv_doc_warn(im->doc, "%s: stroke outline above tolerance in %d pieces", d, missed);
-        }
-        sv_path_transform(&outline, c.ctm);
-        /* objectBoundingBox for strokes is still the fill's box (SVG 1.1) */
-        sv_paint paint;
-        if (resolve_paint(im, n, &s->stroke, s, s->stroke_opacity * opacity, ubox, &c, &outline,
-                          CS_FILL_NONZERO, "stroke", &paint))
-            add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
-                       "stroke");
-        sv_path_free(&outline);
+    for (const char *o = s->paint_order; *o && !im->failed; o++) {
+        if (*o == 'F' && fill)
+            paint_fill(im, n, s, &c, up, opacity, ubox);
+        else if (*o == 'S' && stroke)
+            paint_stroke(im, n, s, &c, up, opacity, ubox);
+        else if (*o == 'M' && marked)
+            render_markers(im, n, s, &c, up);
     }
 }
 
@@ -960,6 +992,134 @@ static size_t text_bytes(const sv_node *n)
     return sum;
 }
 
+/* Direction (radians) a segment leaves its start / reaches its end, from its control points. */
+static double seg_dir(const sv_seg *g, bool at_end)
+{
+    int d = g->degree;
+    for (int k = 1; k <= d; k++) {
+        sv_pt a = at_end ? g->p[d - k] : g->p[0], b = at_end ? g->p[d] : g->p[k];
+        if (a.x != b.x || a.y != b.y)
+            return atan2(b.y - a.y, b.x - a.x);
+    }
+    return 0;
+}
+
+/* The bisector of an incoming and an outgoing direction. */
+static double bisect(double in, double out)
+{
+    if (out - in > M_PI)
+        out -= 2 * M_PI;
+    else if (in - out > M_PI)
+        out += 2 * M_PI;
+    return 0.5 * (in + out);
+}
+
+/* One instance of marker `mk` at p, direction `dir` (radians). */
+static void render_marker(imp *im, sv_node *mk, const sv_style *s, const ctx *pc, sv_pt p,
+                          double dir, bool start)
+{
+    if (++im->use_copies > SV_MAX_USE_COPIES) { /* each instance counts, content or not */
+        fail(im, "<marker> (line %d): markers instantiate more than %d elements "
+             "(SV_MAX_USE_COPIES)", mk->line, SV_MAX_USE_COPIES);
+        return;
+    }
+    sv_style ms; /* marker content inherits from the marker's ancestors, not from the shape */
+    style_of(im, mk, &ms);
+    const char *orient = sv_attr(mk, "orient"), *units = sv_attr(mk, "markerUnits");
+    double angle = 0;
+    if (orient && !strcmp(orient, "auto"))
+        angle = dir;
+    else if (orient && !strcmp(orient, "auto-start-reverse"))
+        angle = start ? dir + M_PI : dir;
+    else if (orient && sv_parse_numbers(orient, &angle, 1) == 1)
+        angle *= M_PI / 180;
+    double scale = units && !strcmp(units, "userSpaceOnUse") ? 1 : s->stroke_width;
+    double mw = attr_len(mk, "markerWidth", &ms, pc->vp_w, 3);
+    double mh = attr_len(mk, "markerHeight", &ms, pc->vp_h, 3);
+    if (!(mw > 0 && mh > 0))
+        return;
+    double vb[4];
+    sv_affine content = sv_affine_identity();
+    if (get_viewbox(mk, vb))
+        content = viewbox_map(vb, sv_attr(mk, "preserveAspectRatio"), 0, 0, mw, mh);
+    sv_pt ref = sv_affine_apply(content, sv_pt_make(attr_len(mk, "refX", &ms, pc->vp_w, 0),
+                                                    attr_len(mk, "refY", &ms, pc->vp_h, 0)));
+    double ca = cos(angle), sa = sin(angle);
+    sv_affine place = {ca * scale, sa * scale, -sa * scale, ca * scale, p.x, p.y};
+    sv_affine shift = {1, 0, 0, 1, -ref.x, -ref.y};
+    ctx c = *pc;
+    c.ctm = sv_affine_mul(sv_affine_mul(pc->ctm, place), shift); /* the viewport's space */
+    c.via_use = true; /* instances count as <use> copies do */
+    sv_pt corner[4];
+    clip_poly vp = {corner, 4};
+    if (!overflow_visible(mk) && c.nclips < MAX_CLIPS) {
+        double cx[4] = {0, mw, mw, 0}, cy[4] = {0, 0, mh, mh};
+        for (int i = 0; i < 4; i++)
+            corner[i] = sv_affine_apply(c.ctm, sv_pt_make(cx[i], cy[i]));
+        c.clips[c.nclips++] = &vp;
+    }
+    c.ctm = sv_affine_mul(c.ctm, content);
+    if (get_viewbox(mk, vb)) {
+        c.vp_w = vb[2];
+        c.vp_h = vb[3];
+    }
+    im->stack[im->depth++] = mk;
+    render_children(im, mk, &ms, &c);
+    im->depth--;
+}
+
+static void render_markers(imp *im, const sv_node *n, const sv_style *s, const ctx *c,
+                           const sv_path *up)
+{
+    sv_node *mk[3];
+    for (int i = 0; i < 3; i++) {
+        mk[i] = s->marker[i][0] ? find_id(im, s->marker[i]) : NULL;
+        if (mk[i] && strcmp(mk[i]->name, "marker") != 0)
+            mk[i] = NULL;
+        for (int k = 0; mk[i] && k < im->depth; k++)
+            if (im->stack[k] == mk[i])
+                mk[i] = NULL; /* a marker drawn inside itself */
+        if (s->marker[i][0] && !mk[i]) {
+            char d[160];
+            desc(n, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: marker #%s not found or recursive, not drawn", d,
+                        s->marker[i]);
+        }
+    }
+    /* the vertices: every segment's start, and the end of every subpath */
+    int nsub = 0;
+    for (int i = 0; i < up->n; i++)
+        nsub += up->sub[i].n > 0;
+    int seen = 0;
+    for (int i = 0; i < up->n && !im->failed; i++) {
+        const sv_subpath *sp = &up->sub[i];
+        if (sp->n == 0)
+            continue;
+        seen++;
+        sv_pt first = sp->seg[0].p[0], last = sp->seg[sp->n - 1].p[sp->seg[sp->n - 1].degree];
+        sv_seg closing = {1, {last, first}, 1};
+        bool has_closing = sp->closed && (first.x != last.x || first.y != last.y);
+        int nseg = sp->n + has_closing;
+        const sv_seg *lastseg = has_closing ? &closing : &sp->seg[sp->n - 1];
+        for (int k = 0; k <= nseg && !im->failed; k++) {
+            const sv_seg *in = k > 0 ? (k - 1 < sp->n ? &sp->seg[k - 1] : &closing) : NULL;
+            const sv_seg *out = k < nseg ? (k < sp->n ? &sp->seg[k] : &closing) : NULL;
+            sv_pt p = out ? out->p[0] : lastseg->p[lastseg->degree];
+            double dir;
+            if (in && out)
+                dir = bisect(seg_dir(in, true), seg_dir(out, false));
+            else if (sp->closed) /* the start and end meet: both directions count */
+                dir = bisect(seg_dir(lastseg, true), seg_dir(&sp->seg[0], false));
+            else
+                dir = out ? seg_dir(out, false) : seg_dir(in, true);
+            bool start = seen == 1 && k == 0, end = seen == nsub && k == nseg;
+            int which = start ? 0 : end ? 2 : 1;
+            if (mk[which])
+                render_marker(im, mk[which], s, c, p, dir, start);
+        }
+    }
+}
+
 static bool switch_accepts(const sv_node *k)
 {
     if (sv_attr(k, "requiredExtensions"))
@@ -1033,7 +1193,7 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     im->stack[im->depth++] = n;
     if (shape) {
         if (have_path)
-            paint_shape(im, n, &s, &c, &up);
+            paint_shape(im, n, &s, &c, &up, true);
     } else if (!strcmp(name, "g") || !strcmp(name, "a")) {
         render_children(im, n, &s, &c);
     } else if (!strcmp(name, "switch")) {
@@ -1096,7 +1256,7 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
                                     im->doc);
         for (int i = 0; i < nr; i++)
             if (runs[i].path.n > 0)
-                paint_shape(im, runs[i].node, runs[i].style, &c, &runs[i].path);
+                paint_shape(im, runs[i].node, runs[i].style, &c, &runs[i].path, false);
         sv_text_runs_free(runs, nr);
     } else {
         desc(n, d, sizeof d);
