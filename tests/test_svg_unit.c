@@ -446,7 +446,7 @@ static void stroke_of(const char *d, double width, sv_cap cap, sv_join join, dou
     char err[100];
     sv_path_init(&p);
     sv_parse_path(d, &p, err, sizeof err);
-    sv_stroke_style st = {width, cap, join, limit, 1e-4};
+    sv_stroke_style st = {width, cap, join, limit, 1e-4, 0};
     sv_path_init(out);
     sv_stroke_path(&p, &st, out);
     sv_path_free(&p);
@@ -500,7 +500,7 @@ static void test_stroker(void)
     const sv_seg *base = &p.sub[0].seg[0];
     for (int ti = 0; ti < 2; ti++) {
         double tol = ti ? 1e-2 : 1e-4;
-        sv_stroke_style st = {8, SV_CAP_BUTT, SV_JOIN_MITER, 4, tol};
+        sv_stroke_style st = {8, SV_CAP_BUTT, SV_JOIN_MITER, 4, tol, 0};
         sv_path_init(&o);
         int missed = sv_stroke_path(&p, &st, &o);
         SVC_CHECK(missed == 0, "tolerance %g met everywhere", tol);
@@ -565,7 +565,7 @@ static int dash_spans(const char *d, const double *dash, int n, double off, doub
     sv_path_init(&p);
     sv_path_init(&o);
     sv_parse_path(d, &p, err, sizeof err);
-    sv_path_dash(&p, dash, n, off, &o);
+    sv_path_dash(&p, dash, n, off, SV_MAX_DASHES, &o);
     int k = 0;
     for (int i = 0; i < o.n && k < 32; i++) {
         xs[k++] = o.sub[i].seg[0].p[0].x;
@@ -597,7 +597,7 @@ static void test_dash(void)
     sv_path_init(&o);
     sv_parse_path("M0 0 H10 V10 H0 Z", &p, err, sizeof err);
     /* offset 2: on [0,4], [8,14], [18,24], [28,34], [38,40]+[0,4] */
-    sv_path_dash(&p, (double[]){6, 4}, 2, 2, &o);
+    sv_path_dash(&p, (double[]){6, 4}, 2, 2, SV_MAX_DASHES, &o);
     SVC_CHECK(o.n == 4, "closed square dashes (%d)", o.n);
     const sv_subpath *last = &o.sub[o.n - 1];
     SVC_CHECK(o.n == 4 && pt_is(last->seg[last->n - 1].p[1], 4, 0) && pt_is(last->seg[0].p[0], 0, 2),
@@ -609,7 +609,7 @@ static void test_dash(void)
     sv_path_init(&p);
     sv_path_init(&o);
     sv_path_ellipse(&p, 0, 0, 10, 10);
-    sv_path_dash(&p, (double[]){M_PI / 2, M_PI / 2}, 2, 0, &o);
+    sv_path_dash(&p, (double[]){M_PI / 2, M_PI / 2}, 2, 0, SV_MAX_DASHES, &o);
     double worst = 0;
     for (int i = 0; i < o.n; i++) {
         sv_pt a = o.sub[i].seg[0].p[0];

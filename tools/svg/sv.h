@@ -273,6 +273,7 @@ typedef struct sv_stroke_style {
     sv_join join;
     double miter_limit; /* ratio of miter length to width, SVG default 4 */
     double tolerance;   /* largest distance of an outline from the true offset, user units */
+    long max_points;    /* most control points to emit (0: no limit) */
 } sv_stroke_style;
 
 /*
@@ -283,18 +284,44 @@ typedef struct sv_stroke_style {
  * arcs offset exactly; other curves are offset by cubic Béziers, subdivided
  * until every outline point lies within `tolerance` of the true offset.
  * Returns the number of offset-curve pieces that hit the subdivision limit
- * (0 when the tolerance holds everywhere).
+ * (0 when the tolerance holds everywhere), or -1 when the outline would
+ * need more than st->max_points control points (it stops there; `out`
+ * then holds a part of it).
  */
 int sv_stroke_path(const sv_path *in, const sv_stroke_style *st, sv_path *out);
 
 /*
  * Cuts `in` into its dashes (sv_dash.c): `dash` holds `n` lengths (> 0 sum,
  * none negative), restarted on each subpath at `offset`. Appends open
- * subpaths, exact pieces of the original segments, to `out`.
+ * subpaths, exact pieces of the original segments, to `out`. Returns the
+ * number of dashes, or -1 as soon as there would be more than max_dashes
+ * (`out` then holds the first ones).
  */
-void sv_path_dash(const sv_path *in, const double *dash, int n, double offset, sv_path *out);
+int sv_path_dash(const sv_path *in, const double *dash, int n, double offset, int max_dashes,
+                 sv_path *out);
 
 /* ---------------------------------------------------------- SVG import */
+
+/*
+ * Limits that bound the work on untrusted files; each one, reached, ends the
+ * import with an error naming it (tools/svg/README.md states the bounds).
+ * The output is also capped at the scene store's capacities
+ * (CS_CFG_MAX_REGIONS, CS_CFG_MAX_CONTOURS, CS_CFG_MAX_POINTS): a drawing
+ * beyond them could never be loaded.
+ */
+#define SV_MAX_DEPTH 256         /* element nesting, in the file and through <use> */
+#define SV_MAX_USE_COPIES 100000 /* elements instantiated by <use>, all told */
+/* dashes of one stroke: each takes at least 4 of the scene's control points */
+#define SV_MAX_DASHES (CS_CFG_MAX_POINTS / 4)
+/* control points of every clip path applied (each element's clip is its own copy) */
+#define SV_MAX_CLIP_POINTS (4 * CS_CFG_MAX_POINTS)
+/* stops of one gradient; beyond, the rest are warned and ignored (every region
+ * painted with it costs each stop a style computation and a copy) */
+#define SV_MAX_STOPS 128
+/* text set in the drawing, all told: a glyph with ink takes a contour at
+ * least, and UTF-8 and white space take up to about 4 bytes a glyph */
+#define SV_MAX_TEXT_BYTES (4 * CS_CFG_MAX_CONTOURS)
+#define SV_MAX_WARNINGS 1000 /* kept in sv_doc.warnings; one more says how many were left out */
 
 typedef struct sv_import_opts {
     /*

@@ -111,6 +111,11 @@ bool sv_gradient_resolve(sv_node *g, sv_find_fn find, sv_style_fn style, void *c
             sv_node *st = chain[i]->kids[k];
             if (strcmp(st->name, "stop") != 0)
                 continue;
+            if (out->nstops == SV_MAX_STOPS) { /* bounds the work a region's paint costs */
+                sv_doc_warn(doc, "<%s> (line %d): more than %d stops (SV_MAX_STOPS), the rest "
+                            "ignored", g->name, g->line, SV_MAX_STOPS);
+                break;
+            }
             sv_style ss;
             style(ctx, st, &ss);
             double off = 0;

@@ -38,6 +38,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 
 #include "sv_gradient.h"
 #include "sv_import.h"
@@ -61,6 +62,7 @@ typedef struct clip_poly {
 #define MAX_CLIPS 8
 typedef struct ctx {
     sv_affine ctm;
+    bool via_use; /* inside a <use> instance: counts against SV_MAX_USE_COPIES */
     int layer;
     double alpha; /* opacities of enclosing layers, multiplied into paints */
     const clip_poly *clips[MAX_CLIPS];
@@ -73,15 +75,16 @@ typedef struct imp {
     sv_doc *doc;
     sv_import_opts opts;
     sv_css css;
+    /* id -> element, open addressing (a file may hold 10^5 ids), capids a power of 2 */
     struct idmap {
         const char *id;
         sv_node *node;
     } *ids;
-    int nids, capids;
+    size_t nids, capids;
     item *items;
     int nitems, capitems;
     int next_layer;
-    const sv_node *stack[64];
+    const sv_node *stack[SV_MAX_DEPTH];
     int depth;
     /* elements whose mask reference closed a cycle: drawn unmasked from then on, as resvg
      * drops such a reference once for the whole document */
@@ -91,10 +94,30 @@ typedef struct imp {
      * nested expansions multiply, so one budget bounds them all (SV_EXPAND_BUDGET) */
     long expanded;
     double tol; /* stroke tolerance, canvas units */
+    /* what the limits of sv.h count */
+    long use_copies, points, contours, clip_points, text_bytes;
+    const sv_node *clipping[MAX_CLIPS]; /* clipPaths being applied: references back are cycles */
+    int nclipping;
+    /* the first error; once set, the walk only returns */
+    char *err;
+    size_t errlen;
+    bool failed;
 } imp;
 
 static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc);
 static void add_clip_part(sv_clip *clip, const sv_path *p, int rule);
+
+/* Ends the import: a limit of sv.h was reached (the first error is kept). */
+static void __attribute__((format(printf, 2, 3))) fail(imp *im, const char *fmt, ...)
+{
+    if (im->failed)
+        return;
+    im->failed = true;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(im->err, im->errlen, fmt, ap);
+    va_end(ap);
+}
 
 static void desc(const sv_node *n, char *buf, size_t len)
 {
@@ -105,20 +128,55 @@ static void desc(const sv_node *n, char *buf, size_t len)
         snprintf(buf, len, "<%s> (line %d)", n->name, n->line);
 }
 
+static size_t id_hash(const char *s)
+{
+    size_t h = 14695981039346656037u; /* FNV-1a */
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * 1099511628211u;
+    return h;
+}
+
+/* The slot of `id`: where it is, or the empty one where it would go. */
+static struct idmap *id_slot(const imp *im, const char *id)
+{
+    size_t mask = im->capids - 1;
+    for (size_t i = id_hash(id) & mask;; i = (i + 1) & mask)
+        if (!im->ids[i].id || strcmp(im->ids[i].id, id) == 0)
+            return &im->ids[i];
+}
+
 static sv_node *find_id(void *ctxp, const char *id)
 {
     imp *im = ctxp;
-    for (int i = 0; i < im->nids; i++)
-        if (strcmp(im->ids[i].id, id) == 0)
-            return im->ids[i].node;
-    return NULL;
+    return im->capids ? id_slot(im, id)->node : NULL;
+}
+
+static void add_id(imp *im, const char *id, sv_node *n)
+{
+    if (2 * (im->nids + 1) > im->capids) { /* at most half full */
+        struct idmap *old = im->ids;
+        size_t oldcap = im->capids;
+        im->capids = oldcap ? 2 * oldcap : 64;
+        im->ids = sv_xrealloc(NULL, im->capids * sizeof *im->ids);
+        memset(im->ids, 0, im->capids * sizeof *im->ids);
+        for (size_t i = 0; i < oldcap; i++)
+            if (old[i].id)
+                *id_slot(im, old[i].id) = old[i];
+        free(old);
+    }
+    struct idmap *slot = id_slot(im, id);
+    if (!slot->id) { /* the first of duplicate ids wins */
+        slot->id = id;
+        slot->node = n;
+        im->nids++;
+    }
 }
 
 static sv_node *find_href(imp *im, const sv_node *n)
 {
-    const char *h = sv_attr(n, "xlink:href");
+    const char *h = sv_attr(n, "href"); /* SVG 2: it takes precedence over xlink:href */
     if (!h)
-        h = sv_attr(n, "href");
+        h = sv_attr(n, "xlink:href");
     return (h && h[0] == '#') ? find_id(im, h + 1) : NULL;
 }
 
@@ -146,11 +204,8 @@ static void style_of(void *ctxp, const sv_node *n, sv_style *out)
 static void collect(imp *im, sv_node *n)
 {
     const char *id = sv_attr(n, "id");
-    if (id && !find_id(im, id)) { /* the first of duplicate ids wins */
-        SV_GROW(im->ids, im->nids, im->capids);
-        im->ids[im->nids].id = id;
-        im->ids[im->nids++].node = n;
-    }
+    if (id)
+        add_id(im, id, n);
     if (strcmp(n->name, "style") == 0 && n->text) {
         const char *type = sv_attr(n, "type");
         if (!type || strcmp(type, "text/css") == 0)
@@ -377,16 +432,89 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
  * where the core's paint functions cannot draw it; `opacity` is what
  * multiplies the gradient's own stop opacities.
  */
+/*
+ * Geometry beyond the core's coordinate limit (a huge stroke-width, a far
+ * transform) is cut to the canvas and as much again around it: nothing
+ * outside is ever seen. The cut computes points between far ends, whose
+ * rounding grows with their distance (2^-52 of it), so it is done up to
+ * FAR_LIMIT (1e-7 canvas units of error); geometry reaching further, or not
+ * finite, is left out. All of it is warned. False when nothing is left.
+ */
+#define FAR_LIMIT 1e9
+static bool within_limits(imp *im, sv_path *cp, const sv_node *n, const char *what)
+{
+    double box[4], lim = 0.5 * CS_CFG_COORD_LIMIT;
+    sv_path_bbox(cp, box);
+    double far = fmax(fmax(fabs(box[0]), fabs(box[1])), fmax(fabs(box[2]), fabs(box[3])));
+    if (far <= lim)
+        return true;
+    char d[160];
+    desc(n, d, sizeof d);
+    if (!(far <= FAR_LIMIT)) {
+        sv_doc_warn(im->doc, "%s: %s reaches %g canvas units, too far to cut to the canvas "
+                    "exactly (limit %g), not drawn", d, what, far, FAR_LIMIT);
+        return false;
+    }
+    double w = im->doc->width, h = im->doc->height;
+    sv_path_clip_halfplane(cp, 1, 0, fmin(w, lim));          /* x >= -w */
+    sv_path_clip_halfplane(cp, -1, 0, fmin(2 * w, lim));     /* x <= 2w */
+    sv_path_clip_halfplane(cp, 0, 1, fmin(h, lim));          /* y >= -h */
+    sv_path_clip_halfplane(cp, 0, -1, fmin(2 * h, lim));     /* y <= 2h */
+    sv_doc_warn(im->doc, "%s: %s reaches %g canvas units, beyond the core's limit of %g: cut to "
+                "the canvas and its surroundings", d, what, far, (double)CS_CFG_COORD_LIMIT);
+    return cp->n > 0;
+}
+
+/* Counts a region against the scene store's capacities; false (and the import fails) beyond. */
+static bool within_capacity(imp *im, const sv_region *r, const sv_node *n)
+{
+    long pts = 0;
+    for (int i = 0; i < r->ncontours; i++)
+        pts += r->contours[i].count;
+    im->points += pts;
+    im->contours += r->ncontours;
+    const char *what = NULL;
+    long cap = 0;
+    if (im->nitems + 1 > CS_CFG_MAX_REGIONS)
+        what = "regions (CS_CFG_MAX_REGIONS)", cap = CS_CFG_MAX_REGIONS;
+    else if (im->contours > CS_CFG_MAX_CONTOURS)
+        what = "contours (CS_CFG_MAX_CONTOURS)", cap = CS_CFG_MAX_CONTOURS;
+    else if (im->points > CS_CFG_MAX_POINTS)
+        what = "control points (CS_CFG_MAX_POINTS)", cap = CS_CFG_MAX_POINTS;
+    if (!what)
+        return true;
+    char d[160];
+    desc(n, d, sizeof d);
+    fail(im, "%s: the drawing needs more than the scene store's %ld %s", d, cap, what);
+    return false;
+}
+
+/* Takes a region that leaves the list (or is replaced) off the counts within_capacity keeps. */
+static void uncount(imp *im, const sv_region *r)
+{
+    for (int i = 0; i < r->ncontours; i++)
+        im->points -= r->contours[i].count;
+    im->contours -= r->ncontours;
+}
+
 static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, double opacity,
                        const ctx *c, const sv_node *n, const char *what)
 {
     for (int k = 0; k < c->nclips; k++)
         sv_path_clip_polygon(cp, c->clips[k]->v, c->clips[k]->n);
+    if (!within_limits(im, cp, n, what))
+        return;
     sv_region r;
     memset(&r, 0, sizeof r);
     sv_path_to_contours(cp, &r.contours, &r.ncontours);
     if (r.ncontours == 0)
         return;
+    if (!within_capacity(im, &r, n)) {
+        for (int i = 0; i < r.ncontours; i++)
+            sv_contour_free(&r.contours[i]);
+        free(r.contours);
+        return;
+    }
     r.fill_rule = rule;
     r.paint = *paint;
     r.clip = c->ir_clip;
@@ -519,6 +647,7 @@ static long clip_to_area(imp *im, item *it, const sv_path *area, int rule, int *
             sv_path_append(&cut, area);
             sv_path_clip_polygon(&cut, v, nv);
             free(v);
+            uncount(im, r);
             for (int i = 0; i < r->ncontours; i++)
                 sv_contour_free(&r->contours[i]);
             free(r->contours);
@@ -526,6 +655,9 @@ static long clip_to_area(imp *im, item *it, const sv_path *area, int rule, int *
             r->ncontours = 0;
             sv_path_to_contours(&cut, &r->contours, &r->ncontours);
             sv_path_free(&cut);
+            for (int i = 0; i < r->ncontours; i++)
+                im->points += r->contours[i].count;
+            im->contours += r->ncontours;
             r->fill_rule = rule;
             return 0;
         }
@@ -574,8 +706,8 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
                         what, ps->url);
             return true;
         }
-    if (im->depth >= 64)
-        return true; /* render() warns about the depth */
+    if (im->depth >= SV_MAX_DEPTH - 1)
+        return true; /* render() fails on the depth */
     /* the tiles meeting the area's box, taken back to user space */
     double abox[4], ub[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     sv_path_bbox(area, abox);
@@ -646,6 +778,8 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
             clip_poly tile = {q, 4};
             if (tc.nclips < MAX_CLIPS)
                 tc.clips[tc.nclips++] = &tile;
+            if (im->failed)
+                break;
             if (im->expanded > SV_EXPAND_BUDGET) {
                 sv_doc_warn(im->doc, "%s: %s pattern #%s: patterns and masks of the drawing "
                             "expand to more than %ld regions and tiles, the rest not painted",
@@ -671,8 +805,10 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
                 for (int m = 0; m < im->items[k].reg.ncontours; m++)
                     points += im->items[k].reg.contours[m].count;
             if (im->nitems - start > CS_CFG_MAX_REGIONS || points > SV_PATTERN_MAX_POINTS) {
-                for (int k = start; k < im->nitems; k++)
+                for (int k = start; k < im->nitems; k++) {
+                    uncount(im, &im->items[k].reg);
                     sv_region_free(&im->items[k].reg);
+                }
                 im->nitems = start;
                 sv_doc_warn(im->doc, "%s: %s pattern #%s expands to more than %d regions or %d "
                             "control points, not painted", d, what, ps->url, CS_CFG_MAX_REGIONS,
@@ -686,9 +822,89 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
     return true;
 }
 
-/* Fill and stroke of one shape, given its user-space path. */
+static void paint_fill(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
+                       const sv_path *up, double opacity, const double ubox[4])
+{
+    const ctx c = *pc;
+    sv_path cp;
+    sv_path_init(&cp);
+    sv_path_append(&cp, up);
+    sv_path_transform(&cp, c.ctm);
+    sv_paint paint;
+    sv_paint_spec spec = s->fill;
+    if (!paint_pattern(im, n, &spec, s->fill_opacity * opacity, ubox, &c, &cp, s->fill_rule,
+                       "fill") &&
+        resolve_paint(im, n, &spec, s, s->fill_opacity * opacity, ubox, &c, &cp, s->fill_rule,
+                      "fill", &paint))
+        add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
+    sv_path_free(&cp);
+}
+
+static void paint_stroke(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
+                         const sv_path *up, double opacity, const double ubox[4])
+{
+    const ctx c = *pc;
+    char d[160];
+    /* a negative dash length is an error, and SVG then strokes solid */
+    bool dashed = s->has_dash;
+    for (int i = 0; i < s->ndash; i++)
+        dashed &= s->dash[i] >= 0;
+    sv_path dashes;
+    sv_path_init(&dashes);
+    if (dashed && sv_path_dash(up, s->dash, s->ndash, s->dash_offset, SV_MAX_DASHES,
+                               &dashes) < 0) {
+        sv_path_free(&dashes);
+        desc(n, d, sizeof d);
+        fail(im, "%s: stroke-dasharray makes more than %d dashes (SV_MAX_DASHES: the scene "
+             "store's control points hold no more)", d, SV_MAX_DASHES);
+        return;
+    }
+    double scale = sv_affine_max_scale(c.ctm);
+    sv_stroke_style st = {s->stroke_width, s->cap, s->join, s->miter_limit,
+                          scale > 0 ? im->tol / scale : im->tol,
+                          CS_CFG_MAX_POINTS - im->points + 1};
+    sv_path outline;
+    sv_path_init(&outline);
+    int missed = sv_stroke_path(dashed ? &dashes : up, &st, &outline);
+    sv_path_free(&dashes);
+    if (missed < 0) {
+        sv_path_free(&outline);
+        desc(n, d, sizeof d);
+        fail(im, "%s: the stroke's outline needs more than the scene store's %ld control "
+             "points left (CS_CFG_MAX_POINTS)", d, CS_CFG_MAX_POINTS - im->points);
+        return;
+    }
+    if (missed) {
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: stroke outline above tolerance in %d pieces", d, missed);
+    }
+    sv_path_transform(&outline, c.ctm);
+    /* objectBoundingBox for strokes is still the fill's box (SVG 1.1) */
+    sv_paint paint;
+    sv_paint_spec spec = s->stroke;
+    if (!paint_pattern(im, n, &spec, s->stroke_opacity * opacity, ubox, &c, &outline,
+                       CS_FILL_NONZERO, "stroke") &&
+        resolve_paint(im, n, &spec, s, s->stroke_opacity * opacity, ubox, &c, &outline,
+                      CS_FILL_NONZERO, "stroke", &paint))
+        add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
+                   "stroke");
+    sv_path_free(&outline);
+}
+
+/*
+ * Markers (SVG 1.1 11.6) on the vertices of a path, line, polyline or
+ * polygon: each an instance of the marker's content, oriented and scaled at
+ * the vertex and clipped to the marker's viewport.
+ */
+static void render_markers(imp *im, const sv_node *n, const sv_style *s, const ctx *c,
+                           const sv_path *up);
+
+/*
+ * Fill, stroke and markers of one shape, given its user-space path, in the
+ * order paint-order says; `markers` for the shapes that take them.
+ */
 static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
-                        sv_path *up)
+                        sv_path *up, bool markers)
 {
     if (!s->visible)
         return;
@@ -696,59 +912,25 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
     double opacity = c.alpha * s->opacity;
     bool fill = s->fill.kind != SV_PAINT_NONE, stroke = s->stroke.kind != SV_PAINT_NONE &&
                                                           s->stroke_width > 0;
-    if (fill && stroke && s->opacity < 1 && c.layer == 0)
-        c.layer = ++im->next_layer; /* fill and stroke composite as a group */
+    bool marked = markers && (s->marker[0][0] || s->marker[1][0] || s->marker[2][0]);
+    if (((fill && stroke) || marked) && s->opacity < 1 && c.layer == 0)
+        c.layer = ++im->next_layer; /* fill, stroke and markers composite as a group */
+    if (marked && s->opacity < 1) { /* the markers' content takes it from the context */
+        c.alpha *= s->opacity;
+        opacity = c.alpha;
+    }
     double ubox[4]; /* the tight box costs 256 samples a curve: only paint servers use it */
     if (s->fill.kind == SV_PAINT_URL || s->stroke.kind == SV_PAINT_URL)
         tight_bbox(up, ubox);
     else
         sv_path_bbox(up, ubox);
-    char d[160];
-    if (fill) {
-        sv_path cp;
-        sv_path_init(&cp);
-        sv_path_append(&cp, up);
-        sv_path_transform(&cp, c.ctm);
-        sv_paint paint;
-        sv_paint_spec spec = s->fill;
-        if (!paint_pattern(im, n, &spec, s->fill_opacity * opacity, ubox, &c, &cp, s->fill_rule,
-                           "fill") &&
-            resolve_paint(im, n, &spec, s, s->fill_opacity * opacity, ubox, &c, &cp,
-                          s->fill_rule, "fill", &paint))
-            add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
-        sv_path_free(&cp);
-    }
-    if (stroke) {
-        /* a negative dash length is an error, and SVG then strokes solid */
-        bool dashed = s->has_dash;
-        for (int i = 0; i < s->ndash; i++)
-            dashed &= s->dash[i] >= 0;
-        sv_path dashes;
-        sv_path_init(&dashes);
-        if (dashed)
-            sv_path_dash(up, s->dash, s->ndash, s->dash_offset, &dashes);
-        double scale = sv_affine_max_scale(c.ctm);
-        sv_stroke_style st = {s->stroke_width, s->cap, s->join, s->miter_limit,
-                              scale > 0 ? im->tol / scale : im->tol};
-        sv_path outline;
-        sv_path_init(&outline);
-        int missed = sv_stroke_path(dashed ? &dashes : up, &st, &outline);
-        sv_path_free(&dashes);
-        if (missed) {
-            desc(n, d, sizeof d);
-            sv_doc_warn(im->doc, "%s: stroke outline above tolerance in %d pieces", d, missed);
-        }
-        sv_path_transform(&outline, c.ctm);
-        /* objectBoundingBox for strokes is still the fill's box (SVG 1.1) */
-        sv_paint paint;
-        sv_paint_spec spec = s->stroke;
-        if (!paint_pattern(im, n, &spec, s->stroke_opacity * opacity, ubox, &c, &outline,
-                           CS_FILL_NONZERO, "stroke") &&
-            resolve_paint(im, n, &spec, s, s->stroke_opacity * opacity, ubox, &c, &outline,
-                          CS_FILL_NONZERO, "stroke", &paint))
-            add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
-                       "stroke");
-        sv_path_free(&outline);
+    for (const char *o = s->paint_order; *o && !im->failed; o++) {
+        if (*o == 'F' && fill)
+            paint_fill(im, n, s, &c, up, opacity, ubox);
+        else if (*o == 'S' && stroke)
+            paint_stroke(im, n, s, &c, up, opacity, ubox);
+        else if (*o == 'M' && marked)
+            render_markers(im, n, s, &c, up);
     }
 }
 
@@ -815,8 +997,10 @@ static bool items_box(const imp *im, int start, sv_affine ctm, double box[4])
 
 static void drop_items(imp *im, int start)
 {
-    for (int i = start; i < im->nitems; i++)
+    for (int i = start; i < im->nitems; i++) {
+        uncount(im, &im->items[i].reg);
         sv_region_free(&im->items[i].reg);
+    }
     im->nitems = start;
 }
 
@@ -869,7 +1053,7 @@ static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, 
             im->unmasked[im->nunmasked++] = n;
             return;
         }
-    if (im->depth >= 64) {
+    if (im->depth >= SV_MAX_DEPTH - 1) {
         drop_items(im, start);
         return;
     }
@@ -943,6 +1127,8 @@ static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, 
     memcpy(content, im->items + start, (size_t)(ncontent + nmask) * sizeof *content);
     const item *mask = content + ncontent;
     im->nitems = start;
+    for (int i = 0; i < ncontent + nmask; i++)
+        uncount(im, &content[i].reg);
     sv_mask_mode mode = {!mask_alpha(m)};
     for (int k = 1; k < nmask; k++) /* a front mask shape that lets some through hides the back one */
         for (int j = 0; j < k; j++)
@@ -958,11 +1144,15 @@ static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, 
         ncontent = 0;
     }
     int layer = c->layer ? c->layer : ++im->next_layer;
-    for (int i = 0; i < ncontent; i++)
-        for (int k = 0; k < nmask; k++) {
+    for (int i = 0; i < ncontent && !im->failed; i++)
+        for (int k = 0; k < nmask && !im->failed; k++) {
             sv_region r;
             if (!sv_mask_region(im->doc, &content[i].reg, &mask[k].reg, mode, d, &r))
                 continue;
+            if (!within_capacity(im, &r, n)) {
+                sv_region_free(&r);
+                break;
+            }
             SV_GROW(im->items, im->nitems, im->capitems);
             item *it = &im->items[im->nitems++];
             it->reg = r;
@@ -980,10 +1170,9 @@ static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, 
 /*
  * The clip path's children in canvas units, as parts of an IR clip (see
  * sv_clip in sv.h): a clipPath is the union of its children, each under its
- * own clip-rule. Nonzero children, and evenodd ones of one contour (where the
- * rules agree), go into one part, each turned so its largest subpath winds
- * positively: with no child winding negatively, their summed winding is
- * non-zero exactly on the union. An evenodd child of several contours joins
+ * own clip-rule. Nonzero children go into one part, each turned so its
+ * largest subpath winds positively: with no child winding negatively, their
+ * summed winding is non-zero exactly on the union. An evenodd child joins
  * an evenodd part whose children's boxes its box does not meet (without
  * overlap, parity is union), or starts one. `all` gets every child unchanged
  * (the convex test).
@@ -1001,6 +1190,9 @@ typedef struct clip_parts {
     int neo;
     int nchildren;
     bool only_shapes;
+    /* clip-path on the clipPath, or on its only child: both intersect the clip */
+    char self_clip[128], child_clip[128];
+    int nclipped_children;
 } clip_parts;
 
 static void add_evenodd(clip_parts *out, sv_path *p)
@@ -1040,8 +1232,22 @@ static void orient_positive(sv_path *p)
         sv_path_reverse(p);
 }
 
-static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ctm,
-                          const double ubox[4], const ctx *pc, clip_parts *out)
+/* A clip child's path into the parts (in canvas units by km) under its clip-rule. */
+static void add_clip_child(clip_parts *out, sv_path *p, sv_affine km, int rule)
+{
+    sv_path_transform(p, km);
+    sv_path_append(&out->all, p);
+    out->nchildren++;
+    if (rule == CS_FILL_EVENODD) { /* even one contour: it may cross itself */
+        add_evenodd(out, p);
+        return;
+    }
+    orient_positive(p);
+    sv_path_append(&out->nz, p);
+}
+
+static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox[4],
+                          const ctx *pc, clip_parts *out)
 {
     const char *units = sv_attr(cp, "clipPathUnits");
     sv_affine m = ctm, t;
@@ -1053,12 +1259,9 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
         m = sv_affine_mul(m, b);
     }
     char d[160];
-    sv_style cs;
-    sv_style_compute(&cs, ps, cp, &im->css, 0, NULL);
-    if (cs.clip_path[0]) {
-        desc(cp, d, sizeof d);
-        sv_doc_warn(im->doc, "%s: clip-path on a clipPath not supported, ignored", d);
-    }
+    sv_style cs; /* its properties come from where it is defined, not from where it is used */
+    style_of(im, cp, &cs);
+    snprintf(out->self_clip, sizeof out->self_clip, "%s", cs.clip_path);
     for (int i = 0; i < cp->nkids; i++) {
         sv_node *k = cp->kids[i];
         sv_node *shape = k;
@@ -1081,24 +1284,29 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
         sv_style_compute(&ks, &cs, shape, &im->css, 0, NULL);
         if (ks.display_none || !ks.visible)
             continue;
+        if (ks.clip_path[0] && shape == k) {
+            out->nclipped_children++;
+            snprintf(out->child_clip, sizeof out->child_clip, "%s", ks.clip_path);
+        }
         sv_path p;
         sv_path_init(&p);
         if (shape_path(im, shape, &ks, pc, &p)) {
-            if (ks.clip_path[0] && shape == k) {
-                desc(k, d, sizeof d);
-                sv_doc_warn(im->doc, "%s: clip-path on a clipPath child not supported, ignored",
-                            d);
+            add_clip_child(out, &p, km, ks.clip_rule);
+        } else if (!strcmp(shape->name, "text")) {
+            /* glyph outlines; the clip takes their union, as of any shapes */
+            sv_text_run *runs;
+            int nr = sv_svg_text_layout(shape, &ks, &im->css, pc->vp_w, pc->vp_h,
+                                        im->opts.font_path, &runs, im->doc);
+            sv_path glyphs;
+            sv_path_init(&glyphs);
+            for (int r = 0; r < nr; r++)
+                sv_path_append(&glyphs, &runs[r].path);
+            sv_text_runs_free(runs, nr);
+            if (glyphs.n > 0) {
+                out->only_shapes = false; /* several contours: never a convex cut */
+                add_clip_child(out, &glyphs, km, CS_FILL_NONZERO);
             }
-            sv_path_transform(&p, km);
-            sv_path_append(&out->all, &p);
-            out->nchildren++;
-            if (ks.clip_rule == CS_FILL_EVENODD && p.n > 1) {
-                add_evenodd(out, &p);
-                sv_path_free(&p);
-                continue;
-            }
-            orient_positive(&p);
-            sv_path_append(&out->nz, &p);
+            sv_path_free(&glyphs);
         } else if (strcmp(shape->name, "title") && strcmp(shape->name, "desc") &&
                    shape->name[0] != '#' && strncmp(shape->name, "ns:", 3) != 0) {
             out->only_shapes = false;
@@ -1106,6 +1314,13 @@ static void clip_geometry(imp *im, sv_node *cp, const sv_style *ps, sv_affine ct
             sv_doc_warn(im->doc, "%s: not supported in a clipPath, left out of the clip", d);
         }
         sv_path_free(&p);
+    }
+    if (out->nclipped_children > 0 && out->nchildren > 1) {
+        /* (child AND its clip) OR sibling is no chain of intersections */
+        desc(cp, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: clip-path on a child among several children not supported, "
+                    "ignored", d);
+        out->child_clip[0] = 0;
     }
 }
 
@@ -1124,15 +1339,32 @@ static void add_clip_part(sv_clip *clip, const sv_path *p, int rule)
  * exactly into the geometry; anything else becomes an IR clip that the back
  * ends intersect by CSG (sv_doc_plan warns where they cannot).
  */
-static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, const sv_path *up,
+/*
+ * Applies clip-path #id to the context. A clip path's own clip-path (on the
+ * clipPath, or on its only child) intersects it too, so it joins the chain;
+ * a reference back into a clip path being applied is ignored, as resvg
+ * does, and warned. `slot` NULL: no convex cut (the nested ones).
+ */
+static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const sv_path *up,
                        clip_poly *slot, bool *used_slot)
 {
     char d[160];
     desc(n, d, sizeof d);
-    sv_node *cp = find_id(im, s->clip_path);
+    sv_node *cp = find_id(im, id);
     if (!cp || strcmp(cp->name, "clipPath") != 0) {
         /* SVG 1.1: a reference to a non-existent object is an error; rsvg ignores it */
-        sv_doc_warn(im->doc, "%s: clip-path #%s not found, ignored", d, s->clip_path);
+        sv_doc_warn(im->doc, "%s: clip-path #%s not found, ignored", d, id);
+        return;
+    }
+    for (int i = 0; i < im->nclipping; i++)
+        if (im->clipping[i] == cp) {
+            sv_doc_warn(im->doc, "%s: clip-path #%s refers back to itself, reference ignored", d,
+                        id);
+            return;
+        }
+    if (im->nclipping == MAX_CLIPS) {
+        sv_doc_warn(im->doc, "%s: clip-path #%s nested more than %d deep, ignored", d, id,
+                    MAX_CLIPS);
         return;
     }
     double ubox[4] = {0, 0, 0, 0};
@@ -1143,11 +1375,18 @@ static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, con
     parts.only_shapes = true;
     sv_path_init(&parts.all);
     sv_path_init(&parts.nz);
-    clip_geometry(im, cp, s, c->ctm, ubox, c, &parts);
+    clip_geometry(im, cp, c->ctm, ubox, c, &parts);
+    for (int i = 0; i < parts.all.n; i++)
+        im->clip_points += parts.all.sub[i].n;
+    if (im->clip_points > SV_MAX_CLIP_POINTS)
+        fail(im, "%s: clip paths applied take more than %d control points (SV_MAX_CLIP_POINTS)",
+             d, SV_MAX_CLIP_POINTS);
     sv_pt *poly;
     int np;
-    if (parts.only_shapes && parts.nchildren == 1 && c->nclips < MAX_CLIPS &&
-        sv_path_convex_polygon(&parts.all, &poly, &np)) {
+    if (im->failed) {
+        /* nothing more is drawn */
+    } else if (slot && parts.only_shapes && parts.nchildren == 1 && c->nclips < MAX_CLIPS &&
+               sv_path_convex_polygon(&parts.all, &poly, &np)) {
         slot->v = poly;
         slot->n = np;
         *used_slot = true;
@@ -1164,6 +1403,12 @@ static void apply_clip(imp *im, const sv_node *n, const sv_style *s, ctx *c, con
         im->doc->clips[im->doc->nclips] = clip;
         c->ir_clip = im->doc->nclips++;
     }
+    im->clipping[im->nclipping++] = cp;
+    if (parts.self_clip[0])
+        apply_clip(im, cp, parts.self_clip, c, up, NULL, NULL);
+    if (parts.child_clip[0])
+        apply_clip(im, cp, parts.child_clip, c, up, NULL, NULL);
+    im->nclipping--;
     sv_path_free(&parts.all);
     sv_path_free(&parts.nz);
     for (int i = 0; i < parts.neo; i++) {
@@ -1194,13 +1439,69 @@ static bool is_nonrendering(const char *name)
     return false;
 }
 
-/* A nested viewport (svg element or an instantiated symbol). */
+/* The overflow property (attribute or style declaration): whether it lets content show. */
+static bool overflow_visible(const sv_node *n)
+{
+    const char *v = sv_attr(n, "overflow");
+    const char *st = sv_attr(n, "style");
+    char *own = NULL;
+    if (st) {
+        sv_decl *d;
+        int nd = sv_css_parse_decls(st, &d);
+        for (int i = 0; i < nd; i++)
+            if (!strcmp(d[i].name, "overflow")) {
+                free(own);
+                own = sv_xstrdup(d[i].value);
+            }
+        sv_decls_free(d, nd);
+    }
+    if (own)
+        v = own;
+    bool vis = v && (!strcmp(v, "visible") || !strcmp(v, "auto"));
+    free(own);
+    return vis;
+}
+
+/*
+ * A nested viewport (svg element or an instantiated symbol). Its content is
+ * clipped to the viewport (overflow hidden, the default there): a
+ * parallelogram on the canvas, so a convex clip cut into the geometry.
+ */
 static void render_viewport(imp *im, sv_node *n, const sv_style *s, ctx *c, double x, double y,
                             double w, double h)
 {
     if (!(w > 0 && h > 0))
         return;
+    sv_pt corner[4];
+    clip_poly vp = {corner, 4};
+    if (n->parent && !overflow_visible(n)) {
+        double cx[4] = {x, x + w, x + w, x}, cy[4] = {y, y, y + h, y + h};
+        for (int i = 0; i < 4; i++)
+            corner[i] = sv_affine_apply(c->ctm, sv_pt_make(cx[i], cy[i]));
+        if (c->nclips < MAX_CLIPS) {
+            c->clips[c->nclips++] = &vp;
+        } else {
+            char d[160];
+            desc(n, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: more than %d nested clips, viewport not clipped", d,
+                        MAX_CLIPS);
+        }
+    }
     double vb[4];
+    const char *vbs = sv_attr(n, "viewBox");
+    if (vbs && sv_parse_numbers(vbs, vb, 4) == 4 && (vb[2] == 0 || vb[3] == 0)) {
+        /* SVG 1.1 7.7: a zero width or height disables rendering of the element */
+        char d[160];
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: viewBox \"%s\" has a zero width or height, nothing drawn", d, vbs);
+        return;
+    }
+    if (vbs && !get_viewbox(n, vb)) {
+        char d[160];
+        desc(n, d, sizeof d);
+        sv_doc_warn(im->doc, "%s: viewBox \"%s\" is not four numbers with a positive size, "
+                    "ignored", d, vbs);
+    }
     if (get_viewbox(n, vb)) {
         c->ctm = sv_affine_mul(c->ctm, sv_viewbox_map(vb, sv_attr(n, "preserveAspectRatio"), x, y, w, h));
         c->vp_w = vb[2];
@@ -1214,6 +1515,143 @@ static void render_viewport(imp *im, sv_node *n, const sv_style *s, ctx *c, doub
     render_children(im, n, s, c);
 }
 
+/* Character data in a <text> element and its descendants (bounded by SV_MAX_DEPTH). */
+static size_t text_bytes(const sv_node *n)
+{
+    size_t sum = 0;
+    for (int i = 0; i < n->nkids; i++)
+        sum += !strcmp(n->kids[i]->name, "#text") ? n->kids[i]->textlen : text_bytes(n->kids[i]);
+    return sum;
+}
+
+/* Direction (radians) a segment leaves its start / reaches its end, from its control points. */
+static double seg_dir(const sv_seg *g, bool at_end)
+{
+    int d = g->degree;
+    for (int k = 1; k <= d; k++) {
+        sv_pt a = at_end ? g->p[d - k] : g->p[0], b = at_end ? g->p[d] : g->p[k];
+        if (a.x != b.x || a.y != b.y)
+            return atan2(b.y - a.y, b.x - a.x);
+    }
+    return 0;
+}
+
+/* The bisector of an incoming and an outgoing direction. */
+static double bisect(double in, double out)
+{
+    if (out - in > M_PI)
+        out -= 2 * M_PI;
+    else if (in - out > M_PI)
+        out += 2 * M_PI;
+    return 0.5 * (in + out);
+}
+
+/* One instance of marker `mk` at p, direction `dir` (radians). */
+static void render_marker(imp *im, sv_node *mk, const sv_style *s, const ctx *pc, sv_pt p,
+                          double dir, bool start)
+{
+    if (++im->use_copies > SV_MAX_USE_COPIES) { /* each instance counts, content or not */
+        fail(im, "<marker> (line %d): markers instantiate more than %d elements "
+             "(SV_MAX_USE_COPIES)", mk->line, SV_MAX_USE_COPIES);
+        return;
+    }
+    sv_style ms; /* marker content inherits from the marker's ancestors, not from the shape */
+    style_of(im, mk, &ms);
+    const char *orient = sv_attr(mk, "orient"), *units = sv_attr(mk, "markerUnits");
+    double angle = 0;
+    if (orient && !strcmp(orient, "auto"))
+        angle = dir;
+    else if (orient && !strcmp(orient, "auto-start-reverse"))
+        angle = start ? dir + M_PI : dir;
+    else if (orient && sv_parse_numbers(orient, &angle, 1) == 1)
+        angle *= M_PI / 180;
+    double scale = units && !strcmp(units, "userSpaceOnUse") ? 1 : s->stroke_width;
+    double mw = attr_len(mk, "markerWidth", &ms, pc->vp_w, 3);
+    double mh = attr_len(mk, "markerHeight", &ms, pc->vp_h, 3);
+    if (!(mw > 0 && mh > 0))
+        return;
+    double vb[4];
+    sv_affine content = sv_affine_identity();
+    if (get_viewbox(mk, vb))
+        content = sv_viewbox_map(vb, sv_attr(mk, "preserveAspectRatio"), 0, 0, mw, mh);
+    sv_pt ref = sv_affine_apply(content, sv_pt_make(attr_len(mk, "refX", &ms, pc->vp_w, 0),
+                                                    attr_len(mk, "refY", &ms, pc->vp_h, 0)));
+    double ca = cos(angle), sa = sin(angle);
+    sv_affine place = {ca * scale, sa * scale, -sa * scale, ca * scale, p.x, p.y};
+    sv_affine shift = {1, 0, 0, 1, -ref.x, -ref.y};
+    ctx c = *pc;
+    c.ctm = sv_affine_mul(sv_affine_mul(pc->ctm, place), shift); /* the viewport's space */
+    c.via_use = true; /* instances count as <use> copies do */
+    sv_pt corner[4];
+    clip_poly vp = {corner, 4};
+    if (!overflow_visible(mk) && c.nclips < MAX_CLIPS) {
+        double cx[4] = {0, mw, mw, 0}, cy[4] = {0, 0, mh, mh};
+        for (int i = 0; i < 4; i++)
+            corner[i] = sv_affine_apply(c.ctm, sv_pt_make(cx[i], cy[i]));
+        c.clips[c.nclips++] = &vp;
+    }
+    c.ctm = sv_affine_mul(c.ctm, content);
+    if (get_viewbox(mk, vb)) {
+        c.vp_w = vb[2];
+        c.vp_h = vb[3];
+    }
+    im->stack[im->depth++] = mk;
+    render_children(im, mk, &ms, &c);
+    im->depth--;
+}
+
+static void render_markers(imp *im, const sv_node *n, const sv_style *s, const ctx *c,
+                           const sv_path *up)
+{
+    sv_node *mk[3];
+    for (int i = 0; i < 3; i++) {
+        mk[i] = s->marker[i][0] ? find_id(im, s->marker[i]) : NULL;
+        if (mk[i] && strcmp(mk[i]->name, "marker") != 0)
+            mk[i] = NULL;
+        for (int k = 0; mk[i] && k < im->depth; k++)
+            if (im->stack[k] == mk[i])
+                mk[i] = NULL; /* a marker drawn inside itself */
+        if (s->marker[i][0] && !mk[i]) {
+            char d[160];
+            desc(n, d, sizeof d);
+            sv_doc_warn(im->doc, "%s: marker #%s not found or recursive, not drawn", d,
+                        s->marker[i]);
+        }
+    }
+    /* the vertices: every segment's start, and the end of every subpath */
+    int nsub = 0;
+    for (int i = 0; i < up->n; i++)
+        nsub += up->sub[i].n > 0;
+    int seen = 0;
+    for (int i = 0; i < up->n && !im->failed; i++) {
+        const sv_subpath *sp = &up->sub[i];
+        if (sp->n == 0)
+            continue;
+        seen++;
+        sv_pt first = sp->seg[0].p[0], last = sp->seg[sp->n - 1].p[sp->seg[sp->n - 1].degree];
+        sv_seg closing = {1, {last, first}, 1};
+        bool has_closing = sp->closed && (first.x != last.x || first.y != last.y);
+        int nseg = sp->n + has_closing;
+        const sv_seg *lastseg = has_closing ? &closing : &sp->seg[sp->n - 1];
+        for (int k = 0; k <= nseg && !im->failed; k++) {
+            const sv_seg *in = k > 0 ? (k - 1 < sp->n ? &sp->seg[k - 1] : &closing) : NULL;
+            const sv_seg *out = k < nseg ? (k < sp->n ? &sp->seg[k] : &closing) : NULL;
+            sv_pt p = out ? out->p[0] : lastseg->p[lastseg->degree];
+            double dir;
+            if (in && out)
+                dir = bisect(seg_dir(in, true), seg_dir(out, false));
+            else if (sp->closed) /* the start and end meet: both directions count */
+                dir = bisect(seg_dir(lastseg, true), seg_dir(&sp->seg[0], false));
+            else
+                dir = out ? seg_dir(out, false) : seg_dir(in, true);
+            bool start = seen == 1 && k == 0, end = seen == nsub && k == nseg;
+            int which = start ? 0 : end ? 2 : 1;
+            if (mk[which])
+                render_marker(im, mk[which], s, c, p, dir, start);
+        }
+    }
+}
+
 static bool switch_accepts(const sv_node *k)
 {
     if (sv_attr(k, "requiredExtensions"))
@@ -1224,13 +1662,22 @@ static bool switch_accepts(const sv_node *k)
 
 static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
 {
+    if (im->failed)
+        return;
+    char d[160];
+    if (pc->via_use && ++im->use_copies > SV_MAX_USE_COPIES) {
+        desc(n, d, sizeof d);
+        fail(im, "%s: <use> instantiates more than %d elements (SV_MAX_USE_COPIES)", d,
+             SV_MAX_USE_COPIES);
+        return;
+    }
     const char *name = n->name;
     if (strncmp(name, "ns:", 3) == 0 || name[0] == '#' || is_nonrendering(name))
         return; /* editor metadata, character data and definitions draw nothing by themselves */
-    char d[160];
-    if (im->depth >= 64) {
+    if (im->depth >= SV_MAX_DEPTH - 1) { /* a <use> of a symbol takes two levels */
         desc(n, d, sizeof d);
-        sv_doc_warn(im->doc, "%s: nesting deeper than 64, not drawn", d);
+        fail(im, "%s: elements nested deeper than %d through <use> (SV_MAX_DEPTH)", d,
+             SV_MAX_DEPTH);
         return;
     }
     sv_style s;
@@ -1270,12 +1717,12 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     clip_poly slot = {NULL, 0};
     bool used_slot = false;
     if (s.clip_path[0])
-        apply_clip(im, n, &s, &c, have_path ? &up : NULL, &slot, &used_slot);
+        apply_clip(im, n, s.clip_path, &c, have_path ? &up : NULL, &slot, &used_slot);
     int mask_start = im->nitems;
     im->stack[im->depth++] = n;
     if (shape) {
         if (have_path)
-            paint_shape(im, n, &s, &c, &up);
+            paint_shape(im, n, &s, &c, &up, true);
     } else if (!strcmp(name, "g") || !strcmp(name, "a")) {
         render_children(im, n, &s, &c);
     } else if (!strcmp(name, "switch")) {
@@ -1303,11 +1750,19 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             sv_affine tu = {1, 0, 0, 1, attr_len(n, "x", &s, c.vp_w, 0),
                             attr_len(n, "y", &s, c.vp_h, 0)};
             c.ctm = sv_affine_mul(c.ctm, tu);
+            c.via_use = true;
             if (!strcmp(target->name, "symbol") || !strcmp(target->name, "svg")) {
                 sv_style ts;
                 sv_style_compute(&ts, &s, target, &im->css, 0, im->doc);
+                if (ts.opacity < 1) { /* the instance is a group: its opacity as a layer */
+                    if (c.layer == 0)
+                        c.layer = ++im->next_layer;
+                    c.alpha *= ts.opacity;
+                    ts.opacity = 1;
+                }
                 im->stack[im->depth++] = target;
-                render_viewport(im, target, &ts, &c, 0, 0,
+                render_viewport(im, target, &ts, &c, attr_len(target, "x", &s, c.vp_w, 0),
+                                attr_len(target, "y", &s, c.vp_h, 0),
                                 attr_len(n, "width", &s, c.vp_w,
                                          attr_len(target, "width", &s, c.vp_w, c.vp_w)),
                                 attr_len(n, "height", &s, c.vp_h,
@@ -1318,17 +1773,25 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             }
         }
     } else if (!strcmp(name, "text")) {
+        im->text_bytes += (long)text_bytes(n);
+        if (im->text_bytes > SV_MAX_TEXT_BYTES) {
+            desc(n, d, sizeof d);
+            fail(im, "%s: more than %d bytes of text in the drawing (SV_MAX_TEXT_BYTES)", d,
+                 SV_MAX_TEXT_BYTES);
+            goto done;
+        }
         sv_text_run *runs;
         int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
                                     im->doc);
         for (int i = 0; i < nr; i++)
             if (runs[i].path.n > 0)
-                paint_shape(im, runs[i].node, runs[i].style, &c, &runs[i].path);
+                paint_shape(im, runs[i].node, runs[i].style, &c, &runs[i].path, false);
         sv_text_runs_free(runs, nr);
     } else {
         desc(n, d, sizeof d);
         sv_doc_warn(im->doc, "%s: element not supported, not drawn", d);
     }
+done:
     im->depth--;
     if (s.mask[0] && !is_unmasked(im, n))
         apply_mask(im, n, s.mask, &c, mask_start, have_path ? &up : NULL);
@@ -1451,6 +1914,8 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     imp im;
     memset(&im, 0, sizeof im);
     im.doc = doc;
+    im.err = err;
+    im.errlen = errlen;
     if (opts)
         im.opts = *opts;
     collect(&im, root);
@@ -1472,6 +1937,9 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
         h = w * vb[3] / vb[2]; /* one dimension given: keep the viewBox's aspect */
     if (has_vb && hs && !strchr(hs, '%') && !(ws && !strchr(ws, '%')))
         w = h * vb[2] / vb[3];
+    /* neither a viewBox nor a usable width and height: the drawing's extent decides (below) */
+    bool sized = has_vb || (ws && !strchr(ws, '%') && sv_parse_length(ws, 12, 0, &x) && x > 0 &&
+                            hs && !strchr(hs, '%') && sv_parse_length(hs, 12, 0, &x) && x > 0);
     doc->width = w;
     doc->height = h;
     double nominal = im.opts.nominal_px > 0 ? im.opts.nominal_px : 1024;
@@ -1496,18 +1964,46 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     if (rs.mask[0])
         sv_doc_warn(doc, "<svg>: mask #%s not supported, drawn unmasked", rs.mask);
     im.stack[im.depth++] = root;
-    if (!rs.display_none)
+    /* SVG 1.1 7.1: zero disables rendering, a negative size is an error */
+    bool empty = (ws && sv_parse_length(ws, 12, 0, &x) && x <= 0) ||
+                 (hs && sv_parse_length(hs, 12, 0, &x) && x <= 0);
+    if (empty)
+        sv_doc_warn(doc, "<svg>: width \"%s\" height \"%s\" is not a positive size, nothing "
+                    "drawn", ws ? ws : "", hs ? hs : "");
+    clip_poly slot = {NULL, 0};
+    bool used_slot = false;
+    if (rs.clip_path[0] && !empty)
+        apply_clip(&im, root, rs.clip_path, &c, NULL, &slot, &used_slot);
+    if (!rs.display_none && !empty)
         render_viewport(&im, root, &rs, &c, 0, 0, w, h);
+    if (used_slot)
+        free(slot.v);
+    if (!sized && im.nitems > 0) {
+        double ew = 0, eh = 0;
+        for (int i = 0; i < im.nitems; i++) {
+            ew = fmax(ew, im.items[i].reg.bbox[2]);
+            eh = fmax(eh, im.items[i].reg.bbox[3]);
+        }
+        if (ew > 0 && eh > 0) {
+            doc->width = ew;
+            doc->height = eh;
+            sv_doc_warn(doc, "<svg>: no viewBox and no usable width and height: the canvas is "
+                        "the drawing's extent, %g x %g", ew, eh);
+        }
+    }
     pack_cels(&im);
     doc->blend_srgb = true; /* SVG blends in sRGB: the scene JSON asks for it */
-    sv_doc_plan(doc);
+    if (!im.failed)
+        sv_doc_plan(doc);
+    else
+        sv_doc_free(doc); /* the error says why; a part of the drawing is no result */
 
     free(im.items);
     free(im.ids);
     free(im.unmasked);
     sv_css_free(&im.css);
     sv_xml_free(root);
-    return 0;
+    return im.failed ? -1 : 0;
 }
 
 int sv_import_file(const char *path, const sv_import_opts *opts, sv_doc *doc, char *err,

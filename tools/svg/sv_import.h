@@ -127,6 +127,8 @@ typedef struct sv_style {
     int font_weight; /* 1..1000: 400 normal, 700 bold */
     bool font_italic;
     int text_anchor; /* 0 start, 1 middle, 2 end */
+    char paint_order[4]; /* 'F'ill, 'S'troke, 'M'arkers in painting order: "FSM" normally */
+    char marker[3][128]; /* marker-start, -mid, -end: ids, "" for none */
     /* not inherited */
     double opacity;
     bool display_none;

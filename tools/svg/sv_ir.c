@@ -61,6 +61,12 @@ void sv_doc_warn(sv_doc *doc, const char *fmt, ...)
     for (int i = 0; i < doc->nwarnings; i++)
         if (strcmp(doc->warnings[i], buf) == 0)
             return;
+    /* A hostile file can make a warning per element; the search above stays bounded. */
+    if (doc->nwarnings > SV_MAX_WARNINGS)
+        return;
+    if (doc->nwarnings == SV_MAX_WARNINGS)
+        snprintf(buf, sizeof buf, "more than %d warnings; the rest are not listed",
+                 SV_MAX_WARNINGS);
     doc->warnings = sv_xrealloc(doc->warnings, (size_t)(doc->nwarnings + 1) * sizeof(char *));
     doc->warnings[doc->nwarnings++] = sv_xstrdup(buf);
 }

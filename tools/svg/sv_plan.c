@@ -21,10 +21,11 @@
  *
  * The core applies one fill rule to every operand. When the region and its
  * clips agree (the usual case: nonzero everywhere), that rule is used; an
- * operand of one contour does not care (a simple closed curve winds at most
- * once). Otherwise the program runs under nonzero and each evenodd operand of
- * several contours is split into one operand per contour joined by XOR:
- * parity is additive, and a simple contour's nonzero inside is its parity.
+ * operand of one simple contour does not care (it winds at most once), but
+ * one that crosses itself does (a star: its centre winds twice). Otherwise
+ * the program runs under nonzero and each evenodd operand of several
+ * contours is split into one operand per contour joined by XOR: parity is
+ * additive, and a simple contour's nonzero inside is its parity.
  *
  * Every fallback is warned, naming the element.
  */
@@ -81,6 +82,48 @@ static bool emit_group(sv_csg *o, const group *g, bool split, bool own)
     return true;
 }
 
+static bool edges_cross(sv_pt a, sv_pt b, sv_pt c, sv_pt d)
+{
+    double d1 = sv_cross(sv_sub(b, a), sv_sub(c, a)), d2 = sv_cross(sv_sub(b, a), sv_sub(d, a));
+    double d3 = sv_cross(sv_sub(d, c), sv_sub(a, c)), d4 = sv_cross(sv_sub(d, c), sv_sub(b, c));
+    if (d1 == 0 && d2 == 0) /* collinear: overlapping counts as crossing */
+        return fmax(a.x, b.x) >= fmin(c.x, d.x) && fmax(c.x, d.x) >= fmin(a.x, b.x) &&
+               fmax(a.y, b.y) >= fmin(c.y, d.y) && fmax(c.y, d.y) >= fmin(a.y, b.y);
+    return ((d1 <= 0 && d2 >= 0) || (d1 >= 0 && d2 <= 0)) &&
+           ((d3 <= 0 && d4 >= 0) || (d3 >= 0 && d4 <= 0));
+}
+
+/*
+ * Whether a contour's control polygon is simple: for polygons exactly
+ * whether the contour is; for curves a close stand-in (a self-crossing curve
+ * crosses its control polygon too, in any drawing seen). Long contours are
+ * taken as not simple, which only costs an operand's rule its freedom.
+ */
+static bool contour_simple(const sv_contour *c)
+{
+    enum { MAX_EDGES = 256 };
+    int n = c->count;
+    if (n > MAX_EDGES)
+        return false;
+    sv_pt v[MAX_EDGES];
+    for (int i = 0; i < n; i++)
+        v[i] = sv_pt_make(c->pts[3 * i] / c->pts[3 * i + 2], c->pts[3 * i + 1] / c->pts[3 * i + 2]);
+    for (int i = 0; i < n; i++)
+        for (int j = i + 2; j < n; j++) {
+            if (i == 0 && j == n - 1)
+                continue; /* they share v[0] */
+            if (edges_cross(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n]))
+                return false;
+        }
+    return true;
+}
+
+/* Whether an operand's inside depends on the fill rule. */
+static bool rule_matters(const sv_contour *c, int n)
+{
+    return n > 1 || (n == 1 && !contour_simple(c));
+}
+
 void sv_csg_free(sv_csg *o)
 {
     free(o->contours);
@@ -95,12 +138,12 @@ bool sv_csg_build(const sv_doc *doc, const sv_region *r, int nclips, sv_csg *o)
     int rule = -1;
     bool mixed = false;
     group rg = {r->contours, r->ncontours, r->fill_rule};
-    if (rg.n > 1)
+    if (rule_matters(rg.c, rg.n))
         rule = rg.rule;
     for (int k = 0, ci = r->clip; k < nclips && ci >= 0; k++, ci = doc->clips[ci].parent)
         for (int p = 0; p < doc->clips[ci].nparts; p++) {
             const struct sv_clip_part *part = &doc->clips[ci].parts[p];
-            if (part->ncontours <= 1)
+            if (!rule_matters(part->contours, part->ncontours))
                 continue;
             if (rule < 0)
                 rule = part->fill_rule;

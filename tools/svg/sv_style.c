@@ -387,6 +387,49 @@ void sv_style_initial(sv_style *s)
     s->font_weight = 400;
     s->opacity = 1;
     s->stop_opacity = 1;
+    strcpy(s->paint_order, "FSM");
+}
+
+/*
+ * paint-order (SVG 2): "normal", or fill, stroke and markers, each at most
+ * once, the ones left out following in their normal order. False for
+ * anything else (the declaration is then invalid and ignored).
+ */
+static bool parse_paint_order(const char *v, char order[4])
+{
+    char out[4] = "";
+    int n = 0;
+    const char *p = v;
+    while (*p) {
+        while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
+            p++;
+        size_t len = strcspn(p, " \t\n\r");
+        if (len == 0)
+            break;
+        char k = len == 6 && !strncmp(p, "normal", 6) && n == 0 && !p[len] ? 'N'
+                 : len == 4 && !strncmp(p, "fill", 4)                      ? 'F'
+                 : len == 6 && !strncmp(p, "stroke", 6)                    ? 'S'
+                 : len == 7 && !strncmp(p, "markers", 7)                   ? 'M'
+                                                                           : 0;
+        if (!k || (k != 'N' && strchr(out, k)) || n >= 3)
+            return false;
+        if (k == 'N') {
+            strcpy(order, "FSM");
+            return true;
+        }
+        out[n++] = k;
+        out[n] = 0;
+        p += len;
+    }
+    if (n == 0)
+        return false;
+    for (const char *d = "FSM"; *d; d++)
+        if (!strchr(out, *d)) {
+            out[n++] = *d;
+            out[n] = 0;
+        }
+    memcpy(order, out, 4);
+    return true;
 }
 
 void sv_style_inherit(sv_style *c, const sv_style *p)
@@ -596,11 +639,22 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
         s->text_anchor = !strcmp(v, "middle") ? 1 : !strcmp(v, "end") ? 2 : 0;
     } else if (!strcmp(name, "marker-start") || !strcmp(name, "marker-mid") ||
                !strcmp(name, "marker-end") || !strcmp(name, "marker")) {
-        return strcmp(v, "none") == 0 || inherit;
+        char which = name[6] ? name[7] : 0; /* 's', 'm', 'e', or the shorthand for all three */
+        int first = which == 'm' ? 1 : which == 'e' ? 2 : 0, last = which ? first : 2;
+        for (int i = first; i <= last; i++) {
+            if (inherit) {
+                memcpy(s->marker[i], parent->marker[i], sizeof s->marker[i]);
+                continue;
+            }
+            s->marker[i][0] = 0;
+            if (strcmp(v, "none") != 0 && !parse_url(v, s->marker[i], sizeof s->marker[i]))
+                return false;
+        }
     } else if (!strcmp(name, "mix-blend-mode")) {
         return strcmp(v, "normal") == 0;
     } else if (!strcmp(name, "paint-order")) {
-        return strcmp(v, "normal") == 0 || strncmp(v, "fill", 4) == 0;
+        INH(paint_order);
+        parse_paint_order(v, s->paint_order); /* an invalid value is ignored */
     }
 #undef INH
     return true;
