@@ -1503,7 +1503,8 @@ static void render_viewport(imp *im, sv_node *n, const sv_style *s, ctx *c, doub
                     "ignored", d, vbs);
     }
     if (get_viewbox(n, vb)) {
-        c->ctm = sv_affine_mul(c->ctm, sv_viewbox_map(vb, sv_attr(n, "preserveAspectRatio"), x, y, w, h));
+        c->ctm = sv_affine_mul(
+            c->ctm, sv_viewbox_map(vb, sv_attr(n, "preserveAspectRatio"), x, y, w, h));
         c->vp_w = vb[2];
         c->vp_h = vb[3];
     } else {
