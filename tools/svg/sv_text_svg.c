@@ -103,8 +103,23 @@ static int parse_lengths(const char *a, double ref, const sv_style *s, double **
     return n;
 }
 
+/* Text properties the layout does not honour: named in a warning, never silently ignored. */
+static void warn_unsupported(layout *L, const sv_node *n)
+{
+    static const char *const names[] = {"text-decoration", "letter-spacing", "word-spacing",
+                                        "baseline-shift", "dominant-baseline",
+                                        "alignment-baseline", "writing-mode", "textLength",
+                                        "lengthAdjust", "font-variant", "font-stretch", NULL};
+    const char *style = sv_attr(n, "style");
+    for (int i = 0; names[i]; i++)
+        if (sv_attr(n, names[i]) || (style && strstr(style, names[i])))
+            sv_doc_warn(L->doc, "<%s> (line %d): %s not supported, drawn without", n->name,
+                        n->line, names[i]);
+}
+
 static void push_frame(layout *L, const sv_node *n, const sv_style *s)
 {
+    warn_unsupported(L, n);
     frame *f = &L->stack[L->depth++];
     memset(f, 0, sizeof *f);
     for (int a = 0; a < POS_N; a++) {
