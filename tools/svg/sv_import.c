@@ -67,6 +67,7 @@ typedef struct ctx {
     int nclips;
     int ir_clip;
     double vp_w, vp_h; /* viewport, for percentages */
+    const double *obj_box; /* the next shape's objectBoundingBox if not its outline's (text) */
 } ctx;
 
 typedef struct imp {
@@ -699,10 +700,13 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
     if (fill && stroke && s->opacity < 1 && c.layer == 0)
         c.layer = ++im->next_layer; /* fill and stroke composite as a group */
     double ubox[4]; /* the tight box costs 256 samples a curve: only paint servers use it */
-    if (s->fill.kind == SV_PAINT_URL || s->stroke.kind == SV_PAINT_URL)
+    if (c.obj_box)
+        memcpy(ubox, c.obj_box, sizeof ubox);
+    else if (s->fill.kind == SV_PAINT_URL || s->stroke.kind == SV_PAINT_URL)
         tight_bbox(up, ubox);
     else
         sv_path_bbox(up, ubox);
+    c.obj_box = NULL;
     char d[160];
     if (fill) {
         sv_path cp;
@@ -1323,8 +1327,11 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
         int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
                                     im->doc);
         for (int i = 0; i < nr; i++)
-            if (runs[i].path.n > 0)
-                paint_shape(im, runs[i].node, runs[i].style, &c, &runs[i].path);
+            if (runs[i].path.n > 0) {
+                ctx rc = c;
+                rc.obj_box = runs[i].cell_box;
+                paint_shape(im, runs[i].node, runs[i].style, &rc, &runs[i].path);
+            }
         sv_text_runs_free(runs, nr);
     } else {
         desc(n, d, sizeof d);
