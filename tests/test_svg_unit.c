@@ -906,6 +906,39 @@ static void test_fonts(void)
             contours += d.cels[c].regions[r].ncontours;
     SVC_CHECK(contours >= 2 + 5, "A and U+6D77 set from two faces (%d contours)", contours);
     sv_doc_free(&d);
+
+    /* objectBoundingBox of text: the glyph cells (advances by the font's ascender and
+       descender, FreeType's hhea values here), not the outlines */
+    const char *grad = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='60'>"
+                       "<linearGradient id='g'><stop offset='0' stop-color='red'/>"
+                       "<stop offset='1' stop-color='blue'/></linearGradient>"
+                       "<text x='10' y='40' font-family='Noto Sans' font-size='20' "
+                       "fill='url(#g)'>x</text></svg>";
+    char file[512];
+    FT_Library lib;
+    FT_Face face;
+    if (sv_font_match("Noto Sans", 400, false, NULL, 'x', file, sizeof file) == 0 &&
+        FT_Init_FreeType(&lib) == 0) {
+        if (FT_New_Face(lib, file, 0, &face) == 0) {
+            double k = 20.0 / face->units_per_EM;
+            FT_Load_Glyph(face, FT_Get_Char_Index(face, 'x'), FT_LOAD_NO_SCALE);
+            double adv = (double)face->glyph->advance.x * k;
+            double top = 40 - face->ascender * k, height = (face->ascender - face->descender) * k;
+            SVC_CHECK(sv_import_buffer(grad, strlen(grad), NULL, &d, err, sizeof err) == 0, "%s",
+                      err);
+            SVC_CHECK(d.ngradients == 1, "the text's gradient (%d)", d.ngradients);
+            if (d.ngradients == 1) {
+                sv_affine t = d.gradients[0].transform;
+                SVC_NEAR(t.e, 10, 1e-9, "text box starts at the pen");
+                SVC_NEAR(t.a, adv, 1e-9, "text box is the advance wide");
+                SVC_NEAR(t.f, top, 1e-9, "text box top is the ascender");
+                SVC_NEAR(t.d, height, 1e-9, "text box height is ascender - descender");
+            }
+            sv_doc_free(&d);
+            FT_Done_Face(face);
+        }
+        FT_Done_FreeType(lib);
+    }
 }
 
 void test_svg_unit(const svg_test_opts *o)

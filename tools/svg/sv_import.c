@@ -69,6 +69,7 @@ typedef struct ctx {
     int nclips;
     int ir_clip;
     double vp_w, vp_h; /* viewport, for percentages */
+    const double *obj_box; /* the next shape's objectBoundingBox if not its outline's (text) */
 } ctx;
 
 typedef struct imp {
@@ -920,10 +921,13 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
         opacity = c.alpha;
     }
     double ubox[4]; /* the tight box costs 256 samples a curve: only paint servers use it */
-    if (s->fill.kind == SV_PAINT_URL || s->stroke.kind == SV_PAINT_URL)
+    if (c.obj_box)
+        memcpy(ubox, c.obj_box, sizeof ubox);
+    else if (s->fill.kind == SV_PAINT_URL || s->stroke.kind == SV_PAINT_URL)
         tight_bbox(up, ubox);
     else
         sv_path_bbox(up, ubox);
+    c.obj_box = NULL;
     for (const char *o = s->paint_order; *o && !im->failed; o++) {
         if (*o == 'F' && fill)
             paint_fill(im, n, s, &c, up, opacity, ubox);
@@ -1785,8 +1789,11 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
         int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
                                     im->doc);
         for (int i = 0; i < nr; i++)
-            if (runs[i].path.n > 0)
-                paint_shape(im, runs[i].node, runs[i].style, &c, &runs[i].path, false);
+            if (runs[i].path.n > 0) {
+                ctx rc = c;
+                rc.obj_box = runs[i].cell_box;
+                paint_shape(im, runs[i].node, runs[i].style, &rc, &runs[i].path, false);
+            }
         sv_text_runs_free(runs, nr);
     } else {
         desc(n, d, sizeof d);

@@ -63,6 +63,9 @@ typedef struct sv_text_run {
     const struct sv_node *node;
     struct sv_style *style;
     sv_path path;
+    /* the whole <text>'s box of glyph cells (advance by ascender to descender), user
+     * space: its objectBoundingBox, as browsers and resvg take it, not the outlines' box */
+    double cell_box[4];
 } sv_text_run;
 
 /*

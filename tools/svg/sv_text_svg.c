@@ -103,8 +103,23 @@ static int parse_lengths(const char *a, double ref, const sv_style *s, double **
     return n;
 }
 
+/* Text properties the layout does not honour: named in a warning, never silently ignored. */
+static void warn_unsupported(layout *L, const sv_node *n)
+{
+    static const char *const names[] = {"text-decoration", "letter-spacing", "word-spacing",
+                                        "baseline-shift", "dominant-baseline",
+                                        "alignment-baseline", "writing-mode", "textLength",
+                                        "lengthAdjust", "font-variant", "font-stretch", NULL};
+    const char *style = sv_attr(n, "style");
+    for (int i = 0; names[i]; i++)
+        if (sv_attr(n, names[i]) || (style && strstr(style, names[i])))
+            sv_doc_warn(L->doc, "<%s> (line %d): %s not supported, drawn without", n->name,
+                        n->line, names[i]);
+}
+
 static void push_frame(layout *L, const sv_node *n, const sv_style *s)
 {
+    warn_unsupported(L, n);
     frame *f = &L->stack[L->depth++];
     memset(f, 0, sizeof *f);
     for (int a = 0; a < POS_N; a++) {
@@ -286,6 +301,13 @@ typedef struct chunk {
     int anchor;
 } chunk;
 
+/* How far text-anchor moves a chunk: half or all of its advance back. */
+static double anchor_shift(const chunk *k)
+{
+    double w = k->end - k->start;
+    return k->anchor == 1 ? -w / 2 : k->anchor == 2 ? -w : 0;
+}
+
 /*
  * Shapes characters [i0, i1) of L (one element, one face, no absolute
  * position after i0) and sets their glyphs into `out` from the pen, which
@@ -293,7 +315,7 @@ typedef struct chunk {
  * the character's cluster.
  */
 static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font_t *font,
-                          double *penx, double *peny, sv_path *out)
+                          double *penx, double *peny, sv_path *out, double ylim[2])
 {
     const owner *o = &L->own[L->c[i0].owner];
     hb_buffer_t *buf = hb_buffer_create();
@@ -308,6 +330,11 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
     hb_glyph_info_t *info = hb_buffer_get_glyph_infos(buf, &n);
     hb_glyph_position_t *pos = hb_buffer_get_glyph_positions(buf, &n);
     double scale = o->style.font_size / face->units_per_EM;
+    hb_font_extents_t ext;
+    if (!hb_font_get_h_extents(font, &ext)) {
+        ext.ascender = face->ascender;
+        ext.descender = face->descender;
+    }
     unsigned last = (unsigned)-1;
     for (unsigned g = 0; g < n; g++) {
         const ch *c = &L->c[i0 + (int)info[g].cluster];
@@ -320,6 +347,8 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
         }
         set_glyph(face, info[g].codepoint, scale, c->rot, *penx + pos[g].x_offset * scale,
                   *peny - pos[g].y_offset * scale, out);
+        ylim[0] = fmin(ylim[0], *peny - ext.ascender * scale); /* the glyph's cell */
+        ylim[1] = fmax(ylim[1], *peny - ext.descender * scale);
         *penx += pos[g].x_advance * scale;
     }
     hb_buffer_destroy(buf);
@@ -365,7 +394,7 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
     int *run_chunk = sv_xrealloc(NULL, cnt * sizeof *run_chunk);
     chunk *chunks = sv_xrealloc(NULL, cnt * sizeof *chunks);
     int nr = 0, nch = 0;
-    double penx = 0, peny = 0;
+    double penx = 0, peny = 0, ylim[2] = {INFINITY, -INFINITY};
     for (int i = 0, j; i < L.n; i = j) {
         const ch *c = &L.c[i];
         for (j = i + 1; j < L.n && L.c[j].owner == c->owner && faces[j] == faces[i] &&
@@ -389,18 +418,26 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
         }
         if (faces[i])
             shape_segment(&L, i, j, faces[i], hb_for(&sh, faces[i]), &penx, &peny,
-                          &runs[nr - 1].path);
+                          &runs[nr - 1].path, ylim);
         chunks[nch - 1].end = penx;
     }
-    /* text-anchor: each chunk moves by half or all of its advance */
+    /* text-anchor: each chunk moves by half or all of its advance; the cells' box spans
+       the chunks where they end up */
     for (int r = 0; r < nr; r++) {
-        const chunk *k = &chunks[run_chunk[r]];
-        double w = k->end - k->start;
-        if (k->anchor != 0) {
-            sv_affine t = {1, 0, 0, 1, k->anchor == 1 ? -w / 2 : -w, 0};
+        sv_affine t = {1, 0, 0, 1, anchor_shift(&chunks[run_chunk[r]]), 0};
+        if (t.e != 0)
             sv_path_transform(&runs[r].path, t);
-        }
     }
+    double box[4] = {INFINITY, ylim[0], -INFINITY, ylim[1]};
+    for (int k = 0; k < nch; k++) {
+        double shift = anchor_shift(&chunks[k]);
+        box[0] = fmin(box[0], fmin(chunks[k].start, chunks[k].end) + shift);
+        box[2] = fmax(box[2], fmax(chunks[k].start, chunks[k].end) + shift);
+    }
+    if (!(box[0] <= box[2] && box[1] <= box[3]))
+        box[0] = box[1] = box[2] = box[3] = 0;
+    for (int r = 0; r < nr; r++)
+        memcpy(runs[r].cell_box, box, sizeof box);
     for (int i = 0; i < sh.n; i++)
         hb_font_destroy(sh.hb[i]);
     sv_fonts_free(F);
