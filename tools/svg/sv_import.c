@@ -373,20 +373,28 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
                                      im->doc) ||
                 g.nstops == 0) {
                 free(g.stops);
-                return false;
-            }
-            if (g.nstops == 1) { /* one stop is a solid colour, exactly */
+                if (!ps->fallback_kind)
+                    return false;
+                /*
+                 * No stops, or objectBoundingBox units on a flat box: the
+                 * gradient is invalid and the fallback colour paints (as resvg).
+                 */
+                kind = ps->fallback_kind;
+                memcpy(rgb, ps->fallback_rgb, sizeof rgb);
+                a = 1;
+            } else if (g.nstops == 1) { /* one stop is a solid colour, exactly */
                 memcpy(rgb, g.stops[0].rgb, sizeof rgb);
                 a = g.stops[0].opacity;
                 free(g.stops);
+                kind = SV_PAINT_COLOR;
             } else {
                 sv_gradient_average(&g, area, rule, rgb, &a);
                 im->doc->gradients = sv_xrealloc(
                     im->doc->gradients, (size_t)(im->doc->ngradients + 1) * sizeof g);
                 im->doc->gradients[im->doc->ngradients] = g;
                 out->gradient = im->doc->ngradients++;
+                kind = SV_PAINT_COLOR;
             }
-            kind = SV_PAINT_COLOR;
         } else {
             desc(n, d, sizeof d);
             if (t)

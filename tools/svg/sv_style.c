@@ -490,9 +490,9 @@ static bool parse_paint(const char *v, sv_paint_spec *ps)
         double a;
         if (*rest && strcmp(rest, "none") != 0) {
             sv_color_kind k = sv_parse_color(rest, p.fallback_rgb, &a);
-            p.fallback_kind = k == SV_COLOR_RGB       ? SV_PAINT_COLOR
-                              : k == SV_COLOR_CURRENT ? SV_PAINT_CURRENT
-                                                      : SV_PAINT_NONE;
+            if (k == SV_COLOR_INVALID)
+                return false; /* "url(#g) green icc-color(...)": the whole value is invalid */
+            p.fallback_kind = k == SV_COLOR_RGB ? SV_PAINT_COLOR : SV_PAINT_CURRENT;
         }
         *ps = p;
         return true;
@@ -576,11 +576,25 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
             memcpy(s->dash, parent->dash, sizeof s->dash);
             return true;
         }
-        s->ndash = sv_parse_numbers(v, s->dash, 16);
+        /* lengths with units, percentages of the viewport's diagonal; "none" is solid */
+        double dash[16];
+        int n = 0;
+        const char *p = v;
+        char tok[64];
+        while (*(p = sv_skip_wsp_comma(p)) && strcmp(p, "none") != 0) {
+            size_t len = strcspn(p, " \t\r\n,");
+            snprintf(tok, sizeof tok, "%.*s", (int)len, p);
+            if (n == 16 || !sv_parse_length(tok, s->font_size, diag, &dash[n]))
+                return false; /* invalid: the property keeps its value */
+            n++;
+            p += len;
+        }
+        s->ndash = n;
+        memcpy(s->dash, dash, sizeof dash);
         double sum = 0;
-        for (int i = 0; i < s->ndash; i++)
-            sum += s->dash[i] > 0 ? s->dash[i] : 0;
-        s->has_dash = s->ndash > 0 && sum > 0;
+        for (int i = 0; i < n; i++)
+            sum += dash[i] > 0 ? dash[i] : 0;
+        s->has_dash = n > 0 && sum > 0;
     } else if (!strcmp(name, "stroke-dashoffset")) {
         INH(dash_offset);
         sv_parse_length(v, s->font_size, diag, &s->dash_offset);
