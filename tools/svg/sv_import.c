@@ -1164,13 +1164,14 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     ctx c = *pc;
     const char *tr = sv_attr(n, "transform");
     sv_affine t;
-    if (tr) {
+    if (s.has_transform) { /* the CSS property replaces the attribute */
+        c.ctm = sv_affine_mul(c.ctm, s.transform);
+    } else if (tr) {
         if (sv_parse_transform(tr, &t)) {
             c.ctm = sv_affine_mul(c.ctm, t);
-        } else {
+        } else { /* an invalid attribute is as if not given (SVG 2), as resvg does */
             desc(n, d, sizeof d);
-            sv_doc_warn(im->doc, "%s: bad transform \"%s\", element not drawn", d, tr);
-            return;
+            sv_doc_warn(im->doc, "%s: bad transform \"%s\" ignored", d, tr);
         }
     }
     bool shape = !strcmp(name, "path") || !strcmp(name, "rect") || !strcmp(name, "circle") ||
