@@ -278,16 +278,17 @@ static void test_lengths_css(void)
                        "path.a.c, rect { fill: #010203 !important } g > path { fill: none }\n"
                        "@media print { path { fill: black } }",
                        &doc);
-    SVC_CHECK(css.n == 4, "four compound rules kept (%d)", css.n);
-    SVC_CHECK(doc.nwarnings == 2, "combinator and @media warned (%d)", doc.nwarnings);
+    SVC_CHECK(css.n == 5, "five rules kept, the combinator's too (%d)", css.n);
+    SVC_CHECK(doc.nwarnings == 1, "@media warned (%d)", doc.nwarnings);
     /* cascade on <path id="b" class="a c" fill="yellow" style="stroke-width:3"> */
     char *attrs[] = {"id", "b", "class", "a c", "fill", "yellow", "style", "stroke-width:3", NULL};
     sv_node n = {.name = "path", .attrs = attrs, .line = 1};
     sv_style root, s;
     sv_style_initial(&root);
     sv_style_compute(&s, &root, &n, &css, 100, &doc);
-    /* #b (specificity 10000) beats path.a.c (201) and .a (100) */
-    SVC_CHECK(s.fill.kind == SV_PAINT_COLOR && s.fill.rgb[2] == 1, "id rule wins the cascade");
+    /* path.a.c's !important beats #b (specificity 10000 over 201) */
+    SVC_CHECK(s.fill.kind == SV_PAINT_COLOR && fabs(s.fill.rgb[2] - 3 / 255.0) < 1e-12,
+              "!important wins the cascade");
     SVC_CHECK(s.stroke.kind == SV_PAINT_COLOR && fabs(s.stroke.rgb[1] - 128 / 255.0) < 1e-12,
               "stroke from the id rule");
     SVC_CHECK(s.stroke_width == 3, "style attribute applies last");
@@ -308,6 +309,43 @@ static void test_lengths_css(void)
     SVC_CHECK(child.fill.kind == SV_PAINT_CURRENT && child.color[1] == 1 && child.opacity == 0.5 &&
                   child.fill_opacity == 0.5,
               "inherited fill, colour and fill-opacity; own opacity");
+    sv_css_free(&css);
+
+    /*
+     * Combinators, attribute tests, :first-child, !important against the
+     * style attribute, the transform property, on this tree:
+     *   <svg> <g id="g" class="x"> <rect id="r1" x="1" lang="en-GB"/> <circle id="c"/> </g> </svg>
+     */
+    sv_css_parse_sheet(&css,
+                       "svg > g > rect { fill: #010000 } g rect[x] { stroke: #020000 }\n"
+                       "rect + circle { fill: #030000 } rect ~ circle { stroke: #040000 }\n"
+                       "[lang|=en]:first-child { stroke-width: 7 !important }\n"
+                       "[id^=r][id$='1'][class~=x], g > circle[id*=c] { opacity: 0.25 }\n"
+                       "#c { transform: scale(2) } svg rect:hover { fill: red }",
+                       &doc);
+    SVC_CHECK(css.n == 8, "eight rules, :hover left out (%d)", css.n);
+    char *ar[] = {"svg", NULL}, *ag[] = {"id", "g", "class", "x", NULL},
+         *a1[] = {"id", "r1", "x", "1", "lang", "en-GB", "style", "stroke-width: 3", NULL},
+         *ac[] = {"id", "c", NULL};
+    sv_node nr = {.name = "svg", .attrs = ar}, ng = {.name = "g", .attrs = ag},
+            n1 = {.name = "rect", .attrs = a1}, nc = {.name = "circle", .attrs = ac};
+    sv_node *rk[] = {&ng}, *gk[] = {&n1, &nc};
+    nr.kids = rk;
+    nr.nkids = 1;
+    ng.parent = &nr;
+    ng.kids = gk;
+    ng.nkids = 2;
+    n1.parent = nc.parent = &ng;
+    nc.index = 1;
+    sv_style_compute(&s, &root, &n1, &css, 100, &doc);
+    SVC_CHECK(s.fill.rgb[0] == 1 / 255.0 && s.stroke.rgb[0] == 2 / 255.0 && s.stroke_width == 7 &&
+                  s.opacity == 1 && !s.has_transform,
+              "rect: child and descendant combinators, [x], [lang|=en]:first-child !important "
+              "over the style attribute; [class~=x] is not its own");
+    sv_style_compute(&s, &root, &nc, &css, 100, &doc);
+    SVC_CHECK(s.fill.rgb[0] == 3 / 255.0 && s.stroke.rgb[0] == 4 / 255.0 && s.stroke_width == 1 &&
+                  s.opacity == 0.25 && s.has_transform && s.transform.a == 2,
+              "circle: + and ~ siblings, [id*=c] under >, the transform property");
     sv_css_free(&css);
     sv_doc_free(&doc);
 }

@@ -385,20 +385,28 @@ static bool resolve_paint(imp *im, const sv_node *n, const sv_paint_spec *ps, co
                                      im->doc) ||
                 g.nstops == 0) {
                 free(g.stops);
-                return false;
-            }
-            if (g.nstops == 1) { /* one stop is a solid colour, exactly */
+                if (!ps->fallback_kind)
+                    return false;
+                /*
+                 * No stops, or objectBoundingBox units on a flat box: the
+                 * gradient is invalid and the fallback colour paints (as resvg).
+                 */
+                kind = ps->fallback_kind;
+                memcpy(rgb, ps->fallback_rgb, sizeof rgb);
+                a = 1;
+            } else if (g.nstops == 1) { /* one stop is a solid colour, exactly */
                 memcpy(rgb, g.stops[0].rgb, sizeof rgb);
                 a = g.stops[0].opacity;
                 free(g.stops);
+                kind = SV_PAINT_COLOR;
             } else {
                 sv_gradient_average(&g, area, rule, rgb, &a);
                 im->doc->gradients = sv_xrealloc(
                     im->doc->gradients, (size_t)(im->doc->ngradients + 1) * sizeof g);
                 im->doc->gradients[im->doc->ngradients] = g;
                 out->gradient = im->doc->ngradients++;
+                kind = SV_PAINT_COLOR;
             }
-            kind = SV_PAINT_COLOR;
         } else {
             desc(n, d, sizeof d);
             if (t)
@@ -823,8 +831,19 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
     return true;
 }
 
+static void add_clip_part(sv_clip *clip, const sv_path *p, int rule)
+{
+    struct sv_clip_part part = {rule, 0, NULL};
+    sv_path_to_contours(p, &part.contours, &part.ncontours);
+    if (part.ncontours == 0)
+        return;
+    clip->parts = sv_xrealloc(clip->parts, (size_t)(clip->nparts + 1) * sizeof part);
+    clip->parts[clip->nparts++] = part;
+}
+
+/* The fill; its canvas-space path also goes to `keep` when given. */
 static void paint_fill(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
-                       const sv_path *up, double opacity, const double ubox[4])
+                       const sv_path *up, double opacity, const double ubox[4], sv_path *keep)
 {
     const ctx c = *pc;
     sv_path cp;
@@ -838,11 +857,14 @@ static void paint_fill(imp *im, const sv_node *n, const sv_style *s, const ctx *
         resolve_paint(im, n, &spec, s, s->fill_opacity * opacity, ubox, &c, &cp, s->fill_rule,
                       "fill", &paint))
         add_region(im, &cp, s->fill_rule, &paint, s->fill_opacity * opacity, &c, n, "fill");
+    if (keep)
+        sv_path_append(keep, &cp);
     sv_path_free(&cp);
 }
 
+/* The stroke; its canvas-space outline also goes to `keep` when given. */
 static void paint_stroke(imp *im, const sv_node *n, const sv_style *s, const ctx *pc,
-                         const sv_path *up, double opacity, const double ubox[4])
+                         const sv_path *up, double opacity, const double ubox[4], sv_path *keep)
 {
     const ctx c = *pc;
     char d[160];
@@ -889,6 +911,8 @@ static void paint_stroke(imp *im, const sv_node *n, const sv_style *s, const ctx
                       CS_FILL_NONZERO, "stroke", &paint))
         add_region(im, &outline, CS_FILL_NONZERO, &paint, s->stroke_opacity * opacity, &c, n,
                    "stroke");
+    if (keep)
+        sv_path_append(keep, &outline);
     sv_path_free(&outline);
 }
 
@@ -928,14 +952,55 @@ static void paint_shape(imp *im, const sv_node *n, const sv_style *s, const ctx 
     else
         sv_path_bbox(up, ubox);
     c.obj_box = NULL;
+    /*
+     * A translucent group of a solid fill and a solid stroke where the upper
+     * one is translucent: in one cel the upper region would hide the lower
+     * one where they overlap. The overlap gets a region of its own in front,
+     * painted with the two composited (upper over lower), and drawn as the
+     * upper geometry intersected with the lower (CSG).
+     */
+    const sv_paint_spec *upper = strchr(s->paint_order, 'F') > strchr(s->paint_order, 'S')
+                                     ? &s->fill : &s->stroke;
+    double ua = upper == &s->fill ? s->fill_opacity : s->stroke_opacity;
+    bool overlap = fill && stroke && c.layer != 0 && ua * upper->alpha < 1 &&
+                   s->fill.kind != SV_PAINT_URL && s->stroke.kind != SV_PAINT_URL;
+    sv_path geo[2]; /* fill, stroke */
+    sv_path_init(&geo[0]);
+    sv_path_init(&geo[1]);
     for (const char *o = s->paint_order; *o && !im->failed; o++) {
         if (*o == 'F' && fill)
-            paint_fill(im, n, s, &c, up, opacity, ubox);
+            paint_fill(im, n, s, &c, up, opacity, ubox, overlap ? &geo[0] : NULL);
         else if (*o == 'S' && stroke)
-            paint_stroke(im, n, s, &c, up, opacity, ubox);
+            paint_stroke(im, n, s, &c, up, opacity, ubox, overlap ? &geo[1] : NULL);
         else if (*o == 'M' && marked)
             render_markers(im, n, s, &c, up);
     }
+    if (overlap && !im->failed && geo[0].n > 0 && geo[1].n > 0) {
+        bool fill_up = upper == &s->fill;
+        const sv_paint_spec *lower = fill_up ? &s->stroke : &s->fill;
+        double la = (fill_up ? s->stroke_opacity : s->fill_opacity) * lower->alpha;
+        double uc[3], lc[3];
+        memcpy(uc, upper->kind == SV_PAINT_CURRENT ? s->color : upper->rgb, sizeof uc);
+        memcpy(lc, lower->kind == SV_PAINT_CURRENT ? s->color : lower->rgb, sizeof lc);
+        ua *= upper->alpha;
+        double a = ua + la * (1 - ua);
+        sv_paint paint = {{0, 0, 0}, {1, 1, 1}, a * opacity, -1, 1};
+        for (int k = 0; k < 3; k++)
+            paint.pigment[k] = a > 0 ? (uc[k] * ua + lc[k] * la * (1 - ua)) / a : 0;
+        sv_clip clip; /* the lower geometry, as the clip of the upper */
+        memset(&clip, 0, sizeof clip);
+        clip.parent = c.ir_clip;
+        add_clip_part(&clip, &geo[fill_up ? 1 : 0], fill_up ? CS_FILL_NONZERO : s->fill_rule);
+        im->doc->clips = sv_xrealloc(im->doc->clips, (size_t)(im->doc->nclips + 1) * sizeof clip);
+        im->doc->clips[im->doc->nclips] = clip;
+        ctx oc = c;
+        oc.ir_clip = im->doc->nclips++;
+        oc.nclips = 0; /* the convex clips are in both geometries already */
+        add_region(im, &geo[fill_up ? 0 : 1], fill_up ? s->fill_rule : CS_FILL_NONZERO, &paint,
+                   a * opacity, &oc, n, "fill and stroke overlap");
+    }
+    sv_path_free(&geo[0]);
+    sv_path_free(&geo[1]);
 }
 
 /* --------------------------------------------------------------- masks */
@@ -1328,15 +1393,6 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
     }
 }
 
-static void add_clip_part(sv_clip *clip, const sv_path *p, int rule)
-{
-    struct sv_clip_part part = {rule, 0, NULL};
-    sv_path_to_contours(p, &part.contours, &part.ncontours);
-    if (part.ncontours == 0)
-        return;
-    clip->parts = sv_xrealloc(clip->parts, (size_t)(clip->nparts + 1) * sizeof part);
-    clip->parts[clip->nparts++] = part;
-}
 
 /*
  * Applies clip-path to the context: a single convex polygon is clipped
@@ -1693,13 +1749,14 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     ctx c = *pc;
     const char *tr = sv_attr(n, "transform");
     sv_affine t;
-    if (tr) {
+    if (s.has_transform) { /* the CSS property replaces the attribute */
+        c.ctm = sv_affine_mul(c.ctm, s.transform);
+    } else if (tr) {
         if (sv_parse_transform(tr, &t)) {
             c.ctm = sv_affine_mul(c.ctm, t);
-        } else {
+        } else { /* an invalid attribute is as if not given (SVG 2), as resvg does */
             desc(n, d, sizeof d);
-            sv_doc_warn(im->doc, "%s: bad transform \"%s\", element not drawn", d, tr);
-            return;
+            sv_doc_warn(im->doc, "%s: bad transform \"%s\" ignored", d, tr);
         }
     }
     bool shape = !strcmp(name, "path") || !strcmp(name, "rect") || !strcmp(name, "circle") ||

@@ -86,6 +86,7 @@ static void XMLCALL on_start(void *ud, const XML_Char *name, const XML_Char **at
     b->text_depth += strcmp(n->name, "text") == 0;
     if (b->cur) {
         SV_GROW(b->cur->kids, b->cur->nkids, b->cur->capkids);
+        n->index = b->cur->nkids;
         b->cur->kids[b->cur->nkids++] = n;
     } else if (!b->root) {
         b->root = n;
@@ -135,6 +136,7 @@ static void XMLCALL on_text(void *ud, const XML_Char *s, int len)
         last->parent = n;
         last->line = (int)XML_GetCurrentLineNumber(b->parser);
         SV_GROW(n->kids, n->nkids, n->capkids);
+        last->index = n->nkids;
         n->kids[n->nkids++] = last;
     }
     append_text(last, s, (size_t)len);
