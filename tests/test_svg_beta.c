@@ -328,6 +328,9 @@ static void test_patterns(cs_scene *scene, float *img)
     static const struct {
         const char *body, *warning;
     } bad[] = {
+        {"<pattern id='p' patternUnits='userSpaceOnUse' width='1' height='1'>"
+         "<rect width='0.5' height='0.5'/></pattern><rect width='64' height='64' fill='url(#p)'/>",
+         "expands past the scene store's 1024 regions"},
         {"<pattern id='p' patternUnits='userSpaceOnUse' width='0.001' height='0.001'>"
          "<rect width='1' height='1'/></pattern><rect width='64' height='64' fill='url(#p)'/>",
          "needs more than 4096 tiles, not painted"},

@@ -570,9 +570,10 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
  * of content becomes the area cut to it, and other content is intersected
  * with the area by CSG (an IR clip). Opacity multiplies into the content as
  * group opacity does (one layer). The expansion is bounded: at most
- * SV_PATTERN_MAX_TILES tiles, CS_CFG_MAX_REGIONS regions and half the
- * scene's control points per paint, else the paint is left out with a
- * warning naming the limit.
+ * SV_PATTERN_MAX_TILES tiles, no tile once another like the last would
+ * pass the scene store's CS_CFG_MAX_REGIONS, half its control points per
+ * paint, else the paint is left out with a warning naming the limit; and
+ * SV_EXPAND_BUDGET for all patterns and masks of a drawing.
  */
 #define SV_PATTERN_MAX_TILES 4096
 #define SV_EXPAND_BUDGET (1L << 16)
@@ -760,7 +761,7 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
     bool convex = c.nclips < MAX_CLIPS - 1 && sv_path_convex_polygon(area, &whole.v, &whole.n);
     if (convex)
         c.clips[c.nclips++] = &whole;
-    int shape_clip = -1, start = im->nitems;
+    int shape_clip = -1, start = im->nitems, last = 0; /* regions the last tile added */
     long points = 0;
     sv_style cs;
     style_of(im, pat.content, &cs);
@@ -796,6 +797,7 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
                 break;
             }
             int before = im->nitems;
+            long p0 = points;
             for (int k = 0; k < pat.content->nkids; k++)
                 render(im, pat.content->kids[k], &cs, &tc);
             im->expanded += 1 + im->nitems - before;
@@ -813,15 +815,18 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
             for (int k = before; k < im->nitems; k++)
                 for (int m = 0; m < im->items[k].reg.ncontours; m++)
                     points += im->items[k].reg.contours[m].count;
-            if (im->nitems - start > CS_CFG_MAX_REGIONS || points > SV_PATTERN_MAX_POINTS) {
+            /* stop before the scene store overflows: another tile like this one would */
+            last = im->nitems - before;
+            if (im->nitems + last > CS_CFG_MAX_REGIONS || points > SV_PATTERN_MAX_POINTS ||
+                im->points + (points - p0) > CS_CFG_MAX_POINTS) {
                 for (int k = start; k < im->nitems; k++) {
                     uncount(im, &im->items[k].reg);
                     sv_region_free(&im->items[k].reg);
                 }
                 im->nitems = start;
-                sv_doc_warn(im->doc, "%s: %s pattern #%s expands to more than %d regions or %d "
-                            "control points, not painted", d, what, ps->url, CS_CFG_MAX_REGIONS,
-                            SV_PATTERN_MAX_POINTS);
+                sv_doc_warn(im->doc, "%s: %s pattern #%s expands past the scene store's %d "
+                            "regions or %d control points, not painted", d, what, ps->url,
+                            CS_CFG_MAX_REGIONS, SV_PATTERN_MAX_POINTS);
                 i = i1;
                 j = j1;
             }
