@@ -15,6 +15,8 @@
 #include <fontconfig/fontconfig.h>
 #include <ft2build.h>
 #include FT_FREETYPE_H
+#include <hb-ft.h>
+#include <hb.h>
 
 #include <stdio.h>
 
@@ -30,6 +32,7 @@ typedef struct face {
     char *file;
     int index;
     FT_Face face; /* NULL when FreeType could not open it */
+    hb_font_t *hb; /* made on first use */
 } face;
 
 struct sv_fonts {
@@ -62,6 +65,8 @@ void sv_fonts_free(sv_fonts *f)
     }
     for (int i = 0; i < f->nfaces; i++) {
         free(f->faces[i].file);
+        if (f->faces[i].hb)
+            hb_font_destroy(f->faces[i].hb);
         if (f->faces[i].face)
             FT_Done_Face(f->faces[i].face);
     }
@@ -183,6 +188,7 @@ static face *open_face(sv_fonts *f, const char *file, int index)
     fc->file = sv_xstrdup(file);
     fc->index = index;
     fc->face = NULL;
+    fc->hb = NULL;
     FT_Face ft;
     if (f->lib_ok && FT_New_Face(f->lib, file, index, &ft) == 0) {
         if (FT_IS_SCALABLE(ft) && ft->units_per_EM > 0)
@@ -217,6 +223,23 @@ struct FT_FaceRec_ *sv_font_face(sv_fonts *f, const char *family, int weight, bo
     if (file)
         *file = fc->file;
     return fc->face;
+}
+
+struct hb_font_t *sv_font_hb(sv_fonts *f, struct FT_FaceRec_ *ft)
+{
+    for (int i = 0; i < f->nfaces; i++) {
+        face *fc = &f->faces[i];
+        if (fc->face != ft)
+            continue;
+        if (!fc->hb) {
+            hb_face_t *hf = hb_ft_face_create_referenced(ft);
+            fc->hb = hb_font_create(hf);
+            hb_face_destroy(hf);
+            hb_font_set_scale(fc->hb, ft->units_per_EM, ft->units_per_EM);
+        }
+        return fc->hb;
+    }
+    return NULL;
 }
 
 int sv_font_match(const char *family, int weight, bool italic, const char *lang,

@@ -13,7 +13,7 @@
 
 struct FT_FaceRec_;
 
-/* Fonts of one import: FreeType faces and fontconfig orders, cached. */
+/* Fonts of one import: fontconfig orders, FreeType faces and HarfBuzz fonts, cached. */
 typedef struct sv_fonts sv_fonts;
 
 /* `fixed_file` (may be NULL) sets every character in that one font file instead. */
@@ -31,6 +31,10 @@ void sv_fonts_free(sv_fonts *f);
 struct FT_FaceRec_ *sv_font_face(sv_fonts *f, const char *family, int weight, bool italic,
                                  const char *lang, unsigned long cp, const char **file,
                                  char *err, size_t errlen);
+
+/* HarfBuzz's font for a face sv_font_face returned, at one unit per font unit (cached). */
+struct hb_font_t;
+struct hb_font_t *sv_font_hb(sv_fonts *f, struct FT_FaceRec_ *face);
 
 /* The file fontconfig picks for one character (the unit tests' entry). */
 int sv_font_match(const char *family, int weight, bool italic, const char *lang,

@@ -40,6 +40,7 @@
 #include <math.h>
 #include <stdarg.h>
 
+#include "sv_font.h"
 #include "sv_gradient.h"
 #include "sv_import.h"
 #include "sv_internal.h"
@@ -91,6 +92,7 @@ typedef struct imp {
      * drops such a reference once for the whole document */
     const sv_node **unmasked;
     int nunmasked, capunmasked;
+    sv_fonts *fonts; /* fontconfig's choices and open faces, made at the first <text> */
     /* regions made and tiles visited inside patterns and masks, over the whole import:
      * nested expansions multiply, so one budget bounds them all (SV_EXPAND_BUDGET) */
     long expanded;
@@ -576,7 +578,7 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
  * SV_EXPAND_BUDGET for all patterns and masks of a drawing.
  */
 #define SV_PATTERN_MAX_TILES 4096
-#define SV_EXPAND_BUDGET (1L << 16)
+#define SV_EXPAND_BUDGET (1L << 15)
 #define SV_PATTERN_MAX_POINTS (CS_CFG_MAX_POINTS / 2)
 
 static bool inside_area(const sv_path *p, int rule, sv_pt q)
@@ -1369,8 +1371,10 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
         } else if (!strcmp(shape->name, "text")) {
             /* glyph outlines; the clip takes their union, as of any shapes */
             sv_text_run *runs;
-            int nr = sv_svg_text_layout(shape, &ks, &im->css, pc->vp_w, pc->vp_h,
-                                        im->opts.font_path, &runs, im->doc);
+            if (!im->fonts)
+                im->fonts = sv_fonts_new(im->opts.font_path);
+            int nr = sv_svg_text_layout(shape, &ks, &im->css, pc->vp_w, pc->vp_h, im->fonts,
+                                        &runs, im->doc);
             sv_path glyphs;
             sv_path_init(&glyphs);
             for (int r = 0; r < nr; r++)
@@ -1848,8 +1852,9 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             goto done;
         }
         sv_text_run *runs;
-        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
-                                    im->doc);
+        if (!im->fonts)
+            im->fonts = sv_fonts_new(im->opts.font_path);
+        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->fonts, &runs, im->doc);
         for (int i = 0; i < nr; i++)
             if (runs[i].path.n > 0) {
                 ctx rc = c;
@@ -2071,6 +2076,7 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     free(im.items);
     free(im.ids);
     free(im.unmasked);
+    sv_fonts_free(im.fonts);
     sv_css_free(&im.css);
     sv_xml_free(root);
     return im.failed ? -1 : 0;

@@ -57,6 +57,7 @@ int sv_text_outline_path(const struct FT_Outline_ *outline, double scale, double
 struct sv_node;
 struct sv_style;
 struct sv_css;
+struct sv_fonts;
 /* One run of SVG text: glyph outlines in user space, the element they belong
  * to (<text> or <tspan>) and its computed style (fill, stroke, opacity). */
 typedef struct sv_text_run {
@@ -70,13 +71,14 @@ typedef struct sv_text_run {
 
 /*
  * Lays out SVG <text> (sv_text_svg.c): character data and <tspan>s in
- * document order, the first value of x/y/dx/dy on the element and each
- * tspan, text-anchor per text chunk, xml:space, font-size and font-family
- * mapped to the DejaVu faces. Returns the number of runs (malloc'd into
- * *runs); anything it cannot honour is a warning in doc.
+ * document order, per-character x/y/dx/dy/rotate, text-anchor per text
+ * chunk, xml:space, each character in the face fontconfig picks for its
+ * style from `fonts` (the import's cache, sv_font.h), shaped by HarfBuzz.
+ * Returns the number of runs (malloc'd into *runs); anything it cannot
+ * honour is a warning in doc.
  */
 int sv_svg_text_layout(const struct sv_node *text, const struct sv_style *style,
-                       const struct sv_css *css, double vp_w, double vp_h, const char *font_path,
+                       const struct sv_css *css, double vp_w, double vp_h, struct sv_fonts *fonts,
                        sv_text_run **runs, sv_doc *doc);
 void sv_text_runs_free(sv_text_run *runs, int n);
 

@@ -269,33 +269,6 @@ static void set_glyph(FT_Face face, unsigned gi, double scale, double rot, doubl
     sv_path_free(&gp);
 }
 
-/* HarfBuzz fonts of the faces used, at one unit per font unit. */
-typedef struct shaper {
-    FT_Face ft[16];
-    hb_font_t *hb[16];
-    int n;
-} shaper;
-
-static hb_font_t *hb_for(shaper *sh, FT_Face face)
-{
-    for (int i = 0; i < sh->n; i++)
-        if (sh->ft[i] == face)
-            return sh->hb[i];
-    if (sh->n == 16) { /* more faces in one <text> than that: drop the oldest */
-        hb_font_destroy(sh->hb[0]);
-        memmove(sh->ft, sh->ft + 1, 15 * sizeof *sh->ft);
-        memmove(sh->hb, sh->hb + 1, 15 * sizeof *sh->hb);
-        sh->n = 15;
-    }
-    hb_face_t *hf = hb_ft_face_create_referenced(face);
-    hb_font_t *f = hb_font_create(hf);
-    hb_face_destroy(hf);
-    hb_font_set_scale(f, face->units_per_EM, face->units_per_EM);
-    sh->ft[sh->n] = face;
-    sh->hb[sh->n] = f;
-    return sh->hb[sh->n++];
-}
-
 typedef struct chunk {
     double start, end; /* pen x where it starts and after its last glyph */
     int anchor;
@@ -355,8 +328,7 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
 }
 
 int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css *css,
-                       double vp_w, double vp_h, const char *font_path, sv_text_run **out,
-                       sv_doc *doc)
+                       double vp_w, double vp_h, sv_fonts *F, sv_text_run **out, sv_doc *doc)
 {
     layout L;
     memset(&L, 0, sizeof L);
@@ -377,8 +349,6 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
         while (L.n > 0 && L.c[L.n - 1].cp == ' ')
             L.n--;
 
-    sv_fonts *F = sv_fonts_new(font_path);
-    shaper sh = {.n = 0};
     size_t cnt = (size_t)(L.n ? L.n : 1);
     FT_Face *faces = sv_xrealloc(NULL, cnt * sizeof *faces);
     for (int i = 0; i < L.n; i++) {
@@ -417,7 +387,7 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
             run_chunk[nr++] = nch - 1;
         }
         if (faces[i])
-            shape_segment(&L, i, j, faces[i], hb_for(&sh, faces[i]), &penx, &peny,
+            shape_segment(&L, i, j, faces[i], sv_font_hb(F, faces[i]), &penx, &peny,
                           &runs[nr - 1].path, ylim);
         chunks[nch - 1].end = penx;
     }
@@ -438,9 +408,6 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
         box[0] = box[1] = box[2] = box[3] = 0;
     for (int r = 0; r < nr; r++)
         memcpy(runs[r].cell_box, box, sizeof box);
-    for (int i = 0; i < sh.n; i++)
-        hb_font_destroy(sh.hb[i]);
-    sv_fonts_free(F);
     free(faces);
     free(run_chunk);
     free(chunks);
