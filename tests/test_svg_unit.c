@@ -899,6 +899,35 @@ static void test_svg_text(void)
             }
         }
     SVC_CHECK(bx >= 100 && bx < 102, "tspan x starts a new chunk at 100 (%g)", bx);
+    /* letter-spacing after every character, word-spacing after a space, inherited from a
+       group; Inkscape's zero spacings and "normal" values warn nothing */
+    static const char *const spaced[] = {
+        "<text x='10' y='40' font-size='20' font-family='Noto Sans'>A<tspan fill='red'>B"
+        "</tspan></text>",
+        "<g letter-spacing='3'><text x='10' y='40' font-size='20' font-family='Noto Sans' "
+        "style='word-spacing:0px;font-variant:normal'>A<tspan fill='red'>B</tspan></text></g>",
+        "<text x='10' y='40' font-size='20' font-family='Noto Sans'>A <tspan fill='red'>B"
+        "</tspan></text>",
+        "<text x='10' y='40' font-size='20' font-family='Noto Sans' word-spacing='5'>A "
+        "<tspan fill='red'>B</tspan></text>"};
+    double bpos[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 4; k++) {
+        char svg[600];
+        snprintf(svg, sizeof svg, "<svg xmlns='http://www.w3.org/2000/svg' width='200' "
+                 "height='50'>%s</svg>", spaced[k]);
+        sv_doc dd;
+        if (sv_import_buffer(svg, strlen(svg), NULL, &dd, err, sizeof err) < 0)
+            continue;
+        SVC_CHECK(dd.nwarnings == 0, "spacing case %d: no warning (%s)", k,
+                  dd.nwarnings ? dd.warnings[0] : "");
+        for (int c = 0; c < dd.ncels; c++)
+            for (int r = 0; r < dd.cels[c].nregions; r++)
+                if (dd.cels[c].regions[r].paint.pigment[0] == 1) /* red: the B */
+                    bpos[k] = dd.cels[c].regions[r].bbox[0];
+        sv_doc_free(&dd);
+    }
+    SVC_NEAR(bpos[1] - bpos[0], 3, 1e-9, "letter-spacing from the group moves B by 3");
+    SVC_NEAR(bpos[3] - bpos[2], 5, 1e-9, "word-spacing moves B after the space by 5");
     SVC_NEAR(0.5 * (mid0 + mid1), 100, 1.5, "text-anchor middle centres the chunk");
     sv_doc_free(&d1);
     sv_doc_free(&d2);

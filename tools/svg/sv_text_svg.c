@@ -14,6 +14,9 @@
  * the characters after it. An absolute x or y starts a new text chunk, and
  * text-anchor moves each chunk by half or all of its advance.
  *
+ * letter-spacing (after every character) and word-spacing (after each space)
+ * move the pen as CSS says; they inherit, "normal" is 0.
+ *
  * Each character is set in the face fontconfig picks for its style and
  * script (sv_font.c: the family list, weight, style, xml:lang, and per
  * character fallback). Each stretch of characters of one element in one
@@ -46,6 +49,7 @@ typedef struct frame {
     double *v[POS_N];
     int n[POS_N];
     int count;
+    double letter, word; /* letter-spacing and word-spacing in force */
 } frame;
 
 typedef struct ch {
@@ -54,6 +58,7 @@ typedef struct ch {
     bool has[4];
     double v[4]; /* absolute x, y, then dx, dy */
     double rot;  /* degrees */
+    double space; /* added after it: letter-spacing, and word-spacing after a space */
 } ch;
 
 typedef struct owner {
@@ -103,18 +108,87 @@ static int parse_lengths(const char *a, double ref, const sv_style *s, double **
     return n;
 }
 
-/* Text properties the layout does not honour: named in a warning, never silently ignored. */
+/*
+ * A property of the element itself: its style attribute's declaration, else
+ * its presentation attribute (the order CSS gives them). False if neither.
+ */
+static bool prop(const sv_node *n, const char *name, char *out, size_t len)
+{
+    const char *st = sv_attr(n, "style"), *v = NULL;
+    size_t nl = strlen(name);
+    for (const char *p = st; p && (p = strstr(p, name)) != NULL; p += nl) {
+        const char *q = p + nl;
+        while (*q == ' ' || *q == '\t')
+            q++;
+        if (*q == ':' && (p == st || p[-1] == ';' || isspace((unsigned char)p[-1]))) {
+            v = q + 1;
+            break;
+        }
+    }
+    size_t k = 0;
+    if (v) {
+        while (*v == ' ' || *v == '\t')
+            v++;
+        while (v[k] && v[k] != ';' && k + 1 < len)
+            k++;
+    } else if ((v = sv_attr(n, name)) != NULL) {
+        k = strnlen(v, len - 1);
+    } else {
+        return false;
+    }
+    memcpy(out, v, k);
+    while (k > 0 && isspace((unsigned char)out[k - 1]))
+        k--;
+    out[k] = 0;
+    return true;
+}
+
+/* Text properties the layout does not honour, when not at their initial value: named in a
+ * warning, never silently ignored. */
 static void warn_unsupported(layout *L, const sv_node *n)
 {
-    static const char *const names[] = {"text-decoration", "letter-spacing", "word-spacing",
-                                        "baseline-shift", "dominant-baseline",
-                                        "alignment-baseline", "writing-mode", "textLength",
-                                        "lengthAdjust", "font-variant", "font-stretch", NULL};
-    const char *style = sv_attr(n, "style");
-    for (int i = 0; names[i]; i++)
-        if (sv_attr(n, names[i]) || (style && strstr(style, names[i])))
-            sv_doc_warn(L->doc, "<%s> (line %d): %s not supported, drawn without", n->name,
-                        n->line, names[i]);
+    static const char *const names[][4] = {
+        {"text-decoration", "none", NULL},
+        {"baseline-shift", "baseline", "0", NULL},
+        {"dominant-baseline", "auto", "alphabetic", NULL},
+        {"alignment-baseline", "auto", "baseline", "alphabetic"},
+        {"writing-mode", "lr-tb", "lr", "horizontal-tb"},
+        {"textLength", NULL},
+        {"font-variant", "normal", NULL},
+        {"font-stretch", "normal", NULL}};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        char v[64];
+        if (!prop(n, names[i][0], v, sizeof v))
+            continue;
+        bool initial = false;
+        for (int k = 1; k < 4 && names[i][k]; k++)
+            initial |= !strcmp(v, names[i][k]);
+        if (!initial)
+            sv_doc_warn(L->doc, "<%s> (line %d): %s \"%s\" not supported, drawn without",
+                        n->name, n->line, names[i][0], v);
+    }
+}
+
+/* letter-spacing or word-spacing (inherited; "normal" is 0), in user units. */
+static double spacing(const sv_node *n, const char *name, const sv_style *s, double inherited)
+{
+    char v[64];
+    double x;
+    if (!prop(n, name, v, sizeof v) || !strcmp(v, "inherit"))
+        return inherited;
+    if (!strcmp(v, "normal"))
+        return 0;
+    return sv_parse_length(v, s->font_size, s->font_size, &x) && isfinite(x) ? x : inherited;
+}
+
+static double ancestor_spacing(const sv_node *n, const char *name, const sv_style *s)
+{
+    for (const sv_node *a = n->parent; a; a = a->parent) {
+        double v = spacing(a, name, s, NAN);
+        if (!isnan(v))
+            return v;
+    }
+    return 0;
 }
 
 static void push_frame(layout *L, const sv_node *n, const sv_style *s)
@@ -122,6 +196,11 @@ static void push_frame(layout *L, const sv_node *n, const sv_style *s)
     warn_unsupported(L, n);
     frame *f = &L->stack[L->depth++];
     memset(f, 0, sizeof *f);
+    /* inherited: the enclosing tspan's, or for the text the nearest ancestor's */
+    f->letter = spacing(n, "letter-spacing", s,
+                        L->depth > 1 ? f[-1].letter : ancestor_spacing(n, "letter-spacing", s));
+    f->word = spacing(n, "word-spacing", s,
+                      L->depth > 1 ? f[-1].word : ancestor_spacing(n, "word-spacing", s));
     for (int a = 0; a < POS_N; a++) {
         const char *v = sv_attr(n, pos_attr[a]);
         if (!v)
@@ -176,6 +255,8 @@ static void add_char(layout *L, unsigned long cp, int owner_index)
             break;
         }
     }
+    const frame *in = &L->stack[L->depth - 1];
+    c->space = in->letter + (cp == ' ' ? in->word : 0);
     for (int d = 0; d < L->depth; d++)
         L->stack[d].count++;
 }
@@ -312,6 +393,8 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
     for (unsigned g = 0; g < n; g++) {
         const ch *c = &L->c[i0 + (int)info[g].cluster];
         if (info[g].cluster != last) {
+            if (g > 0) /* the spacing after the cluster before */
+                *penx += L->c[i0 + (int)last].space;
             if (c->has[POS_DX])
                 *penx += c->v[POS_DX];
             if (c->has[POS_DY])
@@ -324,6 +407,8 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
         ylim[1] = fmax(ylim[1], *peny - ext.descender * scale);
         *penx += pos[g].x_advance * scale;
     }
+    if (n > 0)
+        *penx += L->c[i0 + (int)last].space;
     hb_buffer_destroy(buf);
 }
 
