@@ -1002,6 +1002,21 @@ static void test_fonts(void)
                 SVC_NEAR(t.d, height, 1e-9, "text box height is ascender - descender");
             }
             sv_doc_free(&d);
+            /* text-decoration underline: a line under the whole advance, from the font's
+               'post' metrics (FreeType's centre, drawn where resvg draws it) */
+            const char *ul = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='60'>"
+                             "<text x='10' y='40' font-family='Noto Sans' font-size='20' "
+                             "text-decoration='underline'>x</text></svg>";
+            SVC_CHECK(sv_import_buffer(ul, strlen(ul), NULL, &d, err, sizeof err) == 0, "%s", err);
+            if (d.ncels == 1 && d.cels[0].nregions == 1) {
+                const double *b = d.cels[0].regions[0].bbox;
+                double line_bot = 40 - face->underline_position * k;
+                SVC_NEAR(b[0], 10, 1e-9, "underline starts at the pen");
+                SVC_NEAR(b[2], 10 + adv, 1e-9, "underline spans the advance");
+                SVC_NEAR(b[3], line_bot, 1e-9, "underline's bottom at the font's position");
+            }
+            SVC_CHECK(d.nwarnings == 0, "underline drawn, not warned");
+            sv_doc_free(&d);
             FT_Done_Face(face);
         }
         FT_Done_FreeType(lib);

@@ -28,6 +28,7 @@
  */
 #include <ft2build.h>
 #include FT_FREETYPE_H
+#include FT_TRUETYPE_TABLES_H
 #include <hb-ft.h>
 #include <hb.h>
 
@@ -148,7 +149,6 @@ static bool prop(const sv_node *n, const char *name, char *out, size_t len)
 static void warn_unsupported(layout *L, const sv_node *n)
 {
     static const char *const names[][4] = {
-        {"text-decoration", "none", NULL},
         {"baseline-shift", "baseline", "0", NULL},
         {"dominant-baseline", "auto", "alphabetic", NULL},
         {"alignment-baseline", "auto", "baseline", "alphabetic"},
@@ -333,16 +333,40 @@ static void walk(layout *L, const sv_node *n, const sv_style *s, const char *lan
     }
 }
 
-/* Glyph `gi` of the face at the origin, turned by `rot` degrees, then at (x, y). */
+/*
+ * Glyph `gi` of the face at the origin with the decoration lines under its
+ * advance `adv` (text-decoration follows each glyph, as resvg draws it),
+ * turned by `rot` degrees, then at (x, y). The lines turn as the glyph's
+ * outer contour does, so that nonzero filling adds them to it.
+ */
 static void set_glyph(FT_Face face, unsigned gi, double scale, double rot, double x, double y,
-                      sv_path *out)
+                      const double (*lines)[2], int nlines, double adv, sv_path *out)
 {
-    if (FT_Load_Glyph(face, gi, FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP) ||
-        face->glyph->format != FT_GLYPH_FORMAT_OUTLINE)
+    if (FT_Load_Glyph(face, gi, FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP))
         return;
     sv_path gp;
     sv_path_init(&gp);
-    sv_text_outline_path((const struct FT_Outline_ *)&face->glyph->outline, scale, 0, 0, &gp);
+    if (face->glyph->format == FT_GLYPH_FORMAT_OUTLINE)
+        sv_text_outline_path((const struct FT_Outline_ *)&face->glyph->outline, scale, 0, 0, &gp);
+    double turn = 0;
+    for (int i = 0; i < gp.n && nlines > 0; i++) {
+        double a = sv_subpath_area(&gp.sub[i]);
+        turn = fabs(a) > fabs(turn) ? a : turn;
+    }
+    for (int i = 0; i < nlines && adv > 0; i++) {
+        double top = lines[i][0], bot = top + lines[i][1];
+        sv_path_move(&gp, 0, top);
+        if (turn >= 0) { /* clockwise on screen */
+            sv_path_line(&gp, adv, top);
+            sv_path_line(&gp, adv, bot);
+            sv_path_line(&gp, 0, bot);
+        } else {
+            sv_path_line(&gp, 0, bot);
+            sv_path_line(&gp, adv, bot);
+            sv_path_line(&gp, adv, top);
+        }
+        sv_path_close(&gp);
+    }
     double r = rot * M_PI / 180, cs = cos(r), sn = sin(r);
     sv_affine m = {cs, sn, -sn, cs, x, y};
     sv_path_transform(&gp, m);
@@ -354,6 +378,36 @@ typedef struct chunk {
     double start, end; /* pen x where it starts and after its last glyph */
     int anchor;
 } chunk;
+
+/*
+ * text-decoration on the element or the nearest ancestor up to the <text>
+ * that sets it: the lines under, over and through its glyphs (top relative
+ * to the baseline and thickness, user units) from the font's own metrics
+ * ('post' underline, OS/2 strikeout, the ascender for the overline).
+ * Returns how many.
+ */
+static int deco_lines(const sv_node *n, const sv_node *text, FT_Face face, double size,
+                      double lines[3][2])
+{
+    char v[64] = "";
+    for (const sv_node *a = n; a; a = a == text ? NULL : a->parent)
+        if (prop(a, "text-decoration", v, sizeof v))
+            break;
+    double k = size / face->units_per_EM, t = face->underline_thickness * k;
+    const TT_OS2 *os2 = FT_Get_Sfnt_Table(face, FT_SFNT_OS2);
+    const double all[3][2] = {
+        {-face->underline_position * k - t, t}, /* where resvg draws it */
+        {-face->ascender * k, t},
+        {os2 ? -os2->yStrikeoutPosition * k : -0.3 * size, os2 ? os2->yStrikeoutSize * k : t}};
+    static const char *const names[3] = {"underline", "overline", "line-through"};
+    int n_lines = 0;
+    for (int i = 0; i < 3; i++)
+        if (strstr(v, names[i]) && all[i][1] > 0) {
+            lines[n_lines][0] = all[i][0];
+            lines[n_lines++][1] = all[i][1];
+        }
+    return n_lines;
+}
 
 /* How far text-anchor moves a chunk: half or all of its advance back. */
 static double anchor_shift(const chunk *k)
@@ -369,7 +423,8 @@ static double anchor_shift(const chunk *k)
  * the character's cluster.
  */
 static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font_t *font,
-                          double *penx, double *peny, sv_path *out, double ylim[2])
+                          const sv_node *text, double *penx, double *peny, sv_path *out,
+                          double ylim[2])
 {
     const owner *o = &L->own[L->c[i0].owner];
     hb_buffer_t *buf = hb_buffer_create();
@@ -389,6 +444,8 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
         ext.ascender = face->ascender;
         ext.descender = face->descender;
     }
+    double lines[3][2];
+    int nlines = deco_lines(o->node, text, face, o->style.font_size, lines);
     unsigned last = (unsigned)-1;
     for (unsigned g = 0; g < n; g++) {
         const ch *c = &L->c[i0 + (int)info[g].cluster];
@@ -402,7 +459,7 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
             last = info[g].cluster;
         }
         set_glyph(face, info[g].codepoint, scale, c->rot, *penx + pos[g].x_offset * scale,
-                  *peny - pos[g].y_offset * scale, out);
+                  *peny - pos[g].y_offset * scale, lines, nlines, pos[g].x_advance * scale, out);
         ylim[0] = fmin(ylim[0], *peny - ext.ascender * scale); /* the glyph's cell */
         ylim[1] = fmax(ylim[1], *peny - ext.descender * scale);
         *penx += pos[g].x_advance * scale;
@@ -447,6 +504,7 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
     /* segments [i, j): one element, one face, absolute positions only at i */
     sv_text_run *runs = sv_xrealloc(NULL, cnt * sizeof *runs);
     int *run_chunk = sv_xrealloc(NULL, cnt * sizeof *run_chunk);
+
     chunk *chunks = sv_xrealloc(NULL, cnt * sizeof *chunks);
     int nr = 0, nch = 0;
     double penx = 0, peny = 0, ylim[2] = {INFINITY, -INFINITY};
@@ -472,7 +530,7 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
             run_chunk[nr++] = nch - 1;
         }
         if (faces[i])
-            shape_segment(&L, i, j, faces[i], sv_font_hb(F, faces[i]), &penx, &peny,
+            shape_segment(&L, i, j, faces[i], sv_font_hb(F, faces[i]), text, &penx, &peny,
                           &runs[nr - 1].path, ylim);
         chunks[nch - 1].end = penx;
     }
