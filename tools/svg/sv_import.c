@@ -1243,6 +1243,17 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     sv_path up;
     sv_path_init(&up);
     bool have_path = shape && shape_path(im, n, &s, &c, &up);
+    if (!strcmp(name, "text") && s.clip_path[0] &&
+        im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
+        /* the glyphs' outlines: objectBoundingBox units of its clip need their box */
+        sv_text_run *runs;
+        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
+                                    im->doc); /* its warnings come again when it is set: kept once */
+        for (int i = 0; i < nr; i++)
+            sv_path_append(&up, &runs[i].path);
+        sv_text_runs_free(runs, nr);
+        have_path = up.n > 0;
+    }
     clip_poly slot = {NULL, 0};
     bool used_slot = false;
     if (s.clip_path[0])
