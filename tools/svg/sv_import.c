@@ -963,26 +963,35 @@ static bool is_nonrendering(const char *name)
     return false;
 }
 
-/* The overflow property (attribute or style declaration): whether it lets content show. */
-static bool overflow_visible(const sv_node *n)
+/*
+ * A property the style computation does not keep (it matters on one kind of
+ * element only): the style attribute's declaration, else the attribute.
+ * Malloc'd, or NULL.
+ */
+static char *own_property(const sv_node *n, const char *name)
 {
-    const char *v = sv_attr(n, "overflow");
     const char *st = sv_attr(n, "style");
     char *own = NULL;
     if (st) {
         sv_decl *d;
         int nd = sv_css_parse_decls(st, &d);
         for (int i = 0; i < nd; i++)
-            if (!strcmp(d[i].name, "overflow")) {
+            if (!strcmp(d[i].name, name)) {
                 free(own);
                 own = sv_xstrdup(d[i].value);
             }
         sv_decls_free(d, nd);
     }
-    if (own)
-        v = own;
+    const char *v = sv_attr(n, name);
+    return own ? own : v ? sv_xstrdup(v) : NULL;
+}
+
+/* The overflow property: whether it lets content show. */
+static bool overflow_visible(const sv_node *n)
+{
+    char *v = own_property(n, "overflow");
     bool vis = v && (!strcmp(v, "visible") || !strcmp(v, "auto"));
-    free(own);
+    free(v);
     return vis;
 }
 
@@ -1511,6 +1520,25 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     bool used_slot = false;
     if (rs.clip_path[0] && !empty)
         apply_clip(&im, root, rs.clip_path, &c, NULL, &slot, &used_slot);
+    char *bg = own_property(root, "background-color");
+    double bg_rgb[3], bg_a = 1;
+    if (bg && !empty && sv_parse_color(bg, bg_rgb, &bg_a) == SV_COLOR_RGB && bg_a > 0) {
+        /* the root's background-color (as resvg draws it): the canvas, behind everything */
+        sv_path bp;
+        sv_path_init(&bp);
+        sv_path_move(&bp, 0, 0);
+        sv_path_line(&bp, w, 0);
+        sv_path_line(&bp, w, h);
+        sv_path_line(&bp, 0, h);
+        sv_path_close(&bp);
+        sv_paint paint = {{bg_rgb[0], bg_rgb[1], bg_rgb[2]}, {1, 1, 1}, bg_a, -1, 1};
+        ctx bc = c;
+        bc.nclips = 0;
+        bc.ir_clip = -1;
+        add_region(&im, &bp, CS_FILL_NONZERO, &paint, bg_a, &bc, root, "background-color");
+        sv_path_free(&bp);
+    }
+    free(bg);
     if (!rs.display_none && !empty)
         render_viewport(&im, root, &rs, &c, 0, 0, w, h);
     if (used_slot)
