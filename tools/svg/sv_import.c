@@ -1185,6 +1185,84 @@ static void render_markers(imp *im, const sv_node *n, const sv_style *s, const c
     }
 }
 
+static void element_box(imp *im, sv_node *n, const sv_style *ps, sv_affine m, const ctx *c,
+                        double box[4], int depth);
+
+/* The union of the children's boxes (see element_box). */
+static void children_box(imp *im, sv_node *n, const sv_style *s, sv_affine m, const ctx *c,
+                         double box[4], int depth)
+{
+    for (int i = 0; i < n->nkids && !im->failed; i++)
+        element_box(im, n->kids[i], s, m, c, box, depth + 1);
+}
+
+/*
+ * The bounding box (SVG's: fill geometry, strokes and opacity aside) of an
+ * element mapped by m, grown into box[4]: what objectBoundingBox units of a
+ * clip on a group need. Each element visited counts against
+ * SV_MAX_USE_COPIES, as instances do: clipped groups inside clipped groups
+ * would otherwise be walked again and again.
+ */
+static void element_box(imp *im, sv_node *n, const sv_style *ps, sv_affine m, const ctx *c,
+                        double box[4], int depth)
+{
+    const char *name = n->name;
+    if (strncmp(name, "ns:", 3) == 0 || name[0] == '#' || is_nonrendering(name))
+        return;
+    if (++im->use_copies > SV_MAX_USE_COPIES || depth >= SV_MAX_DEPTH) {
+        fail(im, "<%s> (line %d): bounding boxes visit more than %d elements "
+             "(SV_MAX_USE_COPIES) or nest deeper than %d", name, n->line, SV_MAX_USE_COPIES,
+             SV_MAX_DEPTH);
+        return;
+    }
+    sv_style s;
+    sv_style_compute(&s, ps, n, &im->css, 0, NULL);
+    if (s.display_none)
+        return;
+    sv_affine t;
+    const char *tr = sv_attr(n, "transform");
+    if (s.has_transform)
+        m = sv_affine_mul(m, s.transform);
+    else if (tr && sv_parse_transform(tr, &t))
+        m = sv_affine_mul(m, t);
+    sv_path p;
+    sv_path_init(&p);
+    if (!strcmp(name, "text")) {
+        if (im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
+            sv_text_run *runs;
+            int nr = sv_svg_text_layout(n, &s, &im->css, c->vp_w, c->vp_h, im->opts.font_path,
+                                        &runs, im->doc);
+            for (int i = 0; i < nr; i++)
+                sv_path_append(&p, &runs[i].path);
+            sv_text_runs_free(runs, nr);
+        }
+    } else if (!strcmp(name, "g") || !strcmp(name, "a") || !strcmp(name, "switch")) {
+        children_box(im, n, &s, m, c, box, depth);
+    } else if (!strcmp(name, "use")) {
+        sv_node *target = find_href(im, n);
+        for (int i = 0; target && i < im->depth; i++)
+            if (im->stack[i] == target)
+                target = NULL;
+        if (target && strcmp(target->name, "symbol") != 0 && strcmp(target->name, "svg") != 0) {
+            sv_affine tu = {1, 0, 0, 1, attr_len(n, "x", &s, c->vp_w, 0),
+                            attr_len(n, "y", &s, c->vp_h, 0)};
+            element_box(im, target, &s, sv_affine_mul(m, tu), c, box, depth + 1);
+        }
+    } else {
+        shape_path(im, n, &s, c, &p);
+    }
+    if (p.n > 0) {
+        double b[4];
+        sv_path_transform(&p, m);
+        tight_bbox(&p, b);
+        box[0] = fmin(box[0], b[0]);
+        box[1] = fmin(box[1], b[1]);
+        box[2] = fmax(box[2], b[2]);
+        box[3] = fmax(box[3], b[3]);
+    }
+    sv_path_free(&p);
+}
+
 static bool switch_accepts(const sv_node *k)
 {
     if (sv_attr(k, "requiredExtensions"))
@@ -1262,6 +1340,29 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             sv_path_append(&up, &runs[i].path);
         sv_text_runs_free(runs, nr);
         have_path = up.n > 0;
+    }
+    sv_node *clip_el = s.clip_path[0] ? find_id(im, s.clip_path) : NULL;
+    const char *cunits = clip_el ? sv_attr(clip_el, "clipPathUnits") : NULL;
+    if (!have_path && cunits && !strcmp(cunits, "objectBoundingBox") &&
+        (!strcmp(name, "g") || !strcmp(name, "a") || !strcmp(name, "use"))) {
+        /* a container's box: its content's, in its own user space, as a rectangle */
+        double box[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+        sv_node *target = !strcmp(name, "use") ? find_href(im, n) : NULL;
+        if (target) { /* the instance's box, x and y included */
+            sv_affine tu = {1, 0, 0, 1, attr_len(n, "x", &s, c.vp_w, 0),
+                            attr_len(n, "y", &s, c.vp_h, 0)};
+            element_box(im, target, &s, tu, &c, box, im->depth);
+        } else {
+            children_box(im, n, &s, sv_affine_identity(), &c, box, im->depth);
+        }
+        if (box[0] <= box[2] && box[1] <= box[3]) {
+            sv_path_move(&up, box[0], box[1]);
+            sv_path_line(&up, box[2], box[1]);
+            sv_path_line(&up, box[2], box[3]);
+            sv_path_line(&up, box[0], box[3]);
+            sv_path_close(&up);
+            have_path = true;
+        }
     }
     clip_poly slot = {NULL, 0};
     bool used_slot = false;
