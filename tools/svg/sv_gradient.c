@@ -98,8 +98,13 @@ bool sv_gradient_resolve(sv_node *g, sv_find_fn find, sv_style_fn style, void *c
     }
     sv_affine gt = sv_affine_identity();
     const char *gtr = chain_attr(chain, n, "gradientTransform");
+    sv_affine inv;
     if (gtr && !sv_parse_transform(gtr, &gt))
         sv_doc_warn(doc, "<%s> (line %d): bad gradientTransform ignored", g->name, g->line);
+    else if (gtr && !sv_affine_invert(gt, &inv)) { /* singular: ignored, as resvg does */
+        sv_doc_warn(doc, "<%s> (line %d): singular gradientTransform ignored", g->name, g->line);
+        gt = sv_affine_identity();
+    }
     sv_affine m = ctm;
     if (obb) {
         double w = bbox[2] - bbox[0], h = bbox[3] - bbox[1];

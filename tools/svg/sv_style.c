@@ -707,10 +707,10 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
     }
     if (!strcmp(name, "fill")) {
         INH(fill);
-        parse_paint(v, &s->fill);
+        return parse_paint(v, &s->fill); /* invalid (context-fill, ...): kept as it was, warned */
     } else if (!strcmp(name, "stroke")) {
         INH(stroke);
-        parse_paint(v, &s->stroke);
+        return parse_paint(v, &s->stroke);
     } else if (!strcmp(name, "fill-opacity")) {
         INH(fill_opacity);
         s->fill_opacity = parse_opacity(v, s->fill_opacity);
