@@ -319,6 +319,9 @@ int sv_path_dash(const sv_path *in, const double *dash, int n, double offset, in
 /* text set in the drawing, all told: a glyph with ink takes a contour at
  * least, and UTF-8 and white space take up to about 4 bytes a glyph */
 #define SV_MAX_TEXT_BYTES (4 * CS_CFG_MAX_CONTOURS)
+/* segment clips for all gradients' solid bands (the fallback of paint functions);
+ * regions beyond get none, warned */
+#define SV_MAX_BAND_WORK 2000000L
 #define SV_MAX_WARNINGS 1000 /* kept in sv_doc.warnings; one more says how many were left out */
 
 typedef struct sv_import_opts {

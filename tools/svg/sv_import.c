@@ -86,6 +86,7 @@ typedef struct imp {
     double tol; /* stroke tolerance, canvas units */
     /* what the limits of sv.h count */
     long use_copies, points, contours, clip_points, text_bytes;
+    long band_work; /* left of SV_MAX_BAND_WORK */
     const sv_node *clipping[MAX_CLIPS]; /* clipPaths being applied: references back are cycles */
     int nclipping;
     /* the first error; once set, the walk only returns */
@@ -524,7 +525,10 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
     bool translucent = paint->beta < 1;
     if (paint->gradient >= 0) {
         const sv_gradient *g = &im->doc->gradients[paint->gradient];
-        sv_gradient_bands(g, cp, opacity, &r);
+        if (!sv_gradient_bands(g, cp, opacity, &r, &im->band_work))
+            sv_doc_warn(im->doc, "%s: no solid bands for the gradient (over SV_MAX_BAND_WORK): "
+                        "where the core's paint functions cannot draw it, its average colour "
+                        "is used", src);
         for (int i = 0; i < r.nbands; i++)
             r.bands[i].source = sv_xstrdup(src);
         /* translucent wherever any stop is (the bands may skip the clear ones) */
@@ -1563,6 +1567,7 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     im.doc = doc;
     im.err = err;
     im.errlen = errlen;
+    im.band_work = SV_MAX_BAND_WORK;
     if (opts)
         im.opts = *opts;
     collect(&im, root);
