@@ -184,6 +184,9 @@ typedef struct sv_clip {
         int fill_rule;
         int ncontours;
         sv_contour *contours;
+        /* -1, or an IR clip (with its chain) this part is first intersected with: the
+         * clip-path of a clipPath's child; always an earlier clip than this one */
+        int clip;
     } *parts;
     int parent; /* the enclosing context's clip (nested clip-path), or -1 */
 } sv_clip;

@@ -544,7 +544,7 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
 
 static void add_clip_part(sv_clip *clip, const sv_path *p, int rule)
 {
-    struct sv_clip_part part = {rule, 0, NULL};
+    struct sv_clip_part part = {rule, 0, NULL, -1};
     sv_path_to_contours(p, &part.contours, &part.ncontours);
     if (part.ncontours == 0)
         return;
@@ -727,9 +727,14 @@ typedef struct clip_parts {
     int neo;
     int nchildren;
     bool only_shapes;
-    /* clip-path on the clipPath, or on its only child: both intersect the clip */
-    char self_clip[128], child_clip[128];
-    int nclipped_children;
+    /* clip-path on the clipPath: it intersects the clip */
+    char self_clip[128];
+    /* children with a clip-path of their own: a part each, intersected with that clip */
+    struct own_part {
+        sv_path path;
+        int rule, clip;
+    } *own;
+    int nown;
 } clip_parts;
 
 static void add_evenodd(clip_parts *out, sv_path *p)
@@ -783,6 +788,9 @@ static void add_clip_child(clip_parts *out, sv_path *p, sv_affine km, int rule)
     sv_path_append(&out->nz, p);
 }
 
+static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const sv_path *up,
+                       clip_poly *slot, bool *used_slot);
+
 static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox[4],
                           const ctx *pc, clip_parts *out)
 {
@@ -821,13 +829,26 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
         sv_style_compute(&ks, &cs, shape, &im->css, 0, NULL);
         if (ks.display_none || !ks.visible)
             continue;
-        if (ks.clip_path[0] && shape == k) {
-            out->nclipped_children++;
-            snprintf(out->child_clip, sizeof out->child_clip, "%s", ks.clip_path);
-        }
         sv_path p;
         sv_path_init(&p);
-        if (shape_path(im, shape, &ks, pc, &p)) {
+        if (ks.clip_path[0] && shape == k && shape_path(im, shape, &ks, pc, &p)) {
+            /* (child AND its clip) in a part of its own: the clip in the child's space */
+            ctx kc = *pc;
+            kc.ctm = km;
+            kc.nclips = 0;
+            kc.ir_clip = -1;
+            apply_clip(im, k, ks.clip_path, &kc, &p, NULL, NULL);
+            out->own = sv_xrealloc(out->own, (size_t)(out->nown + 1) * sizeof *out->own);
+            struct own_part *o = &out->own[out->nown++];
+            sv_path_init(&o->path);
+            sv_path_transform(&p, km);
+            sv_path_append(&o->path, &p);
+            sv_path_append(&out->all, &p);
+            o->rule = ks.clip_rule;
+            o->clip = kc.ir_clip;
+            out->nchildren++;
+            out->only_shapes = false; /* never a convex cut */
+        } else if (shape_path(im, shape, &ks, pc, &p)) {
             add_clip_child(out, &p, km, ks.clip_rule);
         } else if (!strcmp(shape->name, "text")) {
             /* glyph outlines; the clip takes their union, as of any shapes */
@@ -851,13 +872,6 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
             sv_doc_warn(im->doc, "%s: not supported in a clipPath, left out of the clip", d);
         }
         sv_path_free(&p);
-    }
-    if (out->nclipped_children > 0 && out->nchildren > 1) {
-        /* (child AND its clip) OR sibling is no chain of intersections */
-        desc(cp, d, sizeof d);
-        sv_doc_warn(im->doc, "%s: clip-path on a child among several children not supported, "
-                    "ignored", d);
-        out->child_clip[0] = 0;
     }
 }
 
@@ -903,6 +917,7 @@ static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const 
     parts.only_shapes = true;
     sv_path_init(&parts.all);
     sv_path_init(&parts.nz);
+    im->clipping[im->nclipping++] = cp; /* its children's clips may not come back to it */
     clip_geometry(im, cp, c->ctm, ubox, c, &parts);
     for (int i = 0; i < parts.all.n; i++)
         im->clip_points += parts.all.sub[i].n;
@@ -927,16 +942,22 @@ static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const 
         add_clip_part(&clip, &parts.nz, CS_FILL_NONZERO);
         for (int i = 0; i < parts.neo; i++)
             add_clip_part(&clip, &parts.eo[i].path, CS_FILL_EVENODD);
+        for (int i = 0; i < parts.nown; i++) {
+            int before = clip.nparts;
+            add_clip_part(&clip, &parts.own[i].path, parts.own[i].rule);
+            if (clip.nparts > before)
+                clip.parts[before].clip = parts.own[i].clip;
+        }
         im->doc->clips = sv_xrealloc(im->doc->clips, (size_t)(im->doc->nclips + 1) * sizeof clip);
         im->doc->clips[im->doc->nclips] = clip;
         c->ir_clip = im->doc->nclips++;
     }
-    im->clipping[im->nclipping++] = cp;
     if (parts.self_clip[0])
         apply_clip(im, cp, parts.self_clip, c, up, NULL, NULL);
-    if (parts.child_clip[0])
-        apply_clip(im, cp, parts.child_clip, c, up, NULL, NULL);
     im->nclipping--;
+    for (int i = 0; i < parts.nown; i++)
+        sv_path_free(&parts.own[i].path);
+    free(parts.own);
     sv_path_free(&parts.all);
     sv_path_free(&parts.nz);
     for (int i = 0; i < parts.neo; i++) {
