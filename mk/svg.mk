@@ -58,7 +58,7 @@ svg-rsvg-full: $(HOST)/tests/test_svg
 # The run fails if a test crashes or runs over its limits, or if fewer than
 # SVG_CONF_FLOOR tests pass; without the suite it says so and skips.
 SVG_CONF_SUITE ?= $(CURDIR)/../shared/conformance/resvg
-SVG_CONF_FLOOR ?= 510
+SVG_CONF_FLOOR ?= 600
 SVG_CONF_RUN = $(HOST)/tests/svg_conformance $(SVG_CONF_SUITE) --celc $(HOST)/celc \
         --celsim $(HOST)/celsim --notes tests/svg_conformance_notes.txt --outdir $(BUILD)/svg-conformance
 $(HOST)/tests/svg_conformance: $(HOST)/obj/tests/svg_conformance.o $(HOST)/obj/tools/cli_num.o \

@@ -768,6 +768,16 @@ static void test_import_doc(void)
                   strstr(err, "line 1"),
               "XML errors name the line (%s)", err);
     SVC_CHECK(sv_import_buffer("<html/>", 7, NULL, &d, err, sizeof err) < 0, "root must be svg");
+    /* a single-byte encoding expat does not know, through iconv: "\xcf\xf0" is "Пр" in windows-1251 */
+    const char *cp = "<?xml version=\"1.0\" encoding=\"windows-1251\"?><svg><text>\xcf\xf0</text></svg>";
+    sv_node *root = sv_xml_parse(cp, strlen(cp), err, sizeof err);
+    SVC_CHECK(root && root->nkids == 1 && root->kids[0]->text &&
+                  !strcmp(root->kids[0]->text, "\xd0\x9f\xd1\x80"),
+              "windows-1251 read as UTF-8 (%s)", root ? "" : err);
+    sv_xml_free(root);
+    const char *bogus = "<?xml version=\"1.0\" encoding=\"no-such\"?><svg/>";
+    SVC_CHECK(!sv_xml_parse(bogus, strlen(bogus), err, sizeof err) && strstr(err, "encoding"),
+              "an unknown encoding is an error naming it (%s)", err);
 }
 
 static void test_glyphs(void)

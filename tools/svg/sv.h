@@ -184,6 +184,9 @@ typedef struct sv_clip {
         int fill_rule;
         int ncontours;
         sv_contour *contours;
+        /* -1, or an IR clip (with its chain) this part is first intersected with: the
+         * clip-path of a clipPath's child; always an earlier clip than this one */
+        int clip;
     } *parts;
     int parent; /* the enclosing context's clip (nested clip-path), or -1 */
 } sv_clip;
@@ -321,6 +324,9 @@ int sv_path_dash(const sv_path *in, const double *dash, int n, double offset, in
 /* text set in the drawing, all told: a glyph with ink takes a contour at
  * least, and UTF-8 and white space take up to about 4 bytes a glyph */
 #define SV_MAX_TEXT_BYTES (4 * CS_CFG_MAX_CONTOURS)
+/* segment clips for all gradients' solid bands (the fallback of paint functions);
+ * regions beyond get none, warned */
+#define SV_MAX_BAND_WORK 2000000L
 #define SV_MAX_WARNINGS 1000 /* kept in sv_doc.warnings; one more says how many were left out */
 
 typedef struct sv_import_opts {

@@ -99,6 +99,7 @@ typedef struct imp {
     double tol; /* stroke tolerance, canvas units */
     /* what the limits of sv.h count */
     long use_copies, points, contours, clip_points, text_bytes;
+    long band_work; /* left of SV_MAX_BAND_WORK */
     const sv_node *clipping[MAX_CLIPS]; /* clipPaths being applied: references back are cycles */
     int nclipping;
     /* the first error; once set, the walk only returns */
@@ -546,7 +547,10 @@ static void add_region(imp *im, sv_path *cp, int rule, const sv_paint *paint, do
     bool translucent = paint->beta < 1;
     if (paint->gradient >= 0) {
         const sv_gradient *g = &im->doc->gradients[paint->gradient];
-        sv_gradient_bands(g, cp, opacity, &r);
+        if (!sv_gradient_bands(g, cp, opacity, &r, &im->band_work))
+            sv_doc_warn(im->doc, "%s: no solid bands for the gradient (over SV_MAX_BAND_WORK): "
+                        "where the core's paint functions cannot draw it, its average colour "
+                        "is used", src);
         for (int i = 0; i < r.nbands; i++)
             r.bands[i].source = sv_xstrdup(src);
         /* translucent wherever any stop is (the bands may skip the clear ones) */
@@ -840,7 +844,7 @@ static bool paint_pattern(imp *im, const sv_node *n, sv_paint_spec *ps, double o
 
 static void add_clip_part(sv_clip *clip, const sv_path *p, int rule)
 {
-    struct sv_clip_part part = {rule, 0, NULL};
+    struct sv_clip_part part = {rule, 0, NULL, -1};
     sv_path_to_contours(p, &part.contours, &part.ncontours);
     if (part.ncontours == 0)
         return;
@@ -1266,9 +1270,14 @@ typedef struct clip_parts {
     int neo;
     int nchildren;
     bool only_shapes;
-    /* clip-path on the clipPath, or on its only child: both intersect the clip */
-    char self_clip[128], child_clip[128];
-    int nclipped_children;
+    /* clip-path on the clipPath: it intersects the clip */
+    char self_clip[128];
+    /* children with a clip-path of their own: a part each, intersected with that clip */
+    struct own_part {
+        sv_path path;
+        int rule, clip;
+    } *own;
+    int nown;
 } clip_parts;
 
 static void add_evenodd(clip_parts *out, sv_path *p)
@@ -1322,6 +1331,9 @@ static void add_clip_child(clip_parts *out, sv_path *p, sv_affine km, int rule)
     sv_path_append(&out->nz, p);
 }
 
+static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const sv_path *up,
+                       clip_poly *slot, bool *used_slot);
+
 static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox[4],
                           const ctx *pc, clip_parts *out)
 {
@@ -1360,13 +1372,26 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
         sv_style_compute(&ks, &cs, shape, &im->css, 0, NULL);
         if (ks.display_none || !ks.visible)
             continue;
-        if (ks.clip_path[0] && shape == k) {
-            out->nclipped_children++;
-            snprintf(out->child_clip, sizeof out->child_clip, "%s", ks.clip_path);
-        }
         sv_path p;
         sv_path_init(&p);
-        if (shape_path(im, shape, &ks, pc, &p)) {
+        if (ks.clip_path[0] && shape == k && shape_path(im, shape, &ks, pc, &p)) {
+            /* (child AND its clip) in a part of its own: the clip in the child's space */
+            ctx kc = *pc;
+            kc.ctm = km;
+            kc.nclips = 0;
+            kc.ir_clip = -1;
+            apply_clip(im, k, ks.clip_path, &kc, &p, NULL, NULL);
+            out->own = sv_xrealloc(out->own, (size_t)(out->nown + 1) * sizeof *out->own);
+            struct own_part *o = &out->own[out->nown++];
+            sv_path_init(&o->path);
+            sv_path_transform(&p, km);
+            sv_path_append(&o->path, &p);
+            sv_path_append(&out->all, &p);
+            o->rule = ks.clip_rule;
+            o->clip = kc.ir_clip;
+            out->nchildren++;
+            out->only_shapes = false; /* never a convex cut */
+        } else if (shape_path(im, shape, &ks, pc, &p)) {
             add_clip_child(out, &p, km, ks.clip_rule);
         } else if (!strcmp(shape->name, "text")) {
             /* glyph outlines; the clip takes their union, as of any shapes */
@@ -1392,13 +1417,6 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
             sv_doc_warn(im->doc, "%s: not supported in a clipPath, left out of the clip", d);
         }
         sv_path_free(&p);
-    }
-    if (out->nclipped_children > 0 && out->nchildren > 1) {
-        /* (child AND its clip) OR sibling is no chain of intersections */
-        desc(cp, d, sizeof d);
-        sv_doc_warn(im->doc, "%s: clip-path on a child among several children not supported, "
-                    "ignored", d);
-        out->child_clip[0] = 0;
     }
 }
 
@@ -1444,6 +1462,7 @@ static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const 
     parts.only_shapes = true;
     sv_path_init(&parts.all);
     sv_path_init(&parts.nz);
+    im->clipping[im->nclipping++] = cp; /* its children's clips may not come back to it */
     clip_geometry(im, cp, c->ctm, ubox, c, &parts);
     for (int i = 0; i < parts.all.n; i++)
         im->clip_points += parts.all.sub[i].n;
@@ -1468,16 +1487,22 @@ static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const 
         add_clip_part(&clip, &parts.nz, CS_FILL_NONZERO);
         for (int i = 0; i < parts.neo; i++)
             add_clip_part(&clip, &parts.eo[i].path, CS_FILL_EVENODD);
+        for (int i = 0; i < parts.nown; i++) {
+            int before = clip.nparts;
+            add_clip_part(&clip, &parts.own[i].path, parts.own[i].rule);
+            if (clip.nparts > before)
+                clip.parts[before].clip = parts.own[i].clip;
+        }
         im->doc->clips = sv_xrealloc(im->doc->clips, (size_t)(im->doc->nclips + 1) * sizeof clip);
         im->doc->clips[im->doc->nclips] = clip;
         c->ir_clip = im->doc->nclips++;
     }
-    im->clipping[im->nclipping++] = cp;
     if (parts.self_clip[0])
         apply_clip(im, cp, parts.self_clip, c, up, NULL, NULL);
-    if (parts.child_clip[0])
-        apply_clip(im, cp, parts.child_clip, c, up, NULL, NULL);
     im->nclipping--;
+    for (int i = 0; i < parts.nown; i++)
+        sv_path_free(&parts.own[i].path);
+    free(parts.own);
     sv_path_free(&parts.all);
     sv_path_free(&parts.nz);
     for (int i = 0; i < parts.neo; i++) {
@@ -1508,26 +1533,35 @@ static bool is_nonrendering(const char *name)
     return false;
 }
 
-/* The overflow property (attribute or style declaration): whether it lets content show. */
-static bool overflow_visible(const sv_node *n)
+/*
+ * A property the style computation does not keep (it matters on one kind of
+ * element only): the style attribute's declaration, else the attribute.
+ * Malloc'd, or NULL.
+ */
+static char *own_property(const sv_node *n, const char *name)
 {
-    const char *v = sv_attr(n, "overflow");
     const char *st = sv_attr(n, "style");
     char *own = NULL;
     if (st) {
         sv_decl *d;
         int nd = sv_css_parse_decls(st, &d);
         for (int i = 0; i < nd; i++)
-            if (!strcmp(d[i].name, "overflow")) {
+            if (!strcmp(d[i].name, name)) {
                 free(own);
                 own = sv_xstrdup(d[i].value);
             }
         sv_decls_free(d, nd);
     }
-    if (own)
-        v = own;
+    const char *v = sv_attr(n, name);
+    return own ? own : v ? sv_xstrdup(v) : NULL;
+}
+
+/* The overflow property: whether it lets content show. */
+static bool overflow_visible(const sv_node *n)
+{
+    char *v = own_property(n, "overflow");
     bool vis = v && (!strcmp(v, "visible") || !strcmp(v, "auto"));
-    free(own);
+    free(v);
     return vis;
 }
 
@@ -1722,6 +1756,84 @@ static void render_markers(imp *im, const sv_node *n, const sv_style *s, const c
     }
 }
 
+static void element_box(imp *im, sv_node *n, const sv_style *ps, sv_affine m, const ctx *c,
+                        double box[4], int depth);
+
+/* The union of the children's boxes (see element_box). */
+static void children_box(imp *im, sv_node *n, const sv_style *s, sv_affine m, const ctx *c,
+                         double box[4], int depth)
+{
+    for (int i = 0; i < n->nkids && !im->failed; i++)
+        element_box(im, n->kids[i], s, m, c, box, depth + 1);
+}
+
+/*
+ * The bounding box (SVG's: fill geometry, strokes and opacity aside) of an
+ * element mapped by m, grown into box[4]: what objectBoundingBox units of a
+ * clip on a group need. Each element visited counts against
+ * SV_MAX_USE_COPIES, as instances do: clipped groups inside clipped groups
+ * would otherwise be walked again and again.
+ */
+static void element_box(imp *im, sv_node *n, const sv_style *ps, sv_affine m, const ctx *c,
+                        double box[4], int depth)
+{
+    const char *name = n->name;
+    if (strncmp(name, "ns:", 3) == 0 || name[0] == '#' || is_nonrendering(name))
+        return;
+    if (++im->use_copies > SV_MAX_USE_COPIES || depth >= SV_MAX_DEPTH) {
+        fail(im, "<%s> (line %d): bounding boxes visit more than %d elements "
+             "(SV_MAX_USE_COPIES) or nest deeper than %d", name, n->line, SV_MAX_USE_COPIES,
+             SV_MAX_DEPTH);
+        return;
+    }
+    sv_style s;
+    sv_style_compute(&s, ps, n, &im->css, 0, NULL);
+    if (s.display_none)
+        return;
+    sv_affine t;
+    const char *tr = sv_attr(n, "transform");
+    if (s.has_transform)
+        m = sv_affine_mul(m, s.transform);
+    else if (tr && sv_parse_transform(tr, &t))
+        m = sv_affine_mul(m, t);
+    sv_path p;
+    sv_path_init(&p);
+    if (!strcmp(name, "text")) {
+        if (im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
+            sv_text_run *runs;
+            int nr = sv_svg_text_layout(n, &s, &im->css, c->vp_w, c->vp_h, im->opts.font_path,
+                                        &runs, im->doc);
+            for (int i = 0; i < nr; i++)
+                sv_path_append(&p, &runs[i].path);
+            sv_text_runs_free(runs, nr);
+        }
+    } else if (!strcmp(name, "g") || !strcmp(name, "a") || !strcmp(name, "switch")) {
+        children_box(im, n, &s, m, c, box, depth);
+    } else if (!strcmp(name, "use")) {
+        sv_node *target = find_href(im, n);
+        for (int i = 0; target && i < im->depth; i++)
+            if (im->stack[i] == target)
+                target = NULL;
+        if (target && strcmp(target->name, "symbol") != 0 && strcmp(target->name, "svg") != 0) {
+            sv_affine tu = {1, 0, 0, 1, attr_len(n, "x", &s, c->vp_w, 0),
+                            attr_len(n, "y", &s, c->vp_h, 0)};
+            element_box(im, target, &s, sv_affine_mul(m, tu), c, box, depth + 1);
+        }
+    } else {
+        shape_path(im, n, &s, c, &p);
+    }
+    if (p.n > 0) {
+        double b[4];
+        sv_path_transform(&p, m);
+        tight_bbox(&p, b);
+        box[0] = fmin(box[0], b[0]);
+        box[1] = fmin(box[1], b[1]);
+        box[2] = fmax(box[2], b[2]);
+        box[3] = fmax(box[3], b[3]);
+    }
+    sv_path_free(&p);
+}
+
 static bool switch_accepts(const sv_node *k)
 {
     if (sv_attr(k, "requiredExtensions"))
@@ -1785,6 +1897,40 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     sv_path up;
     sv_path_init(&up);
     bool have_path = shape && shape_path(im, n, &s, &c, &up);
+    if (!strcmp(name, "text") && s.clip_path[0] &&
+        im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
+        /* the glyphs' outlines: objectBoundingBox units of its clip need their box */
+        sv_text_run *runs;
+        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
+                                    im->doc); /* its warnings come again when it is set: kept once */
+        for (int i = 0; i < nr; i++)
+            sv_path_append(&up, &runs[i].path);
+        sv_text_runs_free(runs, nr);
+        have_path = up.n > 0;
+    }
+    sv_node *clip_el = s.clip_path[0] ? find_id(im, s.clip_path) : NULL;
+    const char *cunits = clip_el ? sv_attr(clip_el, "clipPathUnits") : NULL;
+    if (!have_path && cunits && !strcmp(cunits, "objectBoundingBox") &&
+        (!strcmp(name, "g") || !strcmp(name, "a") || !strcmp(name, "use"))) {
+        /* a container's box: its content's, in its own user space, as a rectangle */
+        double box[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+        sv_node *target = !strcmp(name, "use") ? find_href(im, n) : NULL;
+        if (target) { /* the instance's box, x and y included */
+            sv_affine tu = {1, 0, 0, 1, attr_len(n, "x", &s, c.vp_w, 0),
+                            attr_len(n, "y", &s, c.vp_h, 0)};
+            element_box(im, target, &s, tu, &c, box, im->depth);
+        } else {
+            children_box(im, n, &s, sv_affine_identity(), &c, box, im->depth);
+        }
+        if (box[0] <= box[2] && box[1] <= box[3]) {
+            sv_path_move(&up, box[0], box[1]);
+            sv_path_line(&up, box[2], box[1]);
+            sv_path_line(&up, box[2], box[3]);
+            sv_path_line(&up, box[0], box[3]);
+            sv_path_close(&up);
+            have_path = true;
+        }
+    }
     clip_poly slot = {NULL, 0};
     bool used_slot = false;
     if (s.clip_path[0])
@@ -1991,6 +2137,7 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     im.doc = doc;
     im.err = err;
     im.errlen = errlen;
+    im.band_work = SV_MAX_BAND_WORK;
     if (opts)
         im.opts = *opts;
     collect(&im, root);
@@ -2049,6 +2196,25 @@ int sv_import_buffer(const char *data, size_t len, const sv_import_opts *opts, s
     bool used_slot = false;
     if (rs.clip_path[0] && !empty)
         apply_clip(&im, root, rs.clip_path, &c, NULL, &slot, &used_slot);
+    char *bg = own_property(root, "background-color");
+    double bg_rgb[3], bg_a = 1;
+    if (bg && !empty && sv_parse_color(bg, bg_rgb, &bg_a) == SV_COLOR_RGB && bg_a > 0) {
+        /* the root's background-color (as resvg draws it): the canvas, behind everything */
+        sv_path bp;
+        sv_path_init(&bp);
+        sv_path_move(&bp, 0, 0);
+        sv_path_line(&bp, w, 0);
+        sv_path_line(&bp, w, h);
+        sv_path_line(&bp, 0, h);
+        sv_path_close(&bp);
+        sv_paint paint = {{bg_rgb[0], bg_rgb[1], bg_rgb[2]}, {1, 1, 1}, bg_a, -1, 1};
+        ctx bc = c;
+        bc.nclips = 0;
+        bc.ir_clip = -1;
+        add_region(&im, &bp, CS_FILL_NONZERO, &paint, bg_a, &bc, root, "background-color");
+        sv_path_free(&bp);
+    }
+    free(bg);
     if (!rs.display_none && !empty)
         render_viewport(&im, root, &rs, &c, 0, 0, w, h);
     if (used_slot)

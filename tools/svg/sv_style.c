@@ -615,14 +615,27 @@ void sv_style_inherit(sv_style *c, const sv_style *p)
     c->stop_opacity = 1;
 }
 
-static double parse_opacity(const char *v, double dflt)
+/* A number, or a percentage when `percent` is given, and nothing after it but white space. */
+static bool parse_number_only(const char *v, bool percent, double *x)
 {
     const char *p = v;
+    if (!sv_parse_number(&p, x))
+        return false;
+    if (percent && *p == '%') {
+        *x /= 100;
+        p++;
+    }
+    while (isspace((unsigned char)*p))
+        p++;
+    return *p == 0;
+}
+
+/* "0.5", "50%"; anything else ("0.1mm") is invalid and leaves `dflt`. */
+static double parse_opacity(const char *v, double dflt)
+{
     double x;
-    if (!sv_parse_number(&p, &x))
+    if (!parse_number_only(v, true, &x))
         return dflt;
-    if (*p == '%')
-        x /= 100;
     return x < 0 ? 0 : (x > 1 ? 1 : x);
 }
 
@@ -694,10 +707,10 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
     }
     if (!strcmp(name, "fill")) {
         INH(fill);
-        parse_paint(v, &s->fill);
+        return parse_paint(v, &s->fill); /* invalid (context-fill, ...): kept as it was, warned */
     } else if (!strcmp(name, "stroke")) {
         INH(stroke);
-        parse_paint(v, &s->stroke);
+        return parse_paint(v, &s->stroke);
     } else if (!strcmp(name, "fill-opacity")) {
         INH(fill_opacity);
         s->fill_opacity = parse_opacity(v, s->fill_opacity);
@@ -721,8 +734,8 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
     } else if (!strcmp(name, "stroke-width")) {
         INH(stroke_width);
         double w;
-        if (sv_parse_length(v, s->font_size, diag, &w) && w >= 0)
-            s->stroke_width = w;
+        if (sv_parse_length(v, s->font_size, diag, &w))
+            s->stroke_width = w > 0 ? w : 0; /* negative: no stroke, as resvg draws it */
     } else if (!strcmp(name, "stroke-linecap")) {
         INH(cap);
         s->cap = !strcmp(v, "round") ? SV_CAP_ROUND : !strcmp(v, "square") ? SV_CAP_SQUARE
@@ -739,8 +752,8 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
             return false; /* miter-clip, arcs (SVG 2) */
     } else if (!strcmp(name, "stroke-miterlimit")) {
         INH(miter_limit);
-        double m;
-        if (sv_parse_numbers(v, &m, 1) == 1 && m >= 1)
+        double m; /* a number, not a length: "5mm" is invalid */
+        if (parse_number_only(v, false, &m) && m >= 1)
             s->miter_limit = m;
     } else if (!strcmp(name, "stroke-dasharray")) {
         if (inherit) {

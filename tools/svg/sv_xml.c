@@ -12,6 +12,7 @@
  * recursively afterwards, and no drawing needs that depth.
  */
 #include <expat.h>
+#include <iconv.h>
 #include <limits.h>
 
 #include "sv_import.h"
@@ -142,6 +143,42 @@ static void XMLCALL on_text(void *ud, const XML_Char *s, int len)
     append_text(last, s, (size_t)len);
 }
 
+/*
+ * Encodings expat does not know itself (it knows UTF-8, UTF-16, ISO-8859-1
+ * and US-ASCII): a single-byte one that iconv knows (windows-1251, KOI8-R,
+ * ISO-8859-5, ...) becomes expat's byte-to-code-point map. Multi-byte ones
+ * stay unknown, and the parse ends with expat's "unknown encoding".
+ */
+static int XMLCALL on_unknown_encoding(void *ud, const XML_Char *name, XML_Encoding *info)
+{
+    (void)ud;
+    iconv_t cd = iconv_open("UTF-32LE", name);
+    if (cd == (iconv_t)-1)
+        return XML_STATUS_ERROR;
+    int ok = XML_STATUS_OK;
+    for (int b = 0; b < 256; b++) {
+        char in = (char)b;
+        unsigned char out[4];
+        char *ip = &in, *op = (char *)out;
+        size_t il = 1, ol = sizeof out;
+        iconv(cd, NULL, NULL, NULL, NULL);
+        if (iconv(cd, &ip, &il, &op, &ol) == (size_t)-1 || ol != 0) {
+            if (b < 128) { /* not ASCII-compatible (or multi-byte): not ours to map */
+                ok = XML_STATUS_ERROR;
+                break;
+            }
+            info->map[b] = -1; /* a byte the encoding leaves undefined */
+            continue;
+        }
+        info->map[b] = out[0] | out[1] << 8 | out[2] << 16 | out[3] << 24;
+    }
+    iconv_close(cd);
+    info->data = NULL;
+    info->convert = NULL;
+    info->release = NULL;
+    return ok;
+}
+
 sv_node *sv_xml_parse(const char *data, size_t len, char *err, size_t errlen)
 {
     builder b = {0};
@@ -153,6 +190,7 @@ sv_node *sv_xml_parse(const char *data, size_t len, char *err, size_t errlen)
     XML_SetUserData(b.parser, &b);
     XML_SetElementHandler(b.parser, on_start, on_end);
     XML_SetCharacterDataHandler(b.parser, on_text);
+    XML_SetUnknownEncodingHandler(b.parser, on_unknown_encoding, NULL);
     if (len > INT_MAX) {
         snprintf(err, errlen, "file of %zu bytes is over the XML parser's %d", len, INT_MAX);
         XML_ParserFree(b.parser);
