@@ -109,6 +109,14 @@ typedef struct imp {
 } imp;
 
 static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc);
+
+/* The import's font cache, made at the first <text>. */
+static sv_fonts *fonts_of(imp *im)
+{
+    if (!im->fonts)
+        im->fonts = sv_fonts_new(im->opts.font_path);
+    return im->fonts;
+}
 static void add_clip_part(sv_clip *clip, const sv_path *p, int rule);
 
 /* Ends the import: a limit of sv.h was reached (the first error is kept). */
@@ -1998,9 +2006,8 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
             goto done;
         }
         sv_text_run *runs;
-        if (!im->fonts)
-            im->fonts = sv_fonts_new(im->opts.font_path);
-        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->fonts, &runs, im->doc);
+        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, fonts_of(im), &runs,
+                                    im->doc);
         for (int i = 0; i < nr; i++)
             if (runs[i].path.n > 0) {
                 ctx rc = c;
