@@ -1404,9 +1404,7 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
         } else if (!strcmp(shape->name, "text")) {
             /* glyph outlines; the clip takes their union, as of any shapes */
             sv_text_run *runs;
-            if (!im->fonts)
-                im->fonts = sv_fonts_new(im->opts.font_path);
-            int nr = sv_svg_text_layout(shape, &ks, &im->css, pc->vp_w, pc->vp_h, im->fonts,
+            int nr = sv_svg_text_layout(shape, &ks, &im->css, pc->vp_w, pc->vp_h, fonts_of(im),
                                         &runs, im->doc);
             sv_path glyphs;
             sv_path_init(&glyphs);
@@ -1809,8 +1807,8 @@ static void element_box(imp *im, sv_node *n, const sv_style *ps, sv_affine m, co
     if (!strcmp(name, "text")) {
         if (im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
             sv_text_run *runs;
-            int nr = sv_svg_text_layout(n, &s, &im->css, c->vp_w, c->vp_h, im->opts.font_path,
-                                        &runs, im->doc);
+            int nr = sv_svg_text_layout(n, &s, &im->css, c->vp_w, c->vp_h, fonts_of(im), &runs,
+                                        im->doc);
             for (int i = 0; i < nr; i++)
                 sv_path_append(&p, &runs[i].path);
             sv_text_runs_free(runs, nr);
@@ -1909,7 +1907,7 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
         im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
         /* the glyphs' outlines: objectBoundingBox units of its clip need their box */
         sv_text_run *runs;
-        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, im->opts.font_path, &runs,
+        int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, fonts_of(im), &runs,
                                     im->doc); /* its warnings come again when it is set: kept once */
         for (int i = 0; i < nr; i++)
             sv_path_append(&up, &runs[i].path);

@@ -64,6 +64,7 @@ static int mask_clip(sv_doc *doc, const sv_region *mask, int parent)
     sv_region tmp;
     memset(&tmp, 0, sizeof tmp);
     copy_contours(mask, &tmp);
+    clip.parts[0].clip = -1;
     clip.parts[0].fill_rule = mask->fill_rule;
     clip.parts[0].ncontours = tmp.ncontours;
     clip.parts[0].contours = tmp.contours;
