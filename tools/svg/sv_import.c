@@ -1905,12 +1905,18 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     bool have_path = shape && shape_path(im, n, &s, &c, &up);
     if (!strcmp(name, "text") && s.clip_path[0] &&
         im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
-        /* the glyphs' outlines: objectBoundingBox units of its clip need their box */
+        /* objectBoundingBox units of its clip need its box: the glyph cells' (sv_text.h) */
         sv_text_run *runs;
         int nr = sv_svg_text_layout(n, &s, &im->css, c.vp_w, c.vp_h, fonts_of(im), &runs,
                                     im->doc); /* its warnings come again when it is set: kept once */
-        for (int i = 0; i < nr; i++)
-            sv_path_append(&up, &runs[i].path);
+        if (nr > 0 && runs[0].cell_box[2] > runs[0].cell_box[0]) {
+            const double *b = runs[0].cell_box;
+            sv_path_move(&up, b[0], b[1]);
+            sv_path_line(&up, b[2], b[1]);
+            sv_path_line(&up, b[2], b[3]);
+            sv_path_line(&up, b[0], b[3]);
+            sv_path_close(&up);
+        }
         sv_text_runs_free(runs, nr);
         have_path = up.n > 0;
     }
