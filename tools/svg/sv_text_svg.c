@@ -19,12 +19,13 @@
  *
  * Each character is set in the face fontconfig picks for its style and
  * script (sv_font.c: the family list, weight, style, xml:lang, and per
- * character fallback). Each stretch of characters of one element in one
- * face, up to the next absolute position, is shaped by HarfBuzz (GPOS
- * kerning, ligatures, marks, Arabic joining, in the script and language it
- * guesses or xml:lang gives); its glyphs go at the pen, each turned by its
- * character's rotate angle about its origin. Bidi reordering across runs
- * of different direction is not done (each stretch keeps its own).
+ * character fallback). Each stretch of characters in one face, size and
+ * language, up to the next absolute position, is shaped by HarfBuzz as one,
+ * across tspan edges as browsers do (GPOS kerning, ligatures, marks, Arabic
+ * joining, in the script it guesses); each glyph goes into its character's
+ * element's run, at the pen, turned by the character's rotate angle about
+ * its origin. Bidi reordering across runs of different direction is not
+ * done (each stretch keeps its own).
  */
 #include <ft2build.h>
 #include FT_FREETYPE_H
@@ -417,14 +418,16 @@ static double anchor_shift(const chunk *k)
 }
 
 /*
- * Shapes characters [i0, i1) of L (one element, one face, no absolute
- * position after i0) and sets their glyphs into `out` from the pen, which
- * it advances. Per-character dx, dy and rotate apply to the first glyph of
- * the character's cluster.
+ * Shapes characters [i0, i1) of L (one face and size, no absolute position
+ * after i0; they may belong to several elements, as HarfBuzz then kerns
+ * across a tspan's edge) and sets each glyph into the path of its
+ * character's run, runs[char_run[i]], from the pen, which it advances.
+ * Per-character dx, dy and rotate apply to the first glyph of the
+ * character's cluster.
  */
 static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font_t *font,
-                          const sv_node *text, double *penx, double *peny, sv_path *out,
-                          double ylim[2])
+                          const sv_node *text, double *penx, double *peny, sv_text_run *runs,
+                          const int *char_run, double ylim[2])
 {
     const owner *o = &L->own[L->c[i0].owner];
     hb_buffer_t *buf = hb_buffer_create();
@@ -445,7 +448,7 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
         ext.descender = face->descender;
     }
     double lines[3][2];
-    int nlines = deco_lines(o->node, text, face, o->style.font_size, lines);
+    int nlines = 0, deco_owner = -1;
     unsigned last = (unsigned)-1;
     for (unsigned g = 0; g < n; g++) {
         const ch *c = &L->c[i0 + (int)info[g].cluster];
@@ -458,8 +461,13 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
                 *peny += c->v[POS_DY];
             last = info[g].cluster;
         }
+        if (c->owner != deco_owner) { /* its element's decoration */
+            deco_owner = c->owner;
+            nlines = deco_lines(L->own[c->owner].node, text, face, o->style.font_size, lines);
+        }
         set_glyph(face, info[g].codepoint, scale, c->rot, *penx + pos[g].x_offset * scale,
-                  *peny - pos[g].y_offset * scale, lines, nlines, pos[g].x_advance * scale, out);
+                  *peny - pos[g].y_offset * scale, lines, nlines, pos[g].x_advance * scale,
+                  &runs[char_run[i0 + (int)info[g].cluster]].path);
         ylim[0] = fmin(ylim[0], *peny - ext.ascender * scale); /* the glyph's cell */
         ylim[1] = fmax(ylim[1], *peny - ext.descender * scale);
         *penx += pos[g].x_advance * scale;
@@ -501,17 +509,20 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
         if (!faces[i])
             sv_doc_warn(doc, "<text> (line %d): %s", text->line, err);
     }
-    /* segments [i, j): one element, one face, absolute positions only at i */
+    /* segments [i, j): one face, size and language, absolute positions only at i */
     sv_text_run *runs = sv_xrealloc(NULL, cnt * sizeof *runs);
     int *run_chunk = sv_xrealloc(NULL, cnt * sizeof *run_chunk);
-
+    int *char_run = sv_xrealloc(NULL, cnt * sizeof *char_run);
     chunk *chunks = sv_xrealloc(NULL, cnt * sizeof *chunks);
     int nr = 0, nch = 0;
     double penx = 0, peny = 0, ylim[2] = {INFINITY, -INFINITY};
     for (int i = 0, j; i < L.n; i = j) {
         const ch *c = &L.c[i];
-        for (j = i + 1; j < L.n && L.c[j].owner == c->owner && faces[j] == faces[i] &&
-                        !L.c[j].has[POS_X] && !L.c[j].has[POS_Y];
+        const owner *o = &L.own[c->owner];
+        for (j = i + 1; j < L.n && faces[j] == faces[i] && !L.c[j].has[POS_X] &&
+                        !L.c[j].has[POS_Y] &&
+                        L.own[L.c[j].owner].style.font_size == o->style.font_size &&
+                        L.own[L.c[j].owner].lang == o->lang;
              j++)
             ;
         if (c->has[POS_X])
@@ -520,18 +531,22 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
             peny = c->v[POS_Y];
         if (nch == 0 || c->has[POS_X] || c->has[POS_Y]) {
             chunks[nch].start = chunks[nch].end = penx;
-            chunks[nch++].anchor = L.own[c->owner].style.text_anchor;
+            chunks[nch++].anchor = o->style.text_anchor;
         }
-        if (nr == 0 || runs[nr - 1].node != L.own[c->owner].node || run_chunk[nr - 1] != nch - 1) {
-            runs[nr].node = L.own[c->owner].node;
-            runs[nr].style = sv_xrealloc(NULL, sizeof(sv_style));
-            *runs[nr].style = L.own[c->owner].style;
-            sv_path_init(&runs[nr].path);
-            run_chunk[nr++] = nch - 1;
+        for (int k = i; k < j; k++) { /* a run per element within a chunk */
+            const owner *ok = &L.own[L.c[k].owner];
+            if (nr == 0 || runs[nr - 1].node != ok->node || run_chunk[nr - 1] != nch - 1) {
+                runs[nr].node = ok->node;
+                runs[nr].style = sv_xrealloc(NULL, sizeof(sv_style));
+                *runs[nr].style = ok->style;
+                sv_path_init(&runs[nr].path);
+                run_chunk[nr++] = nch - 1;
+            }
+            char_run[k] = nr - 1;
         }
         if (faces[i])
-            shape_segment(&L, i, j, faces[i], sv_font_hb(F, faces[i]), text, &penx, &peny,
-                          &runs[nr - 1].path, ylim);
+            shape_segment(&L, i, j, faces[i], sv_font_hb(F, faces[i]), text, &penx, &peny, runs,
+                          char_run, ylim);
         chunks[nch - 1].end = penx;
     }
     /* text-anchor: each chunk moves by half or all of its advance; the cells' box spans
@@ -552,6 +567,7 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
     for (int r = 0; r < nr; r++)
         memcpy(runs[r].cell_box, box, sizeof box);
     free(faces);
+    free(char_run);
     free(run_chunk);
     free(chunks);
     free(L.c);
