@@ -228,6 +228,19 @@ static void test_errors(void)
     put(&b, "</svg>");
     expect_error("clip path x 1000", &b, "SV_MAX_CLIP_POINTS");
 
+    /* clip paths whose children are clipped by the next: 50^6 applications */
+    b.n = 0;
+    head(&b, "0 0 100 100");
+    for (int level = 0; level < 6; level++) {
+        put(&b, "<clipPath id=\"k%d\">", level);
+        for (int i = 0; i < 50; i++)
+            put(&b, level < 5 ? "<rect width=\"%d\" height=\"9\" clip-path=\"url(#k%d)\"/>"
+                              : "<rect width=\"%d\" height=\"9\"/>", i + 1, level + 1);
+        put(&b, "</clipPath>");
+    }
+    put(&b, "<rect width=\"100\" height=\"100\" clip-path=\"url(#k0)\"/></svg>");
+    expect_error("clip children fan-out", &b, "SV_MAX_CLIP_POINTS");
+
     b.n = 0;
     head(&b, "0 0 1000 1000");
     put(&b, "<text x=\"0\" y=\"20\" font-size=\"20\">");

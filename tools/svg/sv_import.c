@@ -807,7 +807,7 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
     sv_style cs; /* its properties come from where it is defined, not from where it is used */
     style_of(im, cp, &cs);
     snprintf(out->self_clip, sizeof out->self_clip, "%s", cs.clip_path);
-    for (int i = 0; i < cp->nkids; i++) {
+    for (int i = 0; i < cp->nkids && !im->failed; i++) {
         sv_node *k = cp->kids[i];
         sv_node *shape = k;
         sv_affine km = m;
@@ -890,6 +890,8 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
 static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const sv_path *up,
                        clip_poly *slot, bool *used_slot)
 {
+    if (im->failed)
+        return;
     char d[160];
     desc(n, d, sizeof d);
     sv_node *cp = find_id(im, id);
