@@ -1357,6 +1357,17 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     sv_path up;
     sv_path_init(&up);
     bool have_path = shape && shape_path(im, n, &s, &c, &up);
+    if (have_path && c.via_use) { /* a copy costs its geometry too */
+        for (int i = 0; i < up.n; i++)
+            im->use_copies += up.sub[i].n;
+        if (im->use_copies > SV_MAX_USE_COPIES) {
+            desc(n, d, sizeof d);
+            fail(im, "%s: <use> and markers instantiate more than %d elements and path "
+                 "segments (SV_MAX_USE_COPIES)", d, SV_MAX_USE_COPIES);
+            sv_path_free(&up);
+            return;
+        }
+    }
     if (!strcmp(name, "text") && s.clip_path[0] &&
         im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
         /* the glyphs' outlines: objectBoundingBox units of its clip need their box */
