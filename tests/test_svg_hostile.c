@@ -5,8 +5,9 @@
  * a dash pattern of 0.001 on a long path, <use> fan-out (a billion laughs,
  * with and without anything drawn), 100,000 shapes, a curvy stroke too
  * wide for any outline budget, a chain of <use> deeper than the nesting
- * limit, a large clip path applied a thousand times, half a million
- * characters of text, a million empty elements. Each is imported in a child process under 512 MB of address
+ * limit, a large clip path applied a thousand times, clip paths and
+ * markers nested in themselves six deep, half a million characters of
+ * text, a million empty elements. Each is imported in a child process under 512 MB of address
  * space and 5 s of CPU (and a 10 s alarm), and must end in an error that
  * names its limit within those bounds, measured from outside: the child's
  * wall time and peak resident size (wait4's rusage). The large benign file
@@ -227,6 +228,35 @@ static void test_errors(void)
     put_n(&b, "<g clip-path=\"url(#c)\"/>", 1000);
     put(&b, "</svg>");
     expect_error("clip path x 1000", &b, "SV_MAX_CLIP_POINTS");
+
+    /* markers whose content has markers: 300 vertices each, 6 deep (300^7 instances) */
+    b.n = 0;
+    head(&b, "0 0 100 100");
+    for (int level = -1; level < 6; level++) {
+        if (level >= 0)
+            put(&b, "<marker id=\"m%d\">", level);
+        put(&b, "<path d=\"M0 0");
+        for (int i = 0; i < 300; i++)
+            put(&b, " L%d %d", i % 100, (i * 7) % 100);
+        put(&b, "\" fill=\"none\" stroke=\"none\" marker-mid=\"url(#m%d)\"/>", level + 1);
+        if (level >= 0)
+            put(&b, "</marker>");
+    }
+    put(&b, "</svg>");
+    expect_error("marker fan-out", &b, "SV_MAX_USE_COPIES");
+
+    /* clip paths whose children are clipped by the next: 50^6 applications */
+    b.n = 0;
+    head(&b, "0 0 100 100");
+    for (int level = 0; level < 6; level++) {
+        put(&b, "<clipPath id=\"k%d\">", level);
+        for (int i = 0; i < 50; i++)
+            put(&b, level < 5 ? "<rect width=\"%d\" height=\"9\" clip-path=\"url(#k%d)\"/>"
+                              : "<rect width=\"%d\" height=\"9\"/>", i + 1, level + 1);
+        put(&b, "</clipPath>");
+    }
+    put(&b, "<rect width=\"100\" height=\"100\" clip-path=\"url(#k0)\"/></svg>");
+    expect_error("clip children fan-out", &b, "SV_MAX_CLIP_POINTS");
 
     b.n = 0;
     head(&b, "0 0 1000 1000");

@@ -313,7 +313,9 @@ int sv_path_dash(const sv_path *in, const double *dash, int n, double offset, in
  * beyond them could never be loaded.
  */
 #define SV_MAX_DEPTH 256         /* element nesting, in the file and through <use> */
-#define SV_MAX_USE_COPIES 100000 /* elements instantiated by <use>, all told */
+/* elements instantiated by <use> and markers, and the path segments of the shapes among
+ * them, all told (a copy of a long path costs its length) */
+#define SV_MAX_USE_COPIES 500000
 /* dashes of one stroke: each takes at least 4 of the scene's control points */
 #define SV_MAX_DASHES (CS_CFG_MAX_POINTS / 4)
 /* control points of every clip path applied (each element's clip is its own copy) */

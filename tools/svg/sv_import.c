@@ -1358,7 +1358,7 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
     sv_style cs; /* its properties come from where it is defined, not from where it is used */
     style_of(im, cp, &cs);
     snprintf(out->self_clip, sizeof out->self_clip, "%s", cs.clip_path);
-    for (int i = 0; i < cp->nkids; i++) {
+    for (int i = 0; i < cp->nkids && !im->failed; i++) {
         sv_node *k = cp->kids[i];
         sv_node *shape = k;
         sv_affine km = m;
@@ -1441,6 +1441,8 @@ static void clip_geometry(imp *im, sv_node *cp, sv_affine ctm, const double ubox
 static void apply_clip(imp *im, const sv_node *n, const char *id, ctx *c, const sv_path *up,
                        clip_poly *slot, bool *used_slot)
 {
+    if (im->failed)
+        return;
     char d[160];
     desc(n, d, sizeof d);
     sv_node *cp = find_id(im, id);
@@ -1903,6 +1905,17 @@ static void render(imp *im, sv_node *n, const sv_style *ps, const ctx *pc)
     sv_path up;
     sv_path_init(&up);
     bool have_path = shape && shape_path(im, n, &s, &c, &up);
+    if (have_path && c.via_use) { /* a copy costs its geometry too */
+        for (int i = 0; i < up.n; i++)
+            im->use_copies += up.sub[i].n;
+        if (im->use_copies > SV_MAX_USE_COPIES) {
+            desc(n, d, sizeof d);
+            fail(im, "%s: <use> and markers instantiate more than %d elements and path "
+                 "segments (SV_MAX_USE_COPIES)", d, SV_MAX_USE_COPIES);
+            sv_path_free(&up);
+            return;
+        }
+    }
     if (!strcmp(name, "text") && s.clip_path[0] &&
         im->text_bytes + (long)text_bytes(n) <= SV_MAX_TEXT_BYTES) {
         /* objectBoundingBox units of its clip need its box: the glyph cells' (sv_text.h) */
