@@ -9,10 +9,10 @@
 #   make fuzz-svg                 libFuzzer on the importer for FUZZ_TIME s (default 60)
 #   make fuzz-svg-smoke           a short run of it (FUZZ_SVG_SMOKE_TIME, default 20 s), in `make test`
 #
-# The importer is host code: expat, FreeType, fontconfig, HarfBuzz, cJSON and libpng from Debian,
-# linked with the freestanding core library built as the main Makefile does.
+# The importer is host code: expat, FreeType, fontconfig, HarfBuzz, FriBidi, cJSON and libpng
+# from Debian, linked with the freestanding core library built as the main Makefile does.
 
-SVG_PKGS := expat freetype2 fontconfig harfbuzz libcjson libpng
+SVG_PKGS := expat freetype2 fontconfig harfbuzz fribidi libcjson libpng
 SVG_CFLAGS = $(shell pkg-config --cflags $(SVG_PKGS) 2>/dev/null)
 SVG_LIBS = $(shell pkg-config --libs $(SVG_PKGS) 2>/dev/null) -lm
 

@@ -936,6 +936,25 @@ static void test_svg_text(void)
                     bpos[k] = dd.cels[c].regions[r].bbox[0];
         sv_doc_free(&dd);
     }
+    /* bidi (UAX #9): two Hebrew letters in a left-to-right paragraph read right to left,
+       so the second (blue) stands left of the first (red); the Latin around keeps its order */
+    const char *bidi = "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='50'>"
+                       "<text x='10' y='40' font-size='20' font-family='Noto Sans'>A<tspan "
+                       "fill='red'>\xd7\x90</tspan><tspan fill='blue'>\xd7\x91</tspan>B</text>"
+                       "</svg>";
+    double xa = 1e9, xr = 1e9, xb = 1e9; /* the leftmost of each colour */
+    sv_doc db;
+    if (sv_import_buffer(bidi, strlen(bidi), NULL, &db, err, sizeof err) == 0) {
+        for (int c = 0; c < db.ncels; c++)
+            for (int r = 0; r < db.cels[c].nregions; r++) {
+                const sv_region *g = &db.cels[c].regions[r];
+                double *x = g->paint.pigment[0] == 1 ? &xr : g->paint.pigment[2] == 1 ? &xb : &xa;
+                *x = fmin(*x, g->bbox[0]);
+            }
+        sv_doc_free(&db);
+    }
+    SVC_CHECK(xa < xb && xb < xr && xr < 1e9, "bidi: A, then the Hebrew pair reversed (%g %g %g)",
+              xa, xb, xr);
     SVC_NEAR(bpos[1] - bpos[0], 3, 1e-9, "letter-spacing from the group moves B by 3");
     SVC_NEAR(bpos[3] - bpos[2], 5, 1e-9, "word-spacing moves B after the space by 5");
     SVC_NEAR(0.5 * (mid0 + mid1), 100, 1.5, "text-anchor middle centres the chunk");

@@ -24,12 +24,15 @@
  * across tspan edges as browsers do (GPOS kerning, ligatures, marks, Arabic
  * joining, in the script it guesses); each glyph goes into its character's
  * element's run, at the pen, turned by the character's rotate angle about
- * its origin. Bidi reordering across runs of different direction is not
- * done (each stretch keeps its own).
+ * its origin. Directions come from FriBidi (UAX #9, the paragraph direction
+ * the `direction` property's, ltr by default, which also swaps text-anchor
+ * start and end): a chunk is cut at level changes too, each segment shaped
+ * in its direction, and the segments go along the pen in visual order (L2).
  */
 #include <ft2build.h>
 #include FT_FREETYPE_H
 #include FT_TRUETYPE_TABLES_H
+#include <fribidi.h>
 #include <hb-ft.h>
 #include <hb.h>
 
@@ -418,6 +421,60 @@ static double anchor_shift(const chunk *k)
 }
 
 /*
+ * Bidi embedding levels of characters [cs, ce) (UAX #9 through FriBidi, the
+ * paragraph's direction the `direction` property's, ltr unless said): even
+ * left to right, odd right to left. All 0 if FriBidi refuses.
+ */
+static void bidi_levels(const layout *L, int cs, int ce, bool rtl, FriBidiLevel *levels)
+{
+    int n = ce - cs;
+    FriBidiChar *str = sv_xrealloc(NULL, (size_t)n * sizeof *str);
+    FriBidiCharType *types = sv_xrealloc(NULL, (size_t)n * sizeof *types);
+    FriBidiBracketType *br = sv_xrealloc(NULL, (size_t)n * sizeof *br);
+    for (int k = 0; k < n; k++)
+        str[k] = (FriBidiChar)L->c[cs + k].cp;
+    fribidi_get_bidi_types(str, n, types);
+    fribidi_get_bracket_types(str, n, types, br);
+    FriBidiParType base = rtl ? FRIBIDI_PAR_RTL : FRIBIDI_PAR_LTR;
+    if (!fribidi_get_par_embedding_levels_ex(types, br, n, &base, levels))
+        memset(levels, 0, (size_t)n * sizeof *levels);
+    free(str);
+    free(types);
+    free(br);
+}
+
+/* UAX #9 rule L2 on whole segments: from the highest level down to the lowest odd one,
+ * every run of segments at that level or above is reversed. */
+static void visual_order(int (*seg)[2], int n, const FriBidiLevel *levels)
+{
+    int hi = 0, lo_odd = 255;
+    for (int k = 0; k < n; k++) {
+        int l = levels[seg[k][0]];
+        hi = l > hi ? l : hi;
+        if (l & 1)
+            lo_odd = l < lo_odd ? l : lo_odd;
+    }
+    for (int l = hi; l >= lo_odd && l > 0; l--)
+        for (int a = 0; a < n;) {
+            if (levels[seg[a][0]] < l) {
+                a++;
+                continue;
+            }
+            int b = a;
+            while (b < n && levels[seg[b][0]] >= l)
+                b++;
+            for (int x = a, y = b - 1; x < y; x++, y--) {
+                int t0 = seg[x][0], t1 = seg[x][1];
+                seg[x][0] = seg[y][0];
+                seg[x][1] = seg[y][1];
+                seg[y][0] = t0;
+                seg[y][1] = t1;
+            }
+            a = b;
+        }
+}
+
+/*
  * Shapes characters [i0, i1) of L (one face and size, no absolute position
  * after i0; they may belong to several elements, as HarfBuzz then kerns
  * across a tspan's edge) and sets each glyph into the path of its
@@ -426,8 +483,8 @@ static double anchor_shift(const chunk *k)
  * character's cluster.
  */
 static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font_t *font,
-                          const sv_node *text, double *penx, double *peny, sv_text_run *runs,
-                          const int *char_run, double ylim[2])
+                          const sv_node *text, double *penx, double *peny, bool rtl,
+                          sv_text_run *runs, const int *char_run, double ylim[2])
 {
     const owner *o = &L->own[L->c[i0].owner];
     hb_buffer_t *buf = hb_buffer_create();
@@ -437,6 +494,7 @@ static void shape_segment(const layout *L, int i0, int i1, FT_Face face, hb_font
     if (o->lang)
         hb_buffer_set_language(buf, hb_language_from_string(o->lang, -1));
     hb_buffer_guess_segment_properties(buf);
+    hb_buffer_set_direction(buf, rtl ? HB_DIRECTION_RTL : HB_DIRECTION_LTR);
     hb_shape(font, buf, NULL, 0);
     unsigned n;
     hb_glyph_info_t *info = hb_buffer_get_glyph_infos(buf, &n);
@@ -509,31 +567,32 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
         if (!faces[i])
             sv_doc_warn(doc, "<text> (line %d): %s", text->line, err);
     }
-    /* segments [i, j): one face, size and language, absolute positions only at i */
+    /* text chunks (to the next absolute position), each cut into segments of one face,
+       size, language and bidi level, placed in visual order */
     sv_text_run *runs = sv_xrealloc(NULL, cnt * sizeof *runs);
     int *run_chunk = sv_xrealloc(NULL, cnt * sizeof *run_chunk);
     int *char_run = sv_xrealloc(NULL, cnt * sizeof *char_run);
     chunk *chunks = sv_xrealloc(NULL, cnt * sizeof *chunks);
+    FriBidiLevel *levels = sv_xrealloc(NULL, cnt * sizeof *levels);
+    int (*seg)[2] = sv_xrealloc(NULL, cnt * sizeof *seg);
     int nr = 0, nch = 0;
     double penx = 0, peny = 0, ylim[2] = {INFINITY, -INFINITY};
-    for (int i = 0, j; i < L.n; i = j) {
-        const ch *c = &L.c[i];
-        const owner *o = &L.own[c->owner];
-        for (j = i + 1; j < L.n && faces[j] == faces[i] && !L.c[j].has[POS_X] &&
-                        !L.c[j].has[POS_Y] &&
-                        L.own[L.c[j].owner].style.font_size == o->style.font_size &&
-                        L.own[L.c[j].owner].lang == o->lang;
-             j++)
+    char dir[16] = "";
+    for (const sv_node *a = text; a && !prop(a, "direction", dir, sizeof dir); a = a->parent)
+        ;
+    bool rtl = !strcmp(dir, "rtl");
+    for (int cs = 0, ce; cs < L.n; cs = ce) {
+        for (ce = cs + 1; ce < L.n && !L.c[ce].has[POS_X] && !L.c[ce].has[POS_Y]; ce++)
             ;
-        if (c->has[POS_X])
-            penx = c->v[POS_X];
-        if (c->has[POS_Y])
-            peny = c->v[POS_Y];
-        if (nch == 0 || c->has[POS_X] || c->has[POS_Y]) {
-            chunks[nch].start = chunks[nch].end = penx;
-            chunks[nch++].anchor = o->style.text_anchor;
-        }
-        for (int k = i; k < j; k++) { /* a run per element within a chunk */
+        const ch *c0 = &L.c[cs];
+        if (c0->has[POS_X])
+            penx = c0->v[POS_X];
+        if (c0->has[POS_Y])
+            peny = c0->v[POS_Y];
+        chunks[nch].start = chunks[nch].end = penx;
+        int anchor = L.own[c0->owner].style.text_anchor; /* start and end swap under rtl */
+        chunks[nch++].anchor = rtl && anchor != 1 ? 2 - anchor : anchor;
+        for (int k = cs; k < ce; k++) { /* a run per element within the chunk */
             const owner *ok = &L.own[L.c[k].owner];
             if (nr == 0 || runs[nr - 1].node != ok->node || run_chunk[nr - 1] != nch - 1) {
                 runs[nr].node = ok->node;
@@ -544,11 +603,29 @@ int sv_svg_text_layout(const sv_node *text, const sv_style *style, const sv_css 
             }
             char_run[k] = nr - 1;
         }
-        if (faces[i])
-            shape_segment(&L, i, j, faces[i], sv_font_hb(F, faces[i]), text, &penx, &peny, runs,
-                          char_run, ylim);
+        bidi_levels(&L, cs, ce, rtl, levels + cs);
+        int nseg = 0;
+        for (int i = cs, j; i < ce; i = j) {
+            const owner *o = &L.own[L.c[i].owner];
+            for (j = i + 1; j < ce && faces[j] == faces[i] && levels[j] == levels[i] &&
+                            L.own[L.c[j].owner].style.font_size == o->style.font_size &&
+                            L.own[L.c[j].owner].lang == o->lang;
+                 j++)
+                ;
+            seg[nseg][0] = i;
+            seg[nseg++][1] = j;
+        }
+        visual_order(seg, nseg, levels);
+        for (int k = 0; k < nseg; k++) {
+            int i = seg[k][0];
+            if (faces[i])
+                shape_segment(&L, i, seg[k][1], faces[i], sv_font_hb(F, faces[i]), text, &penx,
+                              &peny, levels[i] & 1, runs, char_run, ylim);
+        }
         chunks[nch - 1].end = penx;
     }
+    free(levels);
+    free(seg);
     /* text-anchor: each chunk moves by half or all of its advance; the cells' box spans
        the chunks where they end up */
     for (int r = 0; r < nr; r++) {
