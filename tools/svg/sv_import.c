@@ -1212,7 +1212,8 @@ static void apply_mask(imp *im, const sv_node *n, const char *id, const ctx *c, 
     /* take the content and the mask's regions out of the list, put the copies in */
     int ncontent = mstart - start, nmask = im->nitems - mstart;
     item *content = sv_xrealloc(NULL, (size_t)(ncontent + nmask + 1) * sizeof *content);
-    memcpy(content, im->items + start, (size_t)(ncontent + nmask) * sizeof *content);
+    if (ncontent + nmask > 0) /* im->items may still be NULL */
+        memcpy(content, im->items + start, (size_t)(ncontent + nmask) * sizeof *content);
     const item *mask = content + ncontent;
     im->nitems = start;
     for (int i = 0; i < ncontent + nmask; i++)
