@@ -112,7 +112,7 @@ deb: $(DEB_FILE)
 $(DEB_FILE) $(DEB_DEV_FILE) &: $(DEB_SOURCES)
 	$(Q)tools/build_deb.sh $(DEB_DIR) $(VERSION)
 
-test-pkg: $(DEB_FILE) $(DEB_DEV_FILE)
+test-pkg: $(DEB_FILE) $(DEB_DEV_FILE) $(HOST)/celsim
 	$(Q)sh tests/pkg_test.sh $(DEB_FILE) $(DEB_DEV_FILE) $(DEB_DIR)/check
 
 # ---------------------------------------------------------- consumers
