@@ -6,7 +6,7 @@
 #                        core as a library (host, Cortex-M4F, RV32) with headers,
 #                        pkg-config files and a CMake package
 #   make install-lib     only the library part
-#   make deb             build/deb/celscan_VERSION_ARCH.deb and libcelscan-dev_...deb
+#   make deb             build/pkg/deb/celscan_VERSION_ARCH.deb and libcelscan-dev_...deb
 #                        (debhelper, from a copy of the tree; lintian's verdict printed)
 #   make test-pkg        the package: files, unit (systemd-analyze), the installed celfw
 #                        runs a frame (part of `make test`)
@@ -103,7 +103,7 @@ install-lib: $(LIB_ARCHIVES)
 # The package is built from a copy of the files git knows (committed or
 # not, minus the ignored), so the tree stays clean and a build/ left in it
 # is not shipped; the .deb is rebuilt only when one of them changed.
-DEB_DIR := $(BUILD)/deb
+DEB_DIR := $(BUILD)/pkg/deb
 DEB_ARCH := $(shell dpkg --print-architecture 2>/dev/null)
 DEB_FILE := $(DEB_DIR)/celscan_$(VERSION)_$(DEB_ARCH).deb
 DEB_DEV_FILE := $(DEB_DIR)/libcelscan-dev_$(VERSION)_$(DEB_ARCH).deb
@@ -116,10 +116,10 @@ test-pkg: $(DEB_FILE) $(DEB_DEV_FILE) $(HOST)/celsim
 	$(Q)sh tests/pkg_test.sh $(DEB_FILE) $(DEB_DEV_FILE) $(DEB_DIR)/check
 
 # ---------------------------------------------------------- consumers
-STAGE := $(BUILD)/stage
+STAGE := $(BUILD)/pkg/stage
 test-consumers: build-install $(HOST)/celc
 	$(Q)rm -rf $(STAGE)
 	$(Q)$(MAKE) --no-print-directory install DESTDIR=$(abspath $(STAGE)) PREFIX=/usr >/dev/null
-	$(Q)sh tests/consumer_test.sh $(abspath $(STAGE)) $(abspath $(BUILD)/consumers) $(HOST)
+	$(Q)sh tests/consumer_test.sh $(abspath $(STAGE)) $(abspath $(BUILD)/pkg/consumers) $(HOST)
 
 TEST_TARGETS += test-pkg test-consumers
