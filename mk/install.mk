@@ -11,8 +11,10 @@
 #   make test-pkg        the package: files, unit (systemd-analyze), the installed celfw
 #                        runs a frame (part of `make test`)
 #   make test-consumers  examples/consumer-{make,cmake} built against `make install
-#                        DESTDIR=build/stage` for host and Cortex-M4F; the host ones render
-#                        the demo with celsim's CRC (part of `make test`)
+#                        DESTDIR=build/pkg/stage` for host and Cortex-M4F; the host ones render
+#                        the demo with celsim's CRC; consumer-make's Cortex-M4F build against
+#                        a library installed with MCU_CFG=examples/sign/sign_config_160x128.h
+#                        (part of `make test`)
 #
 # The library variants differ in target and capacities: the host one has the
 # defaults of core/cs_config.h; the microcontroller ones are built with the
@@ -61,7 +63,10 @@ $(BUILD)/lib/$(1)/libcelscan.a: $(patsubst core/%.c,$(BUILD)/lib/$(1)/%.o,$(CORE
 endef
 $(foreach v,$(LIB_MCU_VARIANTS),$(eval $(call LIB_VARIANT_RULES,$(v))))
 
-LIB_ARCHIVES := $(HOST)/libcelscan.a $(foreach v,$(LIB_MCU_VARIANTS),$(BUILD)/lib/$(v)/libcelscan.a)
+# The host archive; test-consumers points it at the main build's when it
+# builds microcontroller variants alone in a build directory of their own.
+LIB_HOST ?= $(HOST)/libcelscan.a
+LIB_ARCHIVES := $(LIB_HOST) $(foreach v,$(LIB_MCU_VARIANTS),$(BUILD)/lib/$(v)/libcelscan.a)
 INSTALL_PROGRAMS := $(HOST)/celfw $(HOST)/celc $(HOST)/celsim
 MAN_PAGES := dist/man/celfw.1 dist/man/celc.1 dist/man/celsim.1 dist/man/celfw.conf.5
 
@@ -92,7 +97,7 @@ install-lib: $(LIB_ARCHIVES)
 	$(Q)install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(DATADIR)/pkgconfig \
 		$(DESTDIR)$(LIBDIR)/cmake/celscan $(DESTDIR)$(INCLUDEDIR)/celscan
 	$(Q)install -m 0644 core/celscan.h core/cs_config.h $(MCU_CFG) $(DESTDIR)$(INCLUDEDIR)/celscan/
-	$(Q)install -m 0644 $(HOST)/libcelscan.a $(DESTDIR)$(LIBDIR)/
+	$(Q)install -m 0644 $(LIB_HOST) $(DESTDIR)$(LIBDIR)/
 	$(Q)$(foreach v,$(LIB_MCU_VARIANTS),install -D -m 0644 $(BUILD)/lib/$(v)/libcelscan.a \
 		$(DESTDIR)$(CROSSLIBDIR)/$(v)/libcelscan.a &&) true
 	$(Q)tools/install_meta.sh "$(DESTDIR)" "$(VERSION)" "$(PREFIX)" "$(LIBDIR)" "$(DATADIR)" \
@@ -120,6 +125,12 @@ STAGE := $(BUILD)/pkg/stage
 test-consumers: build-install $(HOST)/celc
 	$(Q)rm -rf $(STAGE)
 	$(Q)$(MAKE) --no-print-directory install DESTDIR=$(abspath $(STAGE)) PREFIX=/usr >/dev/null
-	$(Q)sh tests/consumer_test.sh $(abspath $(STAGE)) $(abspath $(BUILD)/pkg/consumers) $(HOST)
+	@# CS_CFG_FILE, the one knob: the Cortex-M4F library again with a small sign's capacities
+	$(Q)rm -rf $(STAGE)-small
+	$(Q)$(MAKE) --no-print-directory install-lib DESTDIR=$(abspath $(STAGE))-small PREFIX=/usr \
+		BUILD=$(BUILD)/pkg/small LIB_HOST=$(HOST)/libcelscan.a LIB_MCU_VARIANTS=cortex-m4f \
+		MCU_CFG=examples/sign/sign_config_160x128.h >/dev/null
+	$(Q)sh tests/consumer_test.sh $(abspath $(STAGE)) $(abspath $(BUILD)/pkg/consumers) $(HOST) \
+		$(abspath $(STAGE))-small
 
 TEST_TARGETS += test-pkg test-consumers

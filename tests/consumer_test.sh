@@ -8,10 +8,14 @@
 # the CRC celsim gives for its JSON at several sizes and times (the
 # consumers convert float lines from cs_render_frame, celsim converts runs:
 # two paths to the same pixels), and damaged input is reported, not shown.
+# SMALL_STAGE holds a Cortex-M4F library installed with other capacities
+# (MCU_CFG=examples/sign/sign_config_160x128.h): its pkg-config file must
+# name that header as CS_CFG_FILE, and the firmware built against it must
+# get the small structs (less RAM than with the default capacities).
 #
-# usage: consumer_test.sh STAGE WORK_DIR HOST_BUILD_DIR
+# usage: consumer_test.sh STAGE WORK_DIR HOST_BUILD_DIR SMALL_STAGE
 set -u
-stage=$1 work=$2 host=$3
+stage=$1 work=$2 host=$3 small=$4
 pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL test-consumers: $*" >&2; }
@@ -61,6 +65,18 @@ for prog in "$work/make/host/sign" "$work/cmake-host/sign"; do
     rc=$?
     check "$prog: a size beyond the library's capacity is refused (exit $rc)" test "$rc" -eq 2
 done
+
+# CS_CFG_FILE: the library's capacities travel with it to the firmware
+check "the small library's pkg-config names its CS_CFG_FILE" grep -q \
+    'Cflags: .*-DCS_CFG_FILE=\\"sign_config_160x128.h\\"' "$small/usr/share/pkgconfig/celscan-cortex-m4f.pc"
+check "the small library's header is installed" test -f "$small/usr/include/celscan/sign_config_160x128.h"
+check "consumer-make builds for Cortex-M4F against the small library" \
+    make --no-print-directory -C examples/consumer-make SYSROOT="$small" O="$work/make-small" cortex-m4f
+bss() { arm-none-eabi-size "$1" 2>/dev/null | awk 'NR == 2 { print $3 }'; }
+b_default=$(bss "$work/make/cortex-m4f/sign.elf") b_small=$(bss "$work/make-small/cortex-m4f/sign.elf")
+echo "test-consumers: Cortex-M4F sign.elf RAM (bss): ${b_default:-?} B with cs_config_480x272.h, ${b_small:-?} B with sign_config_160x128.h"
+check "smaller capacities give the firmware smaller structs" test "${b_small:-0}" -gt 0 -a \
+    "${b_small:-0}" -lt "${b_default:-0}"
 
 echo "test-consumers: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
