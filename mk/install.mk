@@ -2,7 +2,7 @@
 #
 #   make install [PREFIX=/usr/local] [DESTDIR=...]
 #                        celfw, celc, celsim, their man pages, celfw.service, the udev
-#                        rules and sysusers.d entry, the default /etc config, and the
+#                        rules (announced in AppStream metadata) and sysusers.d entry, the default /etc config, and the
 #                        core as a library (host, Cortex-M4F, RV32) with headers,
 #                        pkg-config files and a CMake package
 #   make install-lib     only the library part
@@ -78,7 +78,7 @@ install: install-programs install-lib
 install-programs: $(INSTALL_PROGRAMS)
 	$(Q)install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5 \
 		$(DESTDIR)$(UNITDIR) $(DESTDIR)$(UDEVRULESDIR) $(DESTDIR)$(DOCDIR)/examples \
-		$(DESTDIR)$(SYSCONFDIR)/celscan
+		$(DESTDIR)$(SYSCONFDIR)/celscan $(DESTDIR)$(DATADIR)/metainfo
 	$(Q)install -d -m 0755 $(DESTDIR)$(SYSCONFDIR)/celscan/keys
 	$(Q)install -m 0755 $(INSTALL_PROGRAMS) $(DESTDIR)$(BINDIR)/
 	$(Q)install -m 0644 $(filter %.1,$(MAN_PAGES)) $(DESTDIR)$(MANDIR)/man1/
@@ -86,6 +86,7 @@ install-programs: $(INSTALL_PROGRAMS)
 	$(Q)sed -e 's|@BINDIR@|$(BINDIR)|g' -e 's|@SYSCONFDIR@|$(SYSCONFDIR)|g' dist/celfw.service.in \
 		> $(DESTDIR)$(UNITDIR)/celfw.service && chmod 0644 $(DESTDIR)$(UNITDIR)/celfw.service
 	$(Q)install -m 0644 dist/60-celscan.rules $(DESTDIR)$(UDEVRULESDIR)/
+	$(Q)install -m 0644 dist/org.celscan.celfw.metainfo.xml $(DESTDIR)$(DATADIR)/metainfo/
 	$(Q)install -m 0644 firmware/linux/celfw.conf.example $(DESTDIR)$(DOCDIR)/examples/
 	$(Q)$(if $(SYSUSERSDIR),install -D -m 0644 dist/celscan.sysusers \
 		$(DESTDIR)$(SYSUSERSDIR)/celscan.conf)

@@ -84,6 +84,10 @@ echo "test-pkg: systemd-analyze security: exposure ${exposure:-?} (0 safest, 10 
 check "exposure ${exposure:-?} <= 2.0" awk -v e="${exposure:-99}" 'BEGIN { exit !(e <= 2.0) }'
 lint=$(dirname "$deb")/lintian.txt
 check "lintian reports no errors" sh -c "test -f '$lint' && ! grep -q '^E:' '$lint'"
+check "AppStream metadata validates" appstreamcli validate --no-net \
+    "$root/usr/share/metainfo/org.celscan.celfw.metainfo.xml"
+check "AppStream metadata announces the udev rule's device" grep -q \
+    '<modalias>usb:v1D50p614Dd\*</modalias>' "$root/usr/share/metainfo/org.celscan.celfw.metainfo.xml"
 check "udev rule gives the GUD device to group celscan" grep -q \
     'ATTR{idVendor}=="1d50", ATTR{idProduct}=="614d", GROUP="celscan"' "$root/lib/udev/rules.d/60-celscan.rules"
 
