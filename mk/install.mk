@@ -2,9 +2,10 @@
 #
 #   make install [PREFIX=/usr/local] [DESTDIR=...]
 #                        celfw, celc, celsim, their man pages, celfw.service, the udev
-#                        rules (announced in AppStream metadata) and sysusers.d entry, the default /etc config, and the
-#                        core as a library (host, Cortex-M4F, RV32) with headers,
-#                        pkg-config files and a CMake package
+#                        rules (announced in AppStream metadata), the sysusers.d entry,
+#                        the default /etc config, and the core as a library (host,
+#                        Cortex-M4F, RV32) with headers, pkg-config files and a CMake
+#                        package
 #   make install-lib     only the library part
 #   make deb             build/pkg/deb/celscan_VERSION_ARCH.deb and libcelscan-dev_...deb
 #                        (debhelper, from a copy of the tree; lintian's verdict printed)
@@ -24,7 +25,8 @@
 # library was built with. `make install MCU_CFG=my_board_config.h` installs
 # libraries with other capacities: CS_CFG_FILE is the one knob.
 
-VERSION := $(shell sed -n '1s/[^0-9.]*\([0-9.]*\).*/\1/p' debian/changelog)
+# The package's version, from debian/changelog: one place to change it.
+PKG_VERSION := $(shell sed -n '1s/[^0-9.]*\([0-9.]*\).*/\1/p' debian/changelog)
 PREFIX ?= /usr/local
 DESTDIR ?=
 BINDIR ?= $(PREFIX)/bin
@@ -101,7 +103,7 @@ install-lib: $(LIB_ARCHIVES)
 	$(Q)install -m 0644 $(LIB_HOST) $(DESTDIR)$(LIBDIR)/
 	$(Q)$(foreach v,$(LIB_MCU_VARIANTS),install -D -m 0644 $(BUILD)/lib/$(v)/libcelscan.a \
 		$(DESTDIR)$(CROSSLIBDIR)/$(v)/libcelscan.a &&) true
-	$(Q)tools/install_meta.sh "$(DESTDIR)" "$(VERSION)" "$(PREFIX)" "$(LIBDIR)" "$(DATADIR)" \
+	$(Q)tools/install_meta.sh "$(DESTDIR)" "$(PKG_VERSION)" "$(PREFIX)" "$(LIBDIR)" "$(DATADIR)" \
 		"$(INCLUDEDIR)" "$(CROSSLIBDIR)" "$(LIB_CFG_NAME)" "$(LIB_MCU_VARIANTS)" \
 		"$(LIB_FLAGS_cortex-m4f)" "$(LIB_FLAGS_rv32imafc)"
 
@@ -111,12 +113,12 @@ install-lib: $(LIB_ARCHIVES)
 # is not shipped; the .deb is rebuilt only when one of them changed.
 DEB_DIR := $(BUILD)/pkg/deb
 DEB_ARCH := $(shell dpkg --print-architecture 2>/dev/null)
-DEB_FILE := $(DEB_DIR)/celscan_$(VERSION)_$(DEB_ARCH).deb
-DEB_DEV_FILE := $(DEB_DIR)/libcelscan-dev_$(VERSION)_$(DEB_ARCH).deb
+DEB_FILE := $(DEB_DIR)/celscan_$(PKG_VERSION)_$(DEB_ARCH).deb
+DEB_DEV_FILE := $(DEB_DIR)/libcelscan-dev_$(PKG_VERSION)_$(DEB_ARCH).deb
 DEB_SOURCES := $(shell git ls-files -co --exclude-standard 2>/dev/null | grep -v '^build/')
 deb: $(DEB_FILE)
 $(DEB_FILE) $(DEB_DEV_FILE) &: $(DEB_SOURCES)
-	$(Q)tools/build_deb.sh $(DEB_DIR) $(VERSION)
+	$(Q)tools/build_deb.sh $(DEB_DIR) $(PKG_VERSION)
 
 test-pkg: $(DEB_FILE) $(DEB_DEV_FILE) $(HOST)/celsim
 	$(Q)sh tests/pkg_test.sh $(DEB_FILE) $(DEB_DEV_FILE) $(DEB_DIR)/check
