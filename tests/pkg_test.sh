@@ -107,6 +107,18 @@ want=$(build/host/celsim render scenes/demo.json --size 320x180 --time 1.5 --crc
 got=$("$root/usr/bin/celsim" render "$work/demo.cels" --size 320x180 --time 1.5 --crc 2>/dev/null)
 if [ -n "$want" ] && [ "$got" = "$want" ]; then ok; else
     bad "installed celc+celsim: '$got', build tree celsim: '$want'"; fi
+# Firmware built against libcelscan-dev as unpacked: pkg-config and CMake
+# find the host library in the multiarch directory and the Cortex-M4F one.
+check "consumer-make builds against libcelscan-dev" \
+    make --no-print-directory -C examples/consumer-make SYSROOT="$root" O="$work/consumer-make"
+check "consumer-cmake builds against libcelscan-dev" sh -c \
+    "cmake -S examples/consumer-cmake -B '$work/consumer-cmake' -DCMAKE_PREFIX_PATH='$root/usr' &&
+     cmake --build '$work/consumer-cmake'"
+for prog in "$work/consumer-make/host/sign" "$work/consumer-cmake/sign"; do
+    got=$("$prog" "$work/demo.cels" 320x180 1.5 2>&1)
+    if [ -n "$want" ] && [ "$got" = "$want" ]; then ok; else
+        bad "$prog against libcelscan-dev: '$got', celsim: '$want'"; fi
+done
 check "celfw(1) renders without warnings" sh -c \
     "! man --warnings -l '$root/usr/share/man/man1/celfw.1.gz' 2>&1 >/dev/null | grep -q ."
 
