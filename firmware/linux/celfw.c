@@ -32,6 +32,7 @@
 
 #include "celfw_config.h"
 #include "celfw_input.h"
+#include "celfw_notify.h"
 #include "celfw_scenes.h"
 #include "celfw_stream.h"
 #include "celfw_wall.h"
@@ -56,6 +57,7 @@ typedef struct celfw {
     bool display_up, render_warned;
     double anim_t;
     uint64_t t0, last_log, frames_at_log;
+    celfw_notify notify; /* READY and watchdog pings to systemd */
 } celfw;
 
 static volatile sig_atomic_t stop_signal;
@@ -298,6 +300,7 @@ static const char *run(celfw *fw)
     uint64_t render_errors = 0;
     for (;;) {
         uint64_t start = lx_now(&lx_clock_monotonic);
+        celfw_notify_alive(&fw->notify, start); /* a hung loop stops the pings */
         fw->anim_t = c->time_step > 0 ? (double)fw->iterations * c->time_step : (double)(start - fw->t0) / 1e9;
         float t = (float)fw->anim_t;
         fw->anim_t = t; /* report the value the renderer used */
@@ -424,8 +427,11 @@ int main(int argc, char **argv)
         display_state(fw));
     if (!celfw_stream_available() && strcmp(fw->cfg.input, "none") != 0)
         say("event", "stream decoder not in this build: input bytes are counted, not decoded");
+    celfw_notify_ready(&fw->notify, lx_now(&lx_clock_monotonic), "showing %s on %s %dx%d",
+                       fw->cfg.scene, fw->disp->ops->name, fw->disp->width, fw->disp->height);
 
     const char *why = run(fw);
+    celfw_notify_stopping();
     char reason[64];
     snprintf(reason, sizeof reason, "reason=%s ", why);
     status(fw, "exit", reason);
