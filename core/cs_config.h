@@ -46,6 +46,10 @@
 #ifndef CS_CFG_MAX_KEY_VALUES
 #define CS_CFG_MAX_KEY_VALUES 32768
 #endif
+/* Longest chain of cel groups (a cel, its parent, the parent's parent...). */
+#ifndef CS_CFG_MAX_GROUP_DEPTH
+#define CS_CFG_MAX_GROUP_DEPTH 16
+#endif
 /* Most control points of one animated contour: the workspace holds one such
  * contour evaluated at frame time. */
 #ifndef CS_CFG_MAX_ANIM_POINTS
