@@ -172,6 +172,8 @@ cJSON *lt_contour_json(const sv_contour *ct);
 /* Closed contours of a path with a layout fixed by its segments (lt_shape.c). */
 void lt_fixed_contours(const sv_path *p, sv_contour **out, int *n);
 void lt_free_contours(sv_contour *c, int n);
+/* Gives every frame's contours one layout, shapes unchanged (lt_layout.c). */
+void lt_unify_layout(sv_contour **frames, int *counts, int nframes);
 /* A Lottie path (closed flag, v, i, o) as an sv_path. */
 void lt_path_build(const double *vals, int n, sv_path *out);
 

@@ -38,10 +38,15 @@ typedef struct layer_info {
     int xf_cel;    /* group cel with its transform, or -1 */
 } layer_info;
 
-static cJSON *trs_value(const double *v, int width, void *arg)
+/* A TRS sample: scale and opacity are kept in percent, so that one
+ * tolerance (0.01) means 0.01 px, 0.01 degree and 0.01 % alike. */
+static cJSON *trs_value(const double *pct, int width, void *arg)
 {
     (void)width;
     (void)arg;
+    double v[10];
+    memcpy(v, pct, sizeof v);
+    v[4] /= 100, v[5] /= 100, v[9] /= 100;
     cJSON *o = cJSON_CreateObject();
     if (v[0] != 0 || v[1] != 0)
         cJSON_AddItemToObject(o, "position", lt_num_array(v, 2));
@@ -97,7 +102,7 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
 {
     int N = tm->nframes;
     lt_signal sg;
-    lt_signal_init(&sg, N, 10, 1e-4);
+    lt_signal_init(&sg, N, 10, 0.01);
     if (!sg.v || !lt_charge(c, 10.0 * N)) {
         lt_signal_free(&sg);
         return -1;
@@ -118,13 +123,13 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
         lt_prop_eval(&x->sa, f, &sa);
         if (transform) {
             v[0] = p[0], v[1] = p[1], v[2] = a[0], v[3] = a[1];
-            v[4] = s[0] / 100, v[5] = s[1] / 100, v[6] = r;
+            v[4] = s[0], v[5] = s[1], v[6] = r;
             v[7] = fmin(fmax(-sk, -85), 85), v[8] = sa;
         } else {
             v[0] = v[1] = v[2] = v[3] = v[6] = v[7] = v[8] = 0;
-            v[4] = v[5] = 1;
+            v[4] = v[5] = 100;
         }
-        v[9] = (opacity ? fmin(fmax(o / 100, 0), 1) : 1) * (visible ? visible[n] : 1);
+        v[9] = (opacity ? fmin(fmax(o, 0), 100) : 100) * (visible ? visible[n] : 1);
     }
     /* Visibility steps on whole frames: breaks there make them holds. */
     if (visible)
@@ -138,7 +143,7 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
     if (track) {
         cJSON *anim = cJSON_AddObjectToObject(cel, "animate");
         cJSON_AddItemToObject(anim, "trs", track);
-    } else if (sg.v[9] != 1) {
+    } else if (sg.v[9] != 100) {
         /* Static but faded: a one-key TRS track holds the opacity. */
         cJSON *anim = cJSON_AddObjectToObject(cel, "animate");
         cJSON *t = cJSON_AddObjectToObject(anim, "trs"), *keys = cJSON_AddArrayToObject(t, "keys");
@@ -147,7 +152,9 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
         cJSON_AddItemToArray(key, trs_value(sg.v, 10, NULL));
         cJSON_AddItemToArray(keys, key);
     } else {
-        const double *v = sg.v;
+        double v[10];
+        memcpy(v, sg.v, sizeof v);
+        v[4] /= 100, v[5] /= 100;
         double d = M_PI / 180, cr = cos(v[6] * d), sr = sin(v[6] * d);
         sv_affine m = {v[4], 0, 0, v[5], -v[4] * v[2], -v[5] * v[3]};
         if (v[7] != 0) {

@@ -53,7 +53,7 @@ static int mask_geometry(lt_ctx *c, mask *m, const lt_time *tm)
             if (!m->sig)
                 return lt_fail(c, "out of memory");
             for (int i = 0; i < nc; i++) {
-                lt_signal_init(&m->sig[i], N, 3 * cc[i].count, 1e-4);
+                lt_signal_init(&m->sig[i], N, 3 * cc[i].count, 0.01);
                 lt_signal_note_prop(&m->sig[i], &m->pt, tm->f0, tm->fscale);
             }
         }

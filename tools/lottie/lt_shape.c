@@ -839,40 +839,44 @@ static void gradient_paint(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSO
 static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *regions)
 {
     int N = tm->nframes;
-    sv_contour *first = NULL;
-    int nfirst = 0;
-    region_contours(c, s, tm->frame[0], &first, &nfirst);
-    if (nfirst == 0) {
-        /* Maybe it appears later: look for the first frame with geometry. */
-        bool any = false;
-        for (int n = 1; n < N && !any; n++) {
-            sv_contour *cc = NULL;
-            int nc = 0;
-            region_contours(c, s, tm->frame[n], &cc, &nc);
-            any = nc > 0;
-            if (any) {
-                first = cc;
-                nfirst = nc;
-            } else {
-                lt_free_contours(cc, nc);
-            }
-            if (!lt_charge(c, 64))
-                return -1;
-        }
-        if (!any)
-            return 0;
+    /* Every frame's contours; frames whose layouts differ are unified. */
+    sv_contour **fc = calloc((size_t)N, sizeof *fc);
+    int *fn = calloc((size_t)N, sizeof *fn);
+    if (!fc || !fn) {
+        free(fc), free(fn);
+        return lt_fail(c, "out of memory");
     }
-    size_t width = 0;
-    for (int i = 0; i < nfirst; i++)
-        width += 3 * (size_t)first[i].count;
-    if (!lt_charge(c, (double)width * N))
-        return lt_free_contours(first, nfirst), -1;
+    bool any = false, uniform = true;
+    for (int n = 0; n < N; n++) {
+        region_contours(c, s, tm->frame[n], &fc[n], &fn[n]);
+        any = any || fn[n] > 0;
+        uniform = uniform && same_layout(fc[0], fn[0], fc[n], fn[n]);
+        double w = 0;
+        for (int i = 0; i < fn[n]; i++)
+            w += 3.0 * fc[n][i].count;
+        if (!lt_charge(c, w + 64)) {
+            for (int k = 0; k <= n; k++)
+                lt_free_contours(fc[k], fn[k]);
+            free(fc), free(fn);
+            return -1;
+        }
+    }
+    if (!any) {
+        for (int n = 0; n < N; n++)
+            lt_free_contours(fc[n], fn[n]);
+        free(fc), free(fn);
+        return 0;
+    }
+    if (!uniform)
+        lt_unify_layout(fc, fn, N);
+    sv_contour *first = fc[0];
+    int nfirst = fn[0];
     /* Geometry signals, one per contour. */
-    lt_signal *geo = calloc((size_t)nfirst, sizeof *geo);
+    lt_signal *geo = calloc((size_t)(nfirst ? nfirst : 1), sizeof *geo);
     if (!geo)
-        return lt_free_contours(first, nfirst), lt_fail(c, "out of memory");
+        return lt_fail(c, "out of memory");
     for (int i = 0; i < nfirst; i++) {
-        lt_signal_init(&geo[i], N, 3 * first[i].count, 1e-4);
+        lt_signal_init(&geo[i], N, 3 * first[i].count, 0.01);
         for (const sh_path *const *p = (const sh_path *const *)s->paths;
              p < (const sh_path *const *)s->paths + s->npaths; p++) {
             const lt_prop *ps[8] = {&(*p)->k, &(*p)->p, &(*p)->s, &(*p)->r,
@@ -881,37 +885,18 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
                 lt_signal_note_prop(&geo[i], ps[k], tm->f0, tm->fscale);
             note_node_chain(&geo[i], (*p)->node, tm);
         }
+        for (int n = 0; n < N; n++)
+            memcpy(geo[i].v + (size_t)n * geo[i].width, fc[n][i].pts,
+                   (size_t)geo[i].width * sizeof(double));
     }
-    bool varies = false, broken = false;
-    for (int n = 0; n < N; n++) {
-        sv_contour *cc = first;
-        int nc = nfirst;
-        if (n > 0)
-            cc = NULL, nc = 0, region_contours(c, s, tm->frame[n], &cc, &nc);
-        if (!same_layout(first, nfirst, cc, nc)) {
-            broken = true;
-        } else {
-            for (int i = 0; i < nc; i++)
-                memcpy(geo[i].v + (size_t)n * geo[i].width, cc[i].pts,
-                       (size_t)geo[i].width * sizeof(double));
-        }
-        if (n > 0)
-            lt_free_contours(cc, nc);
-        if (broken)
-            break;
-    }
-    if (broken) {
-        lt_warn(c, LT_F_STROKE_ANIM,
-                "an animated shape whose outline changes its layout (trimmed or stroked with an "
-                "animated width) is drawn as at its first frame");
-        for (int i = 0; i < nfirst; i++)
-            for (int n = 1; n < N; n++)
-                memcpy(geo[i].v + (size_t)n * geo[i].width, geo[i].v,
-                       (size_t)geo[i].width * sizeof(double));
-    }
+    bool varies = false;
+    for (int n = 1; n < N; n++)
+        lt_free_contours(fc[n], fn[n]);
+    free(fc);
+    free(fn);
     /* Paint: colour and opacity over the frames. */
     lt_signal pt;
-    lt_signal_init(&pt, N, 4, 1e-4);
+    lt_signal_init(&pt, N, 4, 1e-3);
     lt_signal_note_prop(&pt, &s->o, tm->f0, tm->fscale);
     if (s->type == ST_FILL || s->type == ST_STROKE)
         lt_signal_note_prop(&pt, &s->c, tm->f0, tm->fscale);
