@@ -18,6 +18,7 @@ $(HOST)/celc: $(LOTTIE_OBJ)
 #   make test-lottie          a bounded part for `make test`: a few files, 4 frames each, floor 90 %
 LOTTIE_DIR ?= ../shared/conformance/lottie
 LOTTIE_CONF_OBJ := $(HOST)/obj/tests/lottie_conf.o $(HOST)/obj/host-sim/scene_json.o \
+        $(HOST)/obj/host-sim/png_out.o \
         $(HOST)/obj/host-sim/paint_json.o $(HOST)/obj/tools/cels_write.o \
         $(HOST)/obj/tools/cli_num.o $(LOTTIE_OBJ)
 $(HOST)/obj/tests/lottie_conf.o: PKG_CFLAGS += $(shell pkg-config --cflags rlottie 2>/dev/null)

@@ -2,7 +2,7 @@
  * lottie_conf.c - the Lottie importer against rlottie, file by file.
  *
  *   lottie_conf DIR [--files a.json,b.json] [--frames N] [--table OUT.md]
- *               [--floor RATE] [--speed] [--all]
+ *               [--floor RATE] [--speed] [--all] [--dump DIR]
  *
  * For every file of DIR/INVENTORY.tsv whose features the importer maps
  * (column "mappable" or "mappable_if_trim" yes; --all: every file), imports
@@ -19,7 +19,8 @@
  *   lottie_conf: N passed, M failed
  * counting frames, and the exit status is non-zero when the pass rate is
  * below --floor (default 0.9) or a file the inventory marks mappable is
- * refused.
+ * refused. --dump writes each compared frame as DIR/FILE-NNN.png, rlottie
+ * on the left and celscan on the right.
  */
 #include <math.h>
 #include <stdio.h>
@@ -29,6 +30,7 @@
 
 #include <rlottie_capi.h>
 
+#include "../host-sim/png_out.h"
 #include "../host-sim/scene_json.h"
 #include "../tools/cels_write.h"
 #include "../tools/lottie/lt.h"
@@ -140,7 +142,7 @@ static void speed(const cs_scene *sc, Lottie_Animation *a, double fr, size_t n, 
 
 int main(int argc, char **argv)
 {
-    const char *dir = NULL, *files = NULL, *table = NULL;
+    const char *dir = NULL, *files = NULL, *table = NULL, *dump = NULL;
     int frames = 10;
     double floor_rate = 0.9;
     bool do_speed = false, all = false;
@@ -153,6 +155,8 @@ int main(int argc, char **argv)
             table = argv[++i];
         else if (!strcmp(argv[i], "--floor") && i + 1 < argc)
             floor_rate = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--dump") && i + 1 < argc)
+            dump = argv[++i];
         else if (!strcmp(argv[i], "--speed"))
             do_speed = true;
         else if (!strcmp(argv[i], "--all"))
@@ -261,6 +265,20 @@ int main(int argc, char **argv)
             if (render_cs(sc, W, H, n / fr, c2) == 0)
                 p = psnr(c1, c2, (size_t)3 * W * H);
             worst = p < worst ? p : worst;
+            if (dump) {
+                /* rlottie on the left, celscan on the right */
+                uint8_t *both = malloc((size_t)6 * W * H);
+                for (int y = 0; both && y < H; y++) {
+                    memcpy(both + (size_t)6 * W * y, c1 + (size_t)3 * W * y, (size_t)3 * W);
+                    memcpy(both + (size_t)6 * W * y + 3 * W, c2 + (size_t)3 * W * y, (size_t)3 * W);
+                }
+                char pp[1200], perr[200];
+                snprintf(pp, sizeof pp, "%s/%s-%03zu.png", dump, name, n);
+                if (both)
+                    png_write_rgb(pp, 2 * W, H, CS_PIX_RGB888_SRGB, both, (size_t)6 * W, perr,
+                                  sizeof perr);
+                free(both);
+            }
             ok += p >= 30;
         }
         passed += ok;

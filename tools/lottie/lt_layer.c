@@ -176,6 +176,74 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
     return cJSON_GetArraySize(c->cels) - 1;
 }
 
+/* Whether a region may let what is behind it show through (beta below 1 at
+ * some frame, or a function of position). */
+static bool see_through(const cJSON *reg)
+{
+    const cJSON *paint = get(reg, "paint"), *beta = get(paint, "beta");
+    if (beta && (!cJSON_IsNumber(beta) || beta->valuedouble < 1))
+        return true;
+    const cJSON *track = get(get(reg, "animate"), "paint"), *key;
+    cJSON_ArrayForEach(key, get(track, "keys"))
+    {
+        const cJSON *b = get(cJSON_GetArrayItem(key, 1), "beta");
+        if (cJSON_IsNumber(b) && b->valuedouble < 1)
+            return true;
+    }
+    return false;
+}
+
+/*
+ * A layer's regions as cels. Regions of one cel do not blend with each
+ * other: the front one owns the pixels it covers. That is Lottie's reading
+ * for opaque shapes only, so a region goes into the cel of the regions in
+ * front of it only while those are opaque at every frame; otherwise it
+ * starts a new cel. One cel takes the layer's TRS track; several become
+ * children of a group cel that takes it.
+ */
+static int add_content(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *x,
+                       bool own_xf, const double *visible, const lt_time *tm, int group)
+{
+    int n = cJSON_GetArraySize(regions), runs = 1;
+    bool open_clear = false;
+    for (int k = 0; k < n; k++) {
+        const cJSON *reg = cJSON_GetArrayItem(regions, k);
+        if (open_clear && k > 0)
+            runs++;
+        open_clear = see_through(reg);
+    }
+    if (runs == 1)
+        return add_cel(c, name, regions, x, own_xf, true, visible, tm, group) < 0 ? -1 : 0;
+    int base = cJSON_GetArraySize(c->cels), holder = base + runs;
+    cJSON *run = cJSON_CreateArray();
+    open_clear = false;
+    int made = 0;
+    while (cJSON_GetArraySize(regions) > 0) {
+        cJSON *reg = cJSON_DetachItemFromArray(regions, 0);
+        if (open_clear && cJSON_GetArraySize(run) > 0) {
+            cJSON *cel = cJSON_CreateObject();
+            cJSON_AddStringToObject(cel, "name", name);
+            cJSON_AddItemToObject(cel, "regions", run);
+            cJSON_AddNumberToObject(cel, "parent", holder);
+            cJSON_AddItemToArray(c->cels, cel);
+            made++;
+            run = cJSON_CreateArray();
+        }
+        open_clear = see_through(reg);
+        cJSON_AddItemToArray(run, reg);
+    }
+    cJSON *cel = cJSON_CreateObject();
+    cJSON_AddStringToObject(cel, "name", name);
+    cJSON_AddItemToObject(cel, "regions", run);
+    cJSON_AddNumberToObject(cel, "parent", holder);
+    cJSON_AddItemToArray(c->cels, cel);
+    made++;
+    cJSON_Delete(regions);
+    if (made != runs)
+        return lt_fail(c, "internal: %d cels for %d runs", made, runs);
+    return add_cel(c, name, NULL, x, own_xf, true, visible, tm, group) == holder ? 0 : -1;
+}
+
 static const cJSON *find_asset(lt_ctx *c, const char *id)
 {
     const cJSON *a;
@@ -314,11 +382,21 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
         int t = (int)ty;
         if (t == 4 || t == 1) {
             cJSON *regions = cJSON_CreateArray();
-            rc = t == 4 ? lt_shapes(c, get(lj, "shapes"), tm, regions) : lt_solid(c, lj, tm, regions);
+            double *lf = malloc((size_t)tm->nframes * sizeof *lf);
+            if (!lf) {
+                rc = lt_fail(c, "out of memory");
+                cJSON_Delete(regions);
+                break;
+            }
+            for (int k = 0; k < tm->nframes; k++)
+                lf[k] = tm->frame[k];
+            lt_time ltm = {tm->nframes, lf, tm->f0, tm->fscale};
+            rc = t == 4 ? lt_shapes(c, get(lj, "shapes"), &ltm, regions) : lt_solid(c, lj, &ltm, regions);
+            free(lf);
             if (rc == 0 && cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)
                 rc = lt_masks(c, masks, tm, regions);
             if (rc == 0 && cJSON_GetArraySize(regions) > 0)
-                rc = add_cel(c, name, regions, &X[i], own_xf, true, visible, tm, group) < 0 ? -1 : 0;
+                rc = add_content(c, name, regions, &X[i], own_xf, visible, tm, group);
             else
                 cJSON_Delete(regions);
         } else if (t == 0) {
