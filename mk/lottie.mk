@@ -39,3 +39,13 @@ test-lottie: $(HOST)/lottie_conf
 
 TEST_TARGETS += test-lottie
 HOST_PROGRAMS += $(HOST)/lottie_conf
+
+# The importer's own tests: what keys become, hostile files (tests/lottie_import.c).
+LOTTIE_IMPORT_OBJ := $(HOST)/obj/tests/lottie_import.o $(HOST)/obj/host-sim/scene_json.o \
+        $(HOST)/obj/host-sim/paint_json.o $(HOST)/obj/tools/cels_write.o \
+        $(HOST)/obj/tools/cli_num.o $(LOTTIE_OBJ)
+$(HOST)/obj/tests/lottie_import.o: HOST_CFLAGS += -Itests
+$(HOST)/lottie_import: $(LOTTIE_IMPORT_OBJ) $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
+	$(Q)$(CC) -o $@ $^ $(SVG_LIBS)
+TEST_PROGS += $(HOST)/lottie_import
+TEST_DEPS += $(HOST)/lottie_import

@@ -156,7 +156,14 @@ cJSON *lt_signal_track(lt_ctx *c, const lt_signal *s, double fr,
     /* Stretches between breaks on whole frames; others are cut linearly. */
     int a = 0;
     int bi = 0;
+    bool rest_still = false;
     while (a < s->nframes - 1) {
+        /* Nothing moves from here on: the last key holds it. */
+        rest_still = true;
+        for (int n = a + 1; n < s->nframes && rest_still; n++)
+            rest_still = same(s, frame(s, a), frame(s, n));
+        if (rest_still)
+            break;
         while (bi < s->nbreaks && s->breaks[bi] <= a)
             bi++;
         int b = s->nframes - 1;
@@ -203,7 +210,7 @@ cJSON *lt_signal_track(lt_ctx *c, const lt_signal *s, double fr,
         nk++;
         a = end;
     }
-    keys[nk].frame = s->nframes - 1;
+    keys[nk].frame = rest_still ? a : s->nframes - 1;
     keys[nk].kind = 0;
     nk++;
     /* Keys that repeat their neighbours' value with linear segments are dropped. */
