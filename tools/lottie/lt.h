@@ -25,6 +25,8 @@ void lt_warnings_free(lt_warnings *w);
 
 typedef struct lt_opts {
     double tolerance; /* stroke outline tolerance in canvas units; 0: 0.01 px at 1024 px */
+    double max_work;  /* sampled floats allowed (0: LT_MAX_WORK); a fuzzer sets less */
+    int max_frames;   /* frames sampled at most (0: LT_MAX_FRAMES) */
 } lt_opts;
 
 /* Whether a parsed JSON document is a Lottie file ("v", "fr", "ip", "op", "layers"). */

@@ -66,9 +66,9 @@ void lt_warnings_free(lt_warnings *w)
 bool lt_charge(lt_ctx *c, double n)
 {
     c->work += n;
-    if (c->work > LT_MAX_WORK) {
+    if (c->work > c->max_work) {
         lt_fail(c, "the animation needs more than %.0f sampled values (frames x shapes): refused",
-                LT_MAX_WORK);
+                c->max_work);
         return false;
     }
     return true;
@@ -129,8 +129,10 @@ cJSON *lt_import(const cJSON *root, const lt_opts *opts, lt_warnings *warnings, 
         lt_fail(&c, "out point %g is not after in point %g", c.op, c.ip);
         return NULL;
     }
-    if (op - ip > LT_MAX_FRAMES) {
-        lt_fail(&c, "%g frames, more than %d", op - ip, LT_MAX_FRAMES);
+    int max_frames = opts && opts->max_frames > 0 ? opts->max_frames : LT_MAX_FRAMES;
+    c.max_work = opts && opts->max_work > 0 ? opts->max_work : LT_MAX_WORK;
+    if (op - ip > max_frames) {
+        lt_fail(&c, "%g frames, more than %d", op - ip, max_frames);
         return NULL;
     }
     c.nframes = (int)(op - ip);

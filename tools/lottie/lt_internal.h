@@ -126,7 +126,7 @@ struct lt_ctx {
     const cJSON *assets;
     double fr, ip, op, w, h;
     int nframes;
-    double work;
+    double work, max_work;
     double tolerance; /* stroke outline tolerance, canvas units */
     char *err;
     size_t errlen;

@@ -635,6 +635,14 @@ static void region_contours(lt_ctx *c, const sh_style *s, double f, sv_contour *
         sv_path_free(&one);
     }
     sv_affine up = chain(s->node, NULL, f);
+    /* Outlining costs about a few dozen floats per segment: charged first. */
+    int nseg = 0;
+    for (int i = 0; i < all.n; i++)
+        nseg += all.sub[i].n;
+    if (!lt_charge(c, (s->type == ST_STROKE || s->type == ST_GSTROKE ? 64.0 : 4.0) * nseg)) {
+        sv_path_free(&all);
+        return;
+    }
     if (s->type == ST_STROKE || s->type == ST_GSTROKE) {
         double w;
         lt_prop_eval(&s->w, f, &w);

@@ -1,4 +1,5 @@
-# mk/lottie.mk - the Lottie importer (tools/lottie), in `celc import ANIM.json`.
+# mk/zlottie.mk - the Lottie importer (tools/lottie), in `celc import ANIM.json`.
+# (Named to be included after mk/stream.mk and mk/svg.mk, whose variables it uses.)
 #
 #   make build/host/celc      celc import anim.json -o out.json|out.cels (Lottie files)
 #
@@ -26,7 +27,7 @@ $(HOST)/obj/tests/lottie_conf.o: PKG_CFLAGS += $(shell pkg-config --cflags rlott
 $(HOST)/lottie_conf: $(LOTTIE_CONF_OBJ) $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(SVG_LIBS) $(shell pkg-config --libs rlottie 2>/dev/null)
 
-LOTTIE_SMOKE := anubis.json,gears.json,mask.json,loading_rectangles.json,like.json
+LOTTIE_SMOKE := gears.json,mask.json,loading_rectangles.json,like.json,telegram.json,done.json
 .PHONY: lottie-conformance test-lottie
 lottie-conformance: $(HOST)/lottie_conf
 	@mkdir -p $(BUILD)/lottie
@@ -49,3 +50,31 @@ $(HOST)/lottie_import: $(LOTTIE_IMPORT_OBJ) $(HOST)/libsvgimport.a $(HOST)/libce
 	$(Q)$(CC) -o $@ $^ $(SVG_LIBS)
 TEST_PROGS += $(HOST)/lottie_import
 TEST_DEPS += $(HOST)/lottie_import
+
+# Fuzzing (FUZZ, FUZZ_CC from mk/stream.mk): the importer, celsim's loader and the core
+# under coverage and sanitizers; seeds are the conformance set's files under 6 KB.
+#   make fuzz-lottie         FUZZ_TIME s (default 60)
+#   make fuzz-lottie-smoke   FUZZ_LOTTIE_SMOKE_TIME s (default 15), in `make test`
+FUZZ_LOTTIE_SMOKE_TIME ?= 15
+FUZZ_LOTTIE_SRC := tests/fuzz_lottie.c $(LOTTIE_SRC) $(SVG_LIB_SRC) host-sim/scene_json.c \
+        host-sim/paint_json.c tools/cels_write.c tools/cli_num.c
+FUZZ_LOTTIE_CFLAGS := $(FUZZ_BASE_CFLAGS) -D_GNU_SOURCE -Icore -Ihost-sim -Itools/svg -Itools \
+        $(shell pkg-config --cflags $(SVG_PKGS) 2>/dev/null)
+$(eval $(call flags_record,fuzz-lottie,$(FUZZ_CC) $(FUZZ_LOTTIE_CFLAGS)))
+$(FUZZ)/lottie/%.o: %.c $(CORE_HDR) tests/fuzz_check.h $(wildcard tools/lottie/*.h) \
+        $(wildcard tools/svg/*.h) host-sim/scene_json.h $(FLAGS_DIR)/fuzz-lottie
+	@mkdir -p $(dir $@)
+	$(Q)$(FUZZ_CC) $(FUZZ_LOTTIE_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
+$(FUZZ)/fuzz_lottie: $(patsubst %.c,$(FUZZ)/lottie/%.o,$(FUZZ_LOTTIE_SRC) $(CORE_SRC))
+	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
+
+FUZZ_SEEDS_fuzz_lottie = find $(LOTTIE_DIR) -name '*.json' -size -6k 2>/dev/null | \
+        while read -r f; do cp "$$f" $(FUZZ)/fuzz_lottie.corpus/; done; true
+FUZZ_OPTS_fuzz_lottie = -timeout=10 -dict=$(CURDIR)/tests/fuzz_lottie.dict -max_len=32768 \
+        -rss_limit_mb=2048
+.PHONY: fuzz-lottie fuzz-lottie-smoke
+fuzz-lottie: $(FUZZ)/fuzz_lottie
+	$(call run_fuzzer,fuzz_lottie,$(FUZZ_TIME),fuzz-lottie)
+fuzz-lottie-smoke: $(FUZZ)/fuzz_lottie
+	$(call run_fuzzer,fuzz_lottie,$(FUZZ_LOTTIE_SMOKE_TIME),fuzz-lottie-smoke)
+TEST_TARGETS += fuzz-lottie-smoke
