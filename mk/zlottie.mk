@@ -78,3 +78,18 @@ fuzz-lottie: $(FUZZ)/fuzz_lottie
 fuzz-lottie-smoke: $(FUZZ)/fuzz_lottie
 	$(call run_fuzzer,fuzz_lottie,$(FUZZ_LOTTIE_SMOKE_TIME),fuzz-lottie-smoke)
 TEST_TARGETS += fuzz-lottie-smoke
+
+# `make demo`: scenes/lottie/spinner.json (a small Lottie file written for celscan: a null
+# parent turning with easing, three rounded blades, a hold-keyed colour, a bouncing disc)
+# imported to scene JSON and to a cel stream, and 6 frames of the stream rendered by celsim
+# (frame-N.png at t = N/5 s).
+LOTTIE_DEMO := $(BUILD)/demo/lottie
+LOTTIE_DEMO_FRAMES := $(foreach n,0 1 2 3 4 5,$(LOTTIE_DEMO)/frame-$(n).png)
+$(LOTTIE_DEMO)/spinner.json $(LOTTIE_DEMO)/spinner.cels: scenes/lottie/spinner.json $(HOST)/celc
+	@mkdir -p $(dir $@)
+	@echo "celc import $< -o $@"
+	$(Q)$(HOST)/celc import $< -o $@
+$(LOTTIE_DEMO)/frame-%.png: $(LOTTIE_DEMO)/spinner.cels $(HOST)/celsim
+	$(Q)t=$$(awk -v n="$*" 'BEGIN { printf "%.6f", n / 5 }') && \
+	echo "celsim render $< -o $@ --time $$t" && $(HOST)/celsim render $< -o $@ --time $$t
+DEMO_TARGETS += $(LOTTIE_DEMO)/spinner.json $(LOTTIE_DEMO_FRAMES)
