@@ -193,54 +193,91 @@ static bool see_through(const cJSON *reg)
     return false;
 }
 
+/* Grows box (x0 y0 x1 y1) by the control points in a "points" value. */
+static void grow_box(const cJSON *pts, double *box)
+{
+    const cJSON *p;
+    cJSON_ArrayForEach(p, pts)
+    {
+        const cJSON *x = cJSON_GetArrayItem(p, 0), *y = cJSON_GetArrayItem(p, 1);
+        if (!cJSON_IsNumber(x) || !cJSON_IsNumber(y))
+            continue;
+        box[0] = fmin(box[0], x->valuedouble), box[1] = fmin(box[1], y->valuedouble);
+        box[2] = fmax(box[2], x->valuedouble), box[3] = fmax(box[3], y->valuedouble);
+    }
+}
+
+/* The box of a region's control points over every key: the region never
+ * paints outside it (positive weights keep curves in their hulls). */
+static void region_box(const cJSON *reg, double *box)
+{
+    box[0] = box[1] = INFINITY;
+    box[2] = box[3] = -INFINITY;
+    const cJSON *ct, *key;
+    cJSON_ArrayForEach(ct, get(reg, "contours"))
+    {
+        grow_box(get(ct, "points"), box);
+        cJSON_ArrayForEach(key, get(get(get(ct, "animate"), "points"), "keys"))
+            grow_box(cJSON_GetArrayItem(key, 1), box);
+    }
+}
+
+static bool boxes_meet(const double *a, const double *b)
+{
+    return a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3];
+}
+
 /*
  * A layer's regions as cels. Regions of one cel do not blend with each
  * other: the front one owns the pixels it covers. That is Lottie's reading
- * for opaque shapes only, so a region goes into the cel of the regions in
- * front of it only while those are opaque at every frame; otherwise it
- * starts a new cel. One cel takes the layer's TRS track; several become
- * children of a group cel that takes it.
+ * where the front shape is opaque, so a region joins the cel of the
+ * regions in front of it unless one of them that lets light through (at
+ * some frame) may overlap it; then it starts a new cel. One cel takes the
+ * layer's TRS track; several become children of a group cel that takes it.
  */
 static int add_content(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *x,
                        bool own_xf, const double *visible, const lt_time *tm, int group)
 {
-    int n = cJSON_GetArraySize(regions), runs = 1;
-    bool open_clear = false;
+    int n = cJSON_GetArraySize(regions);
+    int *run_of = calloc((size_t)(n ? n : 1), sizeof *run_of);
+    double(*box)[4] = calloc((size_t)(n ? n : 1), sizeof *box);
+    bool *clear = calloc((size_t)(n ? n : 1), sizeof *clear);
+    if (!run_of || !box || !clear) {
+        free(run_of), free(box), free(clear);
+        return lt_fail(c, "out of memory");
+    }
+    int runs = 1, start = 0;
     for (int k = 0; k < n; k++) {
         const cJSON *reg = cJSON_GetArrayItem(regions, k);
-        if (open_clear && k > 0)
+        region_box(reg, box[k]);
+        clear[k] = see_through(reg);
+        bool meets = false;
+        for (int j = start; j < k && !meets; j++)
+            meets = clear[j] && boxes_meet(box[j], box[k]);
+        if (meets) {
             runs++;
-        open_clear = see_through(reg);
-    }
-    if (runs == 1)
-        return add_cel(c, name, regions, x, own_xf, true, visible, tm, group) < 0 ? -1 : 0;
-    int base = cJSON_GetArraySize(c->cels), holder = base + runs;
-    cJSON *run = cJSON_CreateArray();
-    open_clear = false;
-    int made = 0;
-    while (cJSON_GetArraySize(regions) > 0) {
-        cJSON *reg = cJSON_DetachItemFromArray(regions, 0);
-        if (open_clear && cJSON_GetArraySize(run) > 0) {
-            cJSON *cel = cJSON_CreateObject();
-            cJSON_AddStringToObject(cel, "name", name);
-            cJSON_AddItemToObject(cel, "regions", run);
-            cJSON_AddNumberToObject(cel, "parent", holder);
-            cJSON_AddItemToArray(c->cels, cel);
-            made++;
-            run = cJSON_CreateArray();
+            start = k;
         }
-        open_clear = see_through(reg);
-        cJSON_AddItemToArray(run, reg);
+        run_of[k] = runs - 1;
     }
-    cJSON *cel = cJSON_CreateObject();
-    cJSON_AddStringToObject(cel, "name", name);
-    cJSON_AddItemToObject(cel, "regions", run);
-    cJSON_AddNumberToObject(cel, "parent", holder);
-    cJSON_AddItemToArray(c->cels, cel);
-    made++;
+    free(box);
+    free(clear);
+    if (runs == 1) {
+        free(run_of);
+        return add_cel(c, name, regions, x, own_xf, true, visible, tm, group) < 0 ? -1 : 0;
+    }
+    int holder = cJSON_GetArraySize(c->cels) + runs;
+    for (int r = 0, k = 0; r < runs; r++) {
+        cJSON *cel = cJSON_CreateObject(), *run = cJSON_CreateArray();
+        cJSON_AddStringToObject(cel, "name", name);
+        for (; k < n && run_of[k] == r; k++)
+            cJSON_AddItemToArray(run, cJSON_DetachItemFromArray(regions, 0));
+        cJSON_AddItemToObject(cel, "regions", run);
+        cJSON_AddNumberToObject(cel, "parent", holder);
+        cJSON_AddItemToArray(c->cels, cel);
+    }
+    free(run_of);
     cJSON_Delete(regions);
-    if (made != runs)
-        return lt_fail(c, "internal: %d cels for %d runs", made, runs);
     return add_cel(c, name, NULL, x, own_xf, true, visible, tm, group) == holder ? 0 : -1;
 }
 
