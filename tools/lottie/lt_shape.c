@@ -305,7 +305,8 @@ static int parse_style(lt_ctx *c, const cJSON *it, const char *ty, sh_node *node
     s->paths = malloc((size_t)(acc->n ? acc->n : 1) * sizeof *s->paths);
     if (!s->paths)
         return lt_fail(c, "out of memory");
-    memcpy(s->paths, acc->v, (size_t)acc->n * sizeof *s->paths);
+    if (acc->n)
+        memcpy(s->paths, acc->v, (size_t)acc->n * sizeof *s->paths);
     return 0;
 }
 
