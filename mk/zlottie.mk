@@ -93,3 +93,14 @@ $(LOTTIE_DEMO)/frame-%.png: $(LOTTIE_DEMO)/spinner.cels $(HOST)/celsim
 	$(Q)t=$$(awk -v n="$*" 'BEGIN { printf "%.6f", n / 5 }') && \
 	echo "celsim render $< -o $@ --time $$t" && $(HOST)/celsim render $< -o $@ --time $$t
 DEMO_TARGETS += $(LOTTIE_DEMO)/spinner.json $(LOTTIE_DEMO_FRAMES)
+
+# Imported Lottie files on the 64 KiB board: the conformance files that fit it (make
+# lottie-conformance's "fits a board" column) streamed to the mps2-an386 firmware under QEMU,
+# frame CRCs against celsim's (tools/lottie/qemu_check.sh, 13 s; in `make test`).
+LOTTIE_QEMU_FILES := mask.json movie_loading.json spin__lil_loader_v2.json \
+        gradient_sleepy_loader.json
+.PHONY: lottie-qemu
+lottie-qemu: firmware-mps2-an386 $(HOST)/celc $(HOST)/celsim
+	$(Q)tools/lottie/qemu_check.sh $(HOST)/celc $(HOST)/celsim $(BUILD)/mps2-an386/celfw.elf \
+		$(LOTTIE_DIR) $(LOTTIE_QEMU_FILES)
+TEST_TARGETS += lottie-qemu
