@@ -5,8 +5,10 @@
 # cel stream, streamed to the mps2-an386 firmware under QEMU
 # (tools/fw_qemu_run.sh) and rendered there at 480x272 with 5 sub-scanlines
 # (the board's setting) at t = 0.2 s and 0.5 s; each frame's CRC must equal
-# celsim's for the same stream, size, time and AA. Prints one line per frame
-# and ends with "lottie-qemu: N passed, M failed".
+# celsim's for the same stream, size, time and AA. A FILE written
+# scene:PATH is a scene JSON of the project, compiled with `celc compile`
+# instead. Prints one line per frame and ends with
+# "lottie-qemu: N passed, M failed".
 set -u
 celc=$1 celsim=$2 elf=$3 dir=$4
 shift 4
@@ -15,7 +17,11 @@ trap 'rm -rf "$tmp"' EXIT
 pass=0 fail=0
 for f in "$@"; do
     s=$tmp/$(basename "$f" .json).cels
-    if ! "$celc" import "$dir/$f" -o "$s" -q; then
+    case $f in
+    scene:*) make_it="$celc compile ${f#scene:} -o $s" ;;
+    *) make_it="$celc import $dir/$f -o $s -q" ;;
+    esac
+    if ! $make_it; then
         echo "$f: import failed"; fail=$((fail + 1)); continue
     fi
     for t in 0.2 0.5; do
