@@ -110,14 +110,14 @@ void lt_signal_break(lt_signal *s, double n);
  * object; value_fn turns one frame's floats into the key's JSON value.
  * Returns the track, or NULL when the signal is static.
  */
-cJSON *lt_signal_track(lt_ctx *c, const lt_signal *s, double fr,
-                       cJSON *(*value_fn)(const double *v, int width, void *arg), void *arg);
+cJSON *lt_signal_track(const lt_signal *s, double fr,
+                       cJSON *(*value_fn)(const double *v, int width));
 
 /* ---------------------------------------------------------------- context */
 
 typedef enum lt_feature {
     LT_F_EXPRESSION, LT_F_EFFECT, LT_F_TEXT, LT_F_IMAGE, LT_F_MERGE, LT_F_3D, LT_F_REPEATER,
-    LT_F_ROUND, LT_F_MATTE, LT_F_MASK, LT_F_AUTO_ORIENT, LT_F_STAR_ROUND, LT_F_TIME_REMAP,
+    LT_F_ROUND, LT_F_MATTE, LT_F_MASK, LT_F_AUTO_ORIENT, LT_F_STAR_ROUND,
     LT_F_STROKE_ANIM, LT_F_GRADIENT, LT_F_BLEND, LT_F_OTHER, LT_F_COUNT_
 } lt_feature;
 
@@ -169,7 +169,7 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
 /* JSON helpers. */
 cJSON *lt_num_array(const double *v, int n);
 /* Control points (x y w per point, width floats) as a contour's "points" (lt_shape.c). */
-cJSON *lt_points_value(const double *v, int width, void *arg);
+cJSON *lt_points_value(const double *v, int width);
 cJSON *lt_contour_json(const sv_contour *ct);
 /* Closed contours of a path with a layout fixed by its segments (lt_shape.c). */
 void lt_fixed_contours(const sv_path *p, sv_contour **out, int *n);

@@ -40,10 +40,9 @@ typedef struct layer_info {
 
 /* A TRS sample: scale and opacity are kept in percent, so that one
  * tolerance (0.01) means 0.01 px, 0.01 degree and 0.01 % alike. */
-static cJSON *trs_value(const double *pct, int width, void *arg)
+static cJSON *trs_value(const double *pct, int width)
 {
     (void)width;
-    (void)arg;
     double v[10];
     memcpy(v, pct, sizeof v);
     v[4] /= 100, v[5] /= 100, v[9] /= 100;
@@ -139,7 +138,7 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
     cJSON *cel = cJSON_CreateObject();
     cJSON_AddStringToObject(cel, "name", name);
     cJSON_AddItemToObject(cel, "regions", regions ? regions : cJSON_CreateArray());
-    cJSON *track = lt_signal_track(c, &sg, c->fr, trs_value, NULL);
+    cJSON *track = lt_signal_track(&sg, c->fr, trs_value);
     if (track) {
         cJSON *anim = cJSON_AddObjectToObject(cel, "animate");
         cJSON_AddItemToObject(anim, "trs", track);
@@ -149,7 +148,7 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
         cJSON *t = cJSON_AddObjectToObject(anim, "trs"), *keys = cJSON_AddArrayToObject(t, "keys");
         cJSON *key = cJSON_CreateArray();
         cJSON_AddItemToArray(key, cJSON_CreateNumber(0));
-        cJSON_AddItemToArray(key, trs_value(sg.v, 10, NULL));
+        cJSON_AddItemToArray(key, trs_value(sg.v, 10));
         cJSON_AddItemToArray(keys, key);
     } else {
         double v[10];

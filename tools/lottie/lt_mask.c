@@ -161,7 +161,7 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
             for (int k = 0; k < used; k++)
                 for (int i = 0; i < M[k].ncont; i++) {
                     cJSON *ct = lt_contour_json(&M[k].cont[i]);
-                    cJSON *track = lt_signal_track(c, &M[k].sig[i], c->fr, lt_points_value, NULL);
+                    cJSON *track = lt_signal_track(&M[k].sig[i], c->fr, lt_points_value);
                     if (track)
                         cJSON_AddItemToObject(cJSON_AddObjectToObject(ct, "animate"), "points",
                                               track);

@@ -711,19 +711,17 @@ cJSON *lt_num_array(const double *v, int n)
     return a;
 }
 
-cJSON *lt_points_value(const double *v, int width, void *arg)
+cJSON *lt_points_value(const double *v, int width)
 {
-    (void)arg;
     cJSON *a = cJSON_CreateArray();
     for (int i = 0; i + 2 < width; i += 3)
         cJSON_AddItemToArray(a, v[i + 2] == 1 ? lt_num_array(v + i, 2) : lt_num_array(v + i, 3));
     return a;
 }
 
-static cJSON *paint_value(const double *v, int width, void *arg)
+static cJSON *paint_value(const double *v, int width)
 {
     (void)width;
-    (void)arg;
     cJSON *o = cJSON_CreateObject();
     double rgb[3];
     for (int k = 0; k < 3; k++)
@@ -737,7 +735,7 @@ cJSON *lt_contour_json(const sv_contour *ct)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddNumberToObject(o, "degree", ct->degree);
-    cJSON_AddItemToObject(o, "points", lt_points_value(ct->pts, 3 * ct->count, NULL));
+    cJSON_AddItemToObject(o, "points", lt_points_value(ct->pts, 3 * ct->count));
     bool uniform = true;
     for (int i = 0; i < ct->count; i++)
         uniform = uniform && ct->intervals[i] == 1;
@@ -898,7 +896,6 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
             memcpy(geo[i].v + (size_t)n * geo[i].width, fc[n][i].pts,
                    (size_t)geo[i].width * sizeof(double));
     }
-    bool varies = false;
     for (int n = 1; n < N; n++)
         lt_free_contours(fc[n], fn[n]);
     free(fc);
@@ -922,11 +919,11 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
                                 ? "evenodd" : "nonzero");
     cJSON *paint = cJSON_AddObjectToObject(reg, "paint");
     if (s->type == ST_FILL || s->type == ST_STROKE) {
-        cJSON *p0 = paint_value(pt.v, 4, NULL);
+        cJSON *p0 = paint_value(pt.v, 4);
         cJSON_AddItemToObject(paint, "pigment", cJSON_DetachItemFromObject(p0, "pigment"));
         cJSON_AddItemToObject(paint, "beta", cJSON_DetachItemFromObject(p0, "beta"));
         cJSON_Delete(p0);
-        cJSON *track = lt_signal_track(c, &pt, c->fr, paint_value, NULL);
+        cJSON *track = lt_signal_track(&pt, c->fr, paint_value);
         if (track) {
             cJSON *anim = cJSON_AddObjectToObject(reg, "animate");
             cJSON_AddItemToObject(anim, "paint", track);
@@ -943,16 +940,14 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
     for (int i = 0; i < nfirst; i++) {
         cJSON *ct = lt_contour_json(&first[i]);
         /* The static points are the first frame's, as the track's first key. */
-        cJSON_ReplaceItemInObject(ct, "points", lt_points_value(geo[i].v, geo[i].width, NULL));
-        cJSON *track = lt_signal_track(c, &geo[i], c->fr, lt_points_value, NULL);
+        cJSON_ReplaceItemInObject(ct, "points", lt_points_value(geo[i].v, geo[i].width));
+        cJSON *track = lt_signal_track(&geo[i], c->fr, lt_points_value);
         if (track) {
-            varies = true;
             cJSON *anim = cJSON_AddObjectToObject(ct, "animate");
             cJSON_AddItemToObject(anim, "points", track);
         }
         cJSON_AddItemToArray(cts, ct);
     }
-    (void)varies;
     cJSON_AddItemToArray(regions, reg);
     for (int i = 0; i < nfirst; i++)
         lt_signal_free(&geo[i]);

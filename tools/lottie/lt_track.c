@@ -143,10 +143,9 @@ typedef struct key_out {
     double ease[4];
 } key_out;
 
-cJSON *lt_signal_track(lt_ctx *c, const lt_signal *s, double fr,
-                       cJSON *(*value_fn)(const double *v, int width, void *arg), void *arg)
+cJSON *lt_signal_track(const lt_signal *s, double fr,
+                       cJSON *(*value_fn)(const double *v, int width))
 {
-    (void)c;
     if (s->nframes < 1 || lt_signal_static(s))
         return NULL;
     key_out *keys = calloc((size_t)s->nframes + 1, sizeof *keys);
@@ -222,7 +221,7 @@ cJSON *lt_signal_track(lt_ctx *c, const lt_signal *s, double fr,
         const key_out *k = &keys[i];
         cJSON *key = cJSON_CreateArray();
         cJSON_AddItemToArray(key, cJSON_CreateNumber((double)k->frame / fr));
-        cJSON_AddItemToArray(key, value_fn(frame(s, k->frame), s->width, arg));
+        cJSON_AddItemToArray(key, value_fn(frame(s, k->frame), s->width));
         if (i + 1 < nk && k->kind == 1)
             cJSON_AddItemToArray(key, lt_num_array(k->ease, 4));
         else if (i + 1 < nk && k->kind == 2)
