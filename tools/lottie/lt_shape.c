@@ -565,11 +565,17 @@ static void trim_path(const sh_trim *tm, double f, sv_path *path)
         free(pts);
         if (len <= 0 || e - s <= 0)
             continue;
-        /* Visible [s, e] (maybe wrapping past 1): a dash of (e - s) len starting at s len. */
-        double dash[2] = {(e - s) * len, len * (1 - (e - s)) + 1e-9 * len};
-        /* Dash offset -s len: the pattern's visible part starts s len along
-         * the path, and with a period of len it wraps past the end. */
-        sv_path_dash(&one, dash, 2, -s * len, &out);
+        /* Visible [s, e], wrapping past 1 as two pieces: each one dash
+         * followed by a gap longer than the path, so that the flattened
+         * length's small shortfall never starts a second dash (a dot under
+         * round caps) at the path's end. */
+        double big = 4 * len + 1;
+        double first[2] = {(fmin(e, 1) - s) * len, big};
+        sv_path_dash(&one, first, 2, -s * len, &out);
+        if (e > 1) {
+            double wrap[2] = {(e - 1) * len, big};
+            sv_path_dash(&one, wrap, 2, 0, &out);
+        }
     }
     sv_path_free(path);
     *path = out;
