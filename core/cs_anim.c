@@ -168,7 +168,8 @@ cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t targe
         return CS_ERR_ARG;
     }
     if ((unsigned)kind >= (unsigned)CS_TRACK_KIND_COUNT_ ||
-        (unsigned)ease >= (unsigned)CS_EASE_COUNT_) {
+        (unsigned)ease >= (unsigned)CS_EASE_COUNT_ ||
+        (!CS_CFG_ANIM_PARTS && (kind == CS_TRACK_TRS || ease == CS_EASE_CUBIC))) {
         cs__error(err, CS_ERR_TRACK, -1, -1, -1, -1);
         return CS_ERR_TRACK;
     }
@@ -205,6 +206,7 @@ cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t targe
     return CS_OK;
 }
 
+#if CS_CFG_ANIM_PARTS
 /* A cubic key's easing: a hold, or x1, x2 in 0..1 and y1, y2 in -2..3 (the
  * bound keeps an overshooting value within a few times its keys' span). */
 static cs_status check_ease(const float *e)
@@ -238,6 +240,8 @@ static cs_status check_trs(const float *v)
     return v[9] >= 0.0f && v[9] <= 1.0f ? CS_OK : CS_ERR_PAINT;
 }
 
+#endif
+
 /* Checks one key's values as the static value of the same kind is checked. */
 static cs_status check_values(int kind, const float *v, uint32_t width, int32_t *point)
 {
@@ -247,8 +251,10 @@ static cs_status check_values(int kind, const float *v, uint32_t width, int32_t 
         cs_affine m = {v[0], v[1], v[2], v[3], v[4], v[5]};
         return cs__check_affine(&m, point);
     }
+#if CS_CFG_ANIM_PARTS
     case CS_TRACK_TRS:
         return check_trs(v);
+#endif
     case CS_TRACK_CEL_LIGHTS:
     case CS_TRACK_STACK_LIGHTS:
         return cs__check_lights(v, v + 3);
@@ -290,7 +296,9 @@ cs_status cs_scene_add_key(cs_scene *scene, float time, const float *values, cs_
         st = CS_ERR_KEY_ORDER;
     else {
         uint32_t lead = cs__track_lead(t);
+#if CS_CFG_ANIM_PARTS
         st = lead ? check_ease(values) : CS_OK;
+#endif
         if (st == CS_OK)
             st = check_values(t->kind, values + lead, t->width - lead, &point);
     }
@@ -364,6 +372,7 @@ void cs__tracks_sort(cs_scene *scene)
     scene->open_track = UINT32_MAX;
 }
 
+#if CS_CFG_ANIM_PARTS
 /*
  * The cubic Bezier easing e = (x1, y1, x2, y2) at u: the curve's y where its
  * x is u. x(v) = 3(1-v)^2 v x1 + 3(1-v) v^2 x2 + v^3 rises on 0..1 (x1, x2
@@ -451,6 +460,8 @@ void cs__trs_affine(const float *v, float m[6])
     affine_mul(rot, acc, m);
 }
 
+#endif
+
 void cs__track_locate(const cs_scene *scene, const cs_track *tr, float t, uint32_t *i0,
                       uint32_t *i1, float *s)
 {
@@ -485,12 +496,14 @@ void cs__track_locate(const cs_scene *scene, const cs_track *tr, float t, uint32
         u = u * u * (3.0f - 2.0f * u);
     else if (tr->ease == CS_EASE_HOLD)
         u = 0.0f;
+#if CS_CFG_ANIM_PARTS
     else if (tr->ease == CS_EASE_CUBIC) {
         u = cubic_ease(&scene->key_values[tr->first_value + lo * tr->width], u);
         if (tr->kind != CS_TRACK_TRANSFORM && tr->kind != CS_TRACK_TRS &&
             tr->kind != CS_TRACK_POINTS)
             u = cs__clampf(u, 0.0f, 1.0f);
     }
+#endif
     *i0 = lo;
     *i1 = hi;
     *s = u;

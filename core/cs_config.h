@@ -48,6 +48,14 @@
 #ifndef CS_CFG_MAX_KEY_VALUES
 #define CS_CFG_MAX_KEY_VALUES (1024 * 1024)
 #endif
+/*
+ * TRS transform tracks, cubic Bezier easing and cel groups (imported Lottie
+ * animation; about 2.5 KB of Cortex-M4 code). Without them a board refuses
+ * such tracks (CS_ERR_TRACK) and parents (CS_ERR_GROUP); hold keys stay.
+ */
+#ifndef CS_CFG_ANIM_PARTS
+#define CS_CFG_ANIM_PARTS 1
+#endif
 /* Longest chain of cel groups (a cel, its parent, the parent's parent...). */
 #ifndef CS_CFG_MAX_GROUP_DEPTH
 #define CS_CFG_MAX_GROUP_DEPTH 16

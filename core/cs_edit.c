@@ -335,6 +335,7 @@ static uint32_t moved_index(uint32_t i, uint32_t from, uint32_t to)
     return i;
 }
 
+#if CS_CFG_ANIM_PARTS
 /* Length of cel c's group chain (1: no parent) if cel `cel` had parent
  * `parent`, or CS_CFG_MAX_GROUP_DEPTH + 1 once it is longer (or cycles). */
 static int chain_length(const cs_scene *scene, uint32_t c, uint32_t cel, uint32_t parent)
@@ -350,6 +351,8 @@ static int chain_length(const cs_scene *scene, uint32_t c, uint32_t cel, uint32_
     return n;
 }
 
+#endif
+
 cs_status cs_scene_set_cel_parent(cs_scene *scene, uint32_t cel, uint32_t parent, cs_error *err)
 {
     if (!scene) {
@@ -362,6 +365,7 @@ cs_status cs_scene_set_cel_parent(cs_scene *scene, uint32_t cel, uint32_t parent
         cs__error(err, CS_ERR_INDEX, (int32_t)cel, -1, -1, -1);
         return CS_ERR_INDEX;
     }
+#if CS_CFG_ANIM_PARTS
     /* Every chain through `cel` must stay short and acyclic; the frame
      * follows chains without checking them again. */
     for (uint32_t c = 0; c < scene->cel_count; c++)
@@ -369,6 +373,12 @@ cs_status cs_scene_set_cel_parent(cs_scene *scene, uint32_t cel, uint32_t parent
             cs__error(err, CS_ERR_GROUP, (int32_t)cel, -1, -1, -1);
             return CS_ERR_GROUP;
         }
+#else
+    if (parent != CS_NO_PARENT) { /* groups are left out of this build */
+        cs__error(err, CS_ERR_GROUP, (int32_t)cel, -1, -1, -1);
+        return CS_ERR_GROUP;
+    }
+#endif
     scene->cels[cel].parent = (uint8_t)parent;
     cs__error(err, CS_OK, -1, -1, -1, -1);
     return CS_OK;

@@ -236,13 +236,15 @@ static void sample(const cs_scene *scene, const cs_track *tr, float t, float *ou
 static float cel_local(const cs_scene *scene, uint32_t ci, float t, float *m)
 {
     const cs_cel *cel = &scene->cels[ci];
-    const cs_track *tr = cs__track_find(scene, CS_TRACK_TRS, ci);
-    if (tr && tr->key_count) {
+    const cs_track *tr;
+#if CS_CFG_ANIM_PARTS
+    if ((tr = cs__track_find(scene, CS_TRACK_TRS, ci)) != 0 && tr->key_count) {
         float v[10];
         sample(scene, tr, t, v);
         cs__trs_affine(v, m);
         return cs__clampf(v[9], 0.0f, 1.0f);
     }
+#endif
     m[0] = cel->transform.a;
     m[1] = cel->transform.b;
     m[2] = cel->transform.c;
