@@ -11,7 +11,8 @@ PACKAGES="make gcc g++ pkg-config python3 libcjson-dev libpng-dev libcairo2-dev 
  libgpiod-dev libusb-1.0-0-dev umockdev libumockdev-dev liblz4-dev
  librsvg2-bin adwaita-icon-theme breeze-icon-theme clang libclang-rt-14-dev valgrind
  libmosquitto-dev mosquitto mosquitto-clients openssl libsodium-dev
- gcc-riscv64-unknown-elf libsystemd-dev systemd man-db cmake build-essential debhelper dpkg-dev fakeroot lintian appstream"
+ gcc-riscv64-unknown-elf libsystemd-dev systemd man-db cmake build-essential debhelper dpkg-dev fakeroot lintian appstream
+ librlottie-dev"
 missing=""
 for p in $PACKAGES; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
