@@ -210,13 +210,14 @@ static void trim_path(const sh_trim *tm, double f, sv_path *path)
         /* Visible [s, e], wrapping past 1 as two pieces: each one dash
          * followed by a gap longer than the path, so that the flattened
          * length's small shortfall never starts a second dash (a dot under
-         * round caps) at the path's end. */
+         * round caps) at the path's end. So each call makes at most two
+         * dashes, far below the limit sv_path_dash asks for. */
         double big = 4 * len + 1;
         double first[2] = {(fmin(e, 1) - s) * len, big};
-        sv_path_dash(&one, first, 2, -s * len, &out);
+        sv_path_dash(&one, first, 2, -s * len, SV_MAX_DASHES, &out);
         if (e > 1) {
             double wrap[2] = {(e - 1) * len, big};
-            sv_path_dash(&one, wrap, 2, 0, &out);
+            sv_path_dash(&one, wrap, 2, 0, SV_MAX_DASHES, &out);
         }
     }
     sv_path_free(path);
@@ -306,19 +307,27 @@ void lt_region_contours(lt_ctx *c, const sh_style *s, double f, sv_contour **out
                 sum += d[k];
             }
             lt_prop_eval(&s->dash_offset, f, &off);
-            if (sum > 0) {
-                sv_path_dash(&all, d, s->ndash, off, &dashed);
-                src = dashed;
+            if (sum > 0 && sv_path_dash(&all, d, s->ndash, off, SV_MAX_DASHES, &dashed) < 0) {
+                lt_fail(c, "a stroke's dash pattern makes more than %d dashes (SV_MAX_DASHES: the "
+                        "scene store's control points hold no more): refused", SV_MAX_DASHES);
+                sv_path_free(&dashed);
+                sv_path_free(&all);
+                return;
             }
+            if (sum > 0)
+                src = dashed;
         }
         sv_path outline;
         sv_path_init(&outline);
         if (w > 0) {
             /* Tolerance in the style's space: the canvas one over the scale above. */
             double scale = sv_affine_max_scale(up);
+            /* One region's outline can never need more than the whole store's points. */
             sv_stroke_style st = {w, s->cap, s->join, s->miter,
-                                  c->tolerance / (scale > 1e-9 ? scale : 1)};
-            sv_stroke_path(&src, &st, &outline);
+                                  c->tolerance / (scale > 1e-9 ? scale : 1), CS_CFG_MAX_POINTS};
+            if (sv_stroke_path(&src, &st, &outline) < 0)
+                lt_fail(c, "a stroke's outline needs more than the scene store's %ld control "
+                        "points (CS_CFG_MAX_POINTS): refused", (long)CS_CFG_MAX_POINTS);
         }
         sv_path_transform(&outline, up);
         sv_path_to_contours(&outline, out, n);

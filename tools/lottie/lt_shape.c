@@ -491,7 +491,7 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
         double w = 0;
         for (int i = 0; i < fn[n]; i++)
             w += 3.0 * fc[n][i].count;
-        if (!lt_charge(c, w + 64)) {
+        if (c->failed || !lt_charge(c, w + 64)) { /* failed: a refused dash pattern */
             for (int k = 0; k <= n; k++)
                 lt_free_contours(fc[k], fn[k]);
             free(fc), free(fn);
