@@ -252,6 +252,15 @@ static void test_hostile(void)
                         "{\"t\":1,\"s\":[0]}", 200000, ",", "]}}," RECT_SHAPES "}]}");
     expect_refused("huge keyframe count", many, "keyframes, more than");
     free(many);
+    /* A 0.001 dash on a 40x20 rectangle: 120,000 dashes, beyond what the store holds. */
+    expect_refused("dash flood",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{},\"shapes\":[{\"ty\":\"rc\","
+                        "\"p\":{\"a\":0,\"k\":[50,50]},\"s\":{\"a\":0,\"k\":[40,20]},"
+                        "\"r\":{\"a\":0,\"k\":0}},{\"ty\":\"st\",\"c\":{\"a\":0,\"k\":[0,0,0,1]},"
+                        "\"o\":{\"a\":0,\"k\":100},\"w\":{\"a\":0,\"k\":1},\"d\":["
+                        "{\"n\":\"d\",\"v\":{\"a\":0,\"k\":0.001}},"
+                        "{\"n\":\"g\",\"v\":{\"a\":0,\"k\":0.001}}]}]}]}",
+                   "SV_MAX_DASHES");
     /* Keyframe times going back. */
     expect_refused("keys back",
                    HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{\"r\":{\"a\":1,\"k\":["
