@@ -222,7 +222,9 @@ test-all: check-core $(HOST_PROGRAMS) $(HOST_TESTS) $(ASAN_TESTS) $(TEST_DEPS)
 	$(Q)$(ASAN_ENV) tests/run.sh $(HOST_TESTS) $(ASAN_TESTS) $(TEST_PROGS) -- $(TEST_CMDS) \
 		$(foreach t,$(TEST_TARGETS),"$(MAKE) --no-print-directory $(t)")
 
--include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+# build/pkg/ holds package roots and consumer builds (mk/install.mk): their
+# *.d are directories (sysusers.d) and other builds' dependency files.
+-include $(shell find $(BUILD) -path $(BUILD)/pkg -prune -o -name '*.d' -type f -print 2>/dev/null)
 
 clean:
 	rm -rf $(BUILD)

@@ -81,6 +81,7 @@ typedef enum cs_status {
     CS_ERR_STREAM_TRUNCATED, /* transaction cut short */
     CS_ERR_STREAM_TOO_BIG,/* transaction longer than CS_CFG_STREAM_MAX_TXN */
     CS_ERR_STREAM_RECORD, /* malformed record: length, class, order or layout */
+    CS_ERR_GROUP,         /* cel parent makes a cycle or a chain deeper than CS_CFG_MAX_GROUP_DEPTH */
     CS_ERR_COUNT_
 } cs_status;
 
@@ -203,10 +204,16 @@ typedef struct cs_cel {
     uint32_t first_region;
     uint16_t region_count;
     bool has_front;   /* false: the front light defaults to the stack's */
+    uint8_t parent;   /* cel group: the cel whose transform and opacity apply after this
+                         cel's own (cs_scene_set_cel_parent); CS_NO_PARENT: none. One byte,
+                         in what was padding: cels number at most 255 */
     cs_affine transform;
     float front[3];   /* linear light multipliers */
     float back[3];    /* lights only this cel's own paint; default black */
 } cs_cel;
+
+/* No parent (cs_cel.parent): the cel is in no group. */
+#define CS_NO_PARENT 0xFFu
 
 /*
  * What a keyframe track animates, and the floats of one key (its width):
@@ -216,9 +223,18 @@ typedef struct cs_cel {
  *   CS_TRACK_POINTS        a contour's control points x y w per point     3 * points
  *   CS_TRACK_STACK_LIGHTS  the stack's lights         front[3] back[3]    6
  *   CS_TRACK_BACKGROUND    the background card        rgb[3] (linear)     3
+ *   CS_TRACK_TRS           a cel's transform as parts px py ax ay sx sy       10
+ *                          rot skew skew_axis opacity
  * The target is the cel, region or contour index in the store (regions and
  * contours counted over the whole scene), or 0 for the stack-wide kinds. An
  * animated cel front light replaces the stack default, as a static one does.
+ *
+ * A TRS track interpolates a cel's transform by its parts, so a turn keeps
+ * its size: M = T(p) R(rot) K(skew, skew_axis) S(sx, sy) T(-a), angles in
+ * degrees (positive turns x towards y), K = R(axis) [1 tan(skew); 0 1]
+ * R(-axis), |skew| <= 85. It replaces the cel's transform (static or
+ * CS_TRACK_TRANSFORM) while it has keys. `opacity` (0..1) multiplies the
+ * beta of the cel's paints (and, through cel groups, of its children's).
  */
 typedef enum cs_track_kind {
     CS_TRACK_TRANSFORM = 0,
@@ -227,22 +243,41 @@ typedef enum cs_track_kind {
     CS_TRACK_POINTS = 3,
     CS_TRACK_STACK_LIGHTS = 4,
     CS_TRACK_BACKGROUND = 5,
+    CS_TRACK_TRS = 6,
     CS_TRACK_KIND_COUNT_
 } cs_track_kind;
 
 /*
  * Interpolation between two keys, with s = (t - t0) / (t1 - t0) in [0,1]:
  * linear uses s, smooth uses smoothstep 3s^2 - 2s^3 (zero velocity at the
- * keys). Before the first key and after the last the value holds.
+ * keys), hold keeps the earlier key's value until the next key. Before the
+ * first key and after the last the value holds.
+ *
+ * CS_EASE_CUBIC gives every key segment its own easing: each key's values
+ * are preceded by four floats x1 y1 x2 y2, the CSS / Lottie cubic Bezier
+ * from (0,0) to (1,1) through (x1,y1), (x2,y2) that eases the segment from
+ * that key to the next (x1, x2 in 0..1, y1, y2 in -2..3); x1 = -1 with
+ * y1 = x2 = y2 = 0 makes the segment a hold. The eased s may leave 0..1
+ * (overshoot) on transform, TRS and points tracks; on the others it is
+ * clamped to 0..1.
  */
-typedef enum cs_ease { CS_EASE_LINEAR = 0, CS_EASE_SMOOTH = 1, CS_EASE_COUNT_ } cs_ease;
+typedef enum cs_ease {
+    CS_EASE_LINEAR = 0,
+    CS_EASE_SMOOTH = 1,
+    CS_EASE_HOLD = 2,
+    CS_EASE_CUBIC = 3,
+    CS_EASE_COUNT_
+} cs_ease;
+/* Floats of easing before each key's values on a CS_EASE_CUBIC track. */
+#define CS_EASE_CUBIC_FLOATS 4
 
 /* A track's keys: times key_times[first_key ..], values key_values[first_value ..]. */
 typedef struct cs_track {
     uint32_t target;
     uint32_t first_key;
     uint32_t first_value;
-    uint32_t width;      /* floats per key */
+    uint32_t width;      /* floats per key: the value's, plus CS_EASE_CUBIC_FLOATS on a
+                            CS_EASE_CUBIC track */
     uint16_t key_count;
     uint8_t kind;        /* cs_track_kind */
     uint8_t ease;        /* cs_ease */
@@ -341,7 +376,8 @@ cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t targe
 
 /*
  * Appends a key to the track added last. `values` holds the track's width
- * in floats (cs_scene_track_width), checked as the static value would be:
+ * in floats (cs_scene_track_width; on a CS_EASE_CUBIC track preceded by
+ * the key's four easing floats), checked as the static value would be:
  * finite transforms within the coordinate limit, lights >= 0, paints in
  * 0..1, points as for cs_scene_add_contour. Times are finite and strictly
  * increasing; `err->item` is the key's index on failure.
@@ -382,6 +418,16 @@ cs_status cs_scene_set_points(cs_scene *scene, uint32_t contour, int count,
  * later cels, regions and contours move down one index.
  */
 cs_status cs_scene_remove_cel(cs_scene *scene, uint32_t cel, cs_error *err);
+/*
+ * Cel groups: makes cel `parent` the group of cel `cel` (CS_NO_PARENT: none).
+ * The cel's device transform is then the parent's (with its parent's, and
+ * so on) times its own, and its paints' beta is multiplied by the opacity
+ * of every TRS track up the chain. A parent is usually a cel with no
+ * regions. Refused with CS_ERR_GROUP if it would make a cycle or a chain of
+ * more than CS_CFG_MAX_GROUP_DEPTH cels. Removing a cel leaves its children
+ * without a parent.
+ */
+cs_status cs_scene_set_cel_parent(cs_scene *scene, uint32_t cel, uint32_t parent, cs_error *err);
 /* Moves cel `from` to stack position `to` (0 = front-most); others keep their order. */
 cs_status cs_scene_move_cel(cs_scene *scene, uint32_t from, uint32_t to, cs_error *err);
 /* Copies the used part of `src` into `dst` (no library calls; O(scene size)). */
@@ -540,6 +586,7 @@ typedef struct cs_workspace {
     uint16_t region_cel[CS_CFG_MAX_REGIONS];
     float region_E[CS_CFG_MAX_REGIONS][3];
     float region_T[CS_CFG_MAX_REGIONS][3];
+    float cel_opacity[CS_CFG_MAX_CELS];   /* TRS opacity up the group chain, per frame */
     float area[CS_CFG_MAX_WIDTH + 2];     /* partial coverage of the region, per pixel */
     float cover[CS_CFG_MAX_WIDTH + 2];    /* coverage deltas, prefix-summed */
     uint32_t touched[(CS_CFG_MAX_WIDTH + 2 + 31) / 32]; /* area/cover entries written */
@@ -556,6 +603,9 @@ typedef struct cs_workspace {
     float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
     cs_point anim_points[CS_CFG_MAX_ANIM_POINTS]; /* one animated contour at frame time */
 } cs_workspace;
+
+/* A cel's parent is one byte (cs_cel.parent), CS_NO_PARENT excluded. */
+typedef char cs__cels_fit_parent_[CS_CFG_MAX_CELS < CS_NO_PARENT ? 1 : -1];
 
 /* Pixel positions are kept in 16 bits (run_end). */
 typedef char cs__width_fits_[CS_CFG_MAX_WIDTH < 65535 ? 1 : -1];

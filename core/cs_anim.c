@@ -17,7 +17,10 @@
  * Sampling (cs__track_locate) holds the first value before the first key
  * and the last after the last key, and between keys blends with
  * (1-s) a + s b, which gives every key's value exactly at its time. Only
- * + - * / are used, so the result is the same on every IEEE-754 target.
+ * + - * / are used, so the result is the same on every IEEE-754 target:
+ * the cubic Bezier easing is solved for its x by a fixed number of
+ * bisection steps, and the TRS track's sine and cosine are polynomials on
+ * a range reduced in degrees, not libm calls.
  */
 #include "cs_internal.h"
 
@@ -26,6 +29,7 @@ int cs__track_family(int kind)
     switch (kind) {
     case CS_TRACK_TRANSFORM:
     case CS_TRACK_CEL_LIGHTS:
+    case CS_TRACK_TRS:
         return CS__FAM_CEL;
     case CS_TRACK_PAINT:
         return CS__FAM_REGION;
@@ -44,6 +48,8 @@ uint32_t cs_scene_track_width(const cs_scene *scene, cs_track_kind kind, uint32_
     case CS_TRACK_TRANSFORM:
     case CS_TRACK_CEL_LIGHTS:
         return target < scene->cel_count ? 6u : 0u;
+    case CS_TRACK_TRS:
+        return target < scene->cel_count ? 10u : 0u;
     case CS_TRACK_PAINT:
         return target < scene->region_count ? 7u : 0u;
     case CS_TRACK_POINTS:
@@ -162,7 +168,8 @@ cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t targe
         return CS_ERR_ARG;
     }
     if ((unsigned)kind >= (unsigned)CS_TRACK_KIND_COUNT_ ||
-        (unsigned)ease >= (unsigned)CS_EASE_COUNT_) {
+        (unsigned)ease >= (unsigned)CS_EASE_COUNT_ ||
+        (!CS_CFG_ANIM_PARTS && (kind == CS_TRACK_TRS || ease == CS_EASE_CUBIC))) {
         cs__error(err, CS_ERR_TRACK, -1, -1, -1, -1);
         return CS_ERR_TRACK;
     }
@@ -189,7 +196,7 @@ cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t targe
     t->kind = (uint8_t)kind;
     t->ease = (uint8_t)ease;
     t->target = target;
-    t->width = width;
+    t->width = width + (ease == CS_EASE_CUBIC ? CS_EASE_CUBIC_FLOATS : 0u);
     t->key_count = 0;
     t->first_key = scene->key_count;
     t->first_value = scene->value_count;
@@ -198,6 +205,42 @@ cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t targe
     cs__error(err, CS_OK, -1, -1, -1, -1);
     return CS_OK;
 }
+
+#if CS_CFG_ANIM_PARTS
+/* A cubic key's easing: a hold, or x1, x2 in 0..1 and y1, y2 in -2..3 (the
+ * bound keeps an overshooting value within a few times its keys' span). */
+static cs_status check_ease(const float *e)
+{
+    for (int i = 0; i < 4; i++)
+        if (!cs__finite(e[i]))
+            return CS_ERR_NONFINITE;
+    if (e[0] == -1.0f)
+        return e[1] == 0.0f && e[2] == 0.0f && e[3] == 0.0f ? CS_OK : CS_ERR_RANGE;
+    if (!(e[0] >= 0.0f && e[0] <= 1.0f && e[2] >= 0.0f && e[2] <= 1.0f))
+        return CS_ERR_RANGE;
+    if (!(e[1] >= -2.0f && e[1] <= 3.0f && e[3] >= -2.0f && e[3] <= 3.0f))
+        return CS_ERR_RANGE;
+    return CS_OK;
+}
+
+/* A TRS key: finite, positions and anchors within the coordinate limit,
+ * scales within +-10^4, skew within +-85 degrees (its tangent stays below
+ * 12), turns within +-10^6 degrees, opacity in 0..1. */
+static cs_status check_trs(const float *v)
+{
+    for (int i = 0; i < 10; i++)
+        if (!cs__finite(v[i]))
+            return CS_ERR_NONFINITE;
+    for (int i = 0; i < 4; i++)
+        if (cs__absf(v[i]) > CS_CFG_COORD_LIMIT)
+            return CS_ERR_RANGE;
+    if (cs__absf(v[4]) > 1e4f || cs__absf(v[5]) > 1e4f || cs__absf(v[6]) > 1e6f ||
+        cs__absf(v[7]) > 85.0f || cs__absf(v[8]) > 1e6f)
+        return CS_ERR_RANGE;
+    return v[9] >= 0.0f && v[9] <= 1.0f ? CS_OK : CS_ERR_PAINT;
+}
+
+#endif
 
 /* Checks one key's values as the static value of the same kind is checked. */
 static cs_status check_values(int kind, const float *v, uint32_t width, int32_t *point)
@@ -208,6 +251,10 @@ static cs_status check_values(int kind, const float *v, uint32_t width, int32_t 
         cs_affine m = {v[0], v[1], v[2], v[3], v[4], v[5]};
         return cs__check_affine(&m, point);
     }
+#if CS_CFG_ANIM_PARTS
+    case CS_TRACK_TRS:
+        return check_trs(v);
+#endif
     case CS_TRACK_CEL_LIGHTS:
     case CS_TRACK_STACK_LIGHTS:
         return cs__check_lights(v, v + 3);
@@ -241,14 +288,20 @@ cs_status cs_scene_add_key(cs_scene *scene, float time, const float *values, cs_
         return CS_ERR_STATE;
     }
     cs_track *t = &scene->tracks[scene->open_track];
-    int32_t key = t->key_count, point;
+    int32_t key = t->key_count, point = -1;
     cs_status st = CS_OK;
     if (!cs__finite(time))
         st = CS_ERR_NONFINITE;
     else if (t->key_count > 0 && !(time > scene->key_times[t->first_key + t->key_count - 1u]))
         st = CS_ERR_KEY_ORDER;
-    else
-        st = check_values(t->kind, values, t->width, &point);
+    else {
+        uint32_t lead = cs__track_lead(t);
+#if CS_CFG_ANIM_PARTS
+        st = lead ? check_ease(values) : CS_OK;
+#endif
+        if (st == CS_OK)
+            st = check_values(t->kind, values + lead, t->width - lead, &point);
+    }
     if (st == CS_OK && (scene->key_count >= CS_CFG_MAX_KEYS || t->key_count >= UINT16_MAX ||
                         t->width > CS_CFG_MAX_KEY_VALUES - scene->value_count))
         st = CS_ERR_CAP_KEYS;
@@ -319,6 +372,96 @@ void cs__tracks_sort(cs_scene *scene)
     scene->open_track = UINT32_MAX;
 }
 
+#if CS_CFG_ANIM_PARTS
+/*
+ * The cubic Bezier easing e = (x1, y1, x2, y2) at u: the curve's y where its
+ * x is u. x(v) = 3(1-v)^2 v x1 + 3(1-v) v^2 x2 + v^3 rises on 0..1 (x1, x2
+ * in 0..1), so 24 bisection steps find v to within 2^-24 whatever the
+ * curve, in the same steps on every target. A segment whose control points
+ * lie on the diagonal is linear and returns u itself; a hold returns 0.
+ */
+static float cubic_ease(const float *e, float u)
+{
+    if (e[0] < 0.0f)
+        return 0.0f;
+    if (e[0] == e[1] && e[2] == e[3])
+        return u;
+    float lo = 0.0f, hi = 1.0f;
+    for (int i = 0; i < 24; i++) {
+        float v = 0.5f * (lo + hi), w = 1.0f - v;
+        float x = 3.0f * w * w * v * e[0] + 3.0f * w * v * v * e[2] + v * v * v;
+        if (x < u)
+            lo = v;
+        else
+            hi = v;
+    }
+    float v = 0.5f * (lo + hi), w = 1.0f - v;
+    return 3.0f * w * w * v * e[1] + 3.0f * w * v * v * e[3] + v * v * v;
+}
+
+/*
+ * sin and cos of `deg` degrees (|deg| <= 10^6): reduced exactly to
+ * r = deg - 90 n in -45..45 (n * 90 and the difference are exact in float
+ * at these magnitudes), then Taylor polynomials of r in radians, whose
+ * truncation error below pi/4 is under 2e-9, far below float rounding.
+ * Exact at multiples of 90 degrees.
+ */
+static void sincos_deg(float deg, float *sn, float *cs)
+{
+    int32_t n = cs__floori(deg / 90.0f + 0.5f);
+    float r = (deg - (float)n * 90.0f) * 0.017453292519943295f, r2 = r * r;
+    float s = r * (1.0f - r2 / 6.0f * (1.0f - r2 / 20.0f * (1.0f - r2 / 42.0f * (1.0f - r2 / 72.0f))));
+    float c = 1.0f - r2 / 2.0f * (1.0f - r2 / 12.0f * (1.0f - r2 / 30.0f * (1.0f - r2 / 56.0f *
+                                                                            (1.0f - r2 / 90.0f))));
+    switch (n & 3) {
+    case 0:
+        *sn = s, *cs = c;
+        break;
+    case 1:
+        *sn = c, *cs = -s;
+        break;
+    case 2:
+        *sn = -s, *cs = -c;
+        break;
+    default:
+        *sn = -c, *cs = s;
+        break;
+    }
+}
+
+/* m = a * b for affine maps in cs_affine's order (a b c d e f). */
+static void affine_mul(const float *a, const float *b, float *m)
+{
+    float r[6] = {a[0] * b[0] + a[2] * b[1], a[1] * b[0] + a[3] * b[1],
+                  a[0] * b[2] + a[2] * b[3], a[1] * b[2] + a[3] * b[3],
+                  a[0] * b[4] + a[2] * b[5] + a[4], a[1] * b[4] + a[3] * b[5] + a[5]};
+    for (int i = 0; i < 6; i++)
+        m[i] = r[i];
+}
+
+void cs__trs_affine(const float *v, float m[6])
+{
+    float s, c, sa, ca, sk, ck;
+    /* S(sx, sy) T(-a) */
+    float acc[6] = {v[4], 0.0f, 0.0f, v[5], -v[4] * v[2], -v[5] * v[3]};
+    if (v[7] != 0.0f) {
+        /* K = R(axis) [1 tan(skew); 0 1] R(-axis) */
+        sincos_deg(v[8], &sa, &ca);
+        sincos_deg(v[7], &sk, &ck);
+        float k = sk / ck;
+        float rn[6] = {ca, -sa, sa, ca, 0.0f, 0.0f}, sh[6] = {1.0f, 0.0f, k, 1.0f, 0.0f, 0.0f};
+        float rp[6] = {ca, sa, -sa, ca, 0.0f, 0.0f};
+        affine_mul(rn, acc, acc);
+        affine_mul(sh, acc, acc);
+        affine_mul(rp, acc, acc);
+    }
+    sincos_deg(v[6], &s, &c);
+    float rot[6] = {c, s, -s, c, v[0], v[1]};
+    affine_mul(rot, acc, m);
+}
+
+#endif
+
 void cs__track_locate(const cs_scene *scene, const cs_track *tr, float t, uint32_t *i0,
                       uint32_t *i1, float *s)
 {
@@ -351,6 +494,16 @@ void cs__track_locate(const cs_scene *scene, const cs_track *tr, float t, uint32
         u = 1.0f;
     if (tr->ease == CS_EASE_SMOOTH)
         u = u * u * (3.0f - 2.0f * u);
+    else if (tr->ease == CS_EASE_HOLD)
+        u = 0.0f;
+#if CS_CFG_ANIM_PARTS
+    else if (tr->ease == CS_EASE_CUBIC) {
+        u = cubic_ease(&scene->key_values[tr->first_value + lo * tr->width], u);
+        if (tr->kind != CS_TRACK_TRANSFORM && tr->kind != CS_TRACK_TRS &&
+            tr->kind != CS_TRACK_POINTS)
+            u = cs__clampf(u, 0.0f, 1.0f);
+    }
+#endif
     *i0 = lo;
     *i1 = hi;
     *s = u;

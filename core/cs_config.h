@@ -35,16 +35,30 @@
 /*
  * Animation: keyframe tracks, their keys (one time each) and the floats of
  * all keys together (a transform key takes 6, a paint 7, a control-point key
- * 3 per point).
+ * 3 per point). The host's store is sized for imported animation (a Lottie
+ * stroke whose outline moves is a points track per outline piece, keyed
+ * often): about 4.5 MB of keys; boards set their own.
  */
 #ifndef CS_CFG_MAX_TRACKS
-#define CS_CFG_MAX_TRACKS 256
+#define CS_CFG_MAX_TRACKS 4096
 #endif
 #ifndef CS_CFG_MAX_KEYS
-#define CS_CFG_MAX_KEYS 4096
+#define CS_CFG_MAX_KEYS 65536
 #endif
 #ifndef CS_CFG_MAX_KEY_VALUES
-#define CS_CFG_MAX_KEY_VALUES 32768
+#define CS_CFG_MAX_KEY_VALUES (1024 * 1024)
+#endif
+/*
+ * TRS transform tracks, cubic Bezier easing and cel groups (imported Lottie
+ * animation; about 2.5 KB of Cortex-M4 code). Without them a board refuses
+ * such tracks (CS_ERR_TRACK) and parents (CS_ERR_GROUP); hold keys stay.
+ */
+#ifndef CS_CFG_ANIM_PARTS
+#define CS_CFG_ANIM_PARTS 1
+#endif
+/* Longest chain of cel groups (a cel, its parent, the parent's parent...). */
+#ifndef CS_CFG_MAX_GROUP_DEPTH
+#define CS_CFG_MAX_GROUP_DEPTH 16
 #endif
 /* Most control points of one animated contour: the workspace holds one such
  * contour evaluated at frame time. */

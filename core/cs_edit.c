@@ -38,6 +38,7 @@ static void copy_cel(cs_cel *dst, const cs_cel *src)
     copy_affine(&dst->transform, &src->transform);
     cs__copy3(dst->front, src->front);
     cs__copy3(dst->back, src->back);
+    dst->parent = src->parent;
 }
 
 static void copy_region(cs_region *dst, const cs_region *src)
@@ -305,13 +306,80 @@ cs_status cs_scene_remove_cel(cs_scene *scene, uint32_t cel, cs_error *err)
     }
     scene->point_count -= np;
 
-    for (uint32_t i = 0; i < scene->cel_count; i++)
-        scene->cels[i].first_region = shift_start(scene->cels[i].first_region, fr, nr);
+    for (uint32_t i = 0; i < scene->cel_count; i++) {
+        cs_cel *c = &scene->cels[i];
+        c->first_region = shift_start(c->first_region, fr, nr);
+        if (c->parent == cel)
+            c->parent = CS_NO_PARENT;
+        else if (c->parent != CS_NO_PARENT && c->parent > cel)
+            c->parent--;
+    }
     for (uint32_t i = 0; i < scene->region_count; i++)
         scene->regions[i].first_contour = shift_start(scene->regions[i].first_contour, fc, nc);
     for (uint32_t i = 0; i < scene->contour_count; i++)
         scene->contours[i].first_point = shift_start(scene->contours[i].first_point, fp, np);
     scene->open_track = UINT32_MAX;
+    cs__error(err, CS_OK, -1, -1, -1, -1);
+    return CS_OK;
+}
+
+/* Where cel index i goes when cel `from` moves to `to`. */
+static uint32_t moved_index(uint32_t i, uint32_t from, uint32_t to)
+{
+    if (i == from)
+        return to;
+    if (from < to && i > from && i <= to)
+        return i - 1;
+    if (from > to && i >= to && i < from)
+        return i + 1;
+    return i;
+}
+
+#if CS_CFG_ANIM_PARTS
+/* Length of cel c's group chain (1: no parent) if cel `cel` had parent
+ * `parent`, or CS_CFG_MAX_GROUP_DEPTH + 1 once it is longer (or cycles). */
+static int chain_length(const cs_scene *scene, uint32_t c, uint32_t cel, uint32_t parent)
+{
+    int n = 1;
+    while (n <= CS_CFG_MAX_GROUP_DEPTH) {
+        uint32_t p = c == cel ? parent : scene->cels[c].parent;
+        if (p == CS_NO_PARENT)
+            return n;
+        c = p;
+        n++;
+    }
+    return n;
+}
+
+#endif
+
+cs_status cs_scene_set_cel_parent(cs_scene *scene, uint32_t cel, uint32_t parent, cs_error *err)
+{
+    if (!scene) {
+        cs__error(err, CS_ERR_ARG, -1, -1, -1, -1);
+        return CS_ERR_ARG;
+    }
+    if (parent == UINT32_MAX)
+        parent = CS_NO_PARENT;
+    if (cel >= scene->cel_count || (parent != CS_NO_PARENT && parent >= scene->cel_count)) {
+        cs__error(err, CS_ERR_INDEX, (int32_t)cel, -1, -1, -1);
+        return CS_ERR_INDEX;
+    }
+#if CS_CFG_ANIM_PARTS
+    /* Every chain through `cel` must stay short and acyclic; the frame
+     * follows chains without checking them again. */
+    for (uint32_t c = 0; c < scene->cel_count; c++)
+        if (chain_length(scene, c, cel, parent) > CS_CFG_MAX_GROUP_DEPTH) {
+            cs__error(err, CS_ERR_GROUP, (int32_t)cel, -1, -1, -1);
+            return CS_ERR_GROUP;
+        }
+#else
+    if (parent != CS_NO_PARENT) { /* groups are left out of this build */
+        cs__error(err, CS_ERR_GROUP, (int32_t)cel, -1, -1, -1);
+        return CS_ERR_GROUP;
+    }
+#endif
+    scene->cels[cel].parent = (uint8_t)parent;
     cs__error(err, CS_OK, -1, -1, -1, -1);
     return CS_OK;
 }
@@ -335,16 +403,13 @@ cs_status cs_scene_move_cel(cs_scene *scene, uint32_t from, uint32_t to, cs_erro
         for (uint32_t i = from; i > to; i--)
             copy_cel(&scene->cels[i], &scene->cels[i - 1]);
     copy_cel(&scene->cels[to], &moving);
+    for (uint32_t i = 0; i < scene->cel_count; i++)
+        if (scene->cels[i].parent != CS_NO_PARENT)
+            scene->cels[i].parent = (uint8_t)moved_index(scene->cels[i].parent, from, to);
     for (uint32_t i = 0; i < scene->track_count; i++) {
         cs_track *t = &scene->tracks[i];
-        if (cs__track_family(t->kind) != CS__FAM_CEL)
-            continue;
-        if (t->target == from)
-            t->target = to;
-        else if (from < to && t->target > from && t->target <= to)
-            t->target--;
-        else if (from > to && t->target >= to && t->target < from)
-            t->target++;
+        if (cs__track_family(t->kind) == CS__FAM_CEL)
+            t->target = moved_index(t->target, from, to);
     }
     cs__tracks_sort(scene);
     cs__error(err, CS_OK, -1, -1, -1, -1);

@@ -239,10 +239,55 @@ static void sample(const cs_scene *scene, const cs_track *tr, float t, float *ou
     uint32_t i0, i1;
     float s;
     cs__track_locate(scene, tr, t, &i0, &i1, &s);
-    const float *a = &scene->key_values[tr->first_value + i0 * tr->width];
-    const float *b = &scene->key_values[tr->first_value + i1 * tr->width];
-    for (uint32_t k = 0; k < tr->width; k++)
+    uint32_t lead = cs__track_lead(tr);
+    const float *a = &scene->key_values[tr->first_value + i0 * tr->width + lead];
+    const float *b = &scene->key_values[tr->first_value + i1 * tr->width + lead];
+    for (uint32_t k = 0; k < tr->width - lead; k++)
         out[k] = i0 == i1 ? a[k] : cs__lerp(a[k], b[k], s);
+}
+
+/* Cel ci's own transform and opacity at time t: a TRS track's, else a
+ * transform track's or the stored one (opacity 1). */
+static float cel_local(const cs_scene *scene, uint32_t ci, float t, float *m)
+{
+    const cs_cel *cel = &scene->cels[ci];
+    const cs_track *tr;
+#if CS_CFG_ANIM_PARTS
+    if ((tr = cs__track_find(scene, CS_TRACK_TRS, ci)) != 0 && tr->key_count) {
+        float v[10];
+        sample(scene, tr, t, v);
+        cs__trs_affine(v, m);
+        return cs__clampf(v[9], 0.0f, 1.0f);
+    }
+#endif
+    m[0] = cel->transform.a;
+    m[1] = cel->transform.b;
+    m[2] = cel->transform.c;
+    m[3] = cel->transform.d;
+    m[4] = cel->transform.e;
+    m[5] = cel->transform.f;
+    if ((tr = cs__track_find(scene, CS_TRACK_TRANSFORM, ci)) != 0 && tr->key_count)
+        sample(scene, tr, t, m);
+    return 1.0f;
+}
+
+/* Cel ci's transform and opacity with its groups': parent after child, up
+ * the chain (at most CS_CFG_MAX_GROUP_DEPTH long, cs_scene_set_cel_parent). */
+static float cel_world(const cs_scene *scene, uint32_t ci, float t, float *m)
+{
+    float opacity = cel_local(scene, ci, t, m);
+    uint32_t p = scene->cels[ci].parent;
+    for (int depth = 1; p < scene->cel_count && depth < CS_CFG_MAX_GROUP_DEPTH; depth++) {
+        float pm[6];
+        opacity *= cel_local(scene, p, t, pm);
+        float r[6] = {pm[0] * m[0] + pm[2] * m[1], pm[1] * m[0] + pm[3] * m[1],
+                      pm[0] * m[2] + pm[2] * m[3], pm[1] * m[2] + pm[3] * m[3],
+                      pm[0] * m[4] + pm[2] * m[5] + pm[4], pm[1] * m[4] + pm[3] * m[5] + pm[5]};
+        for (int i = 0; i < 6; i++)
+            m[i] = r[i];
+        p = scene->cels[p].parent;
+    }
+    return opacity;
 }
 
 /* Samples a points track into the workspace's contour buffer. */
@@ -252,9 +297,10 @@ static const cs_point *sample_points(const cs_scene *scene, const cs_track *tr, 
     uint32_t i0, i1;
     float s;
     cs__track_locate(scene, tr, t, &i0, &i1, &s);
-    const float *a = &scene->key_values[tr->first_value + i0 * tr->width];
-    const float *b = &scene->key_values[tr->first_value + i1 * tr->width];
-    for (uint32_t k = 0; k < tr->width / 3; k++) {
+    uint32_t lead = cs__track_lead(tr);
+    const float *a = &scene->key_values[tr->first_value + i0 * tr->width + lead];
+    const float *b = &scene->key_values[tr->first_value + i1 * tr->width + lead];
+    for (uint32_t k = 0; k < (tr->width - lead) / 3; k++) {
         out[k].x = i0 == i1 ? a[3 * k] : cs__lerp(a[3 * k], b[3 * k], s);
         out[k].y = i0 == i1 ? a[3 * k + 1] : cs__lerp(a[3 * k + 1], b[3 * k + 1], s);
         out[k].w = i0 == i1 ? a[3 * k + 2] : cs__lerp(a[3 * k + 2], b[3 * k + 2], s);
@@ -387,13 +433,12 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         if (cache && ci >= cache->cel_first && ci - cache->cel_first < cache->cel_count)
             continue; /* composited from the cache's runs instead */
         const cs_cel *cel = &scene->cels[ci];
-        float m[6] = {cel->transform.a, cel->transform.b, cel->transform.c,
-                      cel->transform.d, cel->transform.e, cel->transform.f};
+        float m[6];
+        float opacity = cel_world(scene, ci, t, m);
+        ws->cel_opacity[ci] = opacity;
         float lights[6];
         cs__copy3(lights, cel->has_front ? cel->front : stack);
         cs__copy3(lights + 3, cel->back);
-        if ((tr = cs__track_find(scene, CS_TRACK_TRANSFORM, ci)) != 0 && tr->key_count)
-            sample(scene, tr, t, m);
         if ((tr = cs__track_find(scene, CS_TRACK_CEL_LIGHTS, ci)) != 0 && tr->key_count)
             sample(scene, tr, t, lights);
         cs_affine dev = {m[0] * r->sx, m[1] * r->sy, m[2] * r->sx,
@@ -414,6 +459,15 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                 animated.beta = cs__clampf(v[6], 0.0f, 1.0f);
                 paint = &animated;
             }
+            if (opacity < 1.0f) {
+                if (paint != &animated) {
+                    cs__copy3(animated.pigment, paint->pigment);
+                    cs__copy3(animated.medium, paint->medium);
+                    animated.beta = paint->beta;
+                    paint = &animated;
+                }
+                animated.beta *= opacity;
+            }
             region_map(paint, lights, lights + 3, srgb, ws->region_E[ri], ws->region_T[ri]);
             grey = grey && region_grey(scene, reg, paint, ws->region_T[ri]);
             for (int f = 0; f < 3; f++)
@@ -425,7 +479,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                 const cs_contour *c = &scene->contours[ki];
                 const cs_point *pts = &scene->points[c->first_point];
                 if ((tr = cs__track_find(scene, CS_TRACK_POINTS, ki)) != 0 && tr->key_count &&
-                    tr->width == 3u * c->point_count && c->point_count <= CS_CFG_MAX_ANIM_POINTS)
+                    tr->width - cs__track_lead(tr) == 3u * c->point_count && c->point_count <= CS_CFG_MAX_ANIM_POINTS)
                     pts = sample_points(scene, tr, t, ws->anim_points);
                 uint32_t first = r->segment_count, n;
                 int32_t bad;

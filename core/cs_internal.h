@@ -140,6 +140,13 @@ const cs_track *cs__track_find(const cs_scene *scene, int kind, uint32_t target)
  */
 void cs__track_locate(const cs_scene *scene, const cs_track *tr, float t, uint32_t *i0,
                       uint32_t *i1, float *s);
+/* Floats of easing before each key's values on track `tr` (0 or CS_EASE_CUBIC_FLOATS). */
+static inline uint32_t cs__track_lead(const cs_track *tr)
+{
+    return tr->ease == CS_EASE_CUBIC ? CS_EASE_CUBIC_FLOATS : 0u;
+}
+/* A TRS key (CS_TRACK_TRS) as the affine map it stands for (cs_anim.c). */
+void cs__trs_affine(const float *v, float m[6]);
 /* (1-s) a + s b: exactly a at s = 0 and b at s = 1, between them (to rounding) otherwise. */
 static inline float cs__lerp(float a, float b, float s) { return (1.0f - s) * a + s * b; }
 

@@ -498,6 +498,7 @@ static void paint_at(const cs_renderer *r, const cs_region *region, const float 
     } else {
         beta = p->beta;
     }
+    beta *= r->ws->cel_opacity[r->ws->region_cel[region - scene->regions]];
     for (int ch = 0; ch < 3; ch++) {
         float clear = (1.0f - beta) * med[ch];
         E[ch] = beta * pig[ch] * front[ch] + clear * back[ch];

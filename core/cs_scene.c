@@ -162,6 +162,7 @@ cs_status cs_scene_add_cel(cs_scene *scene, const cs_affine *transform, const fl
     c->transform.e = transform->e;
     c->transform.f = transform->f;
     c->has_front = front != 0;
+    c->parent = CS_NO_PARENT;
     static const float black[3] = {0.0f, 0.0f, 0.0f};
     cs__copy3(c->front, front ? front : scene->stack_front);
     cs__copy3(c->back, back ? back : black);

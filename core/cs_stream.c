@@ -87,6 +87,7 @@ static int fixed_size(uint32_t type)
     case CS_REC_CEL_MOVE:
     case CS_REC_TRACK_REMOVE:
     case CS_REC_EPOCH:
+    case CS_REC_CEL_PARENT:
         return 8;
     case CS_REC_BACKGROUND:
     case CS_REC_CONTOUR:
@@ -403,6 +404,9 @@ static void finish_record(cs_stream *s)
         break;
     case CS_REC_CEL_MOVE:
         st = cs_scene_move_cel(sc, rd_u32(b), rd_u32(b + 4), &where);
+        break;
+    case CS_REC_CEL_PARENT:
+        st = cs_scene_set_cel_parent(sc, rd_u32(b), rd_u32(b + 4), &where);
         break;
     case CS_REC_CEL_TRANSFORM:
         wire_affine(b + 4, &m);

@@ -11,7 +11,7 @@
 
 /* Format version written by this code; decoders accept any minor of their major. */
 #define CS_WIRE_MAJOR 1
-#define CS_WIRE_MINOR 3
+#define CS_WIRE_MINOR 4
 
 /* 16-byte headers: magic(4) major(1) minor(1) flags(2) word(4) crc32(4). */
 #define CS_WIRE_HEADER_SIZE 16
@@ -30,7 +30,7 @@
 
 /* Record header: type u16 (class << 8 | subtype), payload length u32. */
 #define CS_WIRE_RECORD_HEADER_SIZE 6
-#define CS_WIRE_CLASS_COUNT 6 /* classes 0..5 known to version 1.1 (1.0 knew 0..4) */
+#define CS_WIRE_CLASS_COUNT 7 /* classes 0..6 known to version 1.4 (1.1-1.3: 0..5, 1.0: 0..4) */
 
 /* Class 0: control */
 #define CS_REC_PAD 0x0000u    /* any payload, ignored */
@@ -64,6 +64,8 @@
                                            f32 (offset, value[3])*stops: last region */
 #define CS_REC_REGION_CSG 0x0501u       /* u32 len; i32 token*len: last region */
 #define CS_REC_CONTOUR_OPERAND 0x0502u  /* u32 operand: last contour */
+/* Class 6 (1.4): cel groups; a new class for the same reason as class 5. */
+#define CS_REC_CEL_PARENT 0x0600u       /* u32 cel, parent (0xFFFFFFFF: none) */
 
 /* Flag bits; every other bit is reserved and must be 0. */
 #define CS_WIRE_CEL_HAS_FRONT 1u       /* CEL, CEL_LIGHTS: front light given (else the stack's) */

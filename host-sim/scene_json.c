@@ -319,11 +319,14 @@ static int require_array(loader *L, const cJSON *obj, const char *key, const cJS
  * live and what a key's value is:
  *
  *   scene   "animate": {"lights": {front, back}, "background": colour}
- *   cel     "animate": {"transform": [a,b,c,d,e,f], "lights": {front, back}}
+ *   cel     "animate": {"transform": [a,b,c,d,e,f], "lights": {front, back},
+ *                       "trs": {position, anchor, scale, rotation, skew, skew_axis, opacity}}
  *   region  "animate": {"paint": {pigment, medium, beta}}
  *   contour "animate": {"points": [[x,y] or [x,y,w], ...]}
  *
- * Each track is {"keys": [[t, value], ...], "ease": "linear"|"smooth"}.
+ * Each track is {"keys": [[t, value], ...], "ease": "linear"|"smooth"|"hold"|"cubic"};
+ * a cubic track's key may add its segment's easing, [t, value, [x1,y1,x2,y2]]
+ * or [t, value, "hold"] (left out: linear).
  * Object values may leave members out; those hold the item's static value
  * (its lights, its constant paint). Colours are sRGB and become linear
  * light, as everywhere in the scene. A paint key may not name a field the
@@ -409,6 +412,59 @@ static int key_points(loader *L, const cJSON *j, const track_ctx *c, float *v)
     return 0;
 }
 
+/* A TRS key {"position", "anchor", "scale", "rotation", "skew", "skew_axis",
+ * "opacity"} into v[0..9]; members left out are the identity's. */
+static int key_trs(loader *L, const cJSON *j, float *v)
+{
+    if (!cJSON_IsObject(j))
+        return fail(L, "expected a TRS key {\"position\", \"anchor\", \"scale\", \"rotation\", "
+                       "\"skew\", \"skew_axis\", \"opacity\"}, got %s",
+                    kind(j));
+    static const float identity[10] = {0, 0, 0, 0, 1, 1, 0, 0, 0, 1};
+    for (int k = 0; k < 10; k++)
+        v[k] = identity[k];
+    static const char *const pairs[3] = {"position", "anchor", "scale"};
+    for (int k = 0; k < 3; k++) {
+        const cJSON *m = member(j, pairs[k]);
+        if (m == NULL)
+            continue;
+        size_t at = push_key(L, pairs[k]);
+        if (get_floats(L, m, v + 2 * k, 2, "a pair [x,y]") != 0)
+            return -1;
+        pop(L, at);
+    }
+    static const char *const singles[4] = {"rotation", "skew", "skew_axis", "opacity"};
+    for (int k = 0; k < 4; k++)
+        if (member(j, singles[k]) != NULL && member_float(L, j, singles[k], false, &v[6 + k]) != 0)
+            return -1;
+    const cJSON *m;
+    cJSON_ArrayForEach(m, j)
+    {
+        bool known = false;
+        for (int k = 0; k < 3; k++)
+            known = known || strcmp(m->string, pairs[k]) == 0;
+        for (int k = 0; k < 4; k++)
+            known = known || strcmp(m->string, singles[k]) == 0;
+        if (!known) {
+            push_key(L, m->string);
+            return fail(L, "unknown TRS member (position, anchor, scale, rotation, skew, "
+                           "skew_axis, opacity)");
+        }
+    }
+    return 0;
+}
+
+/* A cubic track key's easing (third element): [x1,y1,x2,y2] or "hold". */
+static int key_ease(loader *L, const cJSON *j, float *e)
+{
+    if (cJSON_IsString(j) && strcmp(j->valuestring, "hold") == 0) {
+        e[0] = -1.0f;
+        e[1] = e[2] = e[3] = 0.0f;
+        return 0;
+    }
+    return get_floats(L, j, e, 4, "an easing [x1,y1,x2,y2] or \"hold\"");
+}
+
 /* The value of one key, its path already pushed. */
 static int key_value(loader *L, const cJSON *j, const track_ctx *c, float *v)
 {
@@ -422,6 +478,8 @@ static int key_value(loader *L, const cJSON *j, const track_ctx *c, float *v)
         return key_paint(L, j, c, v);
     case CS_TRACK_POINTS:
         return key_points(L, j, c, v);
+    case CS_TRACK_TRS:
+        return key_trs(L, j, v);
     default:
         return get_colour(L, j, v);
     }
@@ -460,14 +518,16 @@ static int load_track(loader *L, const cJSON *track, const track_ctx *c)
     const cJSON *ej = member(track, "ease");
     if (ej != NULL) {
         size_t at = push_key(L, "ease");
-        if (cJSON_IsString(ej) && strcmp(ej->valuestring, "linear") == 0)
-            ease = CS_EASE_LINEAR;
-        else if (cJSON_IsString(ej) && strcmp(ej->valuestring, "smooth") == 0)
-            ease = CS_EASE_SMOOTH;
-        else if (cJSON_IsString(ej))
-            return fail(L, "ease must be \"linear\" or \"smooth\", got \"%.40s\"", ej->valuestring);
-        else
-            return fail(L, "ease must be \"linear\" or \"smooth\", got %s", kind(ej));
+        static const char *const eases[CS_EASE_COUNT_] = {"linear", "smooth", "hold", "cubic"};
+        int k = 0;
+        while (k < CS_EASE_COUNT_ && !(cJSON_IsString(ej) && strcmp(ej->valuestring, eases[k]) == 0))
+            k++;
+        if (k == CS_EASE_COUNT_ && cJSON_IsString(ej))
+            return fail(L, "ease must be \"linear\", \"smooth\", \"hold\" or \"cubic\", got \"%.40s\"",
+                        ej->valuestring);
+        if (k == CS_EASE_COUNT_)
+            return fail(L, "ease must be \"linear\", \"smooth\", \"hold\" or \"cubic\", got %s", kind(ej));
+        ease = (cs_ease)k;
         pop(L, at);
     }
     const cJSON *keys = member(track, "keys");
@@ -485,7 +545,8 @@ static int load_track(loader *L, const cJSON *track, const track_ctx *c)
                         cs_status_str(e.status), c->points, CS_CFG_MAX_ANIM_POINTS);
         return fail(L, "%s", cs_status_str(e.status));
     }
-    uint32_t width = cs_scene_track_width(L->scene, c->kind, c->target);
+    uint32_t lead = ease == CS_EASE_CUBIC ? CS_EASE_CUBIC_FLOATS : 0u;
+    uint32_t width = cs_scene_track_width(L->scene, c->kind, c->target) + lead;
     float *v = calloc(width ? width : 1, sizeof *v);
     if (v == NULL)
         return fail(L, "out of memory for a key of %u values", width);
@@ -497,8 +558,10 @@ static int load_track(loader *L, const cJSON *track, const track_ctx *c)
     {
         size_t at2 = push_index(L, i);
         float t = 0.0f;
-        if (!cJSON_IsArray(key) || cJSON_GetArraySize(key) != 2) {
-            rc = fail(L, "expected a key [t, value], got %s", kind(key));
+        int n = cJSON_IsArray(key) ? cJSON_GetArraySize(key) : 0;
+        if (n != 2 && !(n == 3 && lead)) {
+            rc = fail(L, "expected a key [t, value]%s, got %s",
+                      lead ? " or [t, value, easing]" : "", kind(key));
             break;
         }
         size_t at3 = push_index(L, 0);
@@ -507,8 +570,19 @@ static int load_track(loader *L, const cJSON *track, const track_ctx *c)
             break;
         }
         set_path(L->path, &L->plen, at3);
+        static const float linear[4] = {0.0f, 0.0f, 1.0f, 1.0f};
+        for (uint32_t k = 0; k < lead; k++)
+            v[k] = linear[k];
+        if (n == 3) {
+            push_index(L, 2);
+            if (key_ease(L, cJSON_GetArrayItem(key, 2), v) != 0) {
+                rc = -1;
+                break;
+            }
+            set_path(L->path, &L->plen, at3);
+        }
         push_index(L, 1);
-        if (key_value(L, cJSON_GetArrayItem(key, 1), c, v) != 0) {
+        if (key_value(L, cJSON_GetArrayItem(key, 1), c, v + lead) != 0) {
             rc = -1;
             break;
         }
@@ -570,13 +644,14 @@ static int load_animate(loader *L, const cJSON *obj, const track_name *names, in
 static int cel_animate(loader *L, const cJSON *cel_json, uint32_t cel)
 {
     const cs_cel *c = &L->scene->cels[cel];
-    track_name names[2] = {{"transform", {CS_TRACK_TRANSFORM, cel, {0}, NULL, 0}},
-                           {"lights", {CS_TRACK_CEL_LIGHTS, cel, {0}, NULL, 0}}};
+    track_name names[3] = {{"transform", {CS_TRACK_TRANSFORM, cel, {0}, NULL, 0}},
+                           {"lights", {CS_TRACK_CEL_LIGHTS, cel, {0}, NULL, 0}},
+                           {"trs", {CS_TRACK_TRS, cel, {0}, NULL, 0}}};
     for (int k = 0; k < 3; k++) {
         names[1].ctx.defaults[k] = c->front[k]; /* the stack's if the cel has none */
         names[1].ctx.defaults[3 + k] = c->back[k];
     }
-    return load_animate(L, cel_json, names, 2, "a cel");
+    return load_animate(L, cel_json, names, 3, "a cel");
 }
 
 /* A region's paint track, after the region (the last one) was added. */
@@ -943,6 +1018,26 @@ static int load_root(loader *L, const cJSON *root)
         if (load_cel(L, cel) != 0)
             return -1;
         pop(L, at2);
+        i++;
+    }
+    /* Groups once every cel exists: a parent may come after its child. */
+    i = 0;
+    cJSON_ArrayForEach(cel, cels)
+    {
+        const cJSON *parent = member(cel, "parent");
+        if (parent != NULL) {
+            size_t at2 = push_index(L, i);
+            push_key(L, "parent");
+            if (!cJSON_IsNumber(parent) || parent->valuedouble != (double)(int)parent->valuedouble ||
+                parent->valuedouble < 0 || parent->valuedouble >= (double)L->scene->cel_count)
+                return fail(L, "expected the index of another cel (0..%u)",
+                            L->scene->cel_count - 1u);
+            cs_error e;
+            if (cs_scene_set_cel_parent(L->scene, (uint32_t)i, (uint32_t)parent->valueint, &e) !=
+                CS_OK)
+                return fail(L, "%s", cs_status_str(e.status));
+            pop(L, at2);
+        }
         i++;
     }
     pop(L, at);

@@ -5,7 +5,7 @@
 #   make build/host/celfw     the board program
 #   make test-linuxhal        the emulated-device tests (also part of make test)
 
-LX_PKGS := libgpiod libusb-1.0 liblz4
+LX_PKGS := libgpiod libusb-1.0 liblz4 libsystemd
 LX_PKG_CFLAGS = $(shell pkg-config --cflags $(LX_PKGS) 2>/dev/null)
 LX_PKG_LIBS = $(shell pkg-config --libs $(LX_PKGS) 2>/dev/null)
 LX_UMOCKDEV_CFLAGS = $(shell pkg-config --cflags umockdev-1.0 2>/dev/null)

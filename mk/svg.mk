@@ -4,13 +4,15 @@
 #   make build/host/svgimport     the importer on its own (import, text, render)
 #   make test-svg                 unit, coverage and librsvg comparison checks
 #   make svg-rsvg-full            every installed icon against rsvg-convert (report only)
+#   make svg-conformance          resvg's conformance suite (../shared/conformance/resvg), per category
+#   make svg-conformance-doc      the same, written to docs/SVG-CONFORMANCE.md
 #   make fuzz-svg                 libFuzzer on the importer for FUZZ_TIME s (default 60)
 #   make fuzz-svg-smoke           a short run of it (FUZZ_SVG_SMOKE_TIME, default 20 s), in `make test`
 #
-# The importer is host code: expat, FreeType, cJSON and libpng from Debian,
-# linked with the freestanding core library built as the main Makefile does.
+# The importer is host code: expat, FreeType, fontconfig, HarfBuzz, FriBidi, cJSON and libpng
+# from Debian, linked with the freestanding core library built as the main Makefile does.
 
-SVG_PKGS := expat freetype2 libcjson libpng
+SVG_PKGS := expat freetype2 fontconfig harfbuzz fribidi libcjson libpng
 SVG_CFLAGS = $(shell pkg-config --cflags $(SVG_PKGS) 2>/dev/null)
 SVG_LIBS = $(shell pkg-config --libs $(SVG_PKGS) 2>/dev/null) -lm
 
@@ -18,7 +20,7 @@ SVG_LIB_SRC := $(sort $(wildcard tools/svg/sv_*.c))
 SVG_LIB_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_LIB_SRC))
 SVG_CELC_OBJ := $(HOST)/obj/tools/celc_import.o $(HOST)/obj/tools/cli_num.o
 SVG_TEST_SRC := tests/test_svg.c tests/test_svg_unit.c tests/test_svg_cov.c \
-        tests/test_svg_beta.c tests/test_svg_rsvg.c tests/svg_refscan.c
+        tests/test_svg_beta.c tests/test_svg_rsvg.c tests/test_svg_hostile.c tests/svg_refscan.c
 SVG_TEST_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(SVG_TEST_SRC))
 # celsim's scene loader, to check that the JSON the importer writes loads
 # into the scene its cs_scene back end builds
@@ -50,6 +52,25 @@ test-svg: $(HOST)/tests/test_svg
 svg-rsvg-full: $(HOST)/tests/test_svg
 	$(Q)$(HOST)/tests/test_svg --only rsvg --all --outdir $(BUILD)/svg-full
 
+# resvg's conformance suite, beside the project and never copied into it:
+# each test through `celc import` and `celsim render` in a process of its
+# own (10 s, 512 MB), against the reference over white (tests/svg_conformance.c).
+# The run fails if a test crashes or runs over its limits, or if fewer than
+# SVG_CONF_FLOOR tests pass; without the suite it says so and skips.
+SVG_CONF_SUITE ?= $(CURDIR)/../shared/conformance/resvg
+SVG_CONF_FLOOR ?= 600
+SVG_CONF_RUN = $(HOST)/tests/svg_conformance $(SVG_CONF_SUITE) --celc $(HOST)/celc \
+        --celsim $(HOST)/celsim --notes tests/svg_conformance_notes.txt --outdir $(BUILD)/svg-conformance
+$(HOST)/tests/svg_conformance: $(HOST)/obj/tests/svg_conformance.o $(HOST)/obj/tools/cli_num.o \
+        $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) -o $@ $^ $(SVG_LIBS)
+.PHONY: svg-conformance svg-conformance-doc
+svg-conformance: $(HOST)/tests/svg_conformance $(HOST)/celc $(HOST)/celsim
+	$(Q)$(SVG_CONF_RUN) --floor $(SVG_CONF_FLOOR)
+svg-conformance-doc: $(HOST)/tests/svg_conformance $(HOST)/celc $(HOST)/celsim
+	$(Q)$(SVG_CONF_RUN) --report docs/SVG-CONFORMANCE.md
+
 # Demo: imported artwork and text through the product's own path: `celc
 # import` / `celc text` to scene JSON and to a cel stream, rendered by celsim
 # (imported scenes ask for sRGB blending in their JSON, as SVG renderers blend).
@@ -72,7 +93,8 @@ svg-demo: $(HOST)/celc $(HOST)/celsim
 
 # Fuzzing (FUZZ, FUZZ_CC from mk/stream.mk): the importer, celsim's loader
 # (the JSON round trip) and the core, under coverage and sanitizers. Seeds:
-# the demo sign and every 40th small icon of the themes the tests install.
+# the demo sign, every 40th small icon of the themes the tests install and
+# every 4th small test of the conformance suite (when it is beside the project).
 FUZZ_SVG_SMOKE_TIME ?= 20
 FUZZ_SVG_SRC := tests/fuzz_svg.c $(SVG_LIB_SRC) host-sim/scene_json.c host-sim/paint_json.c
 FUZZ_SVG_CFLAGS := $(FUZZ_BASE_CFLAGS) -D_GNU_SOURCE -Icore -Ihost-sim -Itools/svg -Itools \
@@ -85,6 +107,8 @@ $(FUZZ)/fuzz_svg: $(patsubst %.c,$(FUZZ)/svg/%.o,$(FUZZ_SVG_SRC) $(CORE_SRC))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
 
 FUZZ_SEEDS_fuzz_svg = cp scenes/svg/*.svg $(FUZZ)/fuzz_svg.corpus/ && \
+        { [ ! -d $(SVG_CONF_SUITE) ] || find $(SVG_CONF_SUITE) -name '*.svg' -size -3k | LC_ALL=C sort | \
+          awk 'NR % 4 == 0' | while read -r f; do cp "$$f" "$(FUZZ)/fuzz_svg.corpus/c$$(echo "$$f" | cksum | cut -d' ' -f1).svg"; done; } && \
         find /usr/share/icons -name '*.svg' -size -6k 2>/dev/null | LC_ALL=C sort | awk 'NR % 40 == 0' | \
         while read -r f; do cp "$$f" "$(FUZZ)/fuzz_svg.corpus/$$(echo "$$f" | cksum | cut -d' ' -f1).svg"; done
 FUZZ_OPTS_fuzz_svg = -timeout=10 -dict=$(CURDIR)/tests/fuzz_svg.dict -max_len=16384 -rss_limit_mb=2048
@@ -95,5 +119,5 @@ fuzz-svg-smoke: $(FUZZ)/fuzz_svg
 	$(call run_fuzzer,fuzz_svg,$(FUZZ_SVG_SMOKE_TIME),fuzz-svg-smoke)
 
 HOST_PROGRAMS += $(HOST)/svgimport
-TEST_TARGETS += test-svg fuzz-svg-smoke
+TEST_TARGETS += test-svg fuzz-svg-smoke svg-conformance
 DEMO_TARGETS += svg-demo

@@ -174,6 +174,11 @@ if [ -f tools/celc_import.c ]; then
     "$celc" text Hi -o "$out/text.json" --size 24 --position 3,-4 --canvas 200x40 2>"$out/bad.err"
     rc=$?
     check "celc text with valid numbers (exit $rc): $(cat "$out/bad.err")" [ "$rc" -eq 0 ]
+    # --font takes a family too: fontconfig's face for the text (a CJK one for CJK text)
+    "$celc" text "站台" --font "Noto Sans" -o "$out/text.json" 2>"$out/bad.err"
+    rc=$?
+    check "celc text --font FAMILY picks a face with the glyphs (exit $rc): $(cat "$out/bad.err")" \
+        sh -c "[ $rc -eq 0 ] && grep -q 'glyphs from .*CJK' '$out/bad.err'"
     refuses import --tolerance nan scenes/svg/sign.svg -o "$out/import.json" -q
     refuses import --nominal -5 scenes/svg/sign.svg -o "$out/import.json" -q
     # svgimport render (the importer's debugging tool) reads its numbers as strictly

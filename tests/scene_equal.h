@@ -70,7 +70,8 @@ static __attribute__((unused)) bool scene_equal(const cs_scene *a, const cs_scen
         const cs_cel *x = &a->cels[i], *y = &b->cels[i];
         if (x->first_region != y->first_region || x->region_count != y->region_count ||
             x->has_front != y->has_front || !SCENE_EQ_F(x->transform, y->transform) ||
-            !SCENE_EQ_F(x->front, y->front) || !SCENE_EQ_F(x->back, y->back))
+            !SCENE_EQ_F(x->front, y->front) || !SCENE_EQ_F(x->back, y->back) ||
+            x->parent != y->parent)
             DIFF("cel %u", i);
     }
     for (uint32_t i = 0; i < a->region_count; i++) {

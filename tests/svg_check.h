@@ -40,5 +40,6 @@ void test_svg_unit(const svg_test_opts *o);
 void test_svg_cov(const svg_test_opts *o);
 void test_svg_beta(const svg_test_opts *o);
 void test_svg_rsvg(const svg_test_opts *o);
+void test_svg_hostile(const svg_test_opts *o);
 
 #endif /* SVG_CHECK_H */

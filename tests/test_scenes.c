@@ -365,7 +365,7 @@ static void test_animate_errors(void)
                 "expected an object of tracks, got an array");
     expect_fail("unknown cel track", ",", ", \"animate\": {\"translate\": {}},", ",", "",
                 "cels[0].animate.translate",
-                "unknown track: a cel animates \"transform\" and \"lights\"");
+                "unknown track: a cel animates \"transform\", \"lights\" and \"trs\"");
     expect_fail("unknown region track", ",", ",", ", \"animate\": {\"pigment\": {}},", "",
                 "cels[0].regions[0].animate.pigment",
                 "unknown track: a region animates \"paint\"");
@@ -379,7 +379,26 @@ static void test_animate_errors(void)
                 "expected a non-empty array of keys");
     expect_fail("bad ease", ",", T("{\"keys\": [[0, [1,0,0,1,0,0]]], \"ease\": \"bounce\"}"), ",",
                 "", "cels[0].animate.transform.ease",
-                "ease must be \"linear\" or \"smooth\", got \"bounce\"");
+                "ease must be \"linear\", \"smooth\", \"hold\" or \"cubic\", got \"bounce\"");
+    expect_fail("easing on a linear track", ",",
+                T("{\"keys\": [[0, [1,0,0,1,0,0], [0,0,1,1]]]}"), ",", "",
+                "cels[0].animate.transform.keys[0]", "expected a key [t, value], got an array");
+    expect_fail("easing not four numbers", ",",
+                T("{\"ease\": \"cubic\", \"keys\": [[0, [1,0,0,1,0,0], [0,0,1]]]}"), ",", "",
+                "cels[0].animate.transform.keys[0][2]", "an easing [x1,y1,x2,y2]");
+    expect_fail("easing x out of 0..1", ",",
+                T("{\"ease\": \"cubic\", \"keys\": [[0, [1,0,0,1,0,0], [1.5,0,1,1]]]}"), ",",
+                "", "cels[0].animate.transform.keys[0][1]", "coordinate");
+    expect_fail("TRS member unknown", ",",
+                ", \"animate\": {\"trs\": {\"keys\": [[0, {\"rotate\": 5}]]}},", ",", "",
+                "cels[0].animate.trs.keys[0][1].rotate", "unknown TRS member");
+    expect_fail("TRS opacity above 1", ",",
+                ", \"animate\": {\"trs\": {\"keys\": [[0, {\"opacity\": 2}]]}},", ",", "",
+                "cels[0].animate.trs.keys[0][1]", "must lie in 0..1");
+    expect_fail("parent is itself", ",", ", \"parent\": 0,", ",", "", "cels[0].parent",
+                "cel parent would make a cycle");
+    expect_fail("parent missing", ",", ", \"parent\": 3,", ",", "", "cels[0].parent",
+                "expected the index of another cel");
     expect_fail("key not a pair", ",", T("{\"keys\": [[0, [1,0,0,1,0,0]], [1]]}"), ",", "",
                 "cels[0].animate.transform.keys[1]", "expected a key [t, value]");
     expect_fail("time not a number", ",", T("{\"keys\": [[\"0s\", [1,0,0,1,0,0]]]}"), ",", "",

@@ -449,6 +449,39 @@ static void test_roundtrip(void)
     free(s);
 }
 
+/* Cel groups (class 6), TRS tracks and cubic / hold easing survive the trip. */
+static void test_roundtrip_groups(void)
+{
+    cs_scene *s = new_scene();
+    build_demo(s);
+    cs_error e;
+    static const cs_affine id = {1, 0, 0, 1, 0, 0};
+    CHECK(cs_scene_add_cel(s, &id, NULL, NULL, &e) == CS_OK, "group cel");
+    uint32_t g = s->cel_count - 1;
+    CHECK(cs_scene_set_cel_parent(s, 0, g, &e) == CS_OK &&
+              cs_scene_set_cel_parent(s, 1, g, &e) == CS_OK,
+          "cels 0 and 1 in the group");
+    CHECK(cs_scene_add_track(s, CS_TRACK_TRS, g, CS_EASE_CUBIC, &e) == CS_OK, "TRS track");
+    float k0[14] = {0.42f, 0, 0.58f, 1, 10, 5, 0, 0, 1, 1, 0, 0, 0, 1};
+    float k1[14] = {-1, 0, 0, 0, 12, 6, 0, 0, 1.2f, 0.9f, 120, 10, 30, 0.6f};
+    float k2[14] = {0, 0, 1, 1, 12, 6, 0, 0, 1, 1, 200, 0, 0, 0.9f};
+    CHECK(cs_scene_add_key(s, 0, k0, &e) == CS_OK && cs_scene_add_key(s, 1, k1, &e) == CS_OK &&
+              cs_scene_add_key(s, 2, k2, &e) == CS_OK,
+          "TRS keys");
+    cels_buf b;
+    encode(s, &b, true);
+    result r;
+    decode(b.data, b.len, 1, NULL, &r);
+    char why[128] = "";
+    CHECK(r.commits == 1 && r.errors == 0 && r.scene && scene_equal(s, r.scene, why, sizeof why),
+          "groups round trip: %d commits %d errors %s", r.commits, r.errors, why);
+    CHECK(r.scene && renders_equal(s, r.scene), "groups round trip renders the same");
+    /* A 1.2 or 1.3 decoder refuses class 6 rather than drawing the children ungrouped. */
+    CHECK(b.len > 21 && b.data[5] == 4 && b.data[21] == 4, "written as version 1.4");
+    cels_buf_free(&b);
+    free(s);
+}
+
 /* The class 5 records: functions, CSG and operands survive the trip. */
 static void test_roundtrip_beta(void)
 {
@@ -462,7 +495,7 @@ static void test_roundtrip_beta(void)
     encode(s, &b, true);
     printf("  beta scene: %zu bytes of stream\n", b.len);
     CHECK(b.len > 21 && b.data[5] == CS_WIRE_MINOR && b.data[21] == CS_WIRE_MINOR &&
-              CS_WIRE_MINOR == 3,
+              CS_WIRE_MINOR == 4,
           "stream and transaction headers say version 1.%d", CS_WIRE_MINOR);
     for (int chunking = 0; chunking < 4; chunking++) {
         result r;
@@ -982,6 +1015,43 @@ static void f_bad_ease(cels_buf *b)
     cels_rec_end(b);
     cels_rec_commit(b);
 }
+/* A cel its own group. */
+static void f_parent_self(cels_buf *b)
+{
+    good_body(b);
+    b->len -= 6;
+    cels_rec_begin(b, CS_REC_CEL_PARENT);
+    cels_put_u32(b, 0);
+    cels_put_u32(b, 0);
+    cels_rec_end(b);
+    cels_rec_commit(b);
+}
+/* A group that does not exist. */
+static void f_parent_missing(cels_buf *b)
+{
+    good_body(b);
+    b->len -= 6;
+    cels_rec_begin(b, CS_REC_CEL_PARENT);
+    cels_put_u32(b, 0);
+    cels_put_u32(b, 3);
+    cels_rec_end(b);
+    cels_rec_commit(b);
+}
+/* A cubic key whose easing x1 leaves 0..1. */
+static void f_bad_cubic(cels_buf *b)
+{
+    good_body(b);
+    b->len -= 6;
+    cels_rec_begin(b, CS_REC_TRACK);
+    cels_put_u32(b, CS_TRACK_TRS);
+    cels_put_u32(b, 0);
+    cels_put_u32(b, CS_EASE_CUBIC);
+    cels_put_u32(b, 1);
+    float k[15] = {0, 1.5f, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 1};
+    cels_put_f32s(b, k, 15);
+    cels_rec_end(b);
+    cels_rec_commit(b);
+}
 static void f_bad_target(cels_buf *b)
 {
     good_body(b);
@@ -1394,6 +1464,9 @@ static void test_crafted(void)
     expect_error("body ends in a record header", f_ends_in_header, CS_ERR_STREAM_RECORD);
     expect_error("track without keys", f_zero_keys, CS_ERR_STREAM_RECORD);
     expect_error("ease 7", f_bad_ease, CS_ERR_TRACK);
+    expect_error("cel its own parent", f_parent_self, CS_ERR_GROUP);
+    expect_error("parent cel missing", f_parent_missing, CS_ERR_INDEX);
+    expect_error("cubic easing x1 1.5", f_bad_cubic, CS_ERR_RANGE);
     expect_error("track on a missing region", f_bad_target, CS_ERR_INDEX);
     expect_error("fill rule 9", f_bad_rule, CS_ERR_FILL_RULE);
 
@@ -2241,7 +2314,7 @@ static void test_track_validation(void)
           "track on a missing cel");
     CHECK(cs_scene_add_track(s, (cs_track_kind)9, 0, CS_EASE_LINEAR, &e) == CS_ERR_TRACK,
           "unknown track kind");
-    CHECK(cs_scene_add_track(s, CS_TRACK_TRANSFORM, 0, (cs_ease)2, &e) == CS_ERR_TRACK,
+    CHECK(cs_scene_add_track(s, CS_TRACK_TRANSFORM, 0, (cs_ease)4, &e) == CS_ERR_TRACK,
           "unknown ease");
     CHECK(cs_scene_add_key(s, 0, (float[6]){1, 0, 0, 1, 0, 0}, &e) == CS_ERR_STATE,
           "key before any track");
@@ -2487,6 +2560,7 @@ int main(int argc, char **argv)
     test_copy();
     test_roundtrip();
     test_roundtrip_beta();
+    test_roundtrip_groups();
     test_truncation();
     test_bitflips();
     test_crafted();

@@ -5,9 +5,10 @@
  * reference at 16, 128 and 512 px; gradients as paint functions, clip paths
  * as CSG and the scene JSON's round trip through celsim's loader; and the
  * comparison with librsvg's rsvg-convert on installed icon artwork (one
- * check: the pass rate).
+ * check: the pass rate); and files made to exhaust the importer, each of
+ * which must end in an error naming its limit within 5 s and 512 MB.
  *
- *   test_svg [--only unit|cov|beta|rsvg] [--all] [--limit N] [--outdir DIR] [--one-cel] [-v]
+ *   test_svg [--only unit|cov|beta|rsvg|hostile] [--all] [--limit N] [--outdir DIR] [--one-cel] [-v]
  */
 #include <stdlib.h>
 #include <string.h>
@@ -35,7 +36,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--one-cel"))
             o.one_cel = true;
         else {
-            fprintf(stderr, "usage: test_svg [--only unit|cov|beta|rsvg] [--all] [--limit N] "
+            fprintf(stderr, "usage: test_svg [--only unit|cov|beta|rsvg|hostile] [--all] [--limit N] "
                             "[--outdir DIR] [-v]\n");
             return 2;
         }
@@ -49,6 +50,8 @@ int main(int argc, char **argv)
         test_svg_beta(&o);
     if (!only || !strcmp(only, "rsvg"))
         test_svg_rsvg(&o);
+    if (!only || !strcmp(only, "hostile"))
+        test_svg_hostile(&o);
     printf("test_svg: %d passed, %d failed\n", svc_pass, svc_fail);
     return svc_fail ? 1 : 0;
 }

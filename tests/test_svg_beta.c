@@ -14,6 +14,9 @@
  *    against closed forms: a circle clip, the union of clip children, an
  *    evenodd clip of several contours under a nonzero fill (XOR operands),
  *    nested clips, an empty clip.
+ *  - Patterns and masks: covered areas against closed forms (tiles cut to
+ *    the tile and to the painted area; mask values by luminance, alpha,
+ *    gradients, regions, masks on masks), and their limits warned.
  *  - Scene JSON: the JSON written by sv_doc_to_json, loaded by celsim's
  *    loader (host-sim/scene_json.c), renders what sv_doc_to_scene renders.
  */
@@ -207,6 +210,34 @@ typedef struct clip_case {
     double area;
 } clip_case;
 
+/* Imports each case, renders it white on black (exact AA, linear) and compares the area. */
+static void check_areas(const clip_case *cases, size_t n, const char *what, cs_scene *scene,
+                        float *img)
+{
+    for (size_t i = 0; i < n; i++) {
+        const clip_case *cc = &cases[i];
+        char svg[2048];
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>%s</svg>",
+                 cc->body);
+        sv_doc d;
+        if (!import(svg, &d))
+            continue;
+        SVC_CHECK(d.nwarnings == 0, "%s: no warning (%s)", cc->name,
+                  d.nwarnings ? d.warnings[0] : "");
+        if (to_scene(&d, scene) && render(scene, N, N, CS_AA_EXACT, CS_BLEND_LINEAR, img) == CS_OK) {
+            double area = 0;
+            for (int p = 0; p < N * N; p++)
+                area += img[3 * p];
+            printf("  %s %-42s area %9.3f (closed form %9.3f)\n", what, cc->name, area, cc->area);
+            SVC_NEAR(area, cc->area, 0.05, cc->name);
+        } else {
+            SVC_CHECK(false, "%s: rendered", cc->name);
+        }
+        sv_doc_free(&d);
+    }
+}
+
 static void test_clips(cs_scene *scene, float *img)
 {
     const double pi = 3.14159265358979323846;
@@ -248,28 +279,184 @@ static void test_clips(cs_scene *scene, float *img)
          "<rect width='64' height='64' fill='#fff' clip-path='url(#c)'/>",
          8 * (49 - 9)},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        const clip_case *cc = &cases[i];
-        char svg[2048];
+    check_areas(cases, sizeof cases / sizeof cases[0], "clip", scene, img);
+}
+
+/*
+ * Patterns: the tiles' content as regions, clipped to each tile and to the
+ * painted area; the covered area against closed forms.
+ */
+static void test_patterns(cs_scene *scene, float *img)
+{
+    const double pi = 3.14159265358979323846;
+    const clip_case cases[] = {
+        {"checkerboard quarter, userSpaceOnUse",
+         "<pattern id='p' patternUnits='userSpaceOnUse' width='16' height='16'>"
+         "<rect width='8' height='8' fill='#fff'/></pattern>"
+         "<rect width='64' height='64' fill='url(#p)'/>",
+         16 * 64},
+        {"tile overflow clipped, offset tiles",
+         "<pattern id='p' patternUnits='userSpaceOnUse' x='4' y='4' width='16' height='16'>"
+         "<rect width='40' height='8' fill='#fff'/></pattern>"
+         "<rect width='64' height='64' fill='url(#p)'/>",
+         /* each tile keeps 16 x 8 of it: rows at y = 4, 20, 36, 52 */
+         64.0 * 8 * 4},
+        {"full tiles in a circle (CSG with the area)",
+         "<pattern id='p' patternUnits='userSpaceOnUse' width='10' height='10'>"
+         "<rect width='10' height='10' fill='#fff'/></pattern>"
+         "<circle cx='32' cy='32' r='24' fill='url(#p)'/>",
+         pi * 576},
+        {"objectBoundingBox tile and content",
+         "<pattern id='p' width='0.5' height='0.5' patternContentUnits='objectBoundingBox'>"
+         "<rect width='0.25' height='0.25' fill='#fff'/></pattern>"
+         "<rect x='8' y='8' width='48' height='48' fill='url(#p)'/>",
+         4 * 144},
+        {"viewBox, href chain, fill-opacity",
+         "<pattern id='q' viewBox='0 0 2 2'><rect width='1' height='1' fill='#fff'/></pattern>"
+         "<pattern id='p' href='#q' patternUnits='userSpaceOnUse' width='16' height='16'/>"
+         "<rect width='64' height='64' fill='url(#p)' fill-opacity='0.5'/>",
+         0.5 * 16 * 64},
+        {"patternTransform rotate(90) swaps the stripes",
+         "<pattern id='p' patternUnits='userSpaceOnUse' width='16' height='16' "
+         "patternTransform='rotate(90)'><rect width='4' height='16' fill='#fff'/></pattern>"
+         "<rect x='0' y='0' width='64' height='32' fill='url(#p)'/>",
+         /* horizontal stripes y in [0,4) + 16k: two of them in 32 rows */
+         2 * 4 * 64},
+    };
+    check_areas(cases, sizeof cases / sizeof cases[0], "pattern", scene, img);
+    /* limits: a tile too small to expand, and a pattern used inside itself, are warned */
+    static const struct {
+        const char *body, *warning;
+    } bad[] = {
+        {"<pattern id='p' patternUnits='userSpaceOnUse' width='1' height='1'>"
+         "<rect width='0.5' height='0.5'/></pattern><rect width='64' height='64' fill='url(#p)'/>",
+         "expands past the scene store's 1024 regions"},
+        {"<pattern id='p' patternUnits='userSpaceOnUse' width='0.001' height='0.001'>"
+         "<rect width='1' height='1'/></pattern><rect width='64' height='64' fill='url(#p)'/>",
+         "needs more than 4096 tiles, not painted"},
+        {"<pattern id='p' patternUnits='userSpaceOnUse' width='8' height='8'>"
+         "<rect width='4' height='4' fill='url(#p)'/></pattern>"
+         "<rect width='64' height='64' fill='url(#p)'/>",
+         "is used inside itself, not painted"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char svg[1024];
         snprintf(svg, sizeof svg,
                  "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>%s</svg>",
-                 cc->body);
+                 bad[i].body);
         sv_doc d;
         if (!import(svg, &d))
             continue;
-        SVC_CHECK(d.nwarnings == 0, "%s: no warning (%s)", cc->name,
-                  d.nwarnings ? d.warnings[0] : "");
-        if (to_scene(&d, scene) && render(scene, N, N, CS_AA_EXACT, CS_BLEND_LINEAR, img) == CS_OK) {
-            double area = 0;
-            for (int p = 0; p < N * N; p++)
-                area += img[3 * p];
-            printf("  clip %-42s area %9.3f (closed form %9.3f)\n", cc->name, area, cc->area);
-            SVC_NEAR(area, cc->area, 0.05, cc->name);
-        } else {
-            SVC_CHECK(false, "%s: rendered", cc->name);
-        }
+        bool found = false;
+        for (int w = 0; w < d.nwarnings; w++)
+            found |= strstr(d.warnings[w], bad[i].warning) != NULL;
+        SVC_CHECK(found, "pattern limit warned: \"%s\"", bad[i].warning);
         sv_doc_free(&d);
     }
+    /* 9 paints of 4096 tiles whose content falls outside the tile (nothing drawn, the
+       work done) pass the budget for all expansions of a drawing */
+    char *big = malloc(16384);
+    int len = snprintf(big, 16384, "<svg xmlns='http://www.w3.org/2000/svg' width='64' "
+                                   "height='64'><pattern id='p' patternUnits='userSpaceOnUse' "
+                                   "width='1' height='1'><rect x='5' width='1' height='1'/>"
+                                   "</pattern>");
+    for (int i = 0; i < 9; i++)
+        len += snprintf(big + len, 16384 - (size_t)len,
+                        "<rect width='64' height='64' fill='url(#p)'/>");
+    snprintf(big + len, 16384 - (size_t)len, "</svg>");
+    sv_doc d;
+    if (import(big, &d)) {
+        bool found = false;
+        for (int w = 0; w < d.nwarnings; w++)
+            found |= strstr(d.warnings[w], "expand to more than 32768 regions and tiles") != NULL;
+        SVC_CHECK(found, "the expansion budget of a drawing is warned");
+        sv_doc_free(&d);
+    }
+    free(big);
+}
+
+/*
+ * Masks: the content's parts under each mask shape with beta times the mask
+ * value (luminance or alpha); the covered area (white content, so the sum of
+ * beta) against closed forms.
+ */
+static void test_masks(cs_scene *scene, float *img)
+{
+    const double grey = 128.0 / 255; /* #808080's luminance: the coefficients sum to 1 */
+    const clip_case cases[] = {
+        {"white half",
+         "<mask id='m'><rect width='32' height='64' fill='#fff'/></mask>"
+         "<rect width='64' height='64' fill='#fff' mask='url(#m)'/>",
+         32 * 64},
+        {"grey luminance",
+         "<mask id='m'><rect width='64' height='64' fill='#808080'/></mask>"
+         "<rect width='64' height='64' fill='#fff' mask='url(#m)'/>",
+         grey * 4096},
+        {"mask-type alpha, black at 0.25",
+         "<mask id='m' mask-type='alpha'><rect width='64' height='64' fill-opacity='0.25'/>"
+         "</mask><rect width='64' height='64' fill='#fff' mask='url(#m)'/>",
+         1024},
+        {"userSpaceOnUse region clips the mask",
+         "<mask id='m' maskUnits='userSpaceOnUse' x='0' y='0' width='16' height='64'>"
+         "<rect width='64' height='64' fill='#fff'/></mask>"
+         "<rect width='64' height='64' fill='#fff' mask='url(#m)'/>",
+         16 * 64},
+        {"luminance gradient white to black",
+         "<linearGradient id='g'><stop offset='0' stop-color='#fff'/>"
+         "<stop offset='1' stop-color='#000'/></linearGradient>"
+         "<mask id='m'><rect width='64' height='64' fill='url(#g)'/></mask>"
+         "<rect width='64' height='64' fill='#fff' mask='url(#m)'/>",
+         2048},
+        {"overlapping group content masked once",
+         "<mask id='m'><rect width='64' height='64' fill='#808080'/></mask>"
+         "<g mask='url(#m)'><rect width='40' height='64' fill='#fff'/>"
+         "<rect x='24' width='40' height='64' fill='#fff'/></g>",
+         grey * 4096},
+        {"black backdrop, white disc in front",
+         "<mask id='m'><rect width='64' height='64'/><circle cx='32' cy='32' r='16' fill='#fff'/>"
+         "</mask><rect width='64' height='64' fill='#fff' mask='url(#m)'/>",
+         3.14159265358979323846 * 256},
+        {"mask on the mask, content units objectBoundingBox",
+         "<mask id='h'><rect width='32' height='64' fill='#fff'/></mask>"
+         "<mask id='m' mask='url(#h)' maskContentUnits='objectBoundingBox'>"
+         "<rect width='1' height='0.5' fill='#fff'/></mask>"
+         "<rect width='64' height='64' fill='#fff' mask='url(#m)'/>",
+         32 * 32},
+    };
+    check_areas(cases, sizeof cases / sizeof cases[0], "mask", scene, img);
+    /* a mask used inside itself is warned and left out there, in bounded work */
+    const char *loop = "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>"
+                       "<mask id='a'><rect width='64' height='64' fill='#fff' mask='url(#b)'/></mask>"
+                       "<mask id='b'><rect width='64' height='64' fill='#fff' mask='url(#a)'/></mask>"
+                       "<rect width='64' height='64' fill='#fff' mask='url(#a)'/></svg>";
+    sv_doc d;
+    if (import(loop, &d)) {
+        bool found = false;
+        for (int w = 0; w < d.nwarnings; w++)
+            found |= strstr(d.warnings[w], "used inside itself") != NULL;
+        SVC_CHECK(found && sv_doc_region_count(&d) == 1, "mask cycle warned, one region drawn");
+        sv_doc_free(&d);
+    }
+    /* 40 shapes under a mask of 40 shapes would be 1600 regions: warned, left out */
+    char *big = malloc(16384);
+    int len = snprintf(big, 16384, "<svg xmlns='http://www.w3.org/2000/svg' width='64' "
+                                   "height='64'><mask id='m'>");
+    for (int i = 0; i < 40; i++)
+        len += snprintf(big + len, 16384 - (size_t)len,
+                        "<rect x='%d' width='1' height='64' fill='#fff'/>", i);
+    len += snprintf(big + len, 16384 - (size_t)len, "</mask><g mask='url(#m)'>");
+    for (int i = 0; i < 40; i++)
+        len += snprintf(big + len, 16384 - (size_t)len,
+                        "<rect y='%d' width='64' height='1' fill='#fff'/>", i);
+    snprintf(big + len, 16384 - (size_t)len, "</g></svg>");
+    if (import(big, &d)) {
+        bool found = false;
+        for (int w = 0; w < d.nwarnings; w++)
+            found |= strstr(d.warnings[w], "needs 1600 regions") != NULL;
+        SVC_CHECK(found && sv_doc_region_count(&d) == 0, "mask expansion limit warned");
+        sv_doc_free(&d);
+    }
+    free(big);
 }
 
 /* ----------------------------------------------------------------- JSON */
@@ -328,6 +515,8 @@ void test_svg_beta(const svg_test_opts *o)
     test_gradients(scene, img);
     test_stops();
     test_clips(scene, img);
+    test_patterns(scene, img);
+    test_masks(scene, img);
     test_json(scene, img);
     free(img);
     free(scene);

@@ -18,6 +18,7 @@
 #include "../tools/svg/sv.h"
 #include "../tools/svg/sv_import.h"
 #include "../tools/svg/sv_internal.h"
+#include "../tools/svg/sv_font.h"
 #include "../tools/svg/sv_text.h"
 #include "svg_check.h"
 
@@ -277,16 +278,17 @@ static void test_lengths_css(void)
                        "path.a.c, rect { fill: #010203 !important } g > path { fill: none }\n"
                        "@media print { path { fill: black } }",
                        &doc);
-    SVC_CHECK(css.n == 4, "four compound rules kept (%d)", css.n);
-    SVC_CHECK(doc.nwarnings == 2, "combinator and @media warned (%d)", doc.nwarnings);
+    SVC_CHECK(css.n == 5, "five rules kept, the combinator's too (%d)", css.n);
+    SVC_CHECK(doc.nwarnings == 1, "@media warned (%d)", doc.nwarnings);
     /* cascade on <path id="b" class="a c" fill="yellow" style="stroke-width:3"> */
     char *attrs[] = {"id", "b", "class", "a c", "fill", "yellow", "style", "stroke-width:3", NULL};
     sv_node n = {.name = "path", .attrs = attrs, .line = 1};
     sv_style root, s;
     sv_style_initial(&root);
     sv_style_compute(&s, &root, &n, &css, 100, &doc);
-    /* #b (specificity 10000) beats path.a.c (201) and .a (100) */
-    SVC_CHECK(s.fill.kind == SV_PAINT_COLOR && s.fill.rgb[2] == 1, "id rule wins the cascade");
+    /* path.a.c's !important beats #b (specificity 10000 over 201) */
+    SVC_CHECK(s.fill.kind == SV_PAINT_COLOR && fabs(s.fill.rgb[2] - 3 / 255.0) < 1e-12,
+              "!important wins the cascade");
     SVC_CHECK(s.stroke.kind == SV_PAINT_COLOR && fabs(s.stroke.rgb[1] - 128 / 255.0) < 1e-12,
               "stroke from the id rule");
     SVC_CHECK(s.stroke_width == 3, "style attribute applies last");
@@ -307,6 +309,43 @@ static void test_lengths_css(void)
     SVC_CHECK(child.fill.kind == SV_PAINT_CURRENT && child.color[1] == 1 && child.opacity == 0.5 &&
                   child.fill_opacity == 0.5,
               "inherited fill, colour and fill-opacity; own opacity");
+    sv_css_free(&css);
+
+    /*
+     * Combinators, attribute tests, :first-child, !important against the
+     * style attribute, the transform property, on this tree:
+     *   <svg> <g id="g" class="x"> <rect id="r1" x="1" lang="en-GB"/> <circle id="c"/> </g> </svg>
+     */
+    sv_css_parse_sheet(&css,
+                       "svg > g > rect { fill: #010000 } g rect[x] { stroke: #020000 }\n"
+                       "rect + circle { fill: #030000 } rect ~ circle { stroke: #040000 }\n"
+                       "[lang|=en]:first-child { stroke-width: 7 !important }\n"
+                       "[id^=r][id$='1'][class~=x], g > circle[id*=c] { opacity: 0.25 }\n"
+                       "#c { transform: scale(2) } svg rect:hover { fill: red }",
+                       &doc);
+    SVC_CHECK(css.n == 8, "eight rules, :hover left out (%d)", css.n);
+    char *ar[] = {"svg", NULL}, *ag[] = {"id", "g", "class", "x", NULL},
+         *a1[] = {"id", "r1", "x", "1", "lang", "en-GB", "style", "stroke-width: 3", NULL},
+         *ac[] = {"id", "c", NULL};
+    sv_node nr = {.name = "svg", .attrs = ar}, ng = {.name = "g", .attrs = ag},
+            n1 = {.name = "rect", .attrs = a1}, nc = {.name = "circle", .attrs = ac};
+    sv_node *rk[] = {&ng}, *gk[] = {&n1, &nc};
+    nr.kids = rk;
+    nr.nkids = 1;
+    ng.parent = &nr;
+    ng.kids = gk;
+    ng.nkids = 2;
+    n1.parent = nc.parent = &ng;
+    nc.index = 1;
+    sv_style_compute(&s, &root, &n1, &css, 100, &doc);
+    SVC_CHECK(s.fill.rgb[0] == 1 / 255.0 && s.stroke.rgb[0] == 2 / 255.0 && s.stroke_width == 7 &&
+                  s.opacity == 1 && !s.has_transform,
+              "rect: child and descendant combinators, [x], [lang|=en]:first-child !important "
+              "over the style attribute; [class~=x] is not its own");
+    sv_style_compute(&s, &root, &nc, &css, 100, &doc);
+    SVC_CHECK(s.fill.rgb[0] == 3 / 255.0 && s.stroke.rgb[0] == 4 / 255.0 && s.stroke_width == 1 &&
+                  s.opacity == 0.25 && s.has_transform && s.transform.a == 2,
+              "circle: + and ~ siblings, [id*=c] under >, the transform property");
     sv_css_free(&css);
     sv_doc_free(&doc);
 }
@@ -445,7 +484,7 @@ static void stroke_of(const char *d, double width, sv_cap cap, sv_join join, dou
     char err[100];
     sv_path_init(&p);
     sv_parse_path(d, &p, err, sizeof err);
-    sv_stroke_style st = {width, cap, join, limit, 1e-4};
+    sv_stroke_style st = {width, cap, join, limit, 1e-4, 0};
     sv_path_init(out);
     sv_stroke_path(&p, &st, out);
     sv_path_free(&p);
@@ -499,7 +538,7 @@ static void test_stroker(void)
     const sv_seg *base = &p.sub[0].seg[0];
     for (int ti = 0; ti < 2; ti++) {
         double tol = ti ? 1e-2 : 1e-4;
-        sv_stroke_style st = {8, SV_CAP_BUTT, SV_JOIN_MITER, 4, tol};
+        sv_stroke_style st = {8, SV_CAP_BUTT, SV_JOIN_MITER, 4, tol, 0};
         sv_path_init(&o);
         int missed = sv_stroke_path(&p, &st, &o);
         SVC_CHECK(missed == 0, "tolerance %g met everywhere", tol);
@@ -564,7 +603,7 @@ static int dash_spans(const char *d, const double *dash, int n, double off, doub
     sv_path_init(&p);
     sv_path_init(&o);
     sv_parse_path(d, &p, err, sizeof err);
-    sv_path_dash(&p, dash, n, off, &o);
+    sv_path_dash(&p, dash, n, off, SV_MAX_DASHES, &o);
     int k = 0;
     for (int i = 0; i < o.n && k < 32; i++) {
         xs[k++] = o.sub[i].seg[0].p[0].x;
@@ -596,7 +635,7 @@ static void test_dash(void)
     sv_path_init(&o);
     sv_parse_path("M0 0 H10 V10 H0 Z", &p, err, sizeof err);
     /* offset 2: on [0,4], [8,14], [18,24], [28,34], [38,40]+[0,4] */
-    sv_path_dash(&p, (double[]){6, 4}, 2, 2, &o);
+    sv_path_dash(&p, (double[]){6, 4}, 2, 2, SV_MAX_DASHES, &o);
     SVC_CHECK(o.n == 4, "closed square dashes (%d)", o.n);
     const sv_subpath *last = &o.sub[o.n - 1];
     SVC_CHECK(o.n == 4 && pt_is(last->seg[last->n - 1].p[1], 4, 0) && pt_is(last->seg[0].p[0], 0, 2),
@@ -608,7 +647,7 @@ static void test_dash(void)
     sv_path_init(&p);
     sv_path_init(&o);
     sv_path_ellipse(&p, 0, 0, 10, 10);
-    sv_path_dash(&p, (double[]){M_PI / 2, M_PI / 2}, 2, 0, &o);
+    sv_path_dash(&p, (double[]){M_PI / 2, M_PI / 2}, 2, 0, SV_MAX_DASHES, &o);
     double worst = 0;
     for (int i = 0; i < o.n; i++) {
         sv_pt a = o.sub[i].seg[0].p[0];
@@ -729,6 +768,16 @@ static void test_import_doc(void)
                   strstr(err, "line 1"),
               "XML errors name the line (%s)", err);
     SVC_CHECK(sv_import_buffer("<html/>", 7, NULL, &d, err, sizeof err) < 0, "root must be svg");
+    /* a single-byte encoding expat does not know, through iconv: "\xcf\xf0" is "Пр" in windows-1251 */
+    const char *cp = "<?xml version=\"1.0\" encoding=\"windows-1251\"?><svg><text>\xcf\xf0</text></svg>";
+    sv_node *root = sv_xml_parse(cp, strlen(cp), err, sizeof err);
+    SVC_CHECK(root && root->nkids == 1 && root->kids[0]->text &&
+                  !strcmp(root->kids[0]->text, "\xd0\x9f\xd1\x80"),
+              "windows-1251 read as UTF-8 (%s)", root ? "" : err);
+    sv_xml_free(root);
+    const char *bogus = "<?xml version=\"1.0\" encoding=\"no-such\"?><svg/>";
+    SVC_CHECK(!sv_xml_parse(bogus, strlen(bogus), err, sizeof err) && strstr(err, "encoding"),
+              "an unknown encoding is an error naming it (%s)", err);
 }
 
 static void test_glyphs(void)
@@ -860,10 +909,147 @@ static void test_svg_text(void)
             }
         }
     SVC_CHECK(bx >= 100 && bx < 102, "tspan x starts a new chunk at 100 (%g)", bx);
+    /* letter-spacing after every character, word-spacing after a space, inherited from a
+       group; Inkscape's zero spacings and "normal" values warn nothing */
+    static const char *const spaced[] = {
+        "<text x='10' y='40' font-size='20' font-family='Noto Sans'>A<tspan fill='red'>B"
+        "</tspan></text>",
+        "<g letter-spacing='3'><text x='10' y='40' font-size='20' font-family='Noto Sans' "
+        "style='word-spacing:0px;font-variant:normal'>A<tspan fill='red'>B</tspan></text></g>",
+        "<text x='10' y='40' font-size='20' font-family='Noto Sans'>A <tspan fill='red'>B"
+        "</tspan></text>",
+        "<text x='10' y='40' font-size='20' font-family='Noto Sans' word-spacing='5'>A "
+        "<tspan fill='red'>B</tspan></text>"};
+    double bpos[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 4; k++) {
+        char svg[600];
+        snprintf(svg, sizeof svg, "<svg xmlns='http://www.w3.org/2000/svg' width='200' "
+                 "height='50'>%s</svg>", spaced[k]);
+        sv_doc dd;
+        if (sv_import_buffer(svg, strlen(svg), NULL, &dd, err, sizeof err) < 0)
+            continue;
+        SVC_CHECK(dd.nwarnings == 0, "spacing case %d: no warning (%s)", k,
+                  dd.nwarnings ? dd.warnings[0] : "");
+        for (int c = 0; c < dd.ncels; c++)
+            for (int r = 0; r < dd.cels[c].nregions; r++)
+                if (dd.cels[c].regions[r].paint.pigment[0] == 1) /* red: the B */
+                    bpos[k] = dd.cels[c].regions[r].bbox[0];
+        sv_doc_free(&dd);
+    }
+    /* bidi (UAX #9): two Hebrew letters in a left-to-right paragraph read right to left,
+       so the second (blue) stands left of the first (red); the Latin around keeps its order */
+    const char *bidi = "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='50'>"
+                       "<text x='10' y='40' font-size='20' font-family='Noto Sans'>A<tspan "
+                       "fill='red'>\xd7\x90</tspan><tspan fill='blue'>\xd7\x91</tspan>B</text>"
+                       "</svg>";
+    double xa = 1e9, xr = 1e9, xb = 1e9; /* the leftmost of each colour */
+    sv_doc db;
+    if (sv_import_buffer(bidi, strlen(bidi), NULL, &db, err, sizeof err) == 0) {
+        for (int c = 0; c < db.ncels; c++)
+            for (int r = 0; r < db.cels[c].nregions; r++) {
+                const sv_region *g = &db.cels[c].regions[r];
+                double *x = g->paint.pigment[0] == 1 ? &xr : g->paint.pigment[2] == 1 ? &xb : &xa;
+                *x = fmin(*x, g->bbox[0]);
+            }
+        sv_doc_free(&db);
+    }
+    SVC_CHECK(xa < xb && xb < xr && xr < 1e9, "bidi: A, then the Hebrew pair reversed (%g %g %g)",
+              xa, xb, xr);
+    SVC_NEAR(bpos[1] - bpos[0], 3, 1e-9, "letter-spacing from the group moves B by 3");
+    SVC_NEAR(bpos[3] - bpos[2], 5, 1e-9, "word-spacing moves B after the space by 5");
     SVC_NEAR(0.5 * (mid0 + mid1), 100, 1.5, "text-anchor middle centres the chunk");
     sv_doc_free(&d1);
     sv_doc_free(&d2);
     sv_doc_free(&d3);
+}
+
+/* fontconfig's choice as a browser's: family list, weight, style, per-glyph fallback */
+static void test_fonts(void)
+{
+    static const struct {
+        const char *family;
+        int weight;
+        bool italic;
+        unsigned long cp;
+        const char *want; /* in the file name (fonts-noto-core, fonts-noto-cjk) */
+    } cases[] = {
+        {"Noto Sans", 400, false, 'A', "NotoSans-Regular."},
+        {"'Noto Sans'", 700, false, 'A', "NotoSans-Bold."},
+        {"Noto Sans", 400, true, 'A', "NotoSans-Italic."},
+        {"\"No Such Face\", Noto Serif, sans-serif", 400, false, 'A', "NotoSerif-Regular."},
+        {"Noto Sans", 400, false, 0x5203, "CJK"}, /* 刃: not in Noto Sans, from a CJK face */
+        {"monospace", 400, false, 'A', "Mono"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char file[512] = "";
+        int rc = sv_font_match(cases[i].family, cases[i].weight, cases[i].italic, NULL,
+                               cases[i].cp, file, sizeof file);
+        SVC_CHECK(rc == 0 && strstr(file, cases[i].want), "font for '%s' %d%s U+%04lX: %s (want %s)",
+                  cases[i].family, cases[i].weight, cases[i].italic ? " italic" : "", cases[i].cp,
+                  file, cases[i].want);
+    }
+    /* in an import: the CJK characters of a Latin family get outlines (no .notdef box of
+       two contours: U+6D77 has many) */
+    const char *cjk = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='40'>"
+                      "<text x='0' y='30' font-family='Noto Sans' font-size='20'>A\xe6\xb5\xb7"
+                      "</text></svg>";
+    sv_doc d;
+    char err[200];
+    SVC_CHECK(sv_import_buffer(cjk, strlen(cjk), NULL, &d, err, sizeof err) == 0, "%s", err);
+    int contours = 0;
+    for (int c = 0; c < d.ncels; c++)
+        for (int r = 0; r < d.cels[c].nregions; r++)
+            contours += d.cels[c].regions[r].ncontours;
+    SVC_CHECK(contours >= 2 + 5, "A and U+6D77 set from two faces (%d contours)", contours);
+    sv_doc_free(&d);
+
+    /* objectBoundingBox of text: the glyph cells (advances by the font's ascender and
+       descender, FreeType's hhea values here), not the outlines */
+    const char *grad = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='60'>"
+                       "<linearGradient id='g'><stop offset='0' stop-color='red'/>"
+                       "<stop offset='1' stop-color='blue'/></linearGradient>"
+                       "<text x='10' y='40' font-family='Noto Sans' font-size='20' "
+                       "fill='url(#g)'>x</text></svg>";
+    char file[512];
+    FT_Library lib;
+    FT_Face face;
+    if (sv_font_match("Noto Sans", 400, false, NULL, 'x', file, sizeof file) == 0 &&
+        FT_Init_FreeType(&lib) == 0) {
+        if (FT_New_Face(lib, file, 0, &face) == 0) {
+            double k = 20.0 / face->units_per_EM;
+            FT_Load_Glyph(face, FT_Get_Char_Index(face, 'x'), FT_LOAD_NO_SCALE);
+            double adv = (double)face->glyph->advance.x * k;
+            double top = 40 - face->ascender * k, height = (face->ascender - face->descender) * k;
+            SVC_CHECK(sv_import_buffer(grad, strlen(grad), NULL, &d, err, sizeof err) == 0, "%s",
+                      err);
+            SVC_CHECK(d.ngradients == 1, "the text's gradient (%d)", d.ngradients);
+            if (d.ngradients == 1) {
+                sv_affine t = d.gradients[0].transform;
+                SVC_NEAR(t.e, 10, 1e-9, "text box starts at the pen");
+                SVC_NEAR(t.a, adv, 1e-9, "text box is the advance wide");
+                SVC_NEAR(t.f, top, 1e-9, "text box top is the ascender");
+                SVC_NEAR(t.d, height, 1e-9, "text box height is ascender - descender");
+            }
+            sv_doc_free(&d);
+            /* text-decoration underline: a line under the whole advance, from the font's
+               'post' metrics (FreeType's centre, drawn where resvg draws it) */
+            const char *ul = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='60'>"
+                             "<text x='10' y='40' font-family='Noto Sans' font-size='20' "
+                             "text-decoration='underline'>x</text></svg>";
+            SVC_CHECK(sv_import_buffer(ul, strlen(ul), NULL, &d, err, sizeof err) == 0, "%s", err);
+            if (d.ncels == 1 && d.cels[0].nregions == 1) {
+                const double *b = d.cels[0].regions[0].bbox;
+                double line_bot = 40 - face->underline_position * k;
+                SVC_NEAR(b[0], 10, 1e-9, "underline starts at the pen");
+                SVC_NEAR(b[2], 10 + adv, 1e-9, "underline spans the advance");
+                SVC_NEAR(b[3], line_bot, 1e-9, "underline's bottom at the font's position");
+            }
+            SVC_CHECK(d.nwarnings == 0, "underline drawn, not warned");
+            sv_doc_free(&d);
+            FT_Done_Face(face);
+        }
+        FT_Done_FreeType(lib);
+    }
 }
 
 void test_svg_unit(const svg_test_opts *o)
@@ -882,5 +1068,6 @@ void test_svg_unit(const svg_test_opts *o)
     test_import_doc();
     test_glyphs();
     test_svg_text();
+    test_fonts();
     printf("svg-unit: %s\n", svc_fail == before ? "all checks pass" : "FAILURES above");
 }

@@ -44,6 +44,7 @@
 #include "celc_publish.h"
 #include "cels_write.h"
 #include "celscan.h"
+#include "lottie/lt.h"
 #include "scene_json.h"
 
 enum { EXIT_FAIL = 1, EXIT_USAGE = 2 };
@@ -345,6 +346,22 @@ static int sign_main(int argc, char **argv)
     return rc;
 }
 
+/* Whether `import`'s input (its first argument that is not an option or
+ * an option's value) is a .json file: a Lottie animation, not an SVG. */
+static bool lottie_input(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++) {
+        if (argv[i][0] == '-') {
+            if (strcmp(argv[i], "-q") != 0 && strcmp(argv[i], "--one-cel-per-shape") != 0)
+                i++;
+            continue;
+        }
+        size_t n = strlen(argv[i]);
+        return n > 5 && strcmp(argv[i] + n - 5, ".json") == 0;
+    }
+    return false;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -362,7 +379,10 @@ int main(int argc, char **argv)
         return keygen_main(argc - 1, argv + 1);
     if (strcmp(cmd, "sign") == 0)
         return sign_main(argc - 1, argv + 1);
-    /* SVG import and text setting live in tools/celc_import.c (tools/svg/). */
+    /* SVG import and text setting live in tools/celc_import.c (tools/svg/),
+     * Lottie import in tools/lottie/ (an input file named *.json). */
+    if (strcmp(cmd, "import") == 0 && lottie_input(argc - 1, argv + 1))
+        return lt_main(argc - 1, argv + 1);
     if (strcmp(cmd, "import") == 0)
         return celc_import_main(argc - 1, argv + 1);
     if (strcmp(cmd, "text") == 0)

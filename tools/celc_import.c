@@ -23,6 +23,7 @@
 #include "cels_write.h"
 #include "svg/sv.h"
 #include "svg/sv_import.h"
+#include "svg/sv_font.h"
 #include "svg/sv_text.h"
 
 static int usage_import(void)
@@ -193,7 +194,7 @@ int celc_import_main(int argc, char **argv)
 
 static int usage_text(void)
 {
-    fprintf(stderr, "usage: celc text STRING -o SCENE.json [--font FILE] [--size S]\n"
+    fprintf(stderr, "usage: celc text STRING -o SCENE.json [--font FILE|FAMILY] [--size S]\n"
                     "       [--position X,Y] [--color C] [--canvas WxH] [--background C]\n");
     return 2;
 }
@@ -238,6 +239,16 @@ int celc_text_main(int argc, char **argv)
         return usage_text();
     if (!y_given)
         y = size; /* baseline one em down by default */
+    char matched[1024];
+    if (!strchr(font, '/')) { /* a family name: fontconfig's face for the text's first character */
+        const unsigned char *t = (const unsigned char *)text;
+        unsigned long cp = *t ? sv_utf8_next(&t, NULL) : 'A';
+        if (sv_font_match(font, 400, false, NULL, cp, matched, sizeof matched) < 0) {
+            fprintf(stderr, "celc text: fontconfig finds no font for '%s'\n", font);
+            return 1;
+        }
+        font = matched;
+    }
     sv_path p;
     sv_path_init(&p);
     int rule;
@@ -270,8 +281,8 @@ int celc_text_main(int argc, char **argv)
     char *json = sv_doc_to_json(&doc, has_bg ? bg : NULL);
     int rc = json ? write_text(out, json) : 1;
     free(json);
-    fprintf(stderr, "celc text: %d glyphs, %d kerning pairs%s, advance %.3f\n", m.glyphs,
-            m.kern_pairs, m.has_kerning ? "" : " (font has no kern table)", m.advance);
+    fprintf(stderr, "celc text: %d glyphs from %s, %d kerning pairs%s, advance %.3f\n", m.glyphs,
+            font, m.kern_pairs, m.has_kerning ? "" : " (font has no kern table)", m.advance);
     sv_doc_free(&doc);
     return rc;
 }

@@ -288,6 +288,14 @@ int cels_encode_scene(cels_buf *b, const cs_scene *sc)
             }
         }
     }
+    /* Groups once every cel exists: a parent may stand behind its child. */
+    for (uint32_t ci = 0; ci < sc->cel_count; ci++)
+        if (sc->cels[ci].parent != CS_NO_PARENT) {
+            cels_rec_begin(b, CS_REC_CEL_PARENT);
+            cels_put_u32(b, ci);
+            cels_put_u32(b, sc->cels[ci].parent);
+            cels_rec_end(b);
+        }
     /* Tracks in the order their keys lie in the pools, i.e. the order they
      * were added: the decoder then lays the pools out the same way. */
     for (uint32_t i = 0; i < sc->track_count; i++)

@@ -45,6 +45,7 @@
 #include "celfw_config.h"
 #include "celfw_input.h"
 #include "celfw_log.h"
+#include "celfw_notify.h"
 #include "celfw_scenes.h"
 #include "celfw_stream.h"
 #include "celfw_trust.h"
@@ -88,6 +89,7 @@ typedef struct celfw {
     uint64_t last_serve;
     float anim_t;            /* the last frame's, as the renderer took it */
     uint64_t t0, last_log, frames_at_log;
+    celfw_notify notify; /* READY and watchdog pings to systemd */
 } celfw;
 
 static volatile sig_atomic_t stop_signal;
@@ -559,6 +561,7 @@ static const char *run(celfw *fw)
     uint64_t render_errors = 0;
     for (;;) {
         uint64_t start = lx_now(fw->clk.mono);
+        celfw_notify_alive(&fw->notify, start); /* a hung loop stops the pings */
         float t = fw->anim_t = celfw_clock_frame(&fw->clk, fw->scene[fw->front]);
         if (fw->builtin[0] && celfw_scene_animated(fw->builtin))
             celfw_scene_build(fw->builtin, fw->scene[fw->front], t);
@@ -706,9 +709,12 @@ int main(int argc, char **argv)
             celfw_input_describe(fw->in));
     if (!celfw_stream_available() && strcmp(fw->cfg.input, "none") != 0)
         say("event", "stream decoder not in this build: input bytes are counted, not decoded");
+    celfw_notify_ready(&fw->notify, lx_now(&lx_clock_monotonic), "showing %s on %s %dx%d",
+                       fw->cfg.scene, fw->disp->ops->name, fw->disp->width, fw->disp->height);
 
     const char *why = run(fw);
     tell_held(fw, true);
+    celfw_notify_stopping();
     char reason[64];
     snprintf(reason, sizeof reason, "reason=%s ", why);
     status(fw, "exit", reason);

@@ -184,6 +184,9 @@ typedef struct sv_clip {
         int fill_rule;
         int ncontours;
         sv_contour *contours;
+        /* -1, or an IR clip (with its chain) this part is first intersected with: the
+         * clip-path of a clipPath's child; always an earlier clip than this one */
+        int clip;
     } *parts;
     int parent; /* the enclosing context's clip (nested clip-path), or -1 */
 } sv_clip;
@@ -247,6 +250,8 @@ typedef struct sv_doc {
 
 void sv_doc_init(sv_doc *doc);
 void sv_doc_free(sv_doc *doc);
+/* Frees what a region owns (contours, bands, source), not the struct itself. */
+void sv_region_free(sv_region *r);
 void sv_doc_warn(sv_doc *doc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 size_t sv_doc_point_count(const sv_doc *doc);
 size_t sv_doc_region_count(const sv_doc *doc);
@@ -271,6 +276,7 @@ typedef struct sv_stroke_style {
     sv_join join;
     double miter_limit; /* ratio of miter length to width, SVG default 4 */
     double tolerance;   /* largest distance of an outline from the true offset, user units */
+    long max_points;    /* most control points to emit (0: no limit) */
 } sv_stroke_style;
 
 /*
@@ -281,18 +287,49 @@ typedef struct sv_stroke_style {
  * arcs offset exactly; other curves are offset by cubic Béziers, subdivided
  * until every outline point lies within `tolerance` of the true offset.
  * Returns the number of offset-curve pieces that hit the subdivision limit
- * (0 when the tolerance holds everywhere).
+ * (0 when the tolerance holds everywhere), or -1 when the outline would
+ * need more than st->max_points control points (it stops there; `out`
+ * then holds a part of it).
  */
 int sv_stroke_path(const sv_path *in, const sv_stroke_style *st, sv_path *out);
 
 /*
  * Cuts `in` into its dashes (sv_dash.c): `dash` holds `n` lengths (> 0 sum,
  * none negative), restarted on each subpath at `offset`. Appends open
- * subpaths, exact pieces of the original segments, to `out`.
+ * subpaths, exact pieces of the original segments, to `out`. Returns the
+ * number of dashes, or -1 as soon as there would be more than max_dashes
+ * (`out` then holds the first ones).
  */
-void sv_path_dash(const sv_path *in, const double *dash, int n, double offset, sv_path *out);
+int sv_path_dash(const sv_path *in, const double *dash, int n, double offset, int max_dashes,
+                 sv_path *out);
 
 /* ---------------------------------------------------------- SVG import */
+
+/*
+ * Limits that bound the work on untrusted files; each one, reached, ends the
+ * import with an error naming it (tools/svg/README.md states the bounds).
+ * The output is also capped at the scene store's capacities
+ * (CS_CFG_MAX_REGIONS, CS_CFG_MAX_CONTOURS, CS_CFG_MAX_POINTS): a drawing
+ * beyond them could never be loaded.
+ */
+#define SV_MAX_DEPTH 256         /* element nesting, in the file and through <use> */
+/* elements instantiated by <use> and markers, and the path segments of the shapes among
+ * them, all told (a copy of a long path costs its length) */
+#define SV_MAX_USE_COPIES 500000
+/* dashes of one stroke: each takes at least 4 of the scene's control points */
+#define SV_MAX_DASHES (CS_CFG_MAX_POINTS / 4)
+/* control points of every clip path applied (each element's clip is its own copy) */
+#define SV_MAX_CLIP_POINTS (4 * CS_CFG_MAX_POINTS)
+/* stops of one gradient; beyond, the rest are warned and ignored (every region
+ * painted with it costs each stop a style computation and a copy) */
+#define SV_MAX_STOPS 128
+/* text set in the drawing, all told: a glyph with ink takes a contour at
+ * least, and UTF-8 and white space take up to about 4 bytes a glyph */
+#define SV_MAX_TEXT_BYTES (4 * CS_CFG_MAX_CONTOURS)
+/* segment clips for all gradients' solid bands (the fallback of paint functions);
+ * regions beyond get none, warned */
+#define SV_MAX_BAND_WORK 2000000L
+#define SV_MAX_WARNINGS 1000 /* kept in sv_doc.warnings; one more says how many were left out */
 
 typedef struct sv_import_opts {
     /*
@@ -302,7 +339,7 @@ typedef struct sv_import_opts {
     double tolerance;
     double nominal_px; /* 0 = 1024 */
     double current_color[3]; /* for a root-level currentColor; default black */
-    const char *font_path;   /* for <text>; NULL = DejaVu Sans */
+    const char *font_path;   /* for <text>: every glyph from this file; NULL = fontconfig's choice */
     /* One cel per painted fill or stroke (SVG's per-shape "over", conflation
      * seams included) instead of packing opaque regions into shared cels. */
     bool one_cel_per_shape;

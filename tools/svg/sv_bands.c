@@ -97,20 +97,30 @@ static void clip_disc(const sv_gradient *g, double t, sv_path *p)
 static void build(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r,
                   sv_affine inv, double t0, double t1, const double *cum, double var, int n);
 
-void sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r)
+bool sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r,
+                       long *work)
 {
     sv_affine inv;
     if (g->nstops < 2 || !sv_affine_invert(g->transform, &inv))
-        return;
+        return true;
     if (g->type == SV_GRAD_LINEAR &&
         !((g->x2 - g->x1) * (g->x2 - g->x1) + (g->y2 - g->y1) * (g->y2 - g->y1) > 0))
-        return;
+        return true;
     if (g->type == SV_GRAD_RADIAL) {
         /* nested discs need the focal circle inside the end circle */
         double d = hypot(g->fx - g->cx, g->fy - g->cy);
         if (!(g->r > 0) || d + g->fr >= g->r)
-            return;
+            return true;
     }
+    /* the most segment clips it can take: every band clips the area (a disc: each side,
+     * for two discs), and the halving below builds at most twice */
+    long segs = 0;
+    for (int i = 0; i < area->n; i++)
+        segs += area->sub[i].n;
+    long cost = segs * MAX_BANDS * 2 * (g->type == SV_GRAD_RADIAL ? 2 * DISC_SIDES : 2);
+    if (cost > *work)
+        return false;
+    *work -= cost;
     /* the range of t over the region's box */
     double box[4];
     sv_path_bbox(area, box);
@@ -125,7 +135,7 @@ void sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity
     if (g->type == SV_GRAD_RADIAL)
         t0 = fmax(t0, 0);
     if (!(t1 > t0))
-        return;
+        return true;
     /* colour variation along t, to place the band boundaries */
     enum { S = 1024 };
     double cum[S + 1], prev[4], var = 0;
@@ -156,7 +166,7 @@ void sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity
             for (int k = 0; k < r->bands[b].ncontours; k++)
                 pts += (size_t)r->bands[b].contours[k].count;
         if (pts <= budget)
-            return;
+            return true;
         for (int b = 0; b < r->nbands; b++) {
             for (int k = 0; k < r->bands[b].ncontours; k++)
                 sv_contour_free(&r->bands[b].contours[k]);
@@ -166,6 +176,7 @@ void sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity
         r->bands = NULL;
         r->nbands = 0;
     }
+    return true;
 }
 
 /* The n bands of t in [t0, t1] placed by the cumulative colour variation. */

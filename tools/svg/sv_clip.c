@@ -20,11 +20,16 @@
 
 #include "sv_internal.h"
 
-/* f(t) = a X + b Y + c W for the homogeneous segment. */
+/*
+ * f(t) = a X + b Y + c W for the homogeneous segment. A value within the
+ * rounding error of its terms is 0: a piece lying on the line (a rectangle
+ * cut by its own edge) must not cross it back and forth on noise.
+ */
 static double side(const sv_seg *s, double t, double a, double b, double c)
 {
     sv_pt p = sv_seg_eval(s, t);
-    return a * p.x + b * p.y + c;
+    double f = a * p.x + b * p.y + c;
+    return fabs(f) <= 1e-12 * (fabs(a * p.x) + fabs(b * p.y) + fabs(c)) ? 0 : f;
 }
 
 /*
@@ -35,6 +40,15 @@ static double side(const sv_seg *s, double t, double a, double b, double c)
 static int crossings(const sv_seg *s, double a, double b, double c, double *ts)
 {
     enum { N = 48 };
+    /* a curve lies in its control points' hull (weights > 0): one side, no crossing */
+    bool pos = false, neg = false;
+    for (int k = 0; k <= s->degree; k++) {
+        double v = a * s->p[k].x + b * s->p[k].y + c;
+        pos |= v > 0;
+        neg |= v < 0;
+    }
+    if (!pos || !neg)
+        return 0;
     int n = 0;
     double t0 = 0, f0 = side(s, 0, a, b, c);
     for (int i = 1; i <= N; i++) {
@@ -147,12 +161,17 @@ bool sv_path_convex_polygon(const sv_path *clip, sv_pt **poly, int *n)
     }
     if (m > 1 && v[0].x == v[m - 1].x && v[0].y == v[m - 1].y)
         m--;
-    /* drop collinear vertices, then require one turning direction */
-    double sign = 0;
+    /*
+     * Skip collinear vertices, then require one turning direction and one
+     * turn in all: a pentagram turns one way at every vertex, but twice
+     * around (it self-intersects, and is no convex polygon).
+     */
+    double sign = 0, turn = 0;
     bool ok = m >= 3;
     for (int k = 0; ok && k < m; k++) {
         sv_pt e1 = sv_sub(v[(k + 1) % m], v[k]), e2 = sv_sub(v[(k + 2) % m], v[(k + 1) % m]);
         double cr = sv_cross(e1, e2);
+        turn += atan2(cr, sv_dot(e1, e2));
         if (fabs(cr) <= 1e-12 * (sv_len(e1) * sv_len(e2) + 1e-300))
             continue;
         if (sign == 0)
@@ -160,7 +179,7 @@ bool sv_path_convex_polygon(const sv_path *clip, sv_pt **poly, int *n)
         else if ((cr > 0) != (sign > 0))
             ok = false;
     }
-    if (!ok || sign == 0) {
+    if (!ok || sign == 0 || fabs(fabs(turn) - 2 * M_PI) > 0.5) {
         free(v);
         return false;
     }

@@ -10,7 +10,10 @@
  * subpath, shifted by stroke-dashoffset; on a closed subpath a dash running
  * through the start point is one dash (joined there, not capped). An odd
  * list repeats to even length, as SVG says; lists with a negative value or a
- * zero sum are the caller's to reject (they mean a solid stroke).
+ * zero sum are the caller's to reject (they mean a solid stroke). The
+ * caller's limit on the number of dashes also bounds the walk: a pattern
+ * far shorter than the path (or than a double's precision at its length)
+ * stops there instead of exhausting memory.
  */
 #include <math.h>
 
@@ -108,9 +111,10 @@ static void dash_reset(dasher *d, double offset)
     }
 }
 
-void sv_path_dash(const sv_path *in, const double *dash_in, int ndash, double offset,
-                  sv_path *out)
+int sv_path_dash(const sv_path *in, const double *dash_in, int ndash, double offset,
+                 int max_dashes, sv_path *out)
 {
+    int dashes = 0;
     double dash[32];
     int n = 0;
     for (int r = 0; r < (ndash % 2 ? 2 : 1); r++)
@@ -150,6 +154,10 @@ void sv_path_dash(const sv_path *in, const double *dash_in, int ndash, double of
                         piece.p[0] = piece.p[1] = q;
                     }
                     if (!pen) {
+                        if (++dashes > max_dashes) {
+                            free(segs);
+                            return -1;
+                        }
                         sv_path_move(out, piece.p[0].x, piece.p[0].y);
                         pen = true;
                     } else {
@@ -183,4 +191,5 @@ void sv_path_dash(const sv_path *in, const double *dash_in, int ndash, double of
         out->open_sub = false;
         free(segs);
     }
+    return dashes;
 }

@@ -32,10 +32,14 @@ static const char *chain_attr(sv_node *const *chain, int n, const char *name)
     return NULL;
 }
 
+/* A geometry attribute: only gradients of the same kind as chain[0] pass it on. */
 static double coord(sv_node *const *chain, int n, const char *name, const char *dflt, bool obb,
                     double ref)
 {
-    const char *v = chain_attr(chain, n, name);
+    const char *v = NULL;
+    for (int i = 0; i < n && !v; i++)
+        if (!strcmp(chain[i]->name, chain[0]->name))
+            v = sv_attr(chain[i], name);
     if (!v)
         v = dflt;
     double x = 0;
@@ -62,9 +66,9 @@ bool sv_gradient_resolve(sv_node *g, sv_find_fn find, sv_style_fn style, void *c
         if (!c)
             break;
         chain[n] = c;
-        const char *href = sv_attr(c, "xlink:href");
+        const char *href = sv_attr(c, "href"); /* SVG 2: it takes precedence */
         if (!href)
-            href = sv_attr(c, "href");
+            href = sv_attr(c, "xlink:href");
         c = (href && href[0] == '#') ? find(ctx, href + 1) : NULL;
         if (c && strcmp(c->name, "linearGradient") != 0 && strcmp(c->name, "radialGradient") != 0)
             c = NULL;
@@ -94,8 +98,13 @@ bool sv_gradient_resolve(sv_node *g, sv_find_fn find, sv_style_fn style, void *c
     }
     sv_affine gt = sv_affine_identity();
     const char *gtr = chain_attr(chain, n, "gradientTransform");
+    sv_affine inv;
     if (gtr && !sv_parse_transform(gtr, &gt))
         sv_doc_warn(doc, "<%s> (line %d): bad gradientTransform ignored", g->name, g->line);
+    else if (gtr && !sv_affine_invert(gt, &inv)) { /* singular: ignored, as resvg does */
+        sv_doc_warn(doc, "<%s> (line %d): singular gradientTransform ignored", g->name, g->line);
+        gt = sv_affine_identity();
+    }
     sv_affine m = ctm;
     if (obb) {
         double w = bbox[2] - bbox[0], h = bbox[3] - bbox[1];
@@ -111,14 +120,25 @@ bool sv_gradient_resolve(sv_node *g, sv_find_fn find, sv_style_fn style, void *c
             sv_node *st = chain[i]->kids[k];
             if (strcmp(st->name, "stop") != 0)
                 continue;
+            if (out->nstops == SV_MAX_STOPS) { /* bounds the work a region's paint costs */
+                sv_doc_warn(doc, "<%s> (line %d): more than %d stops (SV_MAX_STOPS), the rest "
+                            "ignored", g->name, g->line, SV_MAX_STOPS);
+                break;
+            }
             sv_style ss;
             style(ctx, st, &ss);
             double off = 0;
             const char *ov = sv_attr(st, "offset");
-            if (ov) {
+            if (ov) { /* a number or a percentage; anything else ("5mm") is invalid: 0 */
                 const char *p = ov;
-                if (sv_parse_number(&p, &off) && *p == '%')
+                if (sv_parse_number(&p, &off) && *p == '%') {
                     off /= 100;
+                    p++;
+                }
+                while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
+                    p++;
+                if (*p)
+                    off = 0;
             }
             off = off < 0 ? 0 : (off > 1 ? 1 : off);
             if (out->nstops > 0 && off < out->stops[out->nstops - 1].offset)

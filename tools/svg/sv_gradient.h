@@ -27,9 +27,12 @@ void sv_gradient_color_at(const sv_gradient *g, double t, double rgb[3], double 
 /*
  * Solid bands approximating gradient g over the filled canvas-space path
  * `area`, appended to r->bands (see sv_bands.c); `opacity` multiplies the
- * stops' opacity. Nothing is added where one colour suffices.
+ * stops' opacity. Nothing is added where one colour suffices. *work is what
+ * is left of the document's budget of segment clips (SV_MAX_BAND_WORK); a
+ * region that would take more gets no bands and false is returned.
  */
-void sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r);
+bool sv_gradient_bands(const sv_gradient *g, const sv_path *area, double opacity, sv_region *r,
+                       long *work);
 /* Opacity-weighted average colour and mean opacity over the filled path (canvas units). */
 void sv_gradient_average(const sv_gradient *g, const sv_path *area, int rule, double rgb[3],
                          double *alpha);

@@ -30,6 +30,10 @@ typedef enum sv_color_kind {
 sv_color_kind sv_parse_color(const char *s, double rgb[3], double *alpha);
 int sv_named_color_count(void);
 
+/* SVG 1.1 section 7.8: viewBox vb onto viewport (x, y, w, h) under preserveAspectRatio par. */
+sv_affine sv_viewbox_map(const double vb[4], const char *par, double x, double y, double w,
+                         double h);
+
 /* Length units; percentages need the reference length `percent_of`. */
 bool sv_parse_length(const char *s, double font_size, double percent_of, double *v);
 
@@ -39,6 +43,7 @@ typedef struct sv_node {
     char *name;   /* local name for SVG elements; "ns:" prefix for foreign ones */
     char **attrs; /* name, value, name, value, ..., NULL */
     struct sv_node *parent;
+    int index; /* in parent->kids */
     struct sv_node **kids;
     int nkids, capkids;
     char *text; /* character data directly inside the element */
@@ -55,14 +60,28 @@ const char *sv_attr(const sv_node *n, const char *name);
 
 typedef struct sv_decl {
     char *name, *value;
+    bool important; /* "!important": it beats the style attribute and other rules */
 } sv_decl;
 
+/* An attribute test: [name] (op 0), or [name op value] with op one of = ~ ^ $ * | */
+typedef struct sv_css_attr {
+    char *name, *value;
+    char op;
+} sv_css_attr;
+
 typedef struct sv_css_rule {
-    /* one compound selector: element name (or NULL), id (or NULL), classes */
+    /* the subject's compound selector: element name (or NULL), id (or NULL), classes, ... */
     char *tag, *id;
     char **classes;
     int nclasses;
-    int specificity; /* ids * 10000 + classes * 100 + tags */
+    sv_css_attr *attrs;
+    int nattrs;
+    bool first_child;
+    /* the compound to the left (NULL: none) and how it relates: ' ' an ancestor,
+     * '>' the parent, '+' the previous sibling, '~' an earlier sibling */
+    struct sv_css_rule *left;
+    char comb;
+    int specificity; /* ids * 10000 + (classes, attributes, pseudo-classes) * 100 + tags */
     int order;
     sv_decl *decls;
     int ndecls;
@@ -74,9 +93,10 @@ typedef struct sv_css {
 } sv_css;
 
 /*
- * Adds the rules of a style sheet. Selectors beyond compound ones
- * (combinators, attributes, pseudo-classes) and @-rules are skipped with a
- * warning through `doc`.
+ * Adds the rules of a style sheet: compound selectors (type, universal,
+ * class, id, attribute tests, :first-child) joined by the combinators
+ * ' ', '>', '+' and '~'. Other pseudo-classes, pseudo-elements and @-rules
+ * are skipped with a warning through `doc`.
  */
 void sv_css_parse_sheet(sv_css *css, const char *text, sv_doc *doc);
 void sv_css_free(sv_css *css);
@@ -120,10 +140,14 @@ typedef struct sv_style {
     double dash_offset;
     double font_size;
     char font_family[128];
-    int font_weight; /* 400 normal, 700 bold */
+    int font_weight; /* 1..1000: 400 normal, 700 bold */
     bool font_italic;
     int text_anchor; /* 0 start, 1 middle, 2 end */
+    char paint_order[4]; /* 'F'ill, 'S'troke, 'M'arkers in painting order: "FSM" normally */
+    char marker[3][128]; /* marker-start, -mid, -end: ids, "" for none */
     /* not inherited */
+    bool has_transform; /* the transform property (CSS, style attribute): it replaces the attribute */
+    sv_affine transform;
     double opacity;
     bool display_none;
     char clip_path[128], mask[128], filter[128];

@@ -12,10 +12,10 @@ void sv_doc_init(sv_doc *doc)
     memset(doc, 0, sizeof *doc);
 }
 
-static void free_region(sv_region *r)
+void sv_region_free(sv_region *r)
 {
     for (int i = 0; i < r->nbands; i++)
-        free_region(&r->bands[i]);
+        sv_region_free(&r->bands[i]);
     free(r->bands);
     for (int i = 0; i < r->ncontours; i++)
         sv_contour_free(&r->contours[i]);
@@ -27,7 +27,7 @@ void sv_doc_free(sv_doc *doc)
 {
     for (int c = 0; c < doc->ncels; c++) {
         for (int r = 0; r < doc->cels[c].nregions; r++)
-            free_region(&doc->cels[c].regions[r]);
+            sv_region_free(&doc->cels[c].regions[r]);
         free(doc->cels[c].regions);
         free(doc->cels[c].name);
     }
@@ -61,6 +61,12 @@ void sv_doc_warn(sv_doc *doc, const char *fmt, ...)
     for (int i = 0; i < doc->nwarnings; i++)
         if (strcmp(doc->warnings[i], buf) == 0)
             return;
+    /* A hostile file can make a warning per element; the search above stays bounded. */
+    if (doc->nwarnings > SV_MAX_WARNINGS)
+        return;
+    if (doc->nwarnings == SV_MAX_WARNINGS)
+        snprintf(buf, sizeof buf, "more than %d warnings; the rest are not listed",
+                 SV_MAX_WARNINGS);
     doc->warnings = sv_xrealloc(doc->warnings, (size_t)(doc->nwarnings + 1) * sizeof(char *));
     doc->warnings[doc->nwarnings++] = sv_xstrdup(buf);
 }

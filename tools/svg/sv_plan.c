@@ -21,13 +21,15 @@
  *
  * The core applies one fill rule to every operand. When the region and its
  * clips agree (the usual case: nonzero everywhere), that rule is used; an
- * operand of one contour does not care (a simple closed curve winds at most
- * once). Otherwise the program runs under nonzero and each evenodd operand of
- * several contours is split into one operand per contour joined by XOR:
- * parity is additive, and a simple contour's nonzero inside is its parity.
+ * operand of one simple contour does not care (it winds at most once), but
+ * one that crosses itself does (a star: its centre winds twice). Otherwise
+ * the program runs under nonzero and each evenodd operand of several
+ * contours is split into one operand per contour joined by XOR: parity is
+ * additive, and a simple contour's nonzero inside is its parity.
  *
  * Every fallback is warned, naming the element.
  */
+#include <limits.h>
 #include <math.h>
 
 #include "sv_gradient.h"
@@ -81,6 +83,48 @@ static bool emit_group(sv_csg *o, const group *g, bool split, bool own)
     return true;
 }
 
+static bool edges_cross(sv_pt a, sv_pt b, sv_pt c, sv_pt d)
+{
+    double d1 = sv_cross(sv_sub(b, a), sv_sub(c, a)), d2 = sv_cross(sv_sub(b, a), sv_sub(d, a));
+    double d3 = sv_cross(sv_sub(d, c), sv_sub(a, c)), d4 = sv_cross(sv_sub(d, c), sv_sub(b, c));
+    if (d1 == 0 && d2 == 0) /* collinear: overlapping counts as crossing */
+        return fmax(a.x, b.x) >= fmin(c.x, d.x) && fmax(c.x, d.x) >= fmin(a.x, b.x) &&
+               fmax(a.y, b.y) >= fmin(c.y, d.y) && fmax(c.y, d.y) >= fmin(a.y, b.y);
+    return ((d1 <= 0 && d2 >= 0) || (d1 >= 0 && d2 <= 0)) &&
+           ((d3 <= 0 && d4 >= 0) || (d3 >= 0 && d4 <= 0));
+}
+
+/*
+ * Whether a contour's control polygon is simple: for polygons exactly
+ * whether the contour is; for curves a close stand-in (a self-crossing curve
+ * crosses its control polygon too, in any drawing seen). Long contours are
+ * taken as not simple, which only costs an operand's rule its freedom.
+ */
+static bool contour_simple(const sv_contour *c)
+{
+    enum { MAX_EDGES = 256 };
+    int n = c->count;
+    if (n > MAX_EDGES)
+        return false;
+    sv_pt v[MAX_EDGES];
+    for (int i = 0; i < n; i++)
+        v[i] = sv_pt_make(c->pts[3 * i] / c->pts[3 * i + 2], c->pts[3 * i + 1] / c->pts[3 * i + 2]);
+    for (int i = 0; i < n; i++)
+        for (int j = i + 2; j < n; j++) {
+            if (i == 0 && j == n - 1)
+                continue; /* they share v[0] */
+            if (edges_cross(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n]))
+                return false;
+        }
+    return true;
+}
+
+/* Whether an operand's inside depends on the fill rule. */
+static bool rule_matters(const sv_contour *c, int n)
+{
+    return n > 1 || (n == 1 && !contour_simple(c));
+}
+
 void sv_csg_free(sv_csg *o)
 {
     free(o->contours);
@@ -88,41 +132,61 @@ void sv_csg_free(sv_csg *o)
     memset(o, 0, sizeof *o);
 }
 
-bool sv_csg_build(const sv_doc *doc, const sv_region *r, int nclips, sv_csg *o)
+/* The rule the operands of `nclips` clips of the chain from ci ask for (and their parts' own). */
+static void chain_rules(const sv_doc *doc, int ci, int nclips, int *rule, bool *mixed)
 {
-    memset(o, 0, sizeof *o);
-    /* the rule: the one every multi-contour operand shares, else nonzero */
-    int rule = -1;
-    bool mixed = false;
-    group rg = {r->contours, r->ncontours, r->fill_rule};
-    if (rg.n > 1)
-        rule = rg.rule;
-    for (int k = 0, ci = r->clip; k < nclips && ci >= 0; k++, ci = doc->clips[ci].parent)
+    for (int k = 0; k < nclips && ci >= 0; k++, ci = doc->clips[ci].parent)
         for (int p = 0; p < doc->clips[ci].nparts; p++) {
             const struct sv_clip_part *part = &doc->clips[ci].parts[p];
-            if (part->ncontours <= 1)
+            if (part->clip >= 0) /* earlier clips: this ends */
+                chain_rules(doc, part->clip, INT_MAX, rule, mixed);
+            if (!rule_matters(part->contours, part->ncontours))
                 continue;
-            if (rule < 0)
-                rule = part->fill_rule;
-            else if (rule != part->fill_rule)
-                mixed = true;
+            if (*rule < 0)
+                *rule = part->fill_rule;
+            else if (*rule != part->fill_rule)
+                *mixed = true;
         }
-    o->rule = mixed ? CS_FILL_NONZERO : rule >= 0 ? rule : r->fill_rule;
-    bool ok = emit_group(o, &rg, mixed && rg.rule == CS_FILL_EVENODD, true);
-    for (int k = 0, ci = r->clip; ok && k < nclips && ci >= 0; k++, ci = doc->clips[ci].parent) {
+}
+
+/*
+ * `nclips` clips of the chain from ci, each intersected with what is on the
+ * stack: (part [AND its own chain]) OR part ..., AND.
+ */
+static bool emit_chain(sv_csg *o, const sv_doc *doc, int ci, int nclips, bool mixed)
+{
+    bool ok = true;
+    for (int k = 0; ok && k < nclips && ci >= 0; k++, ci = doc->clips[ci].parent) {
         const sv_clip *clip = &doc->clips[ci];
         if (clip->nparts == 0) { /* an empty clip path: an operand without contours */
             group none = {NULL, 0, o->rule};
             ok = emit_group(o, &none, false, false);
         }
         for (int p = 0; ok && p < clip->nparts; p++) {
-            group g = {clip->parts[p].contours, clip->parts[p].ncontours,
-                       clip->parts[p].fill_rule};
+            const struct sv_clip_part *part = &clip->parts[p];
+            group g = {part->contours, part->ncontours, part->fill_rule};
             ok = emit_group(o, &g, mixed && g.rule == CS_FILL_EVENODD, false) &&
+                 (part->clip < 0 || emit_chain(o, doc, part->clip, INT_MAX, mixed)) &&
                  (p == 0 || push(o, CS_CSG_UNION));
         }
         ok = ok && push(o, CS_CSG_INTERSECT);
     }
+    return ok;
+}
+
+bool sv_csg_build(const sv_doc *doc, const sv_region *r, int nclips, sv_csg *o)
+{
+    memset(o, 0, sizeof *o);
+    /* the rule: the one every operand whose rule matters shares, else nonzero */
+    int rule = -1;
+    bool mixed = false;
+    group rg = {r->contours, r->ncontours, r->fill_rule};
+    if (rule_matters(rg.c, rg.n))
+        rule = rg.rule;
+    chain_rules(doc, r->clip, nclips, &rule, &mixed);
+    o->rule = mixed ? CS_FILL_NONZERO : rule >= 0 ? rule : r->fill_rule;
+    bool ok = emit_group(o, &rg, mixed && rg.rule == CS_FILL_EVENODD, true) &&
+              emit_chain(o, doc, r->clip, nclips, mixed);
     if (!ok)
         sv_csg_free(o);
     return ok;
@@ -142,18 +206,27 @@ typedef struct cost {
     size_t points, regions, contours;
 } cost;
 
+static void add_chain_cost(cost *c, const sv_doc *doc, int ci, int nclips)
+{
+    for (int k = 0; k < nclips && ci >= 0; k++, ci = doc->clips[ci].parent)
+        for (int p = 0; p < doc->clips[ci].nparts; p++) {
+            const struct sv_clip_part *part = &doc->clips[ci].parts[p];
+            for (int i = 0; i < part->ncontours; i++) {
+                c->contours++;
+                c->points += (size_t)part->contours[i].count;
+            }
+            if (part->clip >= 0)
+                add_chain_cost(c, doc, part->clip, INT_MAX);
+        }
+}
+
 static void add_cost(cost *c, const sv_doc *doc, const sv_region *geo, int nclips)
 {
     c->regions++;
     c->contours += (size_t)geo->ncontours;
     for (int k = 0; k < geo->ncontours; k++)
         c->points += (size_t)geo->contours[k].count;
-    for (int k = 0, ci = geo->clip; k < nclips && ci >= 0; k++, ci = doc->clips[ci].parent)
-        for (int p = 0; p < doc->clips[ci].nparts; p++)
-            for (int i = 0; i < doc->clips[ci].parts[p].ncontours; i++) {
-                c->contours++;
-                c->points += (size_t)doc->clips[ci].parts[p].contours[i].count;
-            }
+    add_chain_cost(c, doc, geo->clip, nclips);
 }
 
 static cost region_cost(const sv_doc *doc, const sv_region *r, sv_draw draw)

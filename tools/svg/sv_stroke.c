@@ -20,7 +20,9 @@
  * distance w/2 from the curve, on the right side, within the tolerance, and
  * offset points within the tolerance of the fitted cubic - and the piece is
  * halved until it passes (at most 18 times; pieces still failing are
- * counted and reported).
+ * counted and reported). A caller's budget of control points
+ * (sv_stroke_style.max_points) bounds the work on hostile input: the
+ * outliner stops as soon as its output would exceed it.
  *
  * Where a side curves tighter than w/2 (h kappa > 1) its offset runs
  * backwards and the body half would wind negatively in part. There the side
@@ -45,6 +47,8 @@ typedef struct stroker {
     double h, tol;
     sv_path *out;
     int missed;
+    long points; /* control points emitted, against st->max_points */
+    bool over;   /* st->max_points reached: stop */
 } stroker;
 
 static sv_pt perp(sv_pt t)
@@ -120,7 +124,12 @@ static void emit(stroker *sk, sv_path *c)
             sv_seg_reverse(&sp->seg[i]);
     }
     sp->closed = true;
-    if (a != 0)
+    /* counted with or without area: the budget bounds the work as well */
+    for (int i = 0; i < sp->n; i++)
+        sk->points += sp->seg[i].degree;
+    if (sk->st->max_points > 0 && sk->points > sk->st->max_points)
+        sk->over = true;
+    if (a != 0 && !sk->over)
         sv_path_append(sk->out, c);
     sv_path_free(c);
 }
@@ -311,6 +320,8 @@ static void half_reversed(stroker *sk, const sv_seg *s, int side, int depth);
 
 static void half(stroker *sk, const sv_seg *s, int side, int depth)
 {
+    if (sk->over)
+        return;
     if (reverses(sk, s, side)) {
         half_reversed(sk, s, side, depth);
         return;
@@ -333,6 +344,8 @@ static void half(stroker *sk, const sv_seg *s, int side, int depth)
 /* A side whose offset runs backwards: lobes meeting at the end normals' crossing. */
 static void half_reversed(stroker *sk, const sv_seg *s, int side, int depth)
 {
+    if (sk->over)
+        return;
     sv_pt o0 = offset_at(sk, s, 0, side), o1 = offset_at(sk, s, 1, side);
     sv_pt om = offset_at(sk, s, 0.5, side);
     double sag = sv_len(sv_sub(om, sv_scale(sv_add(o0, o1), 0.5)));
@@ -419,6 +432,8 @@ static void arc_body(stroker *sk, const sv_seg *s, sv_pt ctr, double kappa)
 
 static void body(stroker *sk, const sv_seg *s, int depth)
 {
+    if (sk->over)
+        return;
     if (s->degree == 1) {
         sv_pt n = sv_scale(perp(tangent_start(s)), sk->h);
         sv_path c;
@@ -527,10 +542,11 @@ static void dot(stroker *sk, sv_pt p)
 
 int sv_stroke_path(const sv_path *in, const sv_stroke_style *st, sv_path *out)
 {
-    stroker sk = {st, st->width / 2, st->tolerance > 0 ? st->tolerance : 1e-3 * st->width, out, 0};
+    stroker sk = {st, st->width / 2, st->tolerance > 0 ? st->tolerance : 1e-3 * st->width, out, 0,
+                  0, false};
     if (!(sk.h > 0))
         return 0;
-    for (int i = 0; i < in->n; i++) {
+    for (int i = 0; i < in->n && !sk.over; i++) {
         const sv_subpath *sp = &in->sub[i];
         sv_seg *seg = sv_xrealloc(NULL, (size_t)(sp->n + 1) * sizeof *seg);
         int n = 0;
@@ -553,7 +569,7 @@ int sv_stroke_path(const sv_path *in, const sv_stroke_style *st, sv_path *out)
             sv_seg l = {1, {last, first}, 1};
             seg[n++] = l;
         }
-        for (int k = 0; k < n; k++) {
+        for (int k = 0; k < n && !sk.over; k++) {
             body(&sk, &seg[k], 0);
             if (k + 1 < n)
                 join(&sk, seg[k].p[seg[k].degree], tangent_end(&seg[k]),
@@ -567,5 +583,5 @@ int sv_stroke_path(const sv_path *in, const sv_stroke_style *st, sv_path *out)
         }
         free(seg);
     }
-    return sk.missed;
+    return sk.over ? -1 : sk.missed;
 }

@@ -175,6 +175,7 @@ int sv_css_parse_decls(const char *text, sv_decl **out)
             *imp = 0;
             value = trim(value);
         }
+        bool important = imp != NULL;
         if (!*name)
             continue;
         for (char *c = name; *c; c++)
@@ -182,6 +183,7 @@ int sv_css_parse_decls(const char *text, sv_decl **out)
         SV_GROW(*out, n, cap);
         (*out)[n].name = sv_xstrdup(name);
         (*out)[n].value = sv_xstrdup(value);
+        (*out)[n].important = important;
         n++;
     }
     free(buf);
@@ -197,39 +199,88 @@ void sv_decls_free(sv_decl *d, int n)
     free(d);
 }
 
-/* A compound selector into rule r; false if it is beyond what we match. */
-static bool parse_selector(const char *sel, sv_css_rule *r)
+static bool ident_char(char c)
 {
-    const char *p = sel;
-    memset(r, 0, sizeof *r);
+    return isalnum((unsigned char)c) || c == '-' || c == '_';
+}
+
+/* One compound selector at *pp into c (zeroed by the caller); false if it is beyond us. */
+static bool parse_compound(const char **pp, sv_css_rule *c)
+{
+    const char *p = *pp, *begin = p;
     if (*p == '*') {
         p++;
     } else if (isalpha((unsigned char)*p)) {
         const char *s = p;
-        while (isalnum((unsigned char)*p) || *p == '-' || *p == '_')
+        while (ident_char(*p))
             p++;
-        r->tag = sv_xstrndup(s, (size_t)(p - s));
-        r->specificity += 1;
+        c->tag = sv_xstrndup(s, (size_t)(p - s));
+        c->specificity += 1;
     }
-    while (*p == '.' || *p == '#') {
-        char kind = *p++;
-        const char *s = p;
-        while (isalnum((unsigned char)*p) || *p == '-' || *p == '_')
-            p++;
-        if (p == s)
-            return false;
-        if (kind == '#') {
-            if (r->id)
+    for (;;) {
+        if (*p == '.' || *p == '#') {
+            char kind = *p++;
+            const char *s = p;
+            while (ident_char(*p))
+                p++;
+            if (p == s || (kind == '#' && c->id))
                 return false;
-            r->id = sv_xstrndup(s, (size_t)(p - s));
-            r->specificity += 10000;
+            if (kind == '#') {
+                c->id = sv_xstrndup(s, (size_t)(p - s));
+                c->specificity += 10000;
+            } else {
+                c->classes = sv_xrealloc(c->classes, (size_t)(c->nclasses + 1) * sizeof(char *));
+                c->classes[c->nclasses++] = sv_xstrndup(s, (size_t)(p - s));
+                c->specificity += 100;
+            }
+        } else if (*p == '[') {
+            p++;
+            while (isspace((unsigned char)*p))
+                p++;
+            const char *s = p;
+            while (ident_char(*p) || *p == ':')
+                p++;
+            if (p == s)
+                return false;
+            sv_css_attr a = {sv_xstrndup(s, (size_t)(p - s)), NULL, 0};
+            c->attrs = sv_xrealloc(c->attrs, (size_t)(c->nattrs + 1) * sizeof a);
+            c->attrs[c->nattrs++] = a;
+            c->specificity += 100;
+            while (isspace((unsigned char)*p))
+                p++;
+            if (*p != ']') {
+                if (strchr("~^$*|", *p) && *p && p[1] == '=')
+                    c->attrs[c->nattrs - 1].op = *p++;
+                else if (*p == '=')
+                    c->attrs[c->nattrs - 1].op = '=';
+                else
+                    return false;
+                p++;
+                while (isspace((unsigned char)*p))
+                    p++;
+                char q = *p == '"' || *p == '\'' ? *p++ : 0;
+                const char *v = p;
+                while (*p && (q ? *p != q : ident_char(*p)))
+                    p++;
+                c->attrs[c->nattrs - 1].value = sv_xstrndup(v, (size_t)(p - v));
+                if (q && *p++ != q)
+                    return false;
+                while (isspace((unsigned char)*p))
+                    p++;
+                if (*p != ']')
+                    return false;
+            }
+            p++;
+        } else if (!strncmp(p, ":first-child", 12) && !ident_char(p[12])) {
+            p += 12;
+            c->first_child = true;
+            c->specificity += 100;
         } else {
-            r->classes = sv_xrealloc(r->classes, (size_t)(r->nclasses + 1) * sizeof(char *));
-            r->classes[r->nclasses++] = sv_xstrndup(s, (size_t)(p - s));
-            r->specificity += 100;
+            break;
         }
     }
-    return *p == 0 && p != sel;
+    *pp = p;
+    return p != begin;
 }
 
 static void rule_free(sv_css_rule *r)
@@ -239,6 +290,50 @@ static void rule_free(sv_css_rule *r)
     for (int i = 0; i < r->nclasses; i++)
         free(r->classes[i]);
     free(r->classes);
+    for (int i = 0; i < r->nattrs; i++) {
+        free(r->attrs[i].name);
+        free(r->attrs[i].value);
+    }
+    free(r->attrs);
+    if (r->left) {
+        rule_free(r->left);
+        free(r->left);
+    }
+}
+
+/*
+ * A selector into rule r: compounds joined by combinators, the subject (the
+ * rightmost) in r and the others chained through `left`. False if it is
+ * beyond what we match (r then holds what was parsed, for rule_free).
+ */
+static bool parse_selector(const char *sel, sv_css_rule *r)
+{
+    const char *p = sel;
+    memset(r, 0, sizeof *r);
+    for (int n = 0;; n++) {
+        if (n == 32 || !parse_compound(&p, r))
+            return false;
+        const char *after = p;
+        while (isspace((unsigned char)*p))
+            p++;
+        if (!*p)
+            return true;
+        char comb = ' ';
+        if (*p == '>' || *p == '+' || *p == '~') {
+            comb = *p++;
+            while (isspace((unsigned char)*p))
+                p++;
+        } else if (p == after) {
+            return false; /* a pseudo-class or other syntax we do not match */
+        }
+        /* what was parsed becomes the left side of the next compound */
+        sv_css_rule *left = sv_xrealloc(NULL, sizeof *left);
+        *left = *r;
+        memset(r, 0, sizeof *r);
+        r->left = left;
+        r->comb = comb;
+        r->specificity = left->specificity;
+    }
 }
 
 void sv_css_parse_sheet(sv_css *css, const char *text, sv_doc *doc)
@@ -308,6 +403,7 @@ void sv_css_parse_sheet(sv_css *css, const char *text, sv_doc *doc)
             for (int i = 0; i < nd; i++) {
                 r.decls[i].name = sv_xstrdup(decls[i].name);
                 r.decls[i].value = sv_xstrdup(decls[i].value);
+                r.decls[i].important = decls[i].important;
             }
             r.ndecls = nd;
             SV_GROW(css->rules, css->n, css->cap);
@@ -346,9 +442,49 @@ static bool has_class(const char *list, const char *cls)
     return false;
 }
 
-bool sv_css_matches(const sv_css_rule *r, const sv_node *n)
+/* Element siblings only: character data and foreign elements do not count. */
+static bool is_element(const sv_node *n)
 {
-    if (r->tag && strcmp(r->tag, n->name) != 0)
+    return n->name[0] != '#';
+}
+
+static const sv_node *prev_element(const sv_node *n)
+{
+    if (!n->parent)
+        return NULL;
+    for (int i = n->index - 1; i >= 0; i--)
+        if (is_element(n->parent->kids[i]))
+            return n->parent->kids[i];
+    return NULL;
+}
+
+static bool attr_matches(const sv_css_attr *a, const sv_node *n)
+{
+    const char *v = sv_attr(n, a->name);
+    if (!v)
+        return false;
+    size_t vl = strlen(v), al = a->value ? strlen(a->value) : 0;
+    switch (a->op) {
+    case '=':
+        return !strcmp(v, a->value);
+    case '~':
+        return al > 0 && has_class(v, a->value); /* a word of a space-separated list */
+    case '^':
+        return al > 0 && !strncmp(v, a->value, al);
+    case '$':
+        return al > 0 && vl >= al && !strcmp(v + vl - al, a->value);
+    case '*':
+        return al > 0 && strstr(v, a->value) != NULL;
+    case '|':
+        return !strncmp(v, a->value, al) && (v[al] == 0 || v[al] == '-');
+    default:
+        return true;
+    }
+}
+
+static bool compound_matches(const sv_css_rule *r, const sv_node *n)
+{
+    if (!is_element(n) || (r->tag && strcmp(r->tag, n->name) != 0))
         return false;
     if (r->id) {
         const char *id = sv_attr(n, "id");
@@ -363,7 +499,43 @@ bool sv_css_matches(const sv_css_rule *r, const sv_node *n)
             if (!has_class(cl, r->classes[i]))
                 return false;
     }
-    return true;
+    for (int i = 0; i < r->nattrs; i++)
+        if (!attr_matches(&r->attrs[i], n))
+            return false;
+    return !r->first_child || (n->parent && !prev_element(n));
+}
+
+/*
+ * The subject's compound, then the chain to the left. The ancestor and
+ * earlier-sibling combinators take the nearest element that matches
+ * (greedy, no backtracking): exact for chains of one combinator kind, the
+ * usual case, and linear in the depth, which a hostile sheet cannot blow up.
+ */
+bool sv_css_matches(const sv_css_rule *r, const sv_node *n)
+{
+    if (!compound_matches(r, n))
+        return false;
+    if (!r->left)
+        return true;
+    const sv_node *m = NULL;
+    switch (r->comb) {
+    case '>':
+        m = n->parent && compound_matches(r->left, n->parent) ? n->parent : NULL;
+        break;
+    case '+':
+        m = prev_element(n);
+        m = m && compound_matches(r->left, m) ? m : NULL;
+        break;
+    case '~':
+        for (const sv_node *k = prev_element(n); k && !m; k = prev_element(k))
+            m = compound_matches(r->left, k) ? k : NULL;
+        break;
+    default:
+        for (const sv_node *k = n->parent; k && !m; k = k->parent)
+            m = compound_matches(r->left, k) ? k : NULL;
+        break;
+    }
+    return m && sv_css_matches(r->left, m);
 }
 
 /* -------------------------------------------------------------- styles */
@@ -387,26 +559,83 @@ void sv_style_initial(sv_style *s)
     s->font_weight = 400;
     s->opacity = 1;
     s->stop_opacity = 1;
+    strcpy(s->paint_order, "FSM");
+}
+
+/*
+ * paint-order (SVG 2): "normal", or fill, stroke and markers, each at most
+ * once, the ones left out following in their normal order. False for
+ * anything else (the declaration is then invalid and ignored).
+ */
+static bool parse_paint_order(const char *v, char order[4])
+{
+    char out[4] = "";
+    int n = 0;
+    const char *p = v;
+    while (*p) {
+        while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
+            p++;
+        size_t len = strcspn(p, " \t\n\r");
+        if (len == 0)
+            break;
+        char k = len == 6 && !strncmp(p, "normal", 6) && n == 0 && !p[len] ? 'N'
+                 : len == 4 && !strncmp(p, "fill", 4)                      ? 'F'
+                 : len == 6 && !strncmp(p, "stroke", 6)                    ? 'S'
+                 : len == 7 && !strncmp(p, "markers", 7)                   ? 'M'
+                                                                           : 0;
+        if (!k || (k != 'N' && strchr(out, k)) || n >= 3)
+            return false;
+        if (k == 'N') {
+            strcpy(order, "FSM");
+            return true;
+        }
+        out[n++] = k;
+        out[n] = 0;
+        p += len;
+    }
+    if (n == 0)
+        return false;
+    for (const char *d = "FSM"; *d; d++)
+        if (!strchr(out, *d)) {
+            out[n++] = *d;
+            out[n] = 0;
+        }
+    memcpy(order, out, 4);
+    return true;
 }
 
 void sv_style_inherit(sv_style *c, const sv_style *p)
 {
     *c = *p;
     c->opacity = 1;
+    c->has_transform = false;
     c->display_none = false;
     c->clip_path[0] = c->mask[0] = c->filter[0] = 0;
     c->stop_color[0] = c->stop_color[1] = c->stop_color[2] = 0;
     c->stop_opacity = 1;
 }
 
-static double parse_opacity(const char *v, double dflt)
+/* A number, or a percentage when `percent` is given, and nothing after it but white space. */
+static bool parse_number_only(const char *v, bool percent, double *x)
 {
     const char *p = v;
+    if (!sv_parse_number(&p, x))
+        return false;
+    if (percent && *p == '%') {
+        *x /= 100;
+        p++;
+    }
+    while (isspace((unsigned char)*p))
+        p++;
+    return *p == 0;
+}
+
+/* "0.5", "50%"; anything else ("0.1mm") is invalid and leaves `dflt`. */
+static double parse_opacity(const char *v, double dflt)
+{
     double x;
-    if (!sv_parse_number(&p, &x))
+    if (!parse_number_only(v, true, &x))
         return dflt;
-    if (*p == '%')
-        x /= 100;
     return x < 0 ? 0 : (x > 1 ? 1 : x);
 }
 
@@ -447,9 +676,9 @@ static bool parse_paint(const char *v, sv_paint_spec *ps)
         double a;
         if (*rest && strcmp(rest, "none") != 0) {
             sv_color_kind k = sv_parse_color(rest, p.fallback_rgb, &a);
-            p.fallback_kind = k == SV_COLOR_RGB       ? SV_PAINT_COLOR
-                              : k == SV_COLOR_CURRENT ? SV_PAINT_CURRENT
-                                                      : SV_PAINT_NONE;
+            if (k == SV_COLOR_INVALID)
+                return false; /* "url(#g) green icc-color(...)": the whole value is invalid */
+            p.fallback_kind = k == SV_COLOR_RGB ? SV_PAINT_COLOR : SV_PAINT_CURRENT;
         }
         *ps = p;
         return true;
@@ -478,10 +707,10 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
     }
     if (!strcmp(name, "fill")) {
         INH(fill);
-        parse_paint(v, &s->fill);
+        return parse_paint(v, &s->fill); /* invalid (context-fill, ...): kept as it was, warned */
     } else if (!strcmp(name, "stroke")) {
         INH(stroke);
-        parse_paint(v, &s->stroke);
+        return parse_paint(v, &s->stroke);
     } else if (!strcmp(name, "fill-opacity")) {
         INH(fill_opacity);
         s->fill_opacity = parse_opacity(v, s->fill_opacity);
@@ -505,8 +734,8 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
     } else if (!strcmp(name, "stroke-width")) {
         INH(stroke_width);
         double w;
-        if (sv_parse_length(v, s->font_size, diag, &w) && w >= 0)
-            s->stroke_width = w;
+        if (sv_parse_length(v, s->font_size, diag, &w))
+            s->stroke_width = w > 0 ? w : 0; /* negative: no stroke, as resvg draws it */
     } else if (!strcmp(name, "stroke-linecap")) {
         INH(cap);
         s->cap = !strcmp(v, "round") ? SV_CAP_ROUND : !strcmp(v, "square") ? SV_CAP_SQUARE
@@ -523,8 +752,8 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
             return false; /* miter-clip, arcs (SVG 2) */
     } else if (!strcmp(name, "stroke-miterlimit")) {
         INH(miter_limit);
-        double m;
-        if (sv_parse_numbers(v, &m, 1) == 1 && m >= 1)
+        double m; /* a number, not a length: "5mm" is invalid */
+        if (parse_number_only(v, false, &m) && m >= 1)
             s->miter_limit = m;
     } else if (!strcmp(name, "stroke-dasharray")) {
         if (inherit) {
@@ -533,11 +762,25 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
             memcpy(s->dash, parent->dash, sizeof s->dash);
             return true;
         }
-        s->ndash = sv_parse_numbers(v, s->dash, 16);
+        /* lengths with units, percentages of the viewport's diagonal; "none" is solid */
+        double dash[16];
+        int n = 0;
+        const char *p = v;
+        char tok[64];
+        while (*(p = sv_skip_wsp_comma(p)) && strcmp(p, "none") != 0) {
+            size_t len = strcspn(p, " \t\r\n,");
+            snprintf(tok, sizeof tok, "%.*s", (int)len, p);
+            if (n == 16 || !sv_parse_length(tok, s->font_size, diag, &dash[n]))
+                return false; /* invalid: the property keeps its value */
+            n++;
+            p += len;
+        }
+        s->ndash = n;
+        memcpy(s->dash, dash, sizeof dash);
         double sum = 0;
-        for (int i = 0; i < s->ndash; i++)
-            sum += s->dash[i] > 0 ? s->dash[i] : 0;
-        s->has_dash = s->ndash > 0 && sum > 0;
+        for (int i = 0; i < n; i++)
+            sum += dash[i] > 0 ? dash[i] : 0;
+        s->has_dash = n > 0 && sum > 0;
     } else if (!strcmp(name, "stroke-dashoffset")) {
         INH(dash_offset);
         sv_parse_length(v, s->font_size, diag, &s->dash_offset);
@@ -576,10 +819,18 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
         snprintf(s->font_family, sizeof s->font_family, "%s", v);
     } else if (!strcmp(name, "font-weight")) {
         INH(font_weight);
-        /* a number (100..900) or a keyword; strtod, since atoi's overflow is undefined */
-        s->font_weight = (!strcmp(v, "bold") || !strcmp(v, "bolder") || strtod(v, NULL) >= 600.0)
-                             ? 700
-                             : 400;
+        /* a number (1..1000) or a keyword; strtod, since atoi's overflow is undefined */
+        double w = strtod(v, NULL);
+        if (!strcmp(v, "bold"))
+            s->font_weight = 700;
+        else if (!strcmp(v, "bolder")) /* CSS Fonts 4's table, in short */
+            s->font_weight = parent->font_weight < 600 ? 700 : 900;
+        else if (!strcmp(v, "lighter"))
+            s->font_weight = parent->font_weight < 600 ? 100 : 400;
+        else if (w >= 1 && w <= 1000)
+            s->font_weight = (int)w;
+        else
+            s->font_weight = 400;
     } else if (!strcmp(name, "font-style")) {
         INH(font_italic);
         s->font_italic = !strcmp(v, "italic") || !strcmp(v, "oblique");
@@ -588,11 +839,29 @@ bool sv_style_set(sv_style *s, const sv_style *parent, const char *name, const c
         s->text_anchor = !strcmp(v, "middle") ? 1 : !strcmp(v, "end") ? 2 : 0;
     } else if (!strcmp(name, "marker-start") || !strcmp(name, "marker-mid") ||
                !strcmp(name, "marker-end") || !strcmp(name, "marker")) {
-        return strcmp(v, "none") == 0 || inherit;
+        char which = name[6] ? name[7] : 0; /* 's', 'm', 'e', or the shorthand for all three */
+        int first = which == 'm' ? 1 : which == 'e' ? 2 : 0, last = which ? first : 2;
+        for (int i = first; i <= last; i++) {
+            if (inherit) {
+                memcpy(s->marker[i], parent->marker[i], sizeof s->marker[i]);
+                continue;
+            }
+            s->marker[i][0] = 0;
+            if (strcmp(v, "none") != 0 && !parse_url(v, s->marker[i], sizeof s->marker[i]))
+                return false;
+        }
     } else if (!strcmp(name, "mix-blend-mode")) {
         return strcmp(v, "normal") == 0;
+    } else if (!strcmp(name, "transform")) {
+        /* the property (CSS, style attribute; not the attribute, which the walk reads) */
+        sv_affine m;
+        if (inherit || !sv_parse_transform(v, &m))
+            return inherit;
+        s->has_transform = true;
+        s->transform = m;
     } else if (!strcmp(name, "paint-order")) {
-        return strcmp(v, "normal") == 0 || strncmp(v, "fill", 4) == 0;
+        INH(paint_order);
+        parse_paint_order(v, s->paint_order); /* an invalid value is ignored */
     }
 #undef INH
     return true;
@@ -617,6 +886,18 @@ static void apply(sv_style *s, const sv_style *parent, const sv_node *n, const c
     }
 }
 
+/* The declarations of one importance, `color` first. */
+static void apply_decls(sv_style *s, const sv_style *parent, const sv_node *n, const sv_decl *d,
+                        int nd, bool important, double diag, sv_doc *doc)
+{
+    for (int k = 0; k < nd; k++)
+        if (d[k].important == important && !strcmp(d[k].name, "color"))
+            apply(s, parent, n, "color", d[k].value, diag, doc);
+    for (int k = 0; k < nd; k++)
+        if (d[k].important == important && strcmp(d[k].name, "color") != 0)
+            apply(s, parent, n, d[k].name, d[k].value, diag, doc);
+}
+
 static int cmp_rules(const void *a, const void *b)
 {
     const sv_css_rule *x = *(const sv_css_rule *const *)a, *y = *(const sv_css_rule *const *)b;
@@ -638,32 +919,28 @@ void sv_style_compute(sv_style *s, const sv_style *parent, const sv_node *n, con
             strcmp(n->attrs[i], "class") != 0 && strcmp(n->attrs[i], "id") != 0 &&
             strcmp(n->attrs[i], "transform") != 0)
             apply(s, parent, n, n->attrs[i], n->attrs[i + 1], diag, doc);
+    /*
+     * The cascade: matching rules by specificity and order, then the style
+     * attribute, then the !important declarations of the rules, then those
+     * of the style attribute. `color` goes first at each step.
+     */
+    const sv_css_rule **match = NULL;
+    int nm = 0;
     if (css && css->n) {
-        const sv_css_rule **match = sv_xrealloc(NULL, (size_t)css->n * sizeof *match);
-        int nm = 0;
+        match = sv_xrealloc(NULL, (size_t)css->n * sizeof *match);
         for (int i = 0; i < css->n; i++)
             if (sv_css_matches(&css->rules[i], n))
                 match[nm++] = &css->rules[i];
         qsort(match, (size_t)nm, sizeof *match, cmp_rules);
-        for (int i = 0; i < nm; i++) {
-            for (int k = 0; k < match[i]->ndecls; k++)
-                if (!strcmp(match[i]->decls[k].name, "color"))
-                    apply(s, parent, n, "color", match[i]->decls[k].value, diag, doc);
-            for (int k = 0; k < match[i]->ndecls; k++)
-                apply(s, parent, n, match[i]->decls[k].name, match[i]->decls[k].value, diag,
-                      doc);
-        }
-        free(match);
     }
     const char *st = sv_attr(n, "style");
-    if (st) {
-        sv_decl *d;
-        int nd = sv_css_parse_decls(st, &d);
-        for (int k = 0; k < nd; k++)
-            if (!strcmp(d[k].name, "color"))
-                apply(s, parent, n, "color", d[k].value, diag, doc);
-        for (int k = 0; k < nd; k++)
-            apply(s, parent, n, d[k].name, d[k].value, diag, doc);
-        sv_decls_free(d, nd);
+    sv_decl *sd = NULL;
+    int nsd = st ? sv_css_parse_decls(st, &sd) : 0;
+    for (int important = 0; important < 2; important++) {
+        for (int i = 0; i < nm; i++)
+            apply_decls(s, parent, n, match[i]->decls, match[i]->ndecls, important, diag, doc);
+        apply_decls(s, parent, n, sd, nsd, important, diag, doc);
     }
+    sv_decls_free(sd, nsd);
+    free(match);
 }

@@ -78,8 +78,7 @@ int sv_text_outline_path(const struct FT_Outline_ *outline, double scale, double
     return e ? -1 : 0;
 }
 
-/* Next code point of UTF-8 text (U+FFFD for malformed bytes). */
-static unsigned long utf8_next(const unsigned char **s)
+unsigned long sv_utf8_next(const unsigned char **s, const unsigned char *end)
 {
     const unsigned char *p = *s;
     unsigned long c = *p++;
@@ -90,7 +89,7 @@ static unsigned long utf8_next(const unsigned char **s)
     }
     c &= extra == 3 ? 0x07 : extra == 2 ? 0x0f : extra == 1 ? 0x1f : 0x7f;
     for (int i = 0; i < extra; i++) {
-        if ((*p & 0xc0) != 0x80) {
+        if ((end && p >= end) || (*p & 0xc0) != 0x80) {
             *s = p;
             return 0xfffd;
         }
@@ -138,7 +137,7 @@ int sv_text_path(const char *text, const char *font_path, double size, double x,
     int rc = 0;
     const unsigned char *s = (const unsigned char *)text;
     while (*s) {
-        unsigned long cp = utf8_next(&s);
+        unsigned long cp = sv_utf8_next(&s, NULL);
         FT_UInt gi = FT_Get_Char_Index(face, cp);
         if (prev && m->has_kerning) {
             FT_Vector kv;

@@ -45,6 +45,10 @@ int sv_text_path(const char *text, const char *font_path, double size, double x,
 int sv_text_add_region(cs_scene *scene, const char *text, const char *font_path, double size,
                        double x, double y, const cs_paint *paint, char *err, size_t errlen);
 
+/* Next code point of UTF-8 text, advancing *s (U+FFFD for malformed bytes); `end` bounds
+ * the text, or NULL for a NUL-terminated one. */
+unsigned long sv_utf8_next(const unsigned char **s, const unsigned char *end);
+
 /* The outline of an FT_Outline-like glyph given as FreeType would decompose it (tests). */
 struct FT_Outline_;
 int sv_text_outline_path(const struct FT_Outline_ *outline, double scale, double x, double y,
@@ -53,23 +57,28 @@ int sv_text_outline_path(const struct FT_Outline_ *outline, double scale, double
 struct sv_node;
 struct sv_style;
 struct sv_css;
+struct sv_fonts;
 /* One run of SVG text: glyph outlines in user space, the element they belong
  * to (<text> or <tspan>) and its computed style (fill, stroke, opacity). */
 typedef struct sv_text_run {
     const struct sv_node *node;
     struct sv_style *style;
     sv_path path;
+    /* the whole <text>'s box of glyph cells (advance by ascender to descender), user
+     * space: its objectBoundingBox, as browsers and resvg take it, not the outlines' box */
+    double cell_box[4];
 } sv_text_run;
 
 /*
  * Lays out SVG <text> (sv_text_svg.c): character data and <tspan>s in
- * document order, the first value of x/y/dx/dy on the element and each
- * tspan, text-anchor per text chunk, xml:space, font-size and font-family
- * mapped to the DejaVu faces. Returns the number of runs (malloc'd into
- * *runs); anything it cannot honour is a warning in doc.
+ * document order, per-character x/y/dx/dy/rotate, text-anchor per text
+ * chunk, xml:space, each character in the face fontconfig picks for its
+ * style from `fonts` (the import's cache, sv_font.h), shaped by HarfBuzz.
+ * Returns the number of runs (malloc'd into *runs); anything it cannot
+ * honour is a warning in doc.
  */
 int sv_svg_text_layout(const struct sv_node *text, const struct sv_style *style,
-                       const struct sv_css *css, double vp_w, double vp_h, const char *font_path,
+                       const struct sv_css *css, double vp_w, double vp_h, struct sv_fonts *fonts,
                        sv_text_run **runs, sv_doc *doc);
 void sv_text_runs_free(sv_text_run *runs, int n);
 

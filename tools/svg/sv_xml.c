@@ -7,9 +7,13 @@
  * in the SVG namespace (or none, for files that forget it) keep their local
  * name, editor metadata (sodipodi:, inkscape:, rdf:) gets an "ns:" prefix
  * and is skipped by the importer as non-drawing; xlink:href becomes the
- * attribute "xlink:href" whatever prefix the file bound to it.
+ * attribute "xlink:href" whatever prefix the file bound to it. Nesting
+ * deeper than SV_MAX_DEPTH stops the parse with an error: the tree is walked
+ * recursively afterwards, and no drawing needs that depth.
  */
 #include <expat.h>
+#include <iconv.h>
+#include <limits.h>
 
 #include "sv_import.h"
 #include "sv_internal.h"
@@ -21,6 +25,9 @@
 typedef struct builder {
     XML_Parser parser;
     sv_node *root, *cur;
+    int depth;
+    bool too_deep;  /* stopped at SV_MAX_DEPTH: every later step may recurse */
+    int text_depth; /* open <text> elements */
 } builder;
 
 /* "uri local" (expat's NS form, separator ' ') to the name we keep. */
@@ -58,6 +65,11 @@ static char *attr_name(const char *qname)
 static void XMLCALL on_start(void *ud, const XML_Char *name, const XML_Char **atts)
 {
     builder *b = ud;
+    if (++b->depth > SV_MAX_DEPTH) {
+        b->too_deep = true;
+        XML_StopParser(b->parser, XML_FALSE);
+        return;
+    }
     sv_node *n = sv_xrealloc(NULL, sizeof *n);
     memset(n, 0, sizeof *n);
     n->name = element_name(name);
@@ -72,8 +84,10 @@ static void XMLCALL on_start(void *ud, const XML_Char *name, const XML_Char **at
     }
     n->attrs[na] = NULL;
     n->parent = b->cur;
+    b->text_depth += strcmp(n->name, "text") == 0;
     if (b->cur) {
         SV_GROW(b->cur->kids, b->cur->nkids, b->cur->capkids);
+        n->index = b->cur->nkids;
         b->cur->kids[b->cur->nkids++] = n;
     } else if (!b->root) {
         b->root = n;
@@ -85,8 +99,11 @@ static void XMLCALL on_end(void *ud, const XML_Char *name)
 {
     (void)name;
     builder *b = ud;
-    if (b->cur)
+    b->depth--;
+    if (b->cur) {
+        b->text_depth -= strcmp(b->cur->name, "text") == 0;
         b->cur = b->cur->parent;
+    }
 }
 
 static void append_text(sv_node *n, const char *s, size_t len)
@@ -100,13 +117,14 @@ static void append_text(sv_node *n, const char *s, size_t len)
 /*
  * Character data goes to the element's `text` (all of it, for <style>) and,
  * so that <text> can interleave it with <tspan>s in order, to "#text"
- * children as well.
+ * children as well. Elsewhere it draws nothing and is not kept: the white
+ * space between elements would otherwise cost a node each.
  */
 static void XMLCALL on_text(void *ud, const XML_Char *s, int len)
 {
     builder *b = ud;
     sv_node *n = b->cur;
-    if (!n || len <= 0)
+    if (!n || len <= 0 || (b->text_depth == 0 && strcmp(n->name, "style") != 0))
         return;
     append_text(n, s, (size_t)len);
     sv_node *last = n->nkids ? n->kids[n->nkids - 1] : NULL;
@@ -119,9 +137,46 @@ static void XMLCALL on_text(void *ud, const XML_Char *s, int len)
         last->parent = n;
         last->line = (int)XML_GetCurrentLineNumber(b->parser);
         SV_GROW(n->kids, n->nkids, n->capkids);
+        last->index = n->nkids;
         n->kids[n->nkids++] = last;
     }
     append_text(last, s, (size_t)len);
+}
+
+/*
+ * Encodings expat does not know itself (it knows UTF-8, UTF-16, ISO-8859-1
+ * and US-ASCII): a single-byte one that iconv knows (windows-1251, KOI8-R,
+ * ISO-8859-5, ...) becomes expat's byte-to-code-point map. Multi-byte ones
+ * stay unknown, and the parse ends with expat's "unknown encoding".
+ */
+static int XMLCALL on_unknown_encoding(void *ud, const XML_Char *name, XML_Encoding *info)
+{
+    (void)ud;
+    iconv_t cd = iconv_open("UTF-32LE", name);
+    if (cd == (iconv_t)-1)
+        return XML_STATUS_ERROR;
+    int ok = XML_STATUS_OK;
+    for (int b = 0; b < 256; b++) {
+        char in = (char)b;
+        unsigned char out[4];
+        char *ip = &in, *op = (char *)out;
+        size_t il = 1, ol = sizeof out;
+        iconv(cd, NULL, NULL, NULL, NULL);
+        if (iconv(cd, &ip, &il, &op, &ol) == (size_t)-1 || ol != 0) {
+            if (b < 128) { /* not ASCII-compatible (or multi-byte): not ours to map */
+                ok = XML_STATUS_ERROR;
+                break;
+            }
+            info->map[b] = -1; /* a byte the encoding leaves undefined */
+            continue;
+        }
+        info->map[b] = out[0] | out[1] << 8 | out[2] << 16 | out[3] << 24;
+    }
+    iconv_close(cd);
+    info->data = NULL;
+    info->convert = NULL;
+    info->release = NULL;
+    return ok;
 }
 
 sv_node *sv_xml_parse(const char *data, size_t len, char *err, size_t errlen)
@@ -135,11 +190,22 @@ sv_node *sv_xml_parse(const char *data, size_t len, char *err, size_t errlen)
     XML_SetUserData(b.parser, &b);
     XML_SetElementHandler(b.parser, on_start, on_end);
     XML_SetCharacterDataHandler(b.parser, on_text);
+    XML_SetUnknownEncodingHandler(b.parser, on_unknown_encoding, NULL);
+    if (len > INT_MAX) {
+        snprintf(err, errlen, "file of %zu bytes is over the XML parser's %d", len, INT_MAX);
+        XML_ParserFree(b.parser);
+        return NULL;
+    }
     if (XML_Parse(b.parser, data, (int)len, 1) == XML_STATUS_ERROR) {
-        snprintf(err, errlen, "XML error at line %lu column %lu: %s",
-                 (unsigned long)XML_GetCurrentLineNumber(b.parser),
-                 (unsigned long)XML_GetCurrentColumnNumber(b.parser),
-                 XML_ErrorString(XML_GetErrorCode(b.parser)));
+        if (b.too_deep)
+            snprintf(err, errlen, "elements nested deeper than " SV_STR(SV_MAX_DEPTH)
+                     " (SV_MAX_DEPTH) at line %lu",
+                     (unsigned long)XML_GetCurrentLineNumber(b.parser));
+        else
+            snprintf(err, errlen, "XML error at line %lu column %lu: %s",
+                     (unsigned long)XML_GetCurrentLineNumber(b.parser),
+                     (unsigned long)XML_GetCurrentColumnNumber(b.parser),
+                     XML_ErrorString(XML_GetErrorCode(b.parser)));
         XML_ParserFree(b.parser);
         sv_xml_free(b.root);
         return NULL;

@@ -1,0 +1,291 @@
+/*
+ * lottie_import.c - the Lottie importer (tools/lottie) on small made-up files.
+ *
+ * What a file's keys become: a rotation keyed with a Lottie easing comes
+ * back as the same two keys with that easing (not a key per frame), a hold
+ * as a hold, parenting as a cel group whose opacity the child does not
+ * inherit, in/out points as opacity holds; the imported scene renders a
+ * rectangle where the closed form puts it. Hostile files (not Lottie, NaN
+ * and huge numbers, groups nested too deep, huge keyframe counts, cycles of
+ * parents and of precomps, endless frame ranges, too much work) end in an
+ * error naming the cause, each within a time bound; unsupported features
+ * give one warning each per file.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "../host-sim/scene_json.h"
+#include "../tools/lottie/lt.h"
+#include "celscan.h"
+#include "testlib.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* Imports text; returns the scene (or NULL) with err and the warnings. */
+static cJSON *import(const char *text, lt_warnings *w, char *err, size_t errlen, double *secs)
+{
+    double t0 = now();
+    cJSON *root = cJSON_Parse(text);
+    cJSON *scene = NULL;
+    if (!root)
+        snprintf(err, errlen, "(JSON parse error)");
+    else
+        scene = lt_import(root, NULL, w, err, errlen);
+    cJSON_Delete(root);
+    if (secs)
+        *secs = now() - t0;
+    return scene;
+}
+
+#define HEAD "{\"v\":\"5.5.2\",\"fr\":30,\"ip\":0,\"op\":60,\"w\":100,\"h\":100,"
+#define RECT_SHAPES                                                                               \
+    "\"shapes\":[{\"ty\":\"gr\",\"it\":[{\"ty\":\"rc\",\"p\":{\"a\":0,\"k\":[0,0]},"              \
+    "\"s\":{\"a\":0,\"k\":[40,20]},\"r\":{\"a\":0,\"k\":0}},"                                    \
+    "{\"ty\":\"fl\",\"c\":{\"a\":0,\"k\":[1,0,0,1]},\"o\":{\"a\":0,\"k\":100}},"                  \
+    "{\"ty\":\"tr\",\"p\":{\"a\":0,\"k\":[0,0]}}]}]"
+
+static const cJSON *path(const cJSON *j, const char *p)
+{
+    char key[64];
+    while (j && *p) {
+        const char *dot = strchr(p, '.');
+        size_t n = dot ? (size_t)(dot - p) : strlen(p);
+        snprintf(key, sizeof key, "%.*s", (int)n, p);
+        j = (key[0] >= '0' && key[0] <= '9') ? cJSON_GetArrayItem(j, atoi(key))
+                                             : cJSON_GetObjectItemCaseSensitive(j, key);
+        p += n + (dot ? 1 : 0);
+    }
+    return j;
+}
+
+static void test_easing_round_trip(void)
+{
+    const char *text = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+                            "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]},\"r\":{\"a\":1,\"k\":["
+                            "{\"t\":6,\"s\":[0],\"o\":{\"x\":[0.42],\"y\":[0]},\"i\":{\"x\":[0.58],\"y\":[1]}},"
+                            "{\"t\":36,\"s\":[180],\"h\":1},{\"t\":48,\"s\":[90]}]}},"
+        RECT_SHAPES "}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(text, &w, err, sizeof err, NULL);
+    if (!CHECK(scene != NULL, "import: %s", err))
+        return;
+    const cJSON *keys = path(scene, "cels.0.animate.trs.keys");
+    CHECK(cJSON_GetArraySize(keys) == 4, "four keys (frames 0, 6, 36, 48: no key per frame), got %d",
+          cJSON_GetArraySize(keys));
+    const cJSON *k1 = cJSON_GetArrayItem(keys, 1), *k2 = cJSON_GetArrayItem(keys, 2);
+    const cJSON *e = cJSON_GetArrayItem(k1, 2);
+    CHECK(fabs(cJSON_GetArrayItem(k1, 0)->valuedouble - 0.2) < 1e-9 && cJSON_IsArray(e) &&
+              cJSON_GetArrayItem(e, 0)->valuedouble == 0.42 &&
+              cJSON_GetArrayItem(e, 2)->valuedouble == 0.58,
+          "the turn is one key at 0.2 s with the file's easing (0.42 0 0.58 1)");
+    CHECK(cJSON_IsString(cJSON_GetArrayItem(k2, 2)) &&
+              !strcmp(cJSON_GetArrayItem(k2, 2)->valuestring, "hold"),
+          "the hold keyframe is a hold key");
+    CHECK(!strcmp(path(scene, "cels.0.animate.trs.ease")->valuestring, "cubic"), "cubic track");
+    /* It loads, and renders the 40 x 20 rectangle at (50,50): area 800 px at t 0
+     * and turned at 1 s. The scene blends in sRGB, so coverage is the encoded
+     * value of red over black. */
+    cs_scene *sc = calloc(1, sizeof *sc);
+    cs_workspace *ws = calloc(1, sizeof *ws);
+    char lerr[SCENE_JSON_ERRLEN];
+    CHECK(scene_json_load_tree(scene, "t", sc, lerr, sizeof lerr) == 0, "loads: %s", lerr);
+    uint8_t *line = calloc(3 * 100, 1);
+    double area[2] = {0, 0};
+    for (int f = 0; f < 2; f++) {
+        cs_renderer r;
+        cs_render_opts o = cs_render_defaults(100, 100);
+        o.time = f ? 1.0f : 0.0f; /* frame 30: 180 deg turned, same area */
+        cs_error ce;
+        if (cs_frame_begin(&r, ws, sc, &o, &ce) != CS_OK)
+            break;
+        for (int y = 0; y < 100; y++) {
+            cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, line);
+            for (int x = 0; x < 100; x++)
+                area[f] += line[3 * x] / 255.0; /* red: the fill's coverage (no background) */
+        }
+    }
+    CHECK(fabs(area[0] - 800) < 1 && fabs(area[1] - 800) < 2,
+          "the rectangle covers 800 px at t 0 and 1 s (%.2f, %.2f)", area[0], area[1]);
+    free(line);
+    free(ws);
+    free(sc);
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+}
+
+static void test_parent_and_inout(void)
+{
+    const char *text = HEAD "\"layers\":["
+        "{\"ty\":4,\"ind\":1,\"parent\":2,\"ip\":10,\"op\":40,\"st\":0,\"ks\":{}," RECT_SHAPES "},"
+        "{\"ty\":3,\"ind\":2,\"ip\":0,\"op\":60,\"st\":0,\"ks\":{\"o\":{\"a\":0,\"k\":0},"
+        "\"p\":{\"a\":1,\"k\":[{\"t\":0,\"s\":[0,0]},{\"t\":60,\"s\":[60,0]}]}}}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(text, &w, err, sizeof err, NULL);
+    if (!CHECK(scene != NULL, "import: %s", err))
+        return;
+    const cJSON *cels = path(scene, "cels");
+    CHECK(cJSON_GetArraySize(cels) == 2, "a group cel for the null and a cel for the shape");
+    const cJSON *child = NULL, *group = NULL;
+    int gi = -1;
+    for (int i = 0; i < cJSON_GetArraySize(cels); i++) {
+        const cJSON *c = cJSON_GetArrayItem(cels, i);
+        if (cJSON_GetArraySize(path(c, "regions")) > 0)
+            child = c;
+        else
+            group = c, gi = i;
+    }
+    if (!CHECK(child && group, "one content cel, one group"))
+        return;
+    CHECK(path(child, "parent") && path(child, "parent")->valueint == gi, "the child is in the group");
+    /* The null's opacity 0 does not reach the child: the group carries no opacity. */
+    const cJSON *gk = path(group, "animate.trs.keys");
+    bool faded = false;
+    const cJSON *k;
+    cJSON_ArrayForEach(k, gk)
+    {
+        faded = faded || path(cJSON_GetArrayItem(k, 1), "opacity") != NULL;
+    }
+    CHECK(gk && !faded, "the parent's group moves (%d keys) but does not fade",
+          cJSON_GetArraySize(gk));
+    /* In/out points 10..40: opacity 0, then 1 from frame 10, 0 from frame 40. */
+    const cJSON *ck = path(child, "animate.trs.keys");
+    int n = cJSON_GetArraySize(ck);
+    const cJSON *first = cJSON_GetArrayItem(ck, 0);
+    CHECK(n >= 3 && path(cJSON_GetArrayItem(first, 1), "opacity")->valuedouble == 0 &&
+              !strcmp(cJSON_GetArrayItem(first, 2)->valuestring, "hold"),
+          "hidden before its in point by a hold key (%d keys)", n);
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+}
+
+static void test_warnings_once(void)
+{
+    const char *text = HEAD "\"layers\":["
+        "{\"ty\":5,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,\"ks\":{}},"
+        "{\"ty\":5,\"ind\":2,\"ip\":0,\"op\":60,\"st\":0,\"ks\":{}},"
+        "{\"ty\":2,\"ind\":3,\"ip\":0,\"op\":60,\"st\":0,\"ks\":{}},"
+        "{\"ty\":4,\"ind\":4,\"ip\":0,\"op\":60,\"st\":0,\"ef\":[{}],\"ks\":{\"r\":{\"a\":0,\"k\":0,"
+        "\"x\":\"time*2\"},\"p\":{\"a\":0,\"k\":[0,0],\"x\":\"wiggle(1,2)\"}}," RECT_SHAPES "}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(text, &w, err, sizeof err, NULL);
+    CHECK(scene != NULL, "import: %s", err);
+    CHECK(w.n == 4, "one warning each for text, images, effects, expressions: got %d", w.n);
+    for (int i = 0; i < w.n; i++)
+        tl_note("  %s", w.text[i]);
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+}
+
+/* A string of n copies of `unit` between `head` and `tail` (malloc'd). */
+static char *repeat(const char *head, const char *unit, int n, const char *sep, const char *tail)
+{
+    size_t len = strlen(head) + (strlen(unit) + strlen(sep)) * (size_t)n + strlen(tail) + 1;
+    char *s = malloc(len), *p = s;
+    p += sprintf(p, "%s", head);
+    for (int i = 0; i < n; i++)
+        p += sprintf(p, "%s%s", i ? sep : "", unit);
+    sprintf(p, "%s", tail);
+    return s;
+}
+
+static void expect_refused(const char *what, const char *text, const char *msg)
+{
+    lt_warnings w = {0, NULL};
+    char err[256] = "";
+    double secs = 0;
+    cJSON *scene = import(text, &w, err, sizeof err, &secs);
+    CHECK(scene == NULL && strstr(err, msg) != NULL && secs < 5,
+          "%s: refused with \"...%s...\" within 5 s (got \"%s\", %.2f s)", what, msg, err, secs);
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+}
+
+static void test_hostile(void)
+{
+    expect_refused("not Lottie", "{\"canvas\":{}}", "not a Lottie file");
+    expect_refused("op before ip",
+                   "{\"v\":\"5\",\"fr\":30,\"ip\":10,\"op\":5,\"w\":10,\"h\":10,\"layers\":[]}",
+                   "not after in point");
+    expect_refused("endless", "{\"v\":\"5\",\"fr\":30,\"ip\":0,\"op\":1e6,\"w\":10,\"h\":10,\"layers\":[]}",
+                   "frames, more than");
+    expect_refused("frame rate NaN-like",
+                   "{\"v\":\"5\",\"fr\":1e999,\"ip\":0,\"op\":5,\"w\":10,\"h\":10,\"layers\":[]}",
+                   "\"fr\" must be a number");
+    expect_refused("huge coordinate",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"ks\":{\"p\":{\"a\":0,"
+                        "\"k\":[1e300,0]}}," RECT_SHAPES "}]}",
+                   "beyond 1e7");
+    expect_refused("infinite coordinate",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"ks\":{\"p\":{\"a\":0,"
+                        "\"k\":[1e999,0]}}," RECT_SHAPES "}]}",
+                   "not finite");
+    expect_refused("parent cycle",
+                   HEAD "\"layers\":[{\"ty\":3,\"ind\":1,\"parent\":2,\"ks\":{}},"
+                        "{\"ty\":3,\"ind\":2,\"parent\":1,\"ks\":{}}]}",
+                   "cycle of parents");
+    expect_refused("precomp cycle",
+                   HEAD "\"assets\":[{\"id\":\"a\",\"layers\":[{\"ty\":0,\"refId\":\"a\",\"ks\":{}}]}],"
+                        "\"layers\":[{\"ty\":0,\"refId\":\"a\",\"ks\":{}}]}",
+                   "precomps nested deeper");
+    /* Groups nested 200 deep (cJSON itself stops at 1000). */
+    char *open = repeat("", "{\"ty\":\"gr\",\"it\":[", 200, "", "");
+    char *close = repeat("", "]}", 200, "", "");
+    size_t len = strlen(open) + strlen(close) + 256;
+    char *deep = malloc(len);
+    snprintf(deep, len, HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{},\"shapes\":[%s%s]}]}", open,
+             close);
+    expect_refused("deep groups", deep, "nested deeper than");
+    free(open), free(close), free(deep);
+    /* 200000 keyframes of one property. */
+    char *many = repeat(HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{\"r\":{\"a\":1,\"k\":[",
+                        "{\"t\":1,\"s\":[0]}", 200000, ",", "]}}," RECT_SHAPES "}]}");
+    expect_refused("huge keyframe count", many, "keyframes, more than");
+    free(many);
+    /* A 0.001 dash on a 40x20 rectangle: 120,000 dashes, beyond what the store holds. */
+    expect_refused("dash flood",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{},\"shapes\":[{\"ty\":\"rc\","
+                        "\"p\":{\"a\":0,\"k\":[50,50]},\"s\":{\"a\":0,\"k\":[40,20]},"
+                        "\"r\":{\"a\":0,\"k\":0}},{\"ty\":\"st\",\"c\":{\"a\":0,\"k\":[0,0,0,1]},"
+                        "\"o\":{\"a\":0,\"k\":100},\"w\":{\"a\":0,\"k\":1},\"d\":["
+                        "{\"n\":\"d\",\"v\":{\"a\":0,\"k\":0.001}},"
+                        "{\"n\":\"g\",\"v\":{\"a\":0,\"k\":0.001}}]}]}]}",
+                   "SV_MAX_DASHES");
+    /* Keyframe times going back. */
+    expect_refused("keys back",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{\"r\":{\"a\":1,\"k\":["
+                        "{\"t\":5,\"s\":[0]},{\"t\":2,\"s\":[9]}]}}," RECT_SHAPES "}]}",
+                   "keyframe times go back");
+    /* Too much work: 20000 frames of 40 layers, each a 2000-vertex path. */
+    char *verts = repeat("", "[1,2]", 2000, ",", "");
+    size_t vl = strlen(verts) * 3 + 512;
+    char *shape = malloc(vl);
+    snprintf(shape, vl,
+             "{\"ty\":4,\"ks\":{},\"shapes\":[{\"ty\":\"sh\",\"ks\":{\"a\":0,\"k\":{\"c\":true,"
+             "\"v\":[%s],\"i\":[%s],\"o\":[%s]}}},{\"ty\":\"fl\"}]}",
+             verts, verts, verts);
+    char *heavy = repeat("{\"v\":\"5\",\"fr\":30,\"ip\":0,\"op\":20000,\"w\":10,\"h\":10,\"layers\":[",
+                         shape, 40, ",", "]}");
+    expect_refused("work budget", heavy, "sampled values");
+    free(verts), free(shape), free(heavy);
+}
+
+int main(int argc, char **argv)
+{
+    (void)argc;
+    TL_RUN(test_easing_round_trip);
+    TL_RUN(test_parent_and_inout);
+    TL_RUN(test_warnings_once);
+    TL_RUN(test_hostile);
+    return tl_summary(argv[0]);
+}

@@ -1,0 +1,184 @@
+/*
+ * lt_mask.c - layer masks as CSG over each of the layer's regions.
+ *
+ * Lottie combines a layer's masks in order, starting from the first: add
+ * is a union with what came before, subtract a difference, intersect an
+ * intersection; the layer's content shows inside the result. The core's
+ * CSG regions (docs/SCENE.md) say exactly that: every region of the layer
+ * keeps its own contours as operand 0 and gains one operand per mask, and
+ * its program is 0 (masks combined) intersect. Mask paths are in the
+ * layer's space, which is the cel's; an animated mask path is a points
+ * track like any other. Mask opacity, feather, expansion and the lighten /
+ * darken / difference modes have no CSG form: each is warned and the mask
+ * drawn as a plain add (or left out, for mode "n").
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../svg/sv_internal.h"
+#include "lt_internal.h"
+
+typedef struct mask {
+    char mode;
+    bool inv;
+    lt_prop pt;
+    int nverts;
+    int ncont;
+    sv_contour *cont; /* frame 0 */
+    lt_signal *sig;   /* per contour */
+} mask;
+
+static int mask_geometry(lt_ctx *c, mask *m, const lt_time *tm)
+{
+    int N = tm->nframes;
+    for (int n = 0; n < N; n++) {
+        double *vals = malloc((size_t)(1 + 6 * m->nverts) * sizeof *vals);
+        if (!vals)
+            return lt_fail(c, "out of memory");
+        lt_prop_eval(&m->pt, tm->frame[n], vals);
+        sv_path p;
+        sv_path_init(&p);
+        if (m->nverts > 0)
+            lt_path_build(vals, m->nverts, &p);
+        free(vals);
+        sv_contour *cc = NULL;
+        int nc = 0;
+        lt_fixed_contours(&p, &cc, &nc);
+        sv_path_free(&p);
+        if (n == 0) {
+            m->cont = cc;
+            m->ncont = nc;
+            m->sig = calloc((size_t)(nc ? nc : 1), sizeof *m->sig);
+            if (!m->sig)
+                return lt_fail(c, "out of memory");
+            for (int i = 0; i < nc; i++) {
+                lt_signal_init(&m->sig[i], N, 3 * cc[i].count, 0.01);
+                lt_signal_note_prop(&m->sig[i], &m->pt, tm->f0, tm->fscale);
+            }
+        }
+        if (nc != m->ncont) {
+            lt_free_contours(cc, n ? nc : 0);
+            return lt_fail(c, "a mask path changes its subpaths between frames");
+        }
+        for (int i = 0; i < nc; i++) {
+            if (!lt_charge(c, 3.0 * cc[i].count))
+                return -1;
+            memcpy(m->sig[i].v + (size_t)n * m->sig[i].width, cc[i].pts,
+                   (size_t)m->sig[i].width * sizeof(double));
+        }
+        if (n > 0)
+            lt_free_contours(cc, nc);
+    }
+    return 0;
+}
+
+int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
+{
+    int nm = cJSON_GetArraySize(masks);
+    mask *M = calloc((size_t)(nm ? nm : 1), sizeof *M);
+    if (!M)
+        return lt_fail(c, "out of memory");
+    int used = 0, rc = 0;
+    const cJSON *mj;
+    cJSON_ArrayForEach(mj, masks)
+    {
+        const cJSON *mode = cJSON_GetObjectItemCaseSensitive(mj, "mode");
+        char md = cJSON_IsString(mode) && mode->valuestring[0] ? mode->valuestring[0] : 'a';
+        if (md == 'n')
+            continue;
+        if (md != 'a' && md != 's' && md != 'i') {
+            lt_warn(c, LT_F_MASK, "mask mode \"%c\" is drawn as add", md);
+            md = 'a';
+        }
+        lt_prop o;
+        double ov = 100;
+        if (lt_prop_parse(c, cJSON_GetObjectItemCaseSensitive(mj, "o"), 1, (const double[]){100},
+                          "mask opacity", &o) != 0) {
+            rc = -1;
+            break;
+        }
+        lt_prop_eval(&o, tm->frame[0], &ov);
+        if (ov < 100 || lt_prop_animated(&o))
+            lt_warn(c, LT_F_MASK, "mask opacity below 100%% is drawn as 100%%");
+        lt_prop_free(&o);
+        if (used >= CS_CFG_MAX_OPERANDS - 1 || 3 + 2 * used + 2 > CS_CFG_MAX_CSG) {
+            lt_warn(c, LT_F_MASK, "more masks than the core's CSG holds: the first %d are used",
+                    used);
+            break;
+        }
+        mask *m = &M[used];
+        m->mode = md;
+        m->inv = cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(mj, "inv"));
+        if (lt_prop_parse_path(c, cJSON_GetObjectItemCaseSensitive(mj, "pt"), "mask path", &m->pt,
+                               &m->nverts) != 0 ||
+            mask_geometry(c, m, tm) != 0) {
+            used++;
+            rc = -1;
+            break;
+        }
+        used++;
+    }
+    if (rc == 0 && used > 0) {
+        /* RPN: 0, the masks combined in order, intersect. */
+        int rpn[CS_CFG_MAX_CSG], nr = 0;
+        rpn[nr++] = 0;
+        for (int k = 0; k < used; k++) {
+            int op = k + 1;
+            if (k == 0) {
+                if (M[k].mode == 's' || M[k].inv) {
+                    if (M[k].inv && M[k].mode == 's')
+                        rpn[nr++] = op; /* everything minus not-m: m */
+                    else {
+                        rpn[nr++] = 0;
+                        rpn[nr++] = op;
+                        rpn[nr++] = CS_CSG_DIFFERENCE;
+                    }
+                } else {
+                    rpn[nr++] = op;
+                }
+                continue;
+            }
+            if (M[k].inv)
+                lt_warn(c, LT_F_MASK, "an inverted mask after the first is drawn uninverted");
+            rpn[nr++] = op;
+            rpn[nr++] = M[k].mode == 'a' ? CS_CSG_UNION
+                        : M[k].mode == 's' ? CS_CSG_DIFFERENCE : CS_CSG_INTERSECT;
+        }
+        rpn[nr++] = CS_CSG_INTERSECT;
+        static const char *const names[] = {"", "union", "intersect", "difference", "xor"};
+        cJSON *reg;
+        cJSON_ArrayForEach(reg, regions)
+        {
+            cJSON *csg = cJSON_CreateArray();
+            for (int k = 0; k < nr; k++)
+                cJSON_AddItemToArray(csg, rpn[k] >= 0 ? cJSON_CreateNumber(rpn[k])
+                                                      : cJSON_CreateString(names[-rpn[k]]));
+            cJSON *cts = cJSON_GetObjectItemCaseSensitive(reg, "contours");
+            cJSON *ops = cJSON_CreateArray();
+            for (int k = cJSON_GetArraySize(cts); k > 0; k--)
+                cJSON_AddItemToArray(ops, cJSON_CreateNumber(0));
+            for (int k = 0; k < used; k++)
+                for (int i = 0; i < M[k].ncont; i++) {
+                    cJSON *ct = lt_contour_json(&M[k].cont[i]);
+                    cJSON *track = lt_signal_track(&M[k].sig[i], c->fr, lt_points_value);
+                    if (track)
+                        cJSON_AddItemToObject(cJSON_AddObjectToObject(ct, "animate"), "points",
+                                              track);
+                    cJSON_AddItemToArray(cts, ct);
+                    cJSON_AddItemToArray(ops, cJSON_CreateNumber(k + 1));
+                }
+            cJSON_AddItemToObject(reg, "csg", csg);
+            cJSON_AddItemToObject(reg, "operands", ops);
+        }
+    }
+    for (int k = 0; k < used; k++) {
+        lt_prop_free(&M[k].pt);
+        for (int i = 0; i < M[k].ncont; i++)
+            lt_signal_free(&M[k].sig[i]);
+        free(M[k].sig);
+        lt_free_contours(M[k].cont, M[k].ncont);
+    }
+    free(M);
+    return rc;
+}
