@@ -10,7 +10,8 @@
 # a usage error (status 2) naming it. celfw --wall/--viewport: a board of a
 # wall runs (its display the viewport's size), and a wall without a viewport,
 # a viewport that does not fit and a display of another size are refused
-# with status 2 and the reason. Last line: "cli_viewport: N passed, M failed".
+# with status 2 and the reason; --clock at:S shows S less the scene's epoch,
+# and a malformed S is refused. Last line: "cli_viewport: N passed, M failed".
 bin=$1/celsim
 fw=$1/celfw
 pass=0
@@ -55,6 +56,17 @@ expect 2 'does not fit in the 1280x720 wall' -- --wall 1280x720 --viewport 700,0
 expect 2 "differs from the viewport's 640x360" -- --size 320x180 --wall 1280x720 \
     --viewport 0,0,640,360
 expect 2 'is not a viewport X,Y,W,H' -- --wall 1280x720 --viewport 0,0,0,360
+# --clock at:S: every frame shows the fixed wall-clock instant S less the
+# scene's epoch (before it: time 0); refused unless S is a finite number of
+# seconds in range.
+epoch_scene=$(mktemp --suffix=.json /tmp/cli_viewport-XXXXXX)
+sed 's/"canvas": {/"canvas": {"epoch": 1795000000,/' scenes/motion.json >"$epoch_scene"
+expect 0 'anim_t=2.5$' -- --size 64x36 --scene "$epoch_scene" --clock at:1795000002.5
+expect 0 'anim_t=0$' -- --size 64x36 --scene "$epoch_scene" --clock at:1794999999
+rm -f "$epoch_scene"
+for bad in at: at:x at:nan at:-1 at:1e10 at:5s; do
+    expect 2 "'$bad' is not a clock (monotonic, realtime, or at:SECONDS" -- --clock $bad
+done
 
 echo "cli_viewport: $pass passed, $fail failed"
 [ $fail -eq 0 ]

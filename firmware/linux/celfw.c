@@ -82,6 +82,7 @@ typedef struct celfw {
     lx_frame_stats sum;
     bool display_up, render_warned;
     celfw_clock clk;         /* which animation time each frame shows */
+    lx_clock wall_at;        /* --clock at:S: a wall clock that stays at cfg.clock_at_ns */
     char refusal[200];       /* why the last commit was refused */
     bool in_frame;           /* a frame is rendering: whole frames are held, not decoded */
     uint8_t *held;           /* held_frame records, each followed by its frame's bytes */
@@ -93,6 +94,19 @@ typedef struct celfw {
 } celfw;
 
 static volatile sig_atomic_t stop_signal;
+
+/* The fixed wall clock of --clock at:S. The wall clock never paces anything,
+ * so its wait is never called; it returns at once, as for a time passed. */
+static uint64_t fixed_now(void *user)
+{
+    return *(const uint64_t *)user;
+}
+
+static void fixed_wait_until(void *user, uint64_t t)
+{
+    (void)user;
+    (void)t;
+}
 
 static void on_signal(int sig)
 {
@@ -674,7 +688,9 @@ int main(int argc, char **argv)
         fw->disp->ops->close(fw->disp);
         return rc;
     }
-    celfw_clock_init(&fw->clk, &lx_clock_monotonic, &lx_clock_realtime, fw->cfg.realtime, fw->cfg.time_step);
+    fw->wall_at = (lx_clock){&fw->cfg.clock_at_ns, fixed_now, fixed_wait_until};
+    celfw_clock_init(&fw->clk, &lx_clock_monotonic, fw->cfg.clock_at ? &fw->wall_at : &lx_clock_realtime,
+                     fw->cfg.realtime, fw->cfg.time_step);
     celfw_stream_set_check(fw->stream, check_commit, fw);
     fw->src.between_lines = serve_between_lines;
     fw->src.between_user = fw;

@@ -14,7 +14,9 @@
  *  - With --clock realtime, time is the wall clock (CLOCK_REALTIME) less the
  *    epoch the stream carries (EPOCH record, docs/STREAM.md), so the boards
  *    of a video wall show the same instant; a scene without an epoch is
- *    timed from its commit as above.
+ *    timed from its commit as above. --clock at:S fixes that wall clock at
+ *    the instant S (celfw.c hands a clock that does not move), so boards can
+ *    be checked against one frame of the whole wall.
  *  - Before it becomes a float for the renderer, the time is reduced in
  *    integers to what the scene can show: past the scene's last key nothing
  *    moves (tracks hold), so it stops one second after that key; a periodic

@@ -194,13 +194,20 @@ static bool p_time_step(celfw_config *c, const char *v, char *err, size_t n)
     return parse_num(v, 0.0, 3600.0, &c->time_step, err, n);
 }
 
+/* at:SECONDS becomes ns as a scene's "epoch" does (scene_json.c), so at:E on a
+ * scene whose epoch is E shows its time 0 exactly. */
 static bool p_clock(celfw_config *c, const char *v, char *err, size_t n)
 {
-    if (strcmp(v, "monotonic") != 0 && strcmp(v, "realtime") != 0) {
-        snprintf(err, n, "'%s' is not a clock (monotonic or realtime)", v);
+    double at = 0.0;
+    bool fixed = !strncmp(v, "at:", 3);
+    if (fixed ? !cli_real(v + 3, '\0', 0.0, 9.2e9, &at)
+              : strcmp(v, "monotonic") != 0 && strcmp(v, "realtime") != 0) {
+        snprintf(err, n, "'%s' is not a clock (monotonic, realtime, or at:SECONDS since 1970 in 0..9.2e9)", v);
         return false;
     }
-    c->realtime = v[0] == 'r';
+    c->realtime = fixed || v[0] == 'r';
+    c->clock_at = fixed;
+    c->clock_at_ns = (uint64_t)(at * 1e9);
     return true;
 }
 
@@ -465,7 +472,7 @@ static const setting settings[] = {
     {"frames", "N", p_frames, "stop after N frames (default: run until SIGTERM)"},
     {"duration", "SECONDS", p_duration, "stop after this long"},
     {"time-step", "SECONDS", p_time_step, "animation time advances by this per frame instead of the clock"},
-    {"clock", "monotonic|realtime", p_clock, "animation time from the commit (default), or wall clock less the stream's epoch"},
+    {"clock", "CLOCK", p_clock, "monotonic: animation time from the commit (default); realtime: wall clock less the stream's epoch; at:S: realtime with the clock fixed at S s since 1970"},
     {"wall", "WxH", p_wall, "video wall: the whole output's size, of which this board shows --viewport"},
     {"viewport", "X,Y,W,H", p_viewport, "video wall: this board's window of the wall (W x H = the display)"},
     {"panel", "WxH", p_panel, "HUB75: one panel, 64x32 (1/16 scan) or 64x64 (1/32 scan), ..."},

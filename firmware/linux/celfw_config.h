@@ -42,6 +42,8 @@ typedef struct celfw_config {
     double duration;       /* stop after this many seconds; 0 = never */
     double time_step;      /* > 0: animation time = frame index * step, not the clock */
     bool realtime;         /* --clock realtime: wall clock less the stream's epoch (celfw_clock.h) */
+    bool clock_at;         /* --clock at:SECONDS: realtime, the wall clock fixed at clock_at_ns */
+    uint64_t clock_at_ns;  /* ns since 1970-01-01 UTC */
     bool bench_gpio;       /* measure GPIO write throughput, print refresh estimates, exit */
     int wall_w, wall_h;    /* a video wall's whole size; 0 = no wall */
     celfw_mqtt_config mqtt; /* sign-id, group topics, broker credentials */

@@ -1,8 +1,9 @@
 /*
  * celfw_child.c - celfw as a child process of a test: start it, read its log
  * line by line as it runs, wait for its exit, and talk to it over TCP on
- * loopback. Shared by the tests that run the real binary (test_celfw,
- * test_celfw_robust); see celfw_child.h.
+ * loopback, and check what it put on an emulated USB panel. Shared by the
+ * tests that run the real binary (test_celfw, test_celfw_robust, test_wall);
+ * see celfw_child.h.
  */
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -171,7 +172,7 @@ bool send_all(int fd, const uint8_t *p, size_t n)
 }
 
 /* The truth for the panel: the frame of `s` at time t, rendered by the core, as RGB565. */
-int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h)
+uint8_t *render_panel_rgb565(const cs_scene *s, float t, int w, int h)
 {
     cs_render_opts o = cs_render_defaults(w, h);
     o.subscanlines = 4;
@@ -179,19 +180,42 @@ int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h)
     static cs_workspace ws;
     cs_renderer r;
     cs_error e;
-    uint8_t *want = malloc((size_t)w * (size_t)h * 2u), *got = malloc((size_t)w * (size_t)h * 2u);
+    uint8_t *px = malloc((size_t)w * (size_t)h * 2u);
     float *line = malloc((size_t)w * 3u * sizeof(float));
-    cs_frame_begin(&r, &ws, s, &o, &e);
+    if (!px || !line || cs_frame_begin(&r, &ws, s, &o, &e) != CS_OK) {
+        free(px);
+        free(line);
+        return NULL;
+    }
     for (int y = 0; y < h; y++) {
         cs_render_line(&r, y, line);
-        cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, want + (size_t)y * (size_t)w * 2u);
+        cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, px + (size_t)y * (size_t)w * 2u);
+    }
+    free(line);
+    return px;
+}
+
+int compare_panel_tile(fake_gud *dev, const uint8_t *want, int want_w, int x, int y, int w, int h)
+{
+    uint8_t *got = malloc((size_t)w * (size_t)h * 2u);
+    if (!want || !got) {
+        free(got);
+        return w * h;
     }
     fake_gud_framebuffer(dev, got, (size_t)w * (size_t)h * 2u);
     int bad = 0;
-    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
-        bad += memcmp(got + 2 * i, want + 2 * i, 2) != 0;
-    free(want);
+    for (int r = 0; r < h; r++)
+        for (int c = 0; c < w; c++)
+            bad += memcmp(got + ((size_t)r * (size_t)w + (size_t)c) * 2u,
+                          want + ((size_t)(y + r) * (size_t)want_w + (size_t)(x + c)) * 2u, 2) != 0;
     free(got);
-    free(line);
+    return bad;
+}
+
+int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h)
+{
+    uint8_t *want = render_panel_rgb565(s, t, w, h);
+    int bad = compare_panel_tile(dev, want, w, 0, 0, w, h);
+    free(want);
     return bad;
 }

@@ -42,8 +42,14 @@ int tcp_connect(int port);
 bool send_all(int fd, const uint8_t *p, size_t n);
 
 typedef struct fake_gud fake_gud;
-/* Pixels of the emulated panel (w x h, RGB565) that differ from the core's
- * rendering of s at time t with celfw's defaults (4 sub-scanlines). */
+/* The core's rendering of s at time t over a w x h output with celfw's
+ * defaults (4 sub-scanlines), as an RGB565 panel gets it: w * h * 2 bytes to
+ * free(), or NULL if it cannot render. */
+uint8_t *render_panel_rgb565(const cs_scene *s, float t, int w, int h);
+/* Pixels of the emulated panel (w x h, RGB565) that differ from the window at
+ * x,y of want (an RGB565 image want_w pixels wide); all of them if want is NULL. */
+int compare_panel_tile(fake_gud *dev, const uint8_t *want, int want_w, int x, int y, int w, int h);
+/* Pixels of the emulated panel (w x h) that differ from render_panel_rgb565(s, t, w, h). */
 int compare_panel_scene(fake_gud *dev, const cs_scene *s, float t, int w, int h);
 
 #endif /* CELFW_CHILD_H */
