@@ -342,24 +342,24 @@ static void test_frame_opts(void)
         cs_render_opts o;
         cs_status want;
     } cases[] = {
-        {"width 0", {0, 10, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false}, CS_ERR_SIZE},
-        {"height 0", {10, 0, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false}, CS_ERR_SIZE},
-        {"width -1", {-1, 10, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false}, CS_ERR_SIZE},
-        {"width beyond CS_CFG_MAX_WIDTH", {CS_CFG_MAX_WIDTH + 1, 10, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false}, CS_ERR_SIZE},
-        {"height beyond CS_CFG_MAX_HEIGHT", {10, CS_CFG_MAX_HEIGHT + 1, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false}, CS_ERR_SIZE},
-        {"width exactly CS_CFG_MAX_WIDTH", {CS_CFG_MAX_WIDTH, 4, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false}, CS_OK},
-        {"subscanlines 0", {10, 10, CS_AA_SUBSCAN, 0, 0, CS_BLEND_LINEAR, false}, CS_ERR_ARG},
-        {"subscanlines beyond max", {10, 10, CS_AA_SUBSCAN, CS_CFG_MAX_SUBSCANLINES + 1, 0, CS_BLEND_LINEAR, false},
+        {"width 0", {0, 10, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_ERR_SIZE},
+        {"height 0", {10, 0, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_ERR_SIZE},
+        {"width -1", {-1, 10, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_ERR_SIZE},
+        {"width beyond CS_CFG_MAX_WIDTH", {CS_CFG_MAX_WIDTH + 1, 10, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_ERR_SIZE},
+        {"height beyond CS_CFG_MAX_HEIGHT", {10, CS_CFG_MAX_HEIGHT + 1, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_ERR_SIZE},
+        {"width exactly CS_CFG_MAX_WIDTH", {CS_CFG_MAX_WIDTH, 4, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_OK},
+        {"subscanlines 0", {10, 10, CS_AA_SUBSCAN, 0, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_ERR_ARG},
+        {"subscanlines beyond max", {10, 10, CS_AA_SUBSCAN, CS_CFG_MAX_SUBSCANLINES + 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0},
          CS_ERR_ARG},
-        {"subscanlines exactly max", {10, 10, CS_AA_SUBSCAN, CS_CFG_MAX_SUBSCANLINES, 0, CS_BLEND_LINEAR, false}, CS_OK},
-        {"aa mode 7", {10, 10, (cs_aa_mode)7, 1, 0, CS_BLEND_LINEAR, false}, CS_ERR_ARG},
-        {"time NaN", {10, 10, CS_AA_NONE, 1, NAN, CS_BLEND_LINEAR, false}, CS_ERR_NONFINITE},
+        {"subscanlines exactly max", {10, 10, CS_AA_SUBSCAN, CS_CFG_MAX_SUBSCANLINES, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_OK},
+        {"aa mode 7", {10, 10, (cs_aa_mode)7, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_ERR_ARG},
+        {"time NaN", {10, 10, CS_AA_NONE, 1, NAN, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}, CS_ERR_NONFINITE},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         cs_status st = cs_frame_begin(&r, ws, sc, &cases[i].o, &err);
         CHECK_STATUS(st, cases[i].want, cases[i].what);
     }
-    cs_render_opts o = {10, 10, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false};
+    cs_render_opts o = {10, 10, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0};
     CHECK_STATUS(cs_frame_begin(&r, ws, NULL, &o, &err), CS_ERR_ARG, "NULL scene");
     CHECK_STATUS(cs_frame_begin(&r, NULL, sc, &o, &err), CS_ERR_ARG, "NULL workspace");
     CHECK_STATUS(cs_frame_begin(&r, ws, sc, NULL, &err), CS_ERR_ARG, "NULL opts");
@@ -395,7 +395,7 @@ static void test_frame_opts(void)
     cs_scene_add_contour(sc2, 1, 3, tri, NULL, &err);
     cs_scene_add_contour(sc2, 1, 3, tri, NULL, &err);
     err = (cs_error){CS_OK, -7, -7, -7, -7};
-    cs_render_opts o100 = {100, 100, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false}; /* canvas units = device pixels */
+    cs_render_opts o100 = {100, 100, CS_AA_NONE, 1, 0, CS_BLEND_LINEAR, false, false, 0, 0, 0, 0}; /* canvas units = device pixels */
     cs_status st = cs_frame_begin(&r, ws, sc2, &o100, &err);
     CHECK_STATUS(st, CS_ERR_RANGE, "cel transform scaling points to 1.2e6 device px");
     CHECK(err.cel == 1 && err.region == 1 && err.contour == 0,
