@@ -350,6 +350,20 @@ static void accept_client(celfw_input *in, const celfw_input_sink *sink)
         sink->note(sink->user, what);
 }
 
+/*
+ * A transaction of the session was applied since the last look: it made
+ * progress. The sink counts in the framer, when it applies, which may be
+ * after the read that brought the bytes (celfw holds frames that arrive
+ * while a picture is drawn), so the tick looks too.
+ */
+static void note_progress(session *s, uint64_t now)
+{
+    if (s->fr.applied != s->applied) {
+        s->applied = s->fr.applied;
+        s->progress_ns = now;
+    }
+}
+
 /* Reads what one session has; its bytes go to the sink with its framer. */
 static void read_session(celfw_input *in, session *s, const celfw_input_sink *sink)
 {
@@ -357,10 +371,7 @@ static void read_session(celfw_input *in, session *s, const celfw_input_sink *si
     if (got > 0) {
         s->bytes += (uint64_t)got;
         sink->bytes(sink->user, &s->fr, in->buf, (size_t)got);
-        if (s->fr.applied != s->applied) {
-            s->applied = s->fr.applied;
-            s->progress_ns = now_ns();
-        }
+        note_progress(s, now_ns());
     } else if (got == 0) {
         if (in->k == IN_TTY)
             return; /* a tty with no data reads 0 in raw non-blocking mode */
@@ -403,6 +414,8 @@ void celfw_input_tick(celfw_input *in, const celfw_input_sink *sink)
         uint64_t now = now_ns();
         for (int i = 0; i < CELFW_INPUT_MAX_CLIENTS; i++) {
             session *s = &in->client[i];
+            if (s->fd >= 0)
+                note_progress(s, now);
             if (s->fd >= 0 && now - s->progress_ns > in->timeout_ns) {
                 char why[120];
                 snprintf(why, sizeof why, "timed out (no whole transaction for %.3g s)", (double)in->timeout_ns / 1e9);
