@@ -68,7 +68,9 @@ $(FUZZ)/lottie/%.o: %.c $(CORE_HDR) tests/fuzz_check.h $(wildcard tools/lottie/*
 $(FUZZ)/fuzz_lottie: $(patsubst %.c,$(FUZZ)/lottie/%.o,$(FUZZ_LOTTIE_SRC) $(CORE_SRC))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
 
-FUZZ_SEEDS_fuzz_lottie = find $(LOTTIE_DIR) -name '*.json' -size -6k 2>/dev/null | \
+# Seeds: the small conformance files, and inputs that once failed (tests/fuzz-lottie-corpus).
+FUZZ_SEEDS_fuzz_lottie = cp tests/fuzz-lottie-corpus/* $(FUZZ)/fuzz_lottie.corpus/; \
+        find $(LOTTIE_DIR) -name '*.json' -size -6k 2>/dev/null | \
         while read -r f; do cp "$$f" $(FUZZ)/fuzz_lottie.corpus/; done; true
 FUZZ_OPTS_fuzz_lottie = -timeout=10 -dict=$(CURDIR)/tests/fuzz_lottie.dict -max_len=32768 \
         -rss_limit_mb=2048

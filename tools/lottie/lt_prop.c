@@ -198,8 +198,8 @@ static int parse_keys(lt_ctx *c, const cJSON *k, int dims, bool is_path, int *pa
     return 0;
 }
 
-int lt_prop_parse(lt_ctx *c, const cJSON *j, int dims, const double *dflt, const char *what,
-                  lt_prop *p)
+static int prop_parse(lt_ctx *c, const cJSON *j, int dims, const double *dflt, const char *what,
+                      lt_prop *p)
 {
     memset(p, 0, sizeof *p);
     p->dims = dims;
@@ -223,9 +223,9 @@ int lt_prop_parse(lt_ctx *c, const cJSON *j, int dims, const double *dflt, const
         p->sy = calloc(1, sizeof *p->sy);
         if (!p->sx || !p->sy)
             return lt_fail(c, "out of memory");
-        if (lt_prop_parse(c, cJSON_GetObjectItemCaseSensitive(j, "x"), 1, dflt, what, p->sx) != 0 ||
-            lt_prop_parse(c, cJSON_GetObjectItemCaseSensitive(j, "y"), 1, dflt ? dflt + 1 : NULL,
-                          what, p->sy) != 0)
+        if (prop_parse(c, cJSON_GetObjectItemCaseSensitive(j, "x"), 1, dflt, what, p->sx) != 0 ||
+            prop_parse(c, cJSON_GetObjectItemCaseSensitive(j, "y"), 1, dflt ? dflt + 1 : NULL,
+                       what, p->sy) != 0)
             return -1;
         return 0;
     }
@@ -237,7 +237,20 @@ int lt_prop_parse(lt_ctx *c, const cJSON *j, int dims, const double *dflt, const
     return read_vals(c, k, dims, p->value, what);
 }
 
-int lt_prop_parse_path(lt_ctx *c, const cJSON *j, const char *what, lt_prop *p, int *nverts)
+/*
+ * A property that failed to parse holds nothing: what was read before the
+ * fault is freed here, so no caller has to know how far it got.
+ */
+int lt_prop_parse(lt_ctx *c, const cJSON *j, int dims, const double *dflt, const char *what,
+                  lt_prop *p)
+{
+    int rc = prop_parse(c, j, dims, dflt, what, p);
+    if (rc != 0)
+        lt_prop_free(p);
+    return rc;
+}
+
+static int prop_parse_path(lt_ctx *c, const cJSON *j, const char *what, lt_prop *p, int *nverts)
 {
     memset(p, 0, sizeof *p);
     *nverts = -1;
@@ -392,4 +405,12 @@ void lt_path_from_values(const double *vals, int n, lt_path *out)
     out->v = (double *)vals + 1;
     out->in = (double *)vals + 1 + 2 * n;
     out->out = (double *)vals + 1 + 4 * n;
+}
+
+int lt_prop_parse_path(lt_ctx *c, const cJSON *j, const char *what, lt_prop *p, int *nverts)
+{
+    int rc = prop_parse_path(c, j, what, p, nverts);
+    if (rc != 0)
+        lt_prop_free(p);
+    return rc;
 }
