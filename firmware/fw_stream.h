@@ -55,6 +55,10 @@ void fw_stream_start(cs_scene *front, bool front_valid);
 /* Feeds one byte; returns how many events (commits and errors) it caused. */
 int fw_stream_byte(uint8_t byte);
 
+/* The link lost bytes here (board_link_read said -1): an open transaction
+ * is dropped and reported; returns events caused. */
+int fw_stream_gap(void);
+
 /* End of input: reports a transaction cut short; returns events caused. */
 int fw_stream_finish(void);
 

@@ -8,6 +8,7 @@
 #                                      UART), compare with celsim and the host (CRC,
 #                                      floats, pixels); damaged streams; faults
 #   make test-mcu-display              unit test of hal/mcu/mcu_display.c on the host
+#   make test-rx-ring                  unit test of hal/mcu/rx_ring.c (UART receive ring)
 #   make qemu-run STREAM=F SIZE=480x272 TIME=0.5 [AA=16]
 #                                      boot, stream F (.cels, or .json compiled first)
 #                                      over the UART, print the frame's `frame crc32`
@@ -62,7 +63,7 @@ FW_LD_$(1) := $$(BOARD_LDSCRIPT)
 FW_STACK_$(1) := $$(BOARD_STACK)
 FW_QEMU_$(1) := $$(BOARD_QEMU)
 FW_INC_$(1) := -Icore -Ifirmware -Ifirmware/scenes -Ifirmware/boards -Ifirmware/boards/cortex-m \
-        -Ifirmware/boards/$(1) -Ihal/mcu -DCS_CFG_FILE='"cs_board_config.h"'
+        -Ifirmware/boards/$(1) -Ifirmware/boards/stm32f4 -Ihal/mcu -DCS_CFG_FILE='"cs_board_config.h"'
 FW_OBJ_$(1) := $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(CORE_SRC) $(FW_COMMON_SRC) $$(BOARD_SRC))
 
 $$(eval $$(call flags_record,fw-$(1),$(ARM_CC) $$(FW_CPU_$(1)) $(OPT) $(FW_COLD_OPT) $(FW_CFLAGS) \
@@ -114,6 +115,15 @@ $(HOST)/test_mcu_display: $(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/m
 test-mcu-display: $(HOST)/test_mcu_display
 	$(Q)$<
 
+# The UART receive ring is plain C too.
+$(HOST)/obj/tests/test_rx_ring.o $(HOST)/obj/hal/mcu/rx_ring.o: HOST_CFLAGS += -Ihal/mcu -Itests
+$(HOST)/test_rx_ring: $(HOST)/obj/tests/test_rx_ring.o $(HOST)/obj/hal/mcu/rx_ring.o
+	$(Q)$(CC) $^ -o $@
+
+.PHONY: test-rx-ring
+test-rx-ring: $(HOST)/test_rx_ring
+	$(Q)$<
+
 # A TCG plugin is a shared object QEMU loads; it uses no glib and no QEMU
 # header (Debian ships neither for plugins), see tools/qemu-insn.
 $(HOST)/libinsncount.so: tools/qemu-insn/insncount.c
@@ -151,4 +161,4 @@ qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen
 
 # firmware-all: every board's image builds and fits its flash and RAM
 # budgets (qemu-test only boots the mps2-an386 one).
-TEST_TARGETS += test-mcu-display qemu-test firmware-all
+TEST_TARGETS += test-mcu-display test-rx-ring qemu-test firmware-all

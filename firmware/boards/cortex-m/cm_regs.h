@@ -32,6 +32,9 @@
 #define SYST_RVR CM_REG(0xE000E014u)
 #define SYST_CVR CM_REG(0xE000E018u)
 
+/* NVIC: interrupt set-enable, one bit per external interrupt */
+#define NVIC_ISER(n) CM_REG(0xE000E100u + 4u * (n))
+
 /* PMSAv7 MPU */
 #define MPU_TYPE CM_REG(0xE000ED90u)
 #define MPU_CTRL CM_REG(0xE000ED94u)
@@ -46,5 +49,8 @@
 
 static inline void cm_dsb(void) { __asm volatile("dsb" ::: "memory"); }
 static inline void cm_isb(void) { __asm volatile("isb" ::: "memory"); }
+static inline void cm_irq_off(void) { __asm volatile("cpsid i" ::: "memory"); }
+static inline void cm_irq_on(void) { __asm volatile("cpsie i" ::: "memory"); }
+static inline void cm_nvic_enable(unsigned irq) { NVIC_ISER(irq / 32u) = 1u << (irq % 32u); }
 
 #endif /* CM_REGS_H */
