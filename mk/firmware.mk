@@ -3,10 +3,12 @@
 #   make firmware [BOARD=mps2-an386]   build/<board>/celfw.elf (+ .map, .bin), memory
 #                                      use printed and the budgets enforced
 #   make firmware-all                  every board in firmware/boards/*/board.mk
-#   make qemu-test                     boot the mps2-an386 image in QEMU, render the
-#                                      built-in scenes and streamed ones (sent over the
-#                                      UART), compare with celsim and the host (CRC,
-#                                      floats, pixels); damaged streams; faults
+#   make qemu-test [BOARD=B]           boot the mps2-an386 and netduinoplus2 images (or
+#                                      B's) in QEMU, render the built-in scenes and
+#                                      streamed ones (sent over the UART at full speed
+#                                      while frames render), compare with celsim and the
+#                                      host (CRC, floats, pixels); damaged streams; an
+#                                      injected UART overrun; faults
 #   make test-mcu-display              unit test of hal/mcu/mcu_display.c on the host
 #   make test-rx-ring                  unit test of hal/mcu/rx_ring.c (UART receive ring)
 #   make qemu-run STREAM=F SIZE=480x272 TIME=0.5 [AA=16]
@@ -79,9 +81,12 @@ $(BUILD)/$(1)/celfw.elf: $$(FW_OBJ_$(1)) $$(FW_LD_$(1)) linker/sections.ld
 		$$(FW_OBJ_$(1)) -lgcc -o $$@
 	$(Q)arm-none-eabi-objcopy -O binary $$@ $(BUILD)/$(1)/celfw.bin
 
-.PHONY: firmware-$(1)
+.PHONY: firmware-$(1) qemu-test-$(1)
 firmware-$(1): $(BUILD)/$(1)/celfw.elf
 	$(Q)tools/fw_budget.sh $(1) $(BUILD)/$(1)/celfw.elf $(BUILD)/$(1)/celfw.map
+qemu-test-$(1): firmware-$(1) $(HOST)/fw_host_ref $(HOST)/fw_cels_gen $(HOST)/celsim $(HOST)/celc
+	$(Q)$$(if $$(FW_QEMU_$(1)),FW_QEMU="$$(FW_QEMU_$(1))" tools/fw_qemu_test.sh \
+		$(BUILD)/$(1)/celfw.elf $(BUILD)/$(1)/qemu-test $(1),@echo "qemu-test $(1): no QEMU machine (BOARD_QEMU)"; false)
 endef
 $(foreach b,$(FW_BOARDS),$(eval $(call FW_BOARD_RULES,$(b))))
 
@@ -131,11 +136,12 @@ $(HOST)/libinsncount.so: tools/qemu-insn/insncount.c
 	$(Q)$(CC) -std=c11 -O2 -Wall -Wextra -shared -fPIC -fvisibility=hidden $< -o $@
 
 # ------------------------------------------------------------ running
+# qemu-test runs every board that has a QEMU machine, or only BOARD when it
+# is given (make qemu-test BOARD=netduinoplus2).
 FW_QEMU_ELF := $(BUILD)/$(FW_QEMU_BOARD)/celfw.elf
-
-qemu-test: firmware-$(FW_QEMU_BOARD) $(HOST)/fw_host_ref $(HOST)/fw_cels_gen $(HOST)/celsim \
-           $(HOST)/celc
-	$(Q)tools/fw_qemu_test.sh $(FW_QEMU_ELF) $(BUILD)/$(FW_QEMU_BOARD)/qemu-test
+FW_QEMU_BOARDS := $(foreach b,$(FW_BOARDS),$(if $(FW_QEMU_$(b)),$(b)))
+qemu-test: $(addprefix qemu-test-,$(if $(filter command line environment,$(origin BOARD)),\
+                                       $(BOARD),$(FW_QEMU_BOARDS)))
 
 STREAM ?=
 SCENE ?= signage
@@ -160,5 +166,6 @@ qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen
 	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/builtin
 
 # firmware-all: every board's image builds and fits its flash and RAM
-# budgets (qemu-test only boots the mps2-an386 one).
-TEST_TARGETS += test-mcu-display test-rx-ring qemu-test firmware-all
+# budgets (qemu-test boots the boards that QEMU models: mps2-an386 and
+# netduinoplus2, which runs the stm32f407-ssd1963 board's STM32 drivers).
+TEST_TARGETS += test-mcu-display test-rx-ring $(addprefix qemu-test-,$(FW_QEMU_BOARDS)) firmware-all

@@ -3,9 +3,11 @@
  *
  * Time is SysTick counting down from 2^24 - 1 on the core clock; its
  * interrupt counts the wraps (every 0.1 s at 168 MHz), so a frame that
- * takes longer than one wrap loses no time. The wrap count and the
- * counter are read until the count is the same before and after, which
- * gives a consistent pair without masking interrupts.
+ * takes longer than one wrap loses no time. A wrap the interrupt has not
+ * counted yet (its exception is taken a few cycles late on the chip, and
+ * QEMU reloads the counter before it even pends the exception) would make
+ * time step back by a whole wrap; since time is read far more often than
+ * once per wrap, a step back is such a wrap, and is counted here.
  */
 #include "board.h"
 #include "board_api.h"
@@ -22,7 +24,8 @@
 #define SYST_MAX 0xFFFFFFu
 
 static struct {
-    volatile uint32_t wraps;
+    volatile uint32_t wraps; /* the interrupt's */
+    uint64_t last;           /* cycles at the last board_time_us */
 } tick;
 
 void stm32_clock_pll168(void)
@@ -49,6 +52,7 @@ void stm32_tick_isr(void)
 void stm32_tick_init(void)
 {
     tick.wraps = 0;
+    tick.last = 0;
     SYST_RVR = SYST_MAX;
     SYST_CVR = 0;
     SYST_CSR = SYST_CSR_ENABLE | SYST_CSR_TICKINT | SYST_CSR_CORE_CLOCK;
@@ -62,5 +66,8 @@ uint64_t board_time_us(void)
         value = SYST_CVR;
     } while (wraps != tick.wraps);
     uint64_t cycles = ((uint64_t)wraps << 24) + (SYST_MAX - value);
+    if (cycles < tick.last)
+        cycles += SYST_MAX + 1u;
+    tick.last = cycles;
     return cycles / (BOARD_SYSCLK_HZ / 1000000u);
 }

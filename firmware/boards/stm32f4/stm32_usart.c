@@ -25,7 +25,7 @@
 #define USART_SR_RXNE (1u << 5)
 #define USART_SR_TXE (1u << 7)
 #define USART_CR1_UE (1u << 13)
-#define USART_CR1_RXNEIE (1u << 5) /* RXNE and ORE */
+#define USART_CR1_RXNEIE (1u << 5) /* interrupt on RXNE and ORE */
 #define USART_CR1_TE (1u << 3)
 #define USART_CR1_RE (1u << 2)
 #define USART_CR3_RTSE (1u << 8)
@@ -77,27 +77,41 @@ void stm32_console_write(const char *text)
     }
 }
 
+/* QEMU 7.2's USART model fetches its next input byte only when SR is read
+ * with RXNE clear, so the interrupt and an idle reader read it once more;
+ * on the chip reading SR alone changes nothing. */
+static void stm32_link_kick(void)
+{
+    (void)USART_SR(STM32_USART2);
+}
+
 void stm32_link_isr(void)
 {
     uint32_t sr = USART_SR(STM32_USART2);
     if (!(sr & (USART_SR_RXNE | USART_SR_ORE)))
         return;
     if (rx_ring_full(&link.ring)) {
-        USART_CR1(STM32_USART2) &= ~USART_CR1_RXNEIE; /* hold it; RTS holds the sender */
+        /* Hold the byte (RTS holds the sender off) and mask the interrupt in
+         * the NVIC: clearing RXNEIE would not lower the line in QEMU 7.2's
+         * model, which then interrupts for ever. */
+        cm_nvic_disable(STM32_USART2_IRQ);
         return;
     }
     /* Reading SR then DR clears ORE; the byte in DR came before the lost ones. */
     rx_ring_put(&link.ring, (uint8_t)USART_DR(STM32_USART2));
     if (sr & USART_SR_ORE)
         rx_ring_gap(&link.ring);
+    stm32_link_kick();
 }
 
 int board_link_read(uint8_t *byte)
 {
     int got = rx_ring_get(&link.ring, byte);
-    /* Unmasking with the byte still waiting raises the interrupt at once. */
-    if (!(USART_CR1(STM32_USART2) & USART_CR1_RXNEIE) && rx_ring_room(&link.ring))
-        USART_CR1(STM32_USART2) |= USART_CR1_RXNEIE;
+    if (!got)
+        stm32_link_kick();
+    /* Unmasking with the byte still waiting takes the interrupt at once. */
+    if (!cm_nvic_enabled(STM32_USART2_IRQ) && rx_ring_room(&link.ring))
+        cm_nvic_enable(STM32_USART2_IRQ);
     return got;
 }
 

@@ -7,7 +7,7 @@
  * The link is USART2 (RX on PA3, RTS on PA1), received by its RXNE
  * interrupt into a ring (hal/mcu/rx_ring.c): bytes that arrive while a
  * frame renders are kept. When the ring is full the interrupt masks itself
- * and leaves the byte in the data register; with RTS wired, USART2's
+ * (in the NVIC) and leaves the byte in the data register; with RTS wired, USART2's
  * hardware flow control then holds the sender off (QEMU's model simply
  * waits); without it the next byte overruns, and the overrun (ORE) is a
  * gap the stream decoder is told about, never a silent loss.
