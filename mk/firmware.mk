@@ -47,7 +47,9 @@ FW_OPT = $(OPT)
 FW_COLD_OPT := -Os
 FW_COLD_SRC := core/cs_stream.c core/cs_scene.c core/cs_edit.c core/cs_anim.c \
                firmware/main_mcu.c firmware/fw_stream.c firmware/fw_print.c firmware/fw_args.c \
-               firmware/fw_mem.c firmware/scenes/fw_scenes.c
+               firmware/fw_mem.c firmware/scenes/fw_scenes.c \
+               $(wildcard firmware/boards/*/board.c firmware/boards/stm32f4/*.c) \
+               firmware/boards/cortex-m/cm_startup.c hal/mcu/rx_ring.c hal/mcu/semihost.c
 FW_CFLAGS := -std=c11 -g $(FP_FLAGS) $(WARN) -ffreestanding -fno-builtin \
         -fno-tree-loop-distribute-patterns -fno-stack-protector -fno-common \
         -ffunction-sections -fdata-sections -MMD -MP
