@@ -11,7 +11,7 @@
 #                                      injected UART overrun; faults
 #   make test-mcu-display              unit test of hal/mcu/mcu_display.c on the host
 #   make test-rx-ring                  unit test of hal/mcu/rx_ring.c (UART receive ring)
-#   make qemu-run STREAM=F SIZE=480x272 TIME=0.5 [AA=16]
+#   make qemu-run STREAM=F SIZE=480x272 TIME=0.5 [AA=16] [BOARD=netduinoplus2]
 #                                      boot, stream F (.cels, or .json compiled first)
 #                                      over the UART, print the frame's `frame crc32`
 #                                      line, as `celsim render F --size --time --crc`
@@ -150,9 +150,10 @@ SCENE ?= signage
 SIZE ?= 480x272
 TIME ?= 0
 AA ?= 16
-qemu-run: firmware-$(FW_QEMU_BOARD) $(if $(STREAM),$(HOST)/celc)
-	$(Q)tools/fw_qemu_run.sh $(FW_QEMU_ELF) $(if $(STREAM),--stream "$(STREAM)",--scene "$(SCENE)") \
-		"$(SIZE)" "$(TIME)" "$(AA)"
+FW_RUN_BOARD := $(if $(filter command line environment,$(origin BOARD)),$(BOARD),$(FW_QEMU_BOARD))
+qemu-run: firmware-$(FW_RUN_BOARD) $(if $(STREAM),$(HOST)/celc)
+	$(Q)FW_QEMU="$(FW_QEMU_$(FW_RUN_BOARD))" tools/fw_qemu_run.sh $(BUILD)/$(FW_RUN_BOARD)/celfw.elf \
+		$(if $(STREAM),--stream "$(STREAM)",--scene "$(SCENE)") "$(SIZE)" "$(TIME)" "$(AA)"
 
 # The board demo, the animated scene and the beta stack, streamed, at 480x272
 # with 5 and 16 sub-scanlines; then the built-in jobs.
