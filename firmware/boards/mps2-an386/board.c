@@ -105,10 +105,13 @@ void board_console_write(const char *text)
 int board_link_read(uint8_t *byte)
 {
     int got = rx_ring_get(&link.ring, byte);
-    if (!(UART_CTRL & UART_CTRL_RXINTEN) && rx_ring_room(&link.ring)) {
+    /* The ring has room again after a pause, or is empty: take the byte the
+     * UART holds, if any (held while the ring was full, or an interrupt
+     * missed), with the interrupt enabled again. */
+    if (!got || (!(UART_CTRL & UART_CTRL_RXINTEN) && rx_ring_room(&link.ring))) {
         cm_irq_off();
         UART_CTRL |= UART_CTRL_RXINTEN;
-        board_link_isr(); /* the byte held while the ring was full */
+        board_link_isr();
         cm_irq_on();
     }
     return got;
