@@ -235,6 +235,13 @@ int fw_stream_gap(void)
     return events;
 }
 
+void fw_stream_link_report(void)
+{
+    const rx_ring *ring = board_link_ring();
+    fw_print("link: ring high-water %u of %u bytes, %u gaps\n", (unsigned)ring->high,
+             (unsigned)ring->mask + 1u, (unsigned)ring->gaps);
+}
+
 int fw_stream_finish(void)
 {
     int events = 0;
@@ -320,8 +327,6 @@ int fw_stream_run(uint32_t expect, uint32_t idle_ms, const fw_frame_req *reqs, i
     }
     fw_print("stream: %u bytes, %u commits, %u errors\n", (unsigned)got, (unsigned)commits,
              (unsigned)errors);
-    const rx_ring *ring = board_link_ring();
-    fw_print("link: ring high-water %u of %u bytes, %u gaps\n", (unsigned)ring->high,
-             (unsigned)ring->mask + 1u, (unsigned)ring->gaps);
+    fw_stream_link_report();
     return failed;
 }

@@ -68,6 +68,9 @@ bool fw_stream_busy(void);
 /* The scene on display, or NULL if none was committed (nor given valid). */
 const cs_scene *fw_stream_scene(void);
 
+/* Prints the link's receive ring use: "link: ring high-water H of S bytes, G gaps". */
+void fw_stream_link_report(void);
+
 /* Commits and errors so far. */
 uint32_t fw_stream_commits(void);
 uint32_t fw_stream_errors(void);

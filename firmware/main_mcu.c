@@ -24,6 +24,8 @@
  *   dump=DIR         frame dumps to the host (board's panel)
  *   fcrc=1           also print a CRC-32 of each frame's linear-light floats
  *   uart=N           read N bytes of link input first and report their CRC
+ *   play=N           after the rest, play N frames of the demo (or the scene
+ *                    the link commits meanwhile) at the board clock's time
  *   crash=stack|udf|div0   fault on purpose (tests the fault path)
  */
 #include "board.h"
@@ -108,29 +110,32 @@ static void crash(const char *how)
     fw_print("crash=%s: no fault happened\n", how);
 }
 
-#ifdef BOARD_DEMO_LOOP
 /*
- * On real glass: show the scene on display, animated by the board clock,
- * and take stream bytes between frames. Until the first commit that is the
+ * Playback: show the scene on display, animated by the board clock, and
+ * take stream bytes between frames. Until the first commit that is the
  * built-in demo (rebuilt at each frame's time: it animates itself); after
  * it, the committed scene, whose tracks the core samples at the frame's
  * time. While a transaction streams in, the loop only reads the link (the
  * workspace holds the transaction) and the panel keeps the last frame; a
  * sender silent for a second in mid-transaction counts as gone, which
- * drops the transaction.
+ * drops the transaction. On real glass (BOARD_DEMO_LOOP) it runs for ever,
+ * printing every 64th frame; `play=N` runs N frames, each printed with its
+ * time (milliseconds, so the host can render the same instant) and the
+ * commit it shows, and returns the failures.
  */
-static void demo_loop(void)
+static int play(uint32_t frames)
 {
     fw_job job = fw_jobs[0];
     job.width = BOARD_PANEL_WIDTH;
     job.height = BOARD_PANEL_HEIGHT;
     cs_render_opts opts = fw_job_opts(&job);
     cs_error err;
+    int failed = 0;
     if (fw_scenes[job.scene].build(&scene_store, 0.0f, &err) != CS_OK)
-        return;
+        return 1;
     fw_stream_start(&scene_store, true);
     uint64_t start = board_time_us(), last_byte = start;
-    for (uint32_t frame = 0;;) {
+    for (uint32_t frame = 0; !frames || frame < frames;) {
         uint8_t b;
         int r;
         while ((r = board_link_read(&b)) != 0) {
@@ -145,15 +150,22 @@ static void demo_loop(void)
                 fw_stream_finish();
             continue;
         }
-        opts.time = (float)((board_time_us() - start) / 1000u) / 1000.0f;
+        uint32_t ms = (uint32_t)((board_time_us() - start) / 1000u);
+        opts.time = (float)ms / 1000.0f;
         if (fw_stream_commits() == 0 &&
             fw_scenes[job.scene].build(&scene_store, opts.time, &err) != CS_OK)
             continue;
-        fw_render(&scene_store, &opts, "demo", frame % 64u != 0);
+        if (frames)
+            fw_print("play %u time %u.%03u commit %u\n", (unsigned)frame, (unsigned)(ms / 1000u),
+                     (unsigned)(ms % 1000u), (unsigned)fw_stream_commits());
+        failed += fw_render(&scene_store, &opts, "play", !frames && frame % 64u != 0);
         frame++;
     }
+    fw_print("play: %u frames, %u commits, %u errors\n", (unsigned)frames,
+             (unsigned)fw_stream_commits(), (unsigned)fw_stream_errors());
+    fw_stream_link_report();
+    return failed;
 }
-#endif
 
 /* Parses "WxH". */
 static int parse_size(const char *s, uint32_t *w, uint32_t *h)
@@ -254,7 +266,7 @@ int main(void)
         failed++;
     } else if (c > 0) {
         failed += render_job(0, &custom);
-    } else if (fw_arg(cmd, "jobs", arg, sizeof arg) || !stream) {
+    } else if (fw_arg(cmd, "jobs", arg, sizeof arg) || (!stream && !fw_arg(cmd, "play", 0, 0))) {
         for (int i = 0; i < FW_JOB_COUNT; i++)
             if (job_selected(arg, i))
                 failed += render_job(i, &fw_jobs[i]);
@@ -277,11 +289,13 @@ int main(void)
             failed += fw_stream_run(expect, idle_ms, reqs, count, each);
         }
     }
+    if (fw_arg(cmd, "play", arg, sizeof arg) && fw_parse_u32(arg, &n) && n > 0)
+        failed += play(n);
     fw_print("stack high-water %u of %u bytes\n", (unsigned)cm_stack_used(),
              (unsigned)cm_stack_size());
     fw_print("celfw: %u frames, %d failed\n", (unsigned)fw_render_frames(), failed);
 #ifdef BOARD_DEMO_LOOP
-    demo_loop();
+    play(0);
 #endif
     return failed ? 1 : 0;
 }

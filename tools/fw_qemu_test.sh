@@ -40,6 +40,9 @@
 #    stack: it is reported with its offset as bytes lost, the transaction
 #    is dropped, the frames after it are those before (the picture stays),
 #    and the demo sent whole after it commits and renders as in section 2.
+#    Last, the board plays (play=8: the loop it runs on glass, frames at the
+#    board clock's time) while the beta stack and the demo stream in; every
+#    frame equals the host's render of what it shows at the printed instant.
 #
 # 4. Faults. The stack stays within its size, and a deliberate crash (stack
 #    overflow into the MPU guard, undefined instruction, division by zero)
@@ -359,6 +362,38 @@ for ev in commit1 error1 error2 commit2; do
         bad "frames after $ev differ from section 2's $(basename "$want" .want) frames"
     fi
 done
+
+# Playback while the stream arrives: the loop a board runs on glass
+# (play=N frames at the board clock's time), the beta stack and then the
+# demo streamed meanwhile. Every frame shows the built-in demo, the beta
+# stack or the demo at the instant it prints, and must equal the host's.
+p=$out/play
+mkdir -p "$p"
+cat "$s/beta.cels" "$s/demo.cels" >"$p/link.cels"
+boot "$p/console.log" "play=8 fcrc=1" <"$p/link.cels"
+if grep -q "^play: 8 frames, 2 commits, 0 errors\$" "$p/console.log" &&
+    grep -q "^link: ring high-water [0-9]* of [0-9]* bytes, 0 gaps\$" "$p/console.log"; then
+    ok "played 8 frames while the beta stack and the demo streamed in: 2 commits, no gap"
+else
+    bad "playback: $(grep -E '^(play|link): ' "$p/console.log" | tr '\n' ' ')"
+fi
+awk '/^play [0-9]+ time / {f = $2; t = $4; k = $6; crc = ""; next}
+     /^frame crc32 / && f != "" {crc = $3; next}
+     /^float crc32 / && f != "" && crc != "" {print f, t, k, crc, $3; f = ""}' \
+    "$p/console.log" >"$p/frames.txt"
+while read -r f t k crc fcrc; do
+    case $k in
+    0) what="play frame $f: built-in signage t=$t"
+       cmd="$host/fw_host_ref --scene signage --size 480x272 --time $t --aa 5 --crc --float-crc" ;;
+    1) what="play frame $f: beta stack t=$t"
+       cmd="$host/fw_host_ref --cels $s/beta.cels --size 480x272 --time $t --aa 5 --crc --float-crc"
+       compare_frame "$what" "" "$crc" "" "$celsim render scenes/beta-stack.json --size 480x272 --time $t --aa 5 --crc" ;;
+    *) what="play frame $f: board demo t=$t"
+       cmd="$host/fw_host_ref --cels $s/demo.cels --size 480x272 --time $t --aa 5 --crc --float-crc"
+       compare_frame "$what" "" "$crc" "" "$celsim render scenes/demo-board.json --size 480x272 --time $t --aa 5 --crc" ;;
+    esac
+    compare_frame "$what" "" "$crc" "$fcrc" "$cmd"
+done <"$p/frames.txt"
 
 # ------------------------------------------------------------ 4. faults
 # A crash must end the run with 128 + the exception number, not hang it.
