@@ -9,7 +9,8 @@
  * format and, on QEMU, can be dumped for a pixel comparison
  * (tools/fw_qemu_test.sh).
  *
- * Command-line words (QEMU -append), all optional:
+ * Command-line words (QEMU -append, on boards with BOARD_CMDLINE; a board
+ * without a host to ask renders the built-in jobs, then plays), all optional:
  *   stream=N         read N bytes of cel stream from the link (UART), and
  *                    after every commit or error render frames= from the
  *                    scene on display
@@ -59,55 +60,6 @@ static int render_job(int index, const fw_job *job)
         return 1;
     }
     return fw_render(&scene_store, &opts, label, false);
-}
-
-/* Reads `expect` bytes from the link and reports their count and CRC-32;
- * gives up after 5 s without a byte. */
-static int link_check(uint32_t expect)
-{
-    uint32_t got = 0, crc = 0;
-    uint64_t last = board_time_us();
-    int r = 0;
-    while (got < expect) {
-        uint8_t b;
-        r = board_link_read(&b);
-        if (r < 0) {
-            break; /* bytes lost: the CRC below cannot match */
-        } else if (r > 0) {
-            crc = cs_crc32(crc, &b, 1);
-            got++;
-            last = board_time_us();
-        } else if (board_time_us() - last > 5000000u) {
-            break;
-        }
-    }
-    fw_print("link rx %u bytes crc32 %08X%s\n", (unsigned)got, (unsigned)crc,
-             got == expect ? "" : r < 0 ? " (bytes lost)" : " (timeout)");
-    return got == expect ? 0 : 1;
-}
-
-/* Deliberate faults, so the test can show that a crash fails the run. */
-static volatile uint32_t crash_sink, crash_dividend = 1000;
-
-__attribute__((noinline)) static uint32_t dive(uint32_t depth)
-{
-    volatile uint32_t frame[16];
-    frame[0] = depth;
-    if (depth == UINT32_MAX) /* never: keeps the recursion from being infinite to the compiler */
-        return 0;
-    return dive(depth + 1) + frame[0];
-}
-
-static void crash(const char *how)
-{
-    fw_print("crash=%s: faulting on purpose\n", how);
-    if (how[0] == 's')
-        crash_sink = dive(0);
-    else if (how[0] == 'd')
-        crash_sink = crash_dividend / crash_sink; /* crash_sink is 0: UDIV traps */
-    else
-        __builtin_trap();
-    fw_print("crash=%s: no fault happened\n", how);
 }
 
 /*
@@ -166,6 +118,59 @@ static int play(uint32_t frames)
     fw_stream_link_report();
     return failed;
 }
+
+#ifdef BOARD_CMDLINE
+/* ------------------------------------------ words from the host's command line */
+
+/* Reads `expect` bytes from the link and reports their count and CRC-32;
+ * gives up after 5 s without a byte. */
+static int link_check(uint32_t expect)
+{
+    uint32_t got = 0, crc = 0;
+    uint64_t last = board_time_us();
+    int r = 0;
+    while (got < expect) {
+        uint8_t b;
+        r = board_link_read(&b);
+        if (r < 0) {
+            break; /* bytes lost: the CRC below cannot match */
+        } else if (r > 0) {
+            crc = cs_crc32(crc, &b, 1);
+            got++;
+            last = board_time_us();
+        } else if (board_time_us() - last > 5000000u) {
+            break;
+        }
+    }
+    fw_print("link rx %u bytes crc32 %08X%s\n", (unsigned)got, (unsigned)crc,
+             got == expect ? "" : r < 0 ? " (bytes lost)" : " (timeout)");
+    return got == expect ? 0 : 1;
+}
+
+/* Deliberate faults, so the test can show that a crash fails the run. */
+static volatile uint32_t crash_sink, crash_dividend = 1000;
+
+__attribute__((noinline)) static uint32_t dive(uint32_t depth)
+{
+    volatile uint32_t frame[16];
+    frame[0] = depth;
+    if (depth == UINT32_MAX) /* never: keeps the recursion from being infinite to the compiler */
+        return 0;
+    return dive(depth + 1) + frame[0];
+}
+
+static void crash(const char *how)
+{
+    fw_print("crash=%s: faulting on purpose\n", how);
+    if (how[0] == 's')
+        crash_sink = dive(0);
+    else if (how[0] == 'd')
+        crash_sink = crash_dividend / crash_sink; /* crash_sink is 0: UDIV traps */
+    else
+        __builtin_trap();
+    fw_print("crash=%s: no fault happened\n", how);
+}
+
 
 /* Parses "WxH". */
 static int parse_size(const char *s, uint32_t *w, uint32_t *h)
@@ -235,16 +240,11 @@ static int job_selected(const char *list, int i)
     }
 }
 
-int main(void)
+/* What the command line asks for, in order: a deliberate fault, the raw
+ * link check, built-in jobs, a stream, playback. Returns the failures. */
+static int commands(const char *cmd)
 {
-    board_init();
-    const char *cmd = board_cmdline();
     char arg[192];
-    fw_render_init(fw_arg(cmd, "fcrc", arg, sizeof arg) && arg[0] == '1');
-    fw_print("celfw %s: panel %dx%d RGB565, scene store %u B, workspace and staging store %u B, "
-             "stack guard %08x\n",
-             BOARD_NAME, BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, (unsigned)sizeof scene_store,
-             (unsigned)fw_render_work_bytes(), (unsigned)cm_stack_guard());
     if (fw_arg(cmd, "crash", arg, sizeof arg))
         crash(arg);
     int failed = 0;
@@ -252,7 +252,7 @@ int main(void)
     if (fw_arg(cmd, "uart", arg, sizeof arg) && fw_parse_u32(arg, &n))
         failed += link_check(n);
 
-    /* Built-in jobs: all by default, none if a stream is given instead. */
+    /* Built-in jobs: all by default, none if a stream or playback is asked for. */
     bool stream = fw_arg(cmd, "stream", arg, sizeof arg);
     uint32_t expect = 0;
     if (stream && !fw_parse_u32(arg, &expect)) {
@@ -291,6 +291,33 @@ int main(void)
     }
     if (fw_arg(cmd, "play", arg, sizeof arg) && fw_parse_u32(arg, &n) && n > 0)
         failed += play(n);
+    return failed;
+}
+#endif /* BOARD_CMDLINE */
+
+int main(void)
+{
+    board_init();
+#ifdef BOARD_CMDLINE
+    const char *cmd = board_cmdline();
+    char fcrc[4];
+    fw_render_init(fw_arg(cmd, "fcrc", fcrc, sizeof fcrc) && fcrc[0] == '1');
+#else
+    fw_render_init(false);
+#endif
+    fw_print("celfw %s: panel %dx%d RGB565, scene store %u B, workspace and staging store %u B, "
+             "stack guard %08x\n",
+             BOARD_NAME, BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, (unsigned)sizeof scene_store,
+             (unsigned)fw_render_work_bytes(), (unsigned)cm_stack_guard());
+#ifdef BOARD_CMDLINE
+    int failed = commands(cmd);
+#else
+    /* No host to ask: the built-in jobs, their CRCs on the console for a
+     * comparison with the host's. */
+    int failed = 0;
+    for (int i = 0; i < FW_JOB_COUNT; i++)
+        failed += render_job(i, &fw_jobs[i]);
+#endif
     fw_print("stack high-water %u of %u bytes\n", (unsigned)cm_stack_used(),
              (unsigned)cm_stack_size());
     fw_print("celfw: %u frames, %d failed\n", (unsigned)fw_render_frames(), failed);

@@ -13,6 +13,9 @@
 
 /* The panel the firmware renders for: a 480x272 RGB565 TFT, here only a
  * frame dump through semihosting. */
+/* Words from the host's command line (QEMU -append, over semihosting). */
+#define BOARD_CMDLINE 1
+
 #define BOARD_PANEL_WIDTH 480
 #define BOARD_PANEL_HEIGHT 272
 

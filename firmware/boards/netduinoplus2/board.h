@@ -17,6 +17,9 @@
 #include "stm32f4.h"
 #define BOARD_IRQ_COUNT STM32_IRQ_COUNT
 
+/* Words from the host's command line (QEMU -append, over semihosting). */
+#define BOARD_CMDLINE 1
+
 #define BOARD_PANEL_WIDTH 480
 #define BOARD_PANEL_HEIGHT 272
 
