@@ -286,11 +286,11 @@ cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene
                                 const cs_render_opts *opts, const cs_cache *cache,
                                 cs_error *err)
 {
-    if (cache && opts) {
+    if (cache && opts) { /* a build without CS_CFG_CACHE has none */
         const cs_render_opts *c = &cache->opts;
         cs_blend blend = opts->blend == CS_BLEND_SCENE && scene ? (cs_blend)scene->blend : opts->blend;
-        if (cache->status != CS_OK || c->width != opts->width || c->height != opts->height ||
-            c->aa != opts->aa || c->blend != blend ||
+        if (!CS_CFG_CACHE || cache->status != CS_OK || c->width != opts->width ||
+            c->height != opts->height || c->aa != opts->aa || c->blend != blend ||
             (opts->aa == CS_AA_SUBSCAN && c->subscanlines != opts->subscanlines) || !scene ||
             cache->cel_first + cache->cel_count > scene->cel_count) {
             cs__error(err, CS_ERR_STATE, -1, -1, -1, -1);
