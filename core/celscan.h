@@ -82,6 +82,7 @@ typedef enum cs_status {
     CS_ERR_STREAM_TOO_BIG,/* transaction longer than CS_CFG_STREAM_MAX_TXN */
     CS_ERR_STREAM_RECORD, /* malformed record: length, class, order or layout */
     CS_ERR_GROUP,         /* cel parent makes a cycle or a chain deeper than CS_CFG_MAX_GROUP_DEPTH */
+    CS_ERR_STREAM_GAP,    /* bytes lost on the link (receive overrun) */
     CS_ERR_COUNT_
 } cs_status;
 
@@ -873,6 +874,17 @@ cs_stream_event cs_stream_feed(cs_stream *s, const uint8_t *data, size_t len, si
 
 /* End of input: reports a transaction cut short or trailing bytes, then resets to hunting. */
 cs_stream_event cs_stream_finish(cs_stream *s);
+
+/*
+ * The link lost bytes between the last byte fed and the next one (a UART
+ * receive overrun, a full receive buffer): an open transaction is dropped
+ * (CS_ERR_STREAM_GAP, `at` the offset of the gap, which counts the bytes
+ * fed, not the ones lost), and the decoder hunts for the next header, so
+ * no header or transaction is ever pieced together across the gap. A
+ * commit waiting for cs_stream_swap or an error waiting to be returned is
+ * returned first; call again until CS_STREAM_MORE.
+ */
+cs_stream_event cs_stream_gap(cs_stream *s);
 
 /* Makes the ready commit the front scene (between frames). CS_ERR_STATE if none is ready. */
 cs_status cs_stream_swap(cs_stream *s);

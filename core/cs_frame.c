@@ -347,11 +347,11 @@ cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene
                                 const cs_render_opts *opts, const cs_cache *cache,
                                 cs_error *err)
 {
-    if (cache && opts) {
+    if (cache && opts) { /* a build without CS_CFG_CACHE has none */
         const cs_render_opts *c = &cache->opts;
         cs_blend blend = opts->blend == CS_BLEND_SCENE && scene ? (cs_blend)scene->blend : opts->blend;
-        if (cache->status != CS_OK || windowed(opts) || c->width != opts->width ||
-            c->height != opts->height ||
+        if (!CS_CFG_CACHE || cache->status != CS_OK || windowed(opts) ||
+            c->width != opts->width || c->height != opts->height ||
             c->aa != opts->aa || c->blend != blend ||
             (opts->aa == CS_AA_SUBSCAN && c->subscanlines != opts->subscanlines) || !scene ||
             cache->cel_first + cache->cel_count > scene->cel_count) {

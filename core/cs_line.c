@@ -917,7 +917,7 @@ void cs__line_stack(cs_renderer *r, int y)
     /* Without the record nothing is ever opaque, so nothing is skipped. */
     r->record = !r->opts.no_early_out;
     uint32_t cache_end = r->cache ? r->cache->cel_first + r->cache->cel_count : 0;
-    bool cache_pending = r->cache != 0;
+    bool cache_pending = CS_CFG_CACHE && r->cache != 0; /* else its code is left out */
     uint32_t i = 0;
     cel_ranges ranges;
     ranges.n = 0;

@@ -51,6 +51,7 @@ static const char *const status_text[CS_ERR_COUNT_] = {
     [CS_ERR_STREAM_TRUNCATED] = "transaction cut short",
     [CS_ERR_STREAM_TOO_BIG] = "transaction longer than the decoder accepts",
     [CS_ERR_STREAM_RECORD] = "malformed record: length, class, order or layout",
+    [CS_ERR_STREAM_GAP] = "bytes lost on the link (receive overrun)",
 };
 
 const char *cs_status_str(cs_status status)

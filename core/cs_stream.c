@@ -943,6 +943,25 @@ cs_stream_event cs_stream_finish(cs_stream *s)
     return cs_stream_feed(s, 0, 0, &used);
 }
 
+cs_stream_event cs_stream_gap(cs_stream *s)
+{
+    if (!s)
+        return CS_STREAM_MORE;
+    if (!s->queued && !s->commit_ready) {
+        if (s->state == ST_BODY || s->state == ST_TRAILER) {
+            emit(s, CS_ERR_STREAM_GAP, s->txn_offset, s->offset,
+                 "bytes lost on the link inside a transaction", 0);
+            s->dropped++;
+        }
+        /* A skipped stretch's length and an envelope's end count bytes
+         * that may be among the lost ones: trust neither. */
+        s->env_end = 0;
+        to_hunt(s);
+    }
+    size_t used;
+    return cs_stream_feed(s, 0, 0, &used);
+}
+
 cs_status cs_stream_swap(cs_stream *s)
 {
     if (!s || !s->commit_ready)

@@ -16,6 +16,7 @@
 #include "board_api.h"
 #include "fw_print.h"
 #include "fw_render.h"
+#include "rx_ring.h"
 
 static cs_stream stream;
 static cs_scene *front_store;
@@ -225,6 +226,22 @@ int fw_stream_byte(uint8_t byte)
     }
 }
 
+int fw_stream_gap(void)
+{
+    int events = 0;
+    cs_stream_event ev;
+    while ((ev = cs_stream_gap(&stream)) != CS_STREAM_MORE)
+        events += handle(ev);
+    return events;
+}
+
+void fw_stream_link_report(void)
+{
+    const rx_ring *ring = board_link_ring();
+    fw_print("link: ring high-water %u of %u bytes, %u gaps\n", (unsigned)ring->high,
+             (unsigned)ring->mask + 1u, (unsigned)ring->gaps);
+}
+
 int fw_stream_finish(void)
 {
     int events = 0;
@@ -284,10 +301,11 @@ int fw_stream_run(uint32_t expect, uint32_t idle_ms, const fw_frame_req *reqs, i
     uint64_t last = board_time_us();
     while (got < expect) {
         uint8_t b;
-        if (board_link_read(&b)) {
-            got++;
+        int r = board_link_read(&b);
+        if (r != 0) {
+            got += r > 0;
             last = board_time_us();
-            pending |= fw_stream_byte(b) > 0;
+            pending |= (r > 0 ? fw_stream_byte(b) : fw_stream_gap()) > 0;
         } else if (board_time_us() - last > (uint64_t)idle_ms * 1000u) {
             fw_print("stream: link idle for %u ms after %u of %u bytes\n", (unsigned)idle_ms,
                      (unsigned)got, (unsigned)expect);
@@ -309,5 +327,6 @@ int fw_stream_run(uint32_t expect, uint32_t idle_ms, const fw_frame_req *reqs, i
     }
     fw_print("stream: %u bytes, %u commits, %u errors\n", (unsigned)got, (unsigned)commits,
              (unsigned)errors);
+    fw_stream_link_report();
     return failed;
 }

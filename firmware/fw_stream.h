@@ -55,6 +55,10 @@ void fw_stream_start(cs_scene *front, bool front_valid);
 /* Feeds one byte; returns how many events (commits and errors) it caused. */
 int fw_stream_byte(uint8_t byte);
 
+/* The link lost bytes here (board_link_read said -1): an open transaction
+ * is dropped and reported; returns events caused. */
+int fw_stream_gap(void);
+
 /* End of input: reports a transaction cut short; returns events caused. */
 int fw_stream_finish(void);
 
@@ -63,6 +67,9 @@ bool fw_stream_busy(void);
 
 /* The scene on display, or NULL if none was committed (nor given valid). */
 const cs_scene *fw_stream_scene(void);
+
+/* Prints the link's receive ring use: "link: ring high-water H of S bytes, G gaps". */
+void fw_stream_link_report(void);
 
 /* Commits and errors so far. */
 uint32_t fw_stream_commits(void);

@@ -9,7 +9,8 @@
  * format and, on QEMU, can be dumped for a pixel comparison
  * (tools/fw_qemu_test.sh).
  *
- * Command-line words (QEMU -append), all optional:
+ * Command-line words (QEMU -append, on boards with BOARD_CMDLINE; a board
+ * without a host to ask renders the built-in jobs, then plays), all optional:
  *   stream=N         read N bytes of cel stream from the link (UART), and
  *                    after every commit or error render frames= from the
  *                    scene on display
@@ -24,6 +25,8 @@
  *   dump=DIR         frame dumps to the host (board's panel)
  *   fcrc=1           also print a CRC-32 of each frame's linear-light floats
  *   uart=N           read N bytes of link input first and report their CRC
+ *   play=N           after the rest, play N frames of the demo (or the scene
+ *                    the link commits meanwhile) at the board clock's time
  *   crash=stack|udf|div0   fault on purpose (tests the fault path)
  */
 #include "board.h"
@@ -59,15 +62,79 @@ static int render_job(int index, const fw_job *job)
     return fw_render(&scene_store, &opts, label, false);
 }
 
+/*
+ * Playback: show the scene on display, animated by the board clock, and
+ * take stream bytes between frames. Until the first commit that is the
+ * built-in demo (rebuilt at each frame's time: it animates itself); after
+ * it, the committed scene, whose tracks the core samples at the frame's
+ * time. While a transaction streams in, the loop only reads the link (the
+ * workspace holds the transaction) and the panel keeps the last frame; a
+ * sender silent for a second in mid-transaction counts as gone, which
+ * drops the transaction. On real glass (BOARD_DEMO_LOOP) it runs for ever,
+ * printing every 64th frame; `play=N` runs N frames, each printed with its
+ * time (milliseconds, so the host can render the same instant) and the
+ * commit it shows, and returns the failures.
+ */
+static int play(uint32_t frames)
+{
+    fw_job job = fw_jobs[0];
+    job.width = BOARD_PANEL_WIDTH;
+    job.height = BOARD_PANEL_HEIGHT;
+    cs_render_opts opts = fw_job_opts(&job);
+    cs_error err;
+    int failed = 0;
+    if (fw_scenes[job.scene].build(&scene_store, 0.0f, &err) != CS_OK)
+        return 1;
+    fw_stream_start(&scene_store, true);
+    uint64_t start = board_time_us(), last_byte = start;
+    for (uint32_t frame = 0; !frames || frame < frames;) {
+        uint8_t b;
+        int r;
+        while ((r = board_link_read(&b)) != 0) {
+            if (r > 0)
+                fw_stream_byte(b);
+            else
+                fw_stream_gap();
+            last_byte = board_time_us();
+        }
+        if (fw_stream_busy()) {
+            if (board_time_us() - last_byte > 1000000u)
+                fw_stream_finish();
+            continue;
+        }
+        uint32_t ms = (uint32_t)((board_time_us() - start) / 1000u);
+        opts.time = (float)ms / 1000.0f;
+        if (fw_stream_commits() == 0 &&
+            fw_scenes[job.scene].build(&scene_store, opts.time, &err) != CS_OK)
+            continue;
+        if (frames)
+            fw_print("play %u time %u.%03u commit %u\n", (unsigned)frame, (unsigned)(ms / 1000u),
+                     (unsigned)(ms % 1000u), (unsigned)fw_stream_commits());
+        failed += fw_render(&scene_store, &opts, "play", !frames && frame % 64u != 0);
+        frame++;
+    }
+    fw_print("play: %u frames, %u commits, %u errors\n", (unsigned)frames,
+             (unsigned)fw_stream_commits(), (unsigned)fw_stream_errors());
+    fw_stream_link_report();
+    return failed;
+}
+
+#ifdef BOARD_CMDLINE
+/* ------------------------------------------ words from the host's command line */
+
 /* Reads `expect` bytes from the link and reports their count and CRC-32;
  * gives up after 5 s without a byte. */
 static int link_check(uint32_t expect)
 {
     uint32_t got = 0, crc = 0;
     uint64_t last = board_time_us();
+    int r = 0;
     while (got < expect) {
         uint8_t b;
-        if (board_link_read(&b)) {
+        r = board_link_read(&b);
+        if (r < 0) {
+            break; /* bytes lost: the CRC below cannot match */
+        } else if (r > 0) {
             crc = cs_crc32(crc, &b, 1);
             got++;
             last = board_time_us();
@@ -76,7 +143,7 @@ static int link_check(uint32_t expect)
         }
     }
     fw_print("link rx %u bytes crc32 %08X%s\n", (unsigned)got, (unsigned)crc,
-             got < expect ? " (timeout)" : "");
+             got == expect ? "" : r < 0 ? " (bytes lost)" : " (timeout)");
     return got == expect ? 0 : 1;
 }
 
@@ -104,48 +171,6 @@ static void crash(const char *how)
     fw_print("crash=%s: no fault happened\n", how);
 }
 
-#ifdef BOARD_DEMO_LOOP
-/*
- * On real glass: show the scene on display, animated by the board clock,
- * and take stream bytes between frames. Until the first commit that is the
- * built-in demo (rebuilt at each frame's time: it animates itself); after
- * it, the committed scene, whose tracks the core samples at the frame's
- * time. While a transaction streams in, the loop only reads the link (the
- * workspace holds the transaction) and the panel keeps the last frame; a
- * sender silent for a second in mid-transaction counts as gone, which
- * drops the transaction.
- */
-static void demo_loop(void)
-{
-    fw_job job = fw_jobs[0];
-    job.width = BOARD_PANEL_WIDTH;
-    job.height = BOARD_PANEL_HEIGHT;
-    cs_render_opts opts = fw_job_opts(&job);
-    cs_error err;
-    if (fw_scenes[job.scene].build(&scene_store, 0.0f, &err) != CS_OK)
-        return;
-    fw_stream_start(&scene_store, true);
-    uint64_t start = board_time_us(), last_byte = start;
-    for (uint32_t frame = 0;;) {
-        uint8_t b;
-        while (board_link_read(&b)) {
-            fw_stream_byte(b);
-            last_byte = board_time_us();
-        }
-        if (fw_stream_busy()) {
-            if (board_time_us() - last_byte > 1000000u)
-                fw_stream_finish();
-            continue;
-        }
-        opts.time = (float)((board_time_us() - start) / 1000u) / 1000.0f;
-        if (fw_stream_commits() == 0 &&
-            fw_scenes[job.scene].build(&scene_store, opts.time, &err) != CS_OK)
-            continue;
-        fw_render(&scene_store, &opts, "demo", frame % 64u != 0);
-        frame++;
-    }
-}
-#endif
 
 /* Parses "WxH". */
 static int parse_size(const char *s, uint32_t *w, uint32_t *h)
@@ -215,16 +240,11 @@ static int job_selected(const char *list, int i)
     }
 }
 
-int main(void)
+/* What the command line asks for, in order: a deliberate fault, the raw
+ * link check, built-in jobs, a stream, playback. Returns the failures. */
+static int commands(const char *cmd)
 {
-    board_init();
-    const char *cmd = board_cmdline();
     char arg[192];
-    fw_render_init(fw_arg(cmd, "fcrc", arg, sizeof arg) && arg[0] == '1');
-    fw_print("celfw %s: panel %dx%d RGB565, scene store %u B, workspace and staging store %u B, "
-             "stack guard %08x\n",
-             BOARD_NAME, BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, (unsigned)sizeof scene_store,
-             (unsigned)fw_render_work_bytes(), (unsigned)cm_stack_guard());
     if (fw_arg(cmd, "crash", arg, sizeof arg))
         crash(arg);
     int failed = 0;
@@ -232,7 +252,7 @@ int main(void)
     if (fw_arg(cmd, "uart", arg, sizeof arg) && fw_parse_u32(arg, &n))
         failed += link_check(n);
 
-    /* Built-in jobs: all by default, none if a stream is given instead. */
+    /* Built-in jobs: all by default, none if a stream or playback is asked for. */
     bool stream = fw_arg(cmd, "stream", arg, sizeof arg);
     uint32_t expect = 0;
     if (stream && !fw_parse_u32(arg, &expect)) {
@@ -246,7 +266,7 @@ int main(void)
         failed++;
     } else if (c > 0) {
         failed += render_job(0, &custom);
-    } else if (fw_arg(cmd, "jobs", arg, sizeof arg) || !stream) {
+    } else if (fw_arg(cmd, "jobs", arg, sizeof arg) || (!stream && !fw_arg(cmd, "play", 0, 0))) {
         for (int i = 0; i < FW_JOB_COUNT; i++)
             if (job_selected(arg, i))
                 failed += render_job(i, &fw_jobs[i]);
@@ -269,11 +289,40 @@ int main(void)
             failed += fw_stream_run(expect, idle_ms, reqs, count, each);
         }
     }
+    if (fw_arg(cmd, "play", arg, sizeof arg) && fw_parse_u32(arg, &n) && n > 0)
+        failed += play(n);
+    return failed;
+}
+#endif /* BOARD_CMDLINE */
+
+int main(void)
+{
+    board_init();
+#ifdef BOARD_CMDLINE
+    const char *cmd = board_cmdline();
+    char fcrc[4];
+    fw_render_init(fw_arg(cmd, "fcrc", fcrc, sizeof fcrc) && fcrc[0] == '1');
+#else
+    fw_render_init(false);
+#endif
+    fw_print("celfw %s: panel %dx%d RGB565, scene store %u B, workspace and staging store %u B, "
+             "stack guard %08x\n",
+             BOARD_NAME, BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, (unsigned)sizeof scene_store,
+             (unsigned)fw_render_work_bytes(), (unsigned)cm_stack_guard());
+#ifdef BOARD_CMDLINE
+    int failed = commands(cmd);
+#else
+    /* No host to ask: the built-in jobs, their CRCs on the console for a
+     * comparison with the host's. */
+    int failed = 0;
+    for (int i = 0; i < FW_JOB_COUNT; i++)
+        failed += render_job(i, &fw_jobs[i]);
+#endif
     fw_print("stack high-water %u of %u bytes\n", (unsigned)cm_stack_used(),
              (unsigned)cm_stack_size());
     fw_print("celfw: %u frames, %d failed\n", (unsigned)fw_render_frames(), failed);
 #ifdef BOARD_DEMO_LOOP
-    demo_loop();
+    play(0);
 #endif
     return failed ? 1 : 0;
 }

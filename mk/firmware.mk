@@ -3,12 +3,15 @@
 #   make firmware [BOARD=mps2-an386]   build/<board>/celfw.elf (+ .map, .bin), memory
 #                                      use printed and the budgets enforced
 #   make firmware-all                  every board in firmware/boards/*/board.mk
-#   make qemu-test                     boot the mps2-an386 image in QEMU, render the
-#                                      built-in scenes and streamed ones (sent over the
-#                                      UART), compare with celsim and the host (CRC,
-#                                      floats, pixels); damaged streams; faults
+#   make qemu-test [BOARD=B]           boot the mps2-an386 and netduinoplus2 images (or
+#                                      B's) in QEMU, render the built-in scenes and
+#                                      streamed ones (sent over the UART at full speed
+#                                      while frames render), compare with celsim and the
+#                                      host (CRC, floats, pixels); damaged streams; an
+#                                      injected UART overrun; faults
 #   make test-mcu-display              unit test of hal/mcu/mcu_display.c on the host
-#   make qemu-run STREAM=F SIZE=480x272 TIME=0.5 [AA=16]
+#   make test-rx-ring                  unit test of hal/mcu/rx_ring.c (UART receive ring)
+#   make qemu-run STREAM=F SIZE=480x272 TIME=0.5 [AA=16] [BOARD=netduinoplus2]
 #                                      boot, stream F (.cels, or .json compiled first)
 #                                      over the UART, print the frame's `frame crc32`
 #                                      line, as `celsim render F --size --time --crc`
@@ -44,7 +47,9 @@ FW_OPT = $(OPT)
 FW_COLD_OPT := -Os
 FW_COLD_SRC := core/cs_stream.c core/cs_scene.c core/cs_edit.c core/cs_anim.c \
                firmware/main_mcu.c firmware/fw_stream.c firmware/fw_print.c firmware/fw_args.c \
-               firmware/fw_mem.c firmware/scenes/fw_scenes.c
+               firmware/fw_mem.c firmware/scenes/fw_scenes.c \
+               $(wildcard firmware/boards/*/board.c firmware/boards/stm32f4/*.c) \
+               firmware/boards/cortex-m/cm_startup.c hal/mcu/rx_ring.c hal/mcu/semihost.c
 FW_CFLAGS := -std=c11 -g $(FP_FLAGS) $(WARN) -ffreestanding -fno-builtin \
         -fno-tree-loop-distribute-patterns -fno-stack-protector -fno-common \
         -ffunction-sections -fdata-sections -MMD -MP
@@ -62,7 +67,7 @@ FW_LD_$(1) := $$(BOARD_LDSCRIPT)
 FW_STACK_$(1) := $$(BOARD_STACK)
 FW_QEMU_$(1) := $$(BOARD_QEMU)
 FW_INC_$(1) := -Icore -Ifirmware -Ifirmware/scenes -Ifirmware/boards -Ifirmware/boards/cortex-m \
-        -Ifirmware/boards/$(1) -Ihal/mcu -DCS_CFG_FILE='"cs_board_config.h"'
+        -Ifirmware/boards/$(1) -Ifirmware/boards/stm32f4 -Ihal/mcu -DCS_CFG_FILE='"cs_board_config.h"'
 FW_OBJ_$(1) := $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(CORE_SRC) $(FW_COMMON_SRC) $$(BOARD_SRC))
 
 $$(eval $$(call flags_record,fw-$(1),$(ARM_CC) $$(FW_CPU_$(1)) $(OPT) $(FW_COLD_OPT) $(FW_CFLAGS) \
@@ -78,9 +83,12 @@ $(BUILD)/$(1)/celfw.elf: $$(FW_OBJ_$(1)) $$(FW_LD_$(1)) linker/sections.ld
 		$$(FW_OBJ_$(1)) -lgcc -o $$@
 	$(Q)arm-none-eabi-objcopy -O binary $$@ $(BUILD)/$(1)/celfw.bin
 
-.PHONY: firmware-$(1)
+.PHONY: firmware-$(1) qemu-test-$(1)
 firmware-$(1): $(BUILD)/$(1)/celfw.elf
 	$(Q)tools/fw_budget.sh $(1) $(BUILD)/$(1)/celfw.elf $(BUILD)/$(1)/celfw.map
+qemu-test-$(1): firmware-$(1) $(HOST)/fw_host_ref $(HOST)/fw_cels_gen $(HOST)/celsim $(HOST)/celc
+	$(Q)$$(if $$(FW_QEMU_$(1)),FW_QEMU="$$(FW_QEMU_$(1))" tools/fw_qemu_test.sh \
+		$(BUILD)/$(1)/celfw.elf $(BUILD)/$(1)/qemu-test $(1),@echo "qemu-test $(1): no QEMU machine (BOARD_QEMU)"; false)
 endef
 $(foreach b,$(FW_BOARDS),$(eval $(call FW_BOARD_RULES,$(b))))
 
@@ -114,6 +122,15 @@ $(HOST)/test_mcu_display: $(HOST)/obj/tests/test_mcu_display.o $(HOST)/obj/hal/m
 test-mcu-display: $(HOST)/test_mcu_display
 	$(Q)$<
 
+# The UART receive ring is plain C too.
+$(HOST)/obj/tests/test_rx_ring.o $(HOST)/obj/hal/mcu/rx_ring.o: HOST_CFLAGS += -Ihal/mcu -Itests
+$(HOST)/test_rx_ring: $(HOST)/obj/tests/test_rx_ring.o $(HOST)/obj/hal/mcu/rx_ring.o
+	$(Q)$(CC) $^ -o $@
+
+.PHONY: test-rx-ring
+test-rx-ring: $(HOST)/test_rx_ring
+	$(Q)$<
+
 # A TCG plugin is a shared object QEMU loads; it uses no glib and no QEMU
 # header (Debian ships neither for plugins), see tools/qemu-insn.
 $(HOST)/libinsncount.so: tools/qemu-insn/insncount.c
@@ -121,20 +138,22 @@ $(HOST)/libinsncount.so: tools/qemu-insn/insncount.c
 	$(Q)$(CC) -std=c11 -O2 -Wall -Wextra -shared -fPIC -fvisibility=hidden $< -o $@
 
 # ------------------------------------------------------------ running
+# qemu-test runs every board that has a QEMU machine, or only BOARD when it
+# is given (make qemu-test BOARD=netduinoplus2).
 FW_QEMU_ELF := $(BUILD)/$(FW_QEMU_BOARD)/celfw.elf
-
-qemu-test: firmware-$(FW_QEMU_BOARD) $(HOST)/fw_host_ref $(HOST)/fw_cels_gen $(HOST)/celsim \
-           $(HOST)/celc
-	$(Q)tools/fw_qemu_test.sh $(FW_QEMU_ELF) $(BUILD)/$(FW_QEMU_BOARD)/qemu-test
+FW_QEMU_BOARDS := $(foreach b,$(FW_BOARDS),$(if $(FW_QEMU_$(b)),$(b)))
+qemu-test: $(addprefix qemu-test-,$(if $(filter command line environment,$(origin BOARD)),\
+                                       $(BOARD),$(FW_QEMU_BOARDS)))
 
 STREAM ?=
 SCENE ?= signage
 SIZE ?= 480x272
 TIME ?= 0
 AA ?= 16
-qemu-run: firmware-$(FW_QEMU_BOARD) $(if $(STREAM),$(HOST)/celc)
-	$(Q)tools/fw_qemu_run.sh $(FW_QEMU_ELF) $(if $(STREAM),--stream "$(STREAM)",--scene "$(SCENE)") \
-		"$(SIZE)" "$(TIME)" "$(AA)"
+FW_RUN_BOARD := $(if $(filter command line environment,$(origin BOARD)),$(BOARD),$(FW_QEMU_BOARD))
+qemu-run: firmware-$(FW_RUN_BOARD) $(if $(STREAM),$(HOST)/celc)
+	$(Q)FW_QEMU="$(FW_QEMU_$(FW_RUN_BOARD))" tools/fw_qemu_run.sh $(BUILD)/$(FW_RUN_BOARD)/celfw.elf \
+		$(if $(STREAM),--stream "$(STREAM)",--scene "$(SCENE)") "$(SIZE)" "$(TIME)" "$(AA)"
 
 # The board demo, the animated scene and the beta stack, streamed, at 480x272
 # with 5 and 16 sub-scanlines; then the built-in jobs.
@@ -150,5 +169,6 @@ qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen
 	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/builtin
 
 # firmware-all: every board's image builds and fits its flash and RAM
-# budgets (qemu-test only boots the mps2-an386 one).
-TEST_TARGETS += test-mcu-display qemu-test firmware-all
+# budgets (qemu-test boots the boards that QEMU models: mps2-an386 and
+# netduinoplus2, which runs the stm32f407-ssd1963 board's STM32 drivers).
+TEST_TARGETS += test-mcu-display test-rx-ring $(addprefix qemu-test-,$(FW_QEMU_BOARDS)) firmware-all

@@ -2,7 +2,8 @@
  * fuzz_stream.c - libFuzzer target for the cel stream decoder.
  *
  * Input: byte 0 chooses how the rest is fed (whole, byte by byte, or in
- * chunks from a small generator seeded by it), whether the decoder starts
+ * chunks from a small generator seeded by it; with bit 0x20, link gaps
+ * (cs_stream_gap) now and then between chunks), whether the decoder starts
  * with a built-in scene on display (so that patches apply at once), and
  * whether the harness first re-seals every transaction's CRCs: random
  * mutations nearly always break a CRC, and without re-sealing the fuzzer
@@ -193,7 +194,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     uint32_t front_crc = front_valid ? scene_crc(&store_a) : 0;
     uint32_t rng = 0x9E3779B9u ^ mode;
     size_t off = 0;
-    int events = 0;
+    int events = 0, gaps = 0;
     for (int phase = 0; phase < 3;) {
         cs_stream_event ev;
         size_t used = 0;
@@ -204,6 +205,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             }
             size_t want = size - off;
             rng = rng * 1664525u + 1013904223u;
+            if ((mode & 0x20) && (rng >> 28) == 0) { /* the link lost bytes here */
+                ev = cs_stream_gap(&st);
+                gaps++;
+                goto event;
+            }
             if ((mode & 3) == 1)
                 want = 1;
             else if ((mode & 3) >= 2)
@@ -218,6 +224,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         } else { /* end of input */
             ev = cs_stream_finish(&st);
         }
+    event:
         REQUIRE(used == 0 || phase == 0);
         /* White box: inside a body the position never passes the length. */
         REQUIRE(st.body_pos <= st.body_len);
@@ -236,7 +243,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             phase++;
         }
         if (ev != CS_STREAM_MORE)
-            REQUIRE(++events <= (int)size + 4); /* at most about one event per byte */
+            REQUIRE(++events <= (int)size + 4 + 2 * gaps); /* about one per byte or gap */
     }
     REQUIRE(st.offset == size);
     if (cs_stream_scene(&st))

@@ -12,6 +12,7 @@
  *     (compared with the scene the test built) and an error whose offset
  *     is the damaged transaction's, never a different picture;
  *   - resynchronisation after garbage and after a transaction cut short;
+ *   - link gaps (cs_stream_gap): at every offset, with 0, 1 or 7 bytes lost;
  *   - patches: a patch transaction equals the same edits made with the
  *     scene calls directly, and cel removal / moves equal scenes built
  *     from scratch in the resulting order;
@@ -1694,6 +1695,114 @@ static void test_valid_then_damaged(void)
 }
 
 /*
+ * cs_stream_gap: a link that lost `lost` bytes at offset k of two
+ * transactions. For every k: a transaction the gap or the lost bytes touch
+ * never commits, the one on display before stays, the other commits intact;
+ * a gap inside a transaction's body or trailer is reported as
+ * CS_ERR_STREAM_GAP at k (the offset counts the bytes fed), for the
+ * transaction's own offset; nothing is ever pieced together across it.
+ */
+static void gap_run(const uint8_t *d, size_t n, size_t k, size_t lost, result *r)
+{
+    memset(r, 0, sizeof *r);
+    cs_stream_init(&st, store_a, false, store_b);
+    size_t off = 0, used;
+    cs_stream_event ev;
+    while (off < k) {
+        ev = cs_stream_feed(&st, d + off, k - off, &used);
+        off += used;
+        handle(ev, r);
+    }
+    while ((ev = cs_stream_gap(&st)) != CS_STREAM_MORE)
+        handle(ev, r);
+    for (off = k + lost; off < n; off += used) {
+        ev = cs_stream_feed(&st, d + off, n - off, &used);
+        handle(ev, r);
+    }
+    while ((ev = cs_stream_finish(&st)) != CS_STREAM_MORE)
+        handle(ev, r);
+    r->scene = cs_stream_scene(&st);
+}
+
+static void test_gap(void)
+{
+    cs_scene *s = new_scene(), *other = new_scene();
+    build_demo(s);
+    cs_scene_copy(other, s);
+    cs_error e;
+    cs_affine m = {1, 0, 0, 1, 5, 5};
+    cs_scene_set_transform(other, 1, &m, &e);
+    cels_buf b;
+    encode(s, &b, true);
+    size_t t[2] = {16, b.len}, end[2];
+    end[0] = b.len;
+    cels_encode_scene(&b, other);
+    end[1] = b.len;
+    const cs_scene *want_scene[2] = {s, other};
+    static const size_t losses[3] = {0, 1, 7};
+    for (int li = 0; li < 3; li++) {
+        size_t lost = losses[li];
+        bulk bk = {0, ""};
+        int runs = 0;
+        for (size_t k = 0; k + lost <= b.len; k += (k < 64 || b.len - k < 64) ? 1 : 13) {
+            result r;
+            gap_run(b.data, b.len, k, lost, &r);
+            const cs_scene *want = NULL;
+            int gap_errors = 0, want_gap = -1;
+            for (int i = 0; i < 2; i++) {
+                if (k + lost <= t[i] || k >= end[i])
+                    want = want_scene[i];
+                if (k >= t[i] + 16 && k < end[i])
+                    want_gap = i;
+            }
+            for (int i = 0; i < r.errors && i < 8; i++)
+                if (r.err[i].status == CS_ERR_STREAM_GAP) {
+                    gap_errors++;
+                    if (want_gap < 0 || r.err[i].offset != t[want_gap] || r.err[i].at != k)
+                        gap_errors += 100;
+                }
+            char why[160] = "";
+            if (!want ? r.scene != NULL
+                      : !r.scene || !scene_equal(want, r.scene, why, sizeof why)) {
+                char msg[256];
+                snprintf(msg, sizeof msg, "gap at %zu, %zu lost: wrong scene on display %s", k,
+                         lost, why);
+                bulk_fail(&bk, msg);
+            }
+            if (gap_errors != (want_gap >= 0)) {
+                char msg[256];
+                snprintf(msg, sizeof msg, "gap at %zu, %zu lost: %d gap errors (want %d)", k, lost,
+                         gap_errors, want_gap >= 0);
+                bulk_fail(&bk, msg);
+            }
+            runs++;
+        }
+        char name[64];
+        snprintf(name, sizeof name, "gap of %zu lost bytes at each offset", lost);
+        bulk_done(&bk, name, runs);
+    }
+    /* A commit waiting for the swap is returned first; the gap follows. */
+    cs_stream_init(&st, store_a, false, store_b);
+    size_t used;
+    cs_stream_event ev = cs_stream_feed(&st, b.data, end[0], &used);
+    CHECK(ev == CS_STREAM_COMMIT && cs_stream_gap(&st) == CS_STREAM_COMMIT,
+          "a waiting commit comes before the gap");
+    cs_stream_swap(&st);
+    CHECK(cs_stream_gap(&st) == CS_STREAM_MORE && !cs_stream_busy(&st),
+          "a gap between transactions drops nothing");
+    ev = cs_stream_feed(&st, b.data + end[0], 40, &used);
+    CHECK(ev == CS_STREAM_MORE && cs_stream_busy(&st) && cs_stream_gap(&st) == CS_STREAM_ERROR &&
+              cs_stream_last_error(&st)->status == CS_ERR_STREAM_GAP &&
+              cs_stream_last_error(&st)->at == end[0] + 40 && !cs_stream_busy(&st),
+          "a gap inside a transaction drops it at once and frees the back store");
+    CHECK(strcmp(cs_status_str(CS_ERR_STREAM_GAP), "bytes lost on the link (receive overrun)") == 0,
+          "the gap's status text");
+    cels_buf_free(&b);
+    free(s);
+    free(other);
+}
+
+/*
  * cs_stream_busy: false exactly between transactions, and then the back
  * store really is scratch. The test scribbles over the back store at every
  * byte where the decoder is not busy (as the MCU firmware does when it
@@ -2568,6 +2677,7 @@ int main(int argc, char **argv)
     test_random_and_resync();
     test_valid_then_damaged();
     test_busy();
+    test_gap();
     test_refuse();
     test_epoch();
     test_patches();

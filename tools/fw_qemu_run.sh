@@ -18,7 +18,8 @@
 # milliseconds.
 set -eu
 elf=$1 mode=$2 what=$3 size=$4 time=$5 aa=${6:-16}
-qemu="qemu-system-arm -M mps2-an386 -display none -monitor none
+# FW_QEMU: the board's machine (its BOARD_QEMU); the link is the next -serial.
+qemu="${FW_QEMU:-qemu-system-arm -M mps2-an386} -display none -monitor none
       -semihosting-config enable=on,target=native -kernel $elf"
 case $mode in
 --stream)
@@ -34,9 +35,14 @@ case $mode in
     esac
     [ -r "$file" ] || { echo "qemu-run: cannot read $file" >&2; exit 2; }
     n=$(wc -c <"$file")
+    log=$(mktemp)
+    status=0
     # shellcheck disable=SC2086
-    timeout "${FW_QEMU_TIMEOUT:-120}" $qemu -serial stdio \
-        -append "stream=$n frames=$size@$time:$aa render=end" <"$file" 2>&1
+    tools/fw_qemu_feed.sh "$file" "$log" "${FW_QEMU_TIMEOUT:-120}" $qemu -serial stdio \
+        -append "stream=$n frames=$size@$time:$aa render=end" || status=$?
+    cat "$log"
+    rm -f "$log"
+    exit $status
     ;;
 --scene)
     ms=$(awk -v t="$time" 'BEGIN {

@@ -1,6 +1,8 @@
 #!/bin/sh
-# fw_qemu_test.sh ELF OUTDIR - boots the firmware under QEMU and checks that
-# every frame it renders is bit-identical to the host's.
+# fw_qemu_test.sh ELF OUTDIR [BOARD] - boots the firmware under QEMU and
+# checks that every frame it renders is bit-identical to the host's.
+# FW_QEMU is the board's machine (its BOARD_QEMU, default mps2-an386); the
+# stream link is the -serial this script adds after it.
 #
 # 1. Built-in scenes. The firmware renders its built-in jobs, prints for each
 #      job I scene NAME time_ms T size WxH aa N
@@ -29,13 +31,26 @@
 #    byte offsets, and the frames after the damaged transaction must be
 #    those before it: the picture stays, the firmware keeps running.
 #
-# 3. Faults. The stack stays within its size, and a deliberate crash (stack
+# 3. The link. Sections 1 and 2 send at the fastest rate QEMU's UART models
+#    take (they deliver a byte as soon as the last one is read, whatever the
+#    baud rate register says) while frames render: the receive interrupt
+#    fills the ring during frames, and the stream still commits intact.
+#    Then an overrun is injected (rxdrop=N: the board drops delivered byte N
+#    as an overrun loses it) inside a demo transaction sent after the beta
+#    stack: it is reported with its offset as bytes lost, the transaction
+#    is dropped, the frames after it are those before (the picture stays),
+#    and the demo sent whole after it commits and renders as in section 2.
+#    Last, the board plays (play=8: the loop it runs on glass, frames at the
+#    board clock's time) while the beta stack and the demo stream in; every
+#    frame equals the host's render of what it shows at the printed instant.
+#
+# 4. Faults. The stack stays within its size, and a deliberate crash (stack
 #    overflow into the MPU guard, undefined instruction, division by zero)
 #    ends QEMU with a non-zero status instead of hanging.
 #
-# Prints `qemu-test: N passed, M failed` like the other tests.
+# Prints `qemu-test BOARD: N passed, M failed` like the other tests.
 set -u
-elf=$1 out=$2
+elf=$1 out=$2 board=${3:-mps2-an386}
 host=build/host
 default_ref="$host/fw_host_ref --scene {scene} --size {size} --time {time} --aa {aa} --crc --float-crc --dump {dump}"
 ref=${FW_REF:-$default_ref}
@@ -44,7 +59,7 @@ celc=${FW_CELC:-$default_celc}
 celsim=${FW_CELSIM:-$host/celsim}
 FRAMES=${FW_FRAMES:-480x272@0:5,480x272@0.5:5,480x272@1.25:5,240x136@0.75:none}
 tmo=${FW_QEMU_TIMEOUT:-120}
-qemu="qemu-system-arm -M mps2-an386 -display none -monitor none
+qemu="${FW_QEMU:-qemu-system-arm -M mps2-an386} -display none -monitor none
       -semihosting-config enable=on,target=native -kernel $elf"
 
 pass=0 fail=0
@@ -53,7 +68,7 @@ bad() { fail=$((fail + 1)); echo "  FAIL $*"; }
 
 if ! command -v qemu-system-arm >/dev/null; then
     echo "qemu-test: qemu-system-arm missing (tools/install-deps.sh installs it)"
-    echo "qemu-test: 0 passed, 1 failed"
+    echo "qemu-test $board: 0 passed, 1 failed"
     exit 1
 fi
 rm -rf "$out"
@@ -61,12 +76,15 @@ mkdir -p "$out/builtin/frames" "$out/builtin/ref" "$out/stream/frames" "$out/str
 
 crc_of() { python3 -c 'import sys, zlib; print("%08X" % zlib.crc32(open(sys.argv[1], "rb").read()))' "$1"; }
 
-# boot LOG ARGS < INPUT: runs the firmware; console to LOG, status in $status.
+# boot LOG ARGS < INPUT: runs the firmware, the input sent on its link once
+# it has booted (tools/fw_qemu_feed.sh); console to LOG, status in $status.
 boot() {
     log=$1
     shift
+    cat >"${log%.log}.link"
     # shellcheck disable=SC2086
-    timeout "$tmo" $qemu -serial stdio -append "$*" >"${log%.log}.uart" 2>"$log"
+    tools/fw_qemu_feed.sh "${log%.log}.link" "$log" "$tmo" $qemu -serial stdio -append "$*" \
+        >"${log%.log}.uart"
     status=$?
     name=$(basename "$(dirname "$log")")
     if [ $status -eq 0 ]; then ok "$name: firmware ran and exited 0"
@@ -295,7 +313,89 @@ else
     bad "qemu-run printed '$run_line', celsim '$sim_line'"
 fi
 
-# ------------------------------------------------------------ 3. faults
+# ------------------------------------------------------------- 3. the link
+echo "qemu-test: the link"
+ring=$(awk '/^link: ring high-water / {print $4, $6, $8}' "$s/console.log")
+set -- $ring
+if [ $# -eq 3 ] && [ "$1" -gt 16 ] && [ "$3" -eq 0 ]; then
+    ok "streamed at full speed while rendering: the ring held up to $1 of $2 bytes, none lost"
+else
+    bad "ring use not reported, never above 16 bytes, or gaps: '$ring'"
+fi
+o=$out/overrun
+mkdir -p "$o/frames"
+cat "$s/beta.cels" "$s/demo.cels" "$s/demo.cels" >"$o/link.cels"
+beta_len=$(wc -c <"$s/beta.cels")
+drop=$((beta_len + 16 + 16 + 700)) # a byte inside the demo's body (1-based)
+o_len=$(wc -c <"$o/link.cels")
+boot "$o/console.log" "dump=$o/frames fcrc=1 stream=$((o_len - 1)) rxdrop=$drop frames=$FRAMES" \
+    <"$o/link.cels"
+if grep -q "^stream: $((o_len - 1)) bytes, 2 commits, 2 errors\$" "$o/console.log" &&
+    grep -q "^link: ring high-water [0-9]* of [0-9]* bytes, 1 gaps\$" "$o/console.log"; then
+    ok "byte $drop of $o_len dropped as an overrun: 1 gap, 2 commits, 2 errors"
+else
+    bad "overrun run: $(grep -E '^(stream|link): ' "$o/console.log" | tr '\n' ' ')"
+fi
+gap_line=$(grep '^stream error: ' "$o/console.log" | sed -n 1p)
+if echo "$gap_line" | grep -q "^stream error: byte $((drop - 1)): bytes lost on the link (receive overrun).*(transaction at byte $((beta_len + 16)) dropped)\$"; then
+    ok "overrun reported at its offset: $gap_line"
+else
+    bad "overrun not reported at byte $((drop - 1)) for the transaction at $((beta_len + 16)): $gap_line"
+fi
+awk '/^stream commit / {ev = "commit" $3; next}
+     /^stream error: / {ev = "error" (++e); next}
+     /^frame [0-9]+ size / {f = $2; size = $4; t = $6; aa = $8; crc = ""; next}
+     /^frame crc32 / && f != "" {crc = $3; next}
+     /^float crc32 / && f != "" && crc != "" {print ev, size, t, aa, crc, $3; f = ""}' \
+    "$o/console.log" >"$o/frames.txt"
+# Commit 1 is the beta stack (commit 3 of section 2), then the gap and the
+# skipped rest of the damaged demo, then commit 2, the demo (commit 1 there).
+awk '$6 == "commit3" {print $2, $3, $4, $7, $8}' "$s/frames.txt" >"$o/beta.want"
+awk '$6 == "commit1" {print $2, $3, $4, $7, $8}' "$s/frames.txt" >"$o/demo.want"
+for ev in commit1 error1 error2 commit2; do
+    want=$o/beta.want
+    [ $ev = commit2 ] && want=$o/demo.want
+    awk -v ev=$ev '$1 == ev {print $2, $3, $4, $5, $6}' "$o/frames.txt" >"$o/$ev.got"
+    if [ -s "$want" ] && cmp -s "$want" "$o/$ev.got"; then
+        ok "frames after $ev equal those checked in section 2 ($(basename "$want" .want), CRC and floats)"
+    else
+        bad "frames after $ev differ from section 2's $(basename "$want" .want) frames"
+    fi
+done
+
+# Playback while the stream arrives: the loop a board runs on glass
+# (play=N frames at the board clock's time), the beta stack and then the
+# demo streamed meanwhile. Every frame shows the built-in demo, the beta
+# stack or the demo at the instant it prints, and must equal the host's.
+p=$out/play
+mkdir -p "$p"
+cat "$s/beta.cels" "$s/demo.cels" >"$p/link.cels"
+boot "$p/console.log" "play=8 fcrc=1" <"$p/link.cels"
+if grep -q "^play: 8 frames, 2 commits, 0 errors\$" "$p/console.log" &&
+    grep -q "^link: ring high-water [0-9]* of [0-9]* bytes, 0 gaps\$" "$p/console.log"; then
+    ok "played 8 frames while the beta stack and the demo streamed in: 2 commits, no gap"
+else
+    bad "playback: $(grep -E '^(play|link): ' "$p/console.log" | tr '\n' ' ')"
+fi
+awk '/^play [0-9]+ time / {f = $2; t = $4; k = $6; crc = ""; next}
+     /^frame crc32 / && f != "" {crc = $3; next}
+     /^float crc32 / && f != "" && crc != "" {print f, t, k, crc, $3; f = ""}' \
+    "$p/console.log" >"$p/frames.txt"
+while read -r f t k crc fcrc; do
+    case $k in
+    0) what="play frame $f: built-in signage t=$t"
+       cmd="$host/fw_host_ref --scene signage --size 480x272 --time $t --aa 5 --crc --float-crc" ;;
+    1) what="play frame $f: beta stack t=$t"
+       cmd="$host/fw_host_ref --cels $s/beta.cels --size 480x272 --time $t --aa 5 --crc --float-crc"
+       compare_frame "$what" "" "$crc" "" "$celsim render scenes/beta-stack.json --size 480x272 --time $t --aa 5 --crc" ;;
+    *) what="play frame $f: board demo t=$t"
+       cmd="$host/fw_host_ref --cels $s/demo.cels --size 480x272 --time $t --aa 5 --crc --float-crc"
+       compare_frame "$what" "" "$crc" "" "$celsim render scenes/demo-board.json --size 480x272 --time $t --aa 5 --crc" ;;
+    esac
+    compare_frame "$what" "" "$crc" "$fcrc" "$cmd"
+done <"$p/frames.txt"
+
+# ------------------------------------------------------------ 4. faults
 # A crash must end the run with 128 + the exception number, not hang it.
 for c in stack:132:MemManage udf:134:UsageFault div0:134:UsageFault; do
     how=${c%%:*} rest=${c#*:}
@@ -310,5 +410,5 @@ for c in stack:132:MemManage udf:134:UsageFault div0:134:UsageFault; do
     fi
 done
 
-echo "qemu-test: $pass passed, $fail failed"
+echo "qemu-test $board: $pass passed, $fail failed"
 [ $fail -eq 0 ]

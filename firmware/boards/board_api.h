@@ -20,9 +20,13 @@ void board_init(void);
 /* Status text for people and tests (semihosting console or a UART). */
 void board_console_write(const char *text);
 
-/* Stream ingress: one received byte into *byte and 1, or 0 if none waits.
- * Never blocks. */
+/* Stream ingress: one received byte into *byte and 1, 0 if none waits, or
+ * -1 where bytes were lost (a receive overrun: the bytes after it do not
+ * follow the ones before). Never blocks. */
 int board_link_read(uint8_t *byte);
+
+/* The receive ring behind it (for its high-water mark and size). */
+const struct rx_ring *board_link_ring(void);
 
 /* Monotonic time in microseconds since board_init. */
 uint64_t board_time_us(void);

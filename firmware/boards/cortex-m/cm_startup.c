@@ -147,7 +147,11 @@ void cm_fault_report(const uint32_t *frame, uint32_t ipsr)
 
 typedef void (*cm_vector)(void);
 
-/* Initial sp, then the 15 system exceptions, then the board's interrupts. */
+/* Initial sp, then the 15 system exceptions, then the board's interrupts.
+ * A board's own handlers (BOARD_VECTORS in its board.h: its UART receive
+ * interrupt, a clock tick) take their slots over from the fault entry. */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Woverride-init"
 __attribute__((section(".vectors"), used)) static const cm_vector vectors[16 + BOARD_IRQ_COUNT] = {
     [0] = (cm_vector)(uintptr_t)__stack_top,
     [1] = reset_handler,
@@ -159,9 +163,13 @@ __attribute__((section(".vectors"), used)) static const cm_vector vectors[16 + B
     [11] = cm_fault_entry, /* SVCall: nothing issues SVC */
     [12] = cm_fault_entry, /* DebugMonitor */
     [14] = cm_fault_entry, /* PendSV */
-    [15] = cm_fault_entry, /* SysTick: the clock polls, it never interrupts */
+    [15] = cm_fault_entry, /* SysTick, unless the board's clock uses it */
     [16 ... 16 + BOARD_IRQ_COUNT - 1] = cm_fault_entry,
+#ifdef BOARD_VECTORS
+    BOARD_VECTORS
+#endif
 };
+#pragma GCC diagnostic pop
 
 /* Routes MemManage, BusFault and UsageFault to their own vectors (instead
  * of HardFault), traps integer division by zero, and makes the 32 bytes

@@ -13,11 +13,19 @@
 
 /* The panel the firmware renders for: a 480x272 RGB565 TFT, here only a
  * frame dump through semihosting. */
+/* Words from the host's command line (QEMU -append, over semihosting). */
+#define BOARD_CMDLINE 1
+
 #define BOARD_PANEL_WIDTH 480
 #define BOARD_PANEL_HEIGHT 272
 
-/* CMSDK APB UART0: stream ingress (QEMU's first -serial). */
+/* CMSDK APB UART0: stream ingress (QEMU's first -serial); its receive
+ * interrupt is IRQ 0 (QEMU hw/arm/mps2.c, as on the AN385/AN386 FPGA). */
 #define MPS2_UART0_BASE 0x40004000u
+#define MPS2_UART0_RX_IRQ 0
+#define BOARD_RX_RING 64 /* bytes; QEMU's UART waits while it is full */
+void board_link_isr(void);
+#define BOARD_VECTORS [16 + MPS2_UART0_RX_IRQ] = board_link_isr,
 /* CMSDK APB dual timer: timer 1 runs free as the clock. */
 #define MPS2_DUALTIMER_BASE 0x40002000u
 
