@@ -3,6 +3,8 @@
  */
 #include "semihost.h"
 
+#include "cm_regs.h"
+
 #define SYS_OPEN 0x01
 #define SYS_CLOSE 0x02
 #define SYS_WRITE0 0x04
@@ -16,8 +18,20 @@ static uintptr_t sh_call(uintptr_t op, const void *arg)
 {
     register uintptr_t r0 __asm("r0") = op;
     register const void *r1 __asm("r1") = arg;
+    /* The host reads the block and buffers as a debugger does, and QEMU
+     * translates such an access through the MPU a whole 1 KiB page at a
+     * time: the 32-byte stack guard (cm_startup.c) at the bottom of RAM
+     * would make every byte of its page unreadable, so text printed from
+     * deep in the stack was silently lost. A probe's access port bypasses
+     * the MPU; so does this, around the one instruction (an interrupt
+     * taken in the few instructions between runs without the guard). */
+    uint32_t mpu = MPU_CTRL;
+    MPU_CTRL = mpu & ~1u;
+    __asm volatile("dsb\n\tisb" ::: "memory");
     /* "memory": the host reads and writes the parameter block and buffers. */
     __asm volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
+    MPU_CTRL = mpu;
+    __asm volatile("dsb\n\tisb" ::: "memory");
     return r0;
 }
 
