@@ -1,0 +1,41 @@
+# threads.mk - a frame's lines on several threads (host-sim/bands.c), for
+# celsim --threads and celfw --threads on Linux hosts.
+#
+#   make test-bands       1, 2, 3 and 4 threads against one, every AA mode (part of make test)
+#   make test-bands-tsan  the same under ThreadSanitizer (clang), core included
+#
+# The core has no threads: each thread renders lines of the one prepared
+# frame in its own workspace (cs_frame_share), so what is tested here is
+# that the bytes do not depend on the split, and that the pool shares
+# nothing it should not.
+
+BANDS_TEST_OBJ := $(HOST)/obj/tests/test_bands.o $(HOST)/obj/host-sim/bands.o \
+        $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o
+$(HOST)/obj/tests/test_bands.o: HOST_CFLAGS += -Itests
+
+$(HOST)/test_bands: $(BANDS_TEST_OBJ) $(HOST)/libcelscan.a
+	$(Q)$(CC) -o $@ $^ $(PKG_LIBS) -lm -pthread
+
+.PHONY: test-bands test-bands-tsan
+test-bands: $(HOST)/test_bands
+	$(Q)$(HOST)/test_bands scenes
+
+TEST_TARGETS += test-bands
+
+# ThreadSanitizer wants every object instrumented, the core's too, and is
+# clang's here (as fuzzing is); -O1 keeps the run within seconds.
+BANDS_TSAN := $(BUILD)/tsan
+BANDS_TSAN_FLAGS := -fsanitize=thread -O1 -g $(FP_FLAGS)
+BANDS_TSAN_SRC := tests/test_bands.c host-sim/bands.c host-sim/scene_json.c host-sim/paint_json.c \
+        $(CORE_SRC)
+$(eval $(call flags_record,bands-tsan,clang $(BANDS_TSAN_FLAGS)))
+$(BANDS_TSAN)/%.o: %.c $(FLAGS_DIR)/bands-tsan
+	@mkdir -p $(dir $@)
+	$(Q)clang -std=c11 $(BANDS_TSAN_FLAGS) -Icore -Ihost-sim -Itests -D_POSIX_C_SOURCE=200809L \
+		$(PKG_CFLAGS) -MMD -MP -c $< -o $@
+$(BANDS_TSAN)/test_bands: $(patsubst %.c,$(BANDS_TSAN)/%.o,$(BANDS_TSAN_SRC))
+	$(Q)clang -fsanitize=thread -o $@ $^ $(PKG_LIBS) -lm -pthread
+
+test-bands-tsan: $(BANDS_TSAN)/test_bands
+	$(Q)TSAN_OPTIONS=halt_on_error=1 $< scenes >$<.log 2>&1; \
+		rc=$$?; sed 's/^test_bands:/test_bands_tsan:/' $<.log; exit $$rc
