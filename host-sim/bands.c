@@ -17,6 +17,7 @@
 #include <sched.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "bands.h"
 
@@ -195,6 +196,16 @@ cs_error bands_finish(bands *b)
     cs_error e = b->err;
     pthread_mutex_unlock(&b->mu);
     return e;
+}
+
+void bands_floats(const cs_renderer *r, float *rgb)
+{
+    for (int x = 0; x < r->opts.width;) {
+        float c[3];
+        int e = cs_line_run(r, x, c);
+        for (; x < e; x++)
+            memcpy(&rgb[3 * x], c, sizeof c);
+    }
 }
 
 void bands_free(bands *b)

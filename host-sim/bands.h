@@ -63,6 +63,9 @@ void bands_release(bands *b, int y);
  */
 cs_error bands_finish(bands *b);
 
+/* The line in r's runs as 3 * width linear floats, what cs_render_line gives (for an emit). */
+void bands_floats(const cs_renderer *r, float *rgb);
+
 /* Stops and joins the threads, frees everything (NULL is fine). */
 void bands_free(bands *b);
 

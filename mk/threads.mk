@@ -10,8 +10,9 @@
 # nothing it should not.
 
 BANDS_TEST_OBJ := $(HOST)/obj/tests/test_bands.o $(HOST)/obj/host-sim/bands.o \
-        $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o
-$(HOST)/obj/tests/test_bands.o: HOST_CFLAGS += -Itests
+        $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o \
+        $(HOST)/obj/hal/linux/lx_scene_source.o
+$(HOST)/obj/tests/test_bands.o: HOST_CFLAGS += -Itests -Ihal/linux
 
 $(HOST)/test_bands: $(BANDS_TEST_OBJ) $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(PKG_LIBS) -lm -pthread
@@ -27,11 +28,11 @@ TEST_TARGETS += test-bands
 BANDS_TSAN := $(BUILD)/tsan
 BANDS_TSAN_FLAGS := -fsanitize=thread -O1 -g $(FP_FLAGS)
 BANDS_TSAN_SRC := tests/test_bands.c host-sim/bands.c host-sim/scene_json.c host-sim/paint_json.c \
-        $(CORE_SRC)
+        hal/linux/lx_scene_source.c $(CORE_SRC)
 $(eval $(call flags_record,bands-tsan,clang $(BANDS_TSAN_FLAGS)))
 $(BANDS_TSAN)/%.o: %.c $(FLAGS_DIR)/bands-tsan
 	@mkdir -p $(dir $@)
-	$(Q)clang -std=c11 $(BANDS_TSAN_FLAGS) -Icore -Ihost-sim -Itests -D_POSIX_C_SOURCE=200809L \
+	$(Q)clang -std=c11 $(BANDS_TSAN_FLAGS) -Icore -Ihost-sim -Ihal/linux -Itests -D_POSIX_C_SOURCE=200809L \
 		$(PKG_CFLAGS) -MMD -MP -c $< -o $@
 $(BANDS_TSAN)/test_bands: $(patsubst %.c,$(BANDS_TSAN)/%.o,$(BANDS_TSAN_SRC))
 	$(Q)clang -fsanitize=thread -o $@ $^ $(PKG_LIBS) -lm -pthread

@@ -11,7 +11,9 @@
  * into a workspace per thread) with 1, 2, 3 and 4 threads must give the
  * same linear floats, bit for bit, on every line; so must small bands,
  * bands of one line, a ring of a few lines that the consumer releases as it
- * goes (celfw's way), and a frame with a pre-combined cache. A scene that
+ * goes, and a frame with a pre-combined cache. celfw's source
+ * (hal/linux/lx_scene_source.c) with a pool must hand out the same lines,
+ * also after a frame abandoned half way. A scene that
  * overflows the crossings on some lines must report the capacity error one
  * renderer reports (the first in line order), whichever thread met it.
  * cs_frame_share's refusals are checked too. The last line is
@@ -24,6 +26,7 @@
 
 #include "bands.h"
 #include "celscan.h"
+#include "lx_scene_source.h"
 #include "scene_json.h"
 #include "testlib.h"
 
@@ -42,13 +45,7 @@ typedef struct sink {
 static void emit_floats(void *user, const cs_renderer *r, int y)
 {
     const sink *k = user;
-    float *line = k->frame + (size_t)(y % k->slots) * 3u * (size_t)k->width;
-    for (int x = 0; x < k->width;) {
-        float c[3];
-        int e = cs_line_run(r, x, c);
-        for (; x < e; x++)
-            memcpy(&line[3 * x], c, sizeof c);
-    }
+    bands_floats(r, k->frame + (size_t)(y % k->slots) * 3u * (size_t)k->width);
 }
 
 /* One renderer, every line: the truth. Returns its sticky error. */
@@ -259,6 +256,44 @@ static void test_capacity_error_in_line_order(void)
     bands_free(pool);
 }
 
+/* celfw's line source with 1 and 3 threads, as a one-lane backend pulls it. */
+static void test_celfw_source(void)
+{
+    load("demo.json");
+    const int w = 320, h = 180;
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.aa = CS_AA_SUBSCAN;
+    o.subscanlines = 4;
+    render_one(&o, NULL);
+    for (int threads = 1; threads <= 3; threads += 2) {
+        lx_scene_source src;
+        if (!CHECK(lx_scene_source_init(&src, w, h, CS_AA_SUBSCAN, 4) == LX_OK &&
+                       lx_scene_source_threads(&src, threads) == LX_OK,
+                   "source with %d threads", threads))
+            continue;
+        lx_scene_source_set(&src, scene, 0.0f);
+        float *line = tl_calloc(3u * (size_t)w, sizeof(float));
+        for (int round = 0; round < 2; round++) {
+            /* Round 0 gives up after 40 lines, as a backend that lost its device does. */
+            int bad = 0, last = round == 0 ? 40 : h;
+            CHECK(src.src.begin(src.src.user, 1) == LX_OK, "begin");
+            for (int y = 0; y < last; y++) {
+                if (src.src.line(src.src.user, 0, y, line) != LX_OK ||
+                    memcmp(line, want + (size_t)y * 3u * (size_t)w, 3u * (size_t)w * sizeof(float)))
+                    bad++;
+            }
+            CHECK(bad == 0, "%d threads, round %d: %d of %d lines differ", threads, round, bad, last);
+            if (round == 1 && threads > 1)
+                CHECK(src.src.line(src.src.user, 0, 5, line) == LX_ERR_RENDER,
+                      "a line behind the ring is refused");
+        }
+        lx_scene_source_end(&src);
+        CHECK_EQ_INT(src.err.status, CS_OK, "no capacity error");
+        free(line);
+        lx_scene_source_free(&src);
+    }
+}
+
 static void test_share_refusals(void)
 {
     load("demo.json");
@@ -290,6 +325,7 @@ int main(int argc, char **argv)
     TL_RUN(test_threads_match_one);
     TL_RUN(test_band_shapes);
     TL_RUN(test_capacity_error_in_line_order);
+    TL_RUN(test_celfw_source);
     TL_RUN(test_share_refusals);
     free(scene);
     free(ws_ref);

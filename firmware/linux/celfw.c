@@ -551,6 +551,7 @@ static const char *run(celfw *fw)
         lx_frame_stats st = {0};
         fw->in_frame = true;
         lx_status s = fw->disp->ops->present(fw->disp, &fw->src.src, &st);
+        lx_scene_source_end(&fw->src); /* no worker reads the scene past here */
         release_held(fw);
         add_stats(&fw->sum, &st);
         uint64_t took = lx_now(fw->clk.mono) - start;
@@ -644,7 +645,8 @@ int main(int argc, char **argv)
     fw->stream = celfw_stream_new();
     if (!fw->scene[0] || !fw->scene[1] || !fw->stream ||
         lx_scene_source_init(&fw->src, fw->disp->width, fw->disp->height, fw->cfg.aa,
-                             fw->cfg.subscanlines) != LX_OK) {
+                             fw->cfg.subscanlines) != LX_OK ||
+        lx_scene_source_threads(&fw->src, fw->cfg.threads) != LX_OK) {
         say("error", "out of memory for %dx%d", fw->disp->width, fw->disp->height);
         fw->disp->ops->close(fw->disp);
         return EXIT_DISPLAY;
