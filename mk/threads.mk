@@ -3,6 +3,8 @@
 #
 #   make test-bands       1, 2, 3 and 4 threads against one, every AA mode (part of make test)
 #   make test-bands-tsan  the same under ThreadSanitizer (clang), core included
+#   make bench-threads    1 and 2 threads against cairo on Many-blobs, and the critical
+#                         path of 1, 2 and 4 threads from callgrind (BENCHMARKS.md; ~2 min)
 #
 # The core has no threads: each thread renders lines of the one prepared
 # frame in its own workspace (cs_frame_share), so what is tested here is
@@ -17,7 +19,7 @@ $(HOST)/obj/tests/test_bands.o: HOST_CFLAGS += -Itests -Ihal/linux
 $(HOST)/test_bands: $(BANDS_TEST_OBJ) $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(PKG_LIBS) -lm -pthread
 
-.PHONY: test-bands test-bands-tsan
+.PHONY: test-bands test-bands-tsan bench-threads
 test-bands: $(HOST)/test_bands
 	$(Q)$(HOST)/test_bands scenes
 
@@ -40,3 +42,8 @@ $(BANDS_TSAN)/test_bands: $(patsubst %.c,$(BANDS_TSAN)/%.o,$(BANDS_TSAN_SRC))
 test-bands-tsan: $(BANDS_TSAN)/test_bands
 	$(Q)TSAN_OPTIONS=halt_on_error=1 $< scenes >$<.log 2>&1; \
 		rc=$$?; sed 's/^test_bands:/test_bands_tsan:/' $<.log; exit $$rc
+
+bench-threads: $(BENCH_BIN) $(HOST)/celsim
+	@mkdir -p $(BENCH_RESULTS) $(BUILD)/bench
+	$(Q)tools/bench_threads.sh $(BENCH_BIN) $(HOST)/celsim $(BENCH_RESULTS) $(BUILD)/bench
+	$(Q)python3 tools/bench_md.py $(BENCH_RESULTS) BENCHMARKS.md
