@@ -2,7 +2,8 @@
 # celsim --threads and celfw --threads on Linux hosts.
 #
 #   make test-bands       1, 2, 3 and 4 threads against one, every AA mode (part of make test)
-#   make test-bands-tsan  the same under ThreadSanitizer (clang), core included
+#   make test-bands-tsan  the same under ThreadSanitizer (clang), core included (make test)
+#   make test-bands-asan  the same under AddressSanitizer + UBSan (clang), core included (make test)
 #   make bench-threads    1 and 2 threads against cairo on Many-blobs, and the critical
 #                         path of 1, 2 and 4 threads from callgrind (BENCHMARKS.md; ~2 min)
 #
@@ -19,29 +20,33 @@ $(HOST)/obj/tests/test_bands.o: HOST_CFLAGS += -Itests -Ihal/linux
 $(HOST)/test_bands: $(BANDS_TEST_OBJ) $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(PKG_LIBS) -lm -pthread
 
-.PHONY: test-bands test-bands-tsan bench-threads
+.PHONY: test-bands test-bands-tsan test-bands-asan bench-threads
 test-bands: $(HOST)/test_bands
 	$(Q)$(HOST)/test_bands scenes
 
 TEST_TARGETS += test-bands
 
-# ThreadSanitizer wants every object instrumented, the core's too, and is
-# clang's here (as fuzzing is); -O1 keeps the run within seconds.
-BANDS_TSAN := $(BUILD)/tsan
-BANDS_TSAN_FLAGS := -fsanitize=thread -O1 -g $(FP_FLAGS)
-BANDS_TSAN_SRC := tests/test_bands.c host-sim/bands.c host-sim/scene_json.c host-sim/paint_json.c \
+# The sanitizers want every object instrumented, the core's too, and are
+# clang's here (as fuzzing is); -O1 keeps a run within seconds.
+#   $(1) the name (tsan, asan), $(2) the sanitizer flags
+BANDS_SAN_SRC := tests/test_bands.c host-sim/bands.c host-sim/scene_json.c host-sim/paint_json.c \
         hal/linux/lx_scene_source.c $(CORE_SRC)
-$(eval $(call flags_record,bands-tsan,clang $(BANDS_TSAN_FLAGS)))
-$(BANDS_TSAN)/%.o: %.c $(FLAGS_DIR)/bands-tsan
-	@mkdir -p $(dir $@)
-	$(Q)clang -std=c11 $(BANDS_TSAN_FLAGS) -Icore -Ihost-sim -Ihal/linux -Itests -D_POSIX_C_SOURCE=200809L \
-		$(PKG_CFLAGS) -MMD -MP -c $< -o $@
-$(BANDS_TSAN)/test_bands: $(patsubst %.c,$(BANDS_TSAN)/%.o,$(BANDS_TSAN_SRC))
-	$(Q)clang -fsanitize=thread -o $@ $^ $(PKG_LIBS) -lm -pthread
+define bands_san
+$$(eval $$(call flags_record,bands-$(1),clang $(2)))
+$(BUILD)/bands-$(1)/%.o: %.c $(FLAGS_DIR)/bands-$(1)
+	@mkdir -p $$(dir $$@)
+	$$(Q)clang -std=c11 $(2) -O1 -g $(FP_FLAGS) -Icore -Ihost-sim -Ihal/linux -Itests \
+		-D_POSIX_C_SOURCE=200809L $$(PKG_CFLAGS) -MMD -MP -c $$< -o $$@
+$(BUILD)/bands-$(1)/test_bands: $(patsubst %.c,$(BUILD)/bands-$(1)/%.o,$(BANDS_SAN_SRC))
+	$$(Q)clang $(2) -o $$@ $$^ $$(PKG_LIBS) -lm -pthread
+test-bands-$(1): $(BUILD)/bands-$(1)/test_bands
+	$$(Q)$(3) $$< scenes >$$<.log 2>&1; \
+		rc=$$$$?; sed 's/^test_bands:/test_bands_$(1):/' $$<.log; exit $$$$rc
+endef
+$(eval $(call bands_san,tsan,-fsanitize=thread,TSAN_OPTIONS=halt_on_error=1))
+$(eval $(call bands_san,asan,$(SAN_FLAGS),$(ASAN_ENV)))
 
-test-bands-tsan: $(BANDS_TSAN)/test_bands
-	$(Q)TSAN_OPTIONS=halt_on_error=1 $< scenes >$<.log 2>&1; \
-		rc=$$?; sed 's/^test_bands:/test_bands_tsan:/' $<.log; exit $$rc
+TEST_TARGETS += test-bands-tsan test-bands-asan
 
 bench-threads: $(BENCH_BIN) $(HOST)/celsim
 	@mkdir -p $(BENCH_RESULTS) $(BUILD)/bench
