@@ -96,8 +96,38 @@ med() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) 
         done
     done
     echo
-    echo "The bands here are equal and fixed; celsim --threads hands out four bands a thread in turn,"
-    echo "so a thread slowed by the machine takes fewer. The 4-thread line is the estimate for a"
-    echo "4-core board: it assumes the cores are idle and share nothing slower than their caches."
+    echo "The bands here are equal and fixed, one a thread. celsim --threads hands out four bands a"
+    echo "thread in turn (a thread slowed by the machine takes fewer); on idle cores that schedule,"
+    echo "from the instructions of each of its bands, gives:"
+    echo
+    echo "| --aa | threads | bands | prepare + the busiest thread's bands | 1 thread / critical path |"
+    echo "|---|---:|---:|---:|---:|"
+    aa=exact
+    prep=$(count celscan_prepare "$aa" 0/1)
+    one=$(count celscan_band "$aa" 0/1)
+    one=$(awk -v p="$prep" -v o="$one" 'BEGIN { print p + o }')
+    for t in 2 4; do
+        nb=$((4 * t))
+        counts=
+        k=0
+        while [ "$k" -lt "$nb" ]; do
+            counts="$counts $(count celscan_band "$aa" "$k/$nb")"
+            k=$((k + 1))
+        done
+        # each band goes to the thread that is free first (the lowest-numbered on a tie)
+        echo "$counts" | awk -v t="$t" -v p="$prep" -v one="$one" -v aa="$aa" -v nb="$nb" '{
+            for (i = 0; i < t; i++) free[i] = 0
+            for (b = 1; b <= NF; b++) {
+                j = 0
+                for (i = 1; i < t; i++) if (free[i] < free[j]) j = i
+                free[j] += $b
+            }
+            m = 0
+            for (i = 0; i < t; i++) if (free[i] > m) m = free[i]
+            printf "| %s | %d | %d | %.1f M | %.2f |\n", aa, t, nb, (p + m) / 1e6, one / (p + m) }'
+    done
+    echo
+    echo "The 4-thread lines are the estimate for a 4-core board: they assume the cores are idle and"
+    echo "share nothing slower than their caches."
 } >"$res/threads.txt"
 cat "$res/threads.txt"
