@@ -507,6 +507,12 @@ static void serve(celfw *fw, uint64_t until)
         celfw_input_service(fw->in, pfd, n, &sink);
 }
 
+/* Render threads: a backend that pulls two lanes (HUB75) renders them itself. */
+static int render_threads(const celfw *fw)
+{
+    return fw->disp->ops->lanes == 1 ? fw->cfg.threads : 1;
+}
+
 /* Between the lines of a frame: read what arrived, every CELFW_SERVE_NS. */
 static void serve_between_lines(void *user)
 {
@@ -646,7 +652,7 @@ int main(int argc, char **argv)
     if (!fw->scene[0] || !fw->scene[1] || !fw->stream ||
         lx_scene_source_init(&fw->src, fw->disp->width, fw->disp->height, fw->cfg.aa,
                              fw->cfg.subscanlines) != LX_OK ||
-        lx_scene_source_threads(&fw->src, fw->cfg.threads) != LX_OK) {
+        lx_scene_source_threads(&fw->src, render_threads(fw)) != LX_OK) {
         say("error", "out of memory for %dx%d", fw->disp->width, fw->disp->height);
         fw->disp->ops->close(fw->disp);
         return EXIT_DISPLAY;
@@ -676,10 +682,10 @@ int main(int argc, char **argv)
     else
         snprintf(aa, sizeof aa, "%d", fw->cfg.subscanlines);
     say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s "
-        "trusted_keys=%d",
+        "trusted_keys=%d threads=%d",
         fw->disp->ops->name, fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
         celfw_input_describe(fw->in), fw->cfg.scene, celfw_stream_available() ? "cel-stream" : "none",
-        display_state(fw), celfw_trust_key_count(fw->trust));
+        display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw));
     if (celfw_input_public(fw->in) && celfw_trust_key_count(fw->trust) == 0)
         say("warning", "input %s listens beyond loopback and no key is trusted: anyone who can reach it "
             "can change the picture (celc keygen, then celfw --trust KEY.pub --state-dir DIR)",

@@ -130,7 +130,8 @@ static void test_usb_tcp(UMockdevTestbed *tb)
           false);
     char line[1024] = "";
     bool started = wait_line(&c, "celfw: start", 10.0, line, sizeof line);
-    CHECK(started && strstr(line, "backend=usb display=320x180") && strstr(line, "display_state=up"),
+    CHECK(started && strstr(line, "backend=usb display=320x180") && strstr(line, "display_state=up") &&
+              strstr(line, " threads=3"),
           "start line: %s", line);
     const char *tcp = strstr(line, "input=tcp:127.0.0.1:");
     int port = tcp ? atoi(tcp + strlen("input=tcp:127.0.0.1:")) : 0;
