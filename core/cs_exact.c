@@ -1489,8 +1489,10 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
             float xt = e->top.x;
             if (r->opaque_px != 0u && xt >= 0.0f && xt < (float)cx.width &&
                 cs__run_opaque(r, (uint32_t)xt)) {
-                int32_t qa = cs__floori(e->xmin - 0.5f), qb = cs__floori(e->xmax + 0.5f) + 1;
-                qa = qa < 0 ? 0 : qa;
+                /* clamped as floats first: a hull that could not be formed is +-HUGE_X */
+                float xl = cs__maxf(e->xmin - 0.5f, 0.0f);
+                float xr = cs__minf(e->xmax + 0.5f, (float)cx.width);
+                int32_t qa = cs__floori(xl), qb = cs__floori(xr) + 1;
                 qb = qb > cx.width ? cx.width : qb;
                 if (qa < qb && cs__span_opaque(r, (uint32_t)qa, (uint32_t)qb)) {
                     e->hidden = true;
