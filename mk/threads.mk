@@ -5,7 +5,7 @@
 #   make test-bands-tsan  the same under ThreadSanitizer (clang), core included (make test)
 #   make test-bands-asan  the same under AddressSanitizer + UBSan (clang), core included (make test)
 #   make bench-threads    1 and 2 threads against cairo on Many-blobs, and the critical
-#                         path of 1, 2 and 4 threads from callgrind (BENCHMARKS.md; ~2 min)
+#                         path of 1, 2 and 4 threads from callgrind (BENCHMARKS.md; ~2-3 min)
 #
 # The core has no threads: each thread renders lines of the one prepared
 # frame in its own workspace (cs_frame_share), so what is tested here is

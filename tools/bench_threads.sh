@@ -5,10 +5,10 @@
 #   tools/bench_threads.sh BENCH CELSIM RESULTS SCRATCH [ROUNDS]
 #
 # Writes RESULTS/threads.txt (a Markdown fragment for tools/bench_md.py).
-# Wall time: ROUNDS (default 7) rounds, each running celsim with 1 thread,
-# celsim with 2 threads and cairo once in turn (each a median of 5 frames),
-# so a slow spell of the shared machine falls on all three; the medians
-# and their ratios. Critical path: callgrind counts the frame's preparation
+# Wall time: ROUNDS (default 11) rounds, each running celsim with 1 thread,
+# celsim with 2 threads and cairo once (each a median of 5 frames; the two
+# celsim runs swap places every other round), so a slow spell of the
+# shared machine falls on all three; the medians and their ratios. Critical path: callgrind counts the frame's preparation
 # (bench --profile blobs --band K/N, function celscan_prepare) and each of
 # N equal bands of lines rendered as a worker renders them (celscan_band:
 # cs_frame_share, the lines, their pixels); N threads on N idle cores take
@@ -18,7 +18,7 @@ bench=$1
 celsim=$2
 res=$3
 tmp=$4
-rounds=${5:-7}
+rounds=${5:-11}
 mkdir -p "$res" "$tmp"
 scene=scenes/bench/blobs.json
 
@@ -39,8 +39,14 @@ med() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) 
         ac="--profile blobs --peer cairo --frames 5"
         r1= r2= rc=
         for round in $(seq "$rounds"); do
-            r1="$r1 $("$celsim" $a1 | cut -d' ' -f1)"
-            r2="$r2 $("$celsim" $a2 | cut -d' ' -f1)"
+            if [ $((round % 2)) -eq 1 ]; then
+                x1=$("$celsim" $a1 | cut -d' ' -f1)
+                x2=$("$celsim" $a2 | cut -d' ' -f1)
+            else
+                x2=$("$celsim" $a2 | cut -d' ' -f1)
+                x1=$("$celsim" $a1 | cut -d' ' -f1)
+            fi
+            r1="$r1 $x1" r2="$r2 $x2"
             rc="$rc $("$bench" $ac | cut -d' ' -f1)"
         done
         m1=$(med $r1) m2=$(med $r2) mc=$(med $rc)
