@@ -120,7 +120,7 @@ CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c)) t
 CELSIM_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELSIM_SRC))
 
 $(HOST)/celsim: $(CELSIM_OBJ) $(HOST)/libcelscan.a
-	$(Q)$(CC) -o $@ $(CELSIM_OBJ) $(HOST)/libcelscan.a $(PKG_LIBS) -lm
+	$(Q)$(CC) -o $@ $(CELSIM_OBJ) $(HOST)/libcelscan.a $(PKG_LIBS) -lm -pthread
 
 HOST_PROGRAMS += $(HOST)/celsim
 
@@ -152,7 +152,8 @@ $(DEMO)/frame-%.png: scenes/demo.json $(HOST)/celsim
 #                    and run them
 # Tests of the parts in mk/*.mk are built by their fragments, not here.
 FRAGMENT_TESTS := tests/test_mcu_display.c tests/test_stream.c tests/test_exact.c \
-        tests/test_beta.c tests/test_paint_json.c tests/test_scenes.c $(wildcard tests/test_svg*.c)
+        tests/test_beta.c tests/test_paint_json.c tests/test_scenes.c tests/test_bands.c \
+        $(wildcard tests/test_svg*.c)
 TEST_SRC := $(filter-out $(FRAGMENT_TESTS),$(sort $(wildcard tests/test_*.c)))
 TEST_REF_SRC := $(sort $(wildcard tests/ref/*.c))
 TEST_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -MMD -MP

@@ -4,6 +4,7 @@
  *   bench [--sections speed,accuracy,beam,scaling] [--scenes blobs,signage,...]
  *         [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]
  *   bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]
+ *   bench --profile SCENE [--aa ...] [--size WxH] --band K/N
  *   bench --profile SCENE --peer cairo|cairo-fine|freetype|agg [--size WxH] [--frames N]
  *   bench --selftest
  *
@@ -238,6 +239,46 @@ PROFILED static double celscan_frame(cs_target *t, const cs_render_opts *o)
     if (cs_frame_error(&r).status != CS_OK)
         die("frame degraded: %s", cs_status_str(cs_frame_error(&r).status));
     return dt;
+}
+
+/*
+ * --band K/N, for the critical path of N threads (tools/bench_threads.sh):
+ * the frame is prepared once (celscan_prepare), and band K of N equal
+ * bands of lines is rendered as a thread of celsim --threads renders its
+ * lines, in a workspace of its own sharing the prepared frame
+ * (celscan_band: cs_frame_share, then each line and its pixels). Callgrind
+ * counts each function by name.
+ */
+PROFILED static void celscan_prepare(cs_renderer *r, const cs_render_opts *o)
+{
+    cs_error e;
+    if (cs_frame_begin(r, g_ws, g_scene, o, &e) != CS_OK)
+        die("cs_frame_begin failed");
+}
+
+PROFILED static void celscan_band(cs_target *t, const cs_renderer *prepared, cs_workspace *ws,
+                                  int y0, int y1)
+{
+    cs_renderer r;
+    if (cs_frame_share(&r, ws, prepared) != CS_OK)
+        die("cs_frame_share failed");
+    for (int y = y0; y < y1; y++) {
+        cs_render_line_runs(&r, y);
+        cs_line_pixels(&r, CS_PIX_RGB888_SRGB, t->image + (size_t)y * t->w * 3);
+    }
+    if (cs_frame_error(&r).status != CS_OK)
+        die("band degraded: %s", cs_status_str(cs_frame_error(&r).status));
+}
+
+static void profile_band(cs_target *t, const cs_render_opts *o, long k, long n)
+{
+    cs_workspace *ws = calloc(1, sizeof *ws);
+    if (!ws)
+        die("out of memory");
+    cs_renderer prepared;
+    celscan_prepare(&prepared, o);
+    celscan_band(t, &prepared, ws, (int)(t->h * k / n), (int)(t->h * (k + 1) / n));
+    free(ws);
 }
 
 /* Pre-combines cels [from, cel_count) into t's cache; returns the build time. */
@@ -1125,6 +1166,7 @@ static void usage(void)
           "rational,anim]\n"
           "             [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]\n"
           "       bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]\n"
+          "       bench --profile SCENE [--aa none|N|exact] [--size WxH] --band K/N\n"
           "       bench --profile SCENE --peer cairo|cairo-fine|freetype|agg [--size WxH] [--frames N]\n"
           "       bench --selftest\n",
           stderr);
@@ -1168,6 +1210,7 @@ int main(int argc, char **argv)
     cs_aa_mode prof_aa = CS_AA_SUBSCAN;
     int prof_sub = 16;
     bool self = false, prof_cache = false;
+    long band_k = -1, band_n = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -1204,6 +1247,17 @@ int main(int argc, char **argv)
             i++;
         } else if (strcmp(a, "--peer") == 0 && v) {
             prof_peer = v;
+            i++;
+        } else if (strcmp(a, "--band") == 0 && v) {
+            const char *slash = strchr(v, '/');
+            char kbuf[16];
+            if (!slash || (size_t)(slash - v) >= sizeof kbuf)
+                usage();
+            memcpy(kbuf, v, (size_t)(slash - v));
+            kbuf[slash - v] = '\0';
+            if (!cli_int(slash + 1, 10, '\0', 1, 64, &band_n) ||
+                !cli_int(kbuf, 10, '\0', 0, band_n - 1, &band_k))
+                usage();
             i++;
         } else if (strcmp(a, "--cache") == 0) {
             prof_cache = true;
@@ -1249,6 +1303,11 @@ int main(int argc, char **argv)
             celscan_cache(&t, &o, a ? anim_static_from(a, g_scene) : 0);
         if (a)
             anim_free(a);
+        if (band_n > 0) {
+            profile_band(&t, &o, band_k, band_n);
+            target_free(&t);
+            return 0;
+        }
         double *s = malloc((size_t)cfg.frames * sizeof *s);
         for (int f = 0; f < cfg.frames; f++)
             s[f] = celscan_frame(&t, &o);

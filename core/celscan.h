@@ -570,12 +570,35 @@ typedef struct cs_exact_piece {
 } cs_exact_piece;
 
 /*
- * Per-render scratch memory. Contents are private to the core.
+ * A prepared frame: what cs_frame_begin computes once and every line only
+ * reads. Contents are private to the core.
  */
-typedef struct cs_workspace {
+typedef struct cs_frame_data {
     cs_segment segments[CS_CFG_MAX_SEGMENTS];
     cs_piece pieces[CS_CFG_MAX_PIECES];
     cs_index order[CS_CFG_MAX_PIECES];   /* pieces sorted by y_top */
+    uint16_t region_cel[CS_CFG_MAX_REGIONS];
+    float region_E[CS_CFG_MAX_REGIONS][3];
+    float region_T[CS_CFG_MAX_REGIONS][3];
+    float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
+    float cel_opacity[CS_CFG_MAX_CELS];   /* TRS opacity up the group chain, per frame */
+} cs_frame_data;
+
+/*
+ * Per-render scratch memory. Contents are private to the core.
+ */
+typedef struct cs_workspace {
+    cs_frame_data frame; /* the frame prepared in this workspace */
+    /* The frame the lines read: this workspace's own (cs_frame_begin), or
+     * another's (cs_frame_share), which is then only read. */
+    const cs_segment *segments;
+    const cs_piece *pieces;
+    const cs_index *order;
+    const uint16_t *region_cel;
+    const float (*region_E)[3];
+    const float (*region_T)[3];
+    const float (*func_xf)[6];
+    const float *cel_opacity;
     cs_index active[CS_CFG_MAX_PIECES];  /* active pieces of the line, in piece order */
     cs_index scratch[CS_CFG_MAX_PIECES]; /* sort scratch */
     cs_crossing crossings[CS_CFG_MAX_CROSSINGS];
@@ -584,10 +607,6 @@ typedef struct cs_workspace {
     uint32_t exact_order[CS_CFG_MAX_CROSSINGS];  /* those in the band, in x order */
     cs_exact_level level_memo[CS_CFG_MAX_PIECES]; /* per piece: its last row bottom */
 #endif
-    uint16_t region_cel[CS_CFG_MAX_REGIONS];
-    float region_E[CS_CFG_MAX_REGIONS][3];
-    float region_T[CS_CFG_MAX_REGIONS][3];
-    float cel_opacity[CS_CFG_MAX_CELS];   /* TRS opacity up the group chain, per frame */
     float area[CS_CFG_MAX_WIDTH + 2];     /* partial coverage of the region, per pixel */
     float cover[CS_CFG_MAX_WIDTH + 2];    /* coverage deltas, prefix-summed */
     uint32_t touched[(CS_CFG_MAX_WIDTH + 2 + 31) / 32]; /* area/cover entries written */
@@ -601,7 +620,6 @@ typedef struct cs_workspace {
     float cel_A[CS_CFG_MAX_WIDTH * 3];    /* 1 - T of the cel */
     float stack_E[CS_CFG_MAX_WIDTH * 3];  /* the stack: emitted light, then the pixel */
     float stack_T[CS_CFG_MAX_WIDTH * 3];
-    float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
     cs_point anim_points[CS_CFG_MAX_ANIM_POINTS]; /* one animated contour at frame time */
 } cs_workspace;
 
@@ -692,6 +710,20 @@ cs_status cs_scene_check_render(cs_renderer *r, cs_workspace *ws, const cs_scene
 cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                                 const cs_render_opts *opts, const cs_cache *cache,
                                 cs_error *err);
+
+/*
+ * Makes `r` a renderer of the frame `prepared` holds (set up by
+ * cs_frame_begin or cs_frame_begin_cached), with its own workspace `ws` for
+ * the lines: the frame's segments, pieces and paints stay in the prepared
+ * renderer's workspace and are only read, so several renderers, each with
+ * its workspace, can render lines of one frame at once (a band of lines
+ * each, on threads), and give the bytes one renderer would. `r` starts at
+ * the top of the frame with no capacity error; any lines may follow, in
+ * increasing order. The prepared workspace must not begin another frame
+ * while `r` renders. CS_ERR_ARG for a null pointer or a workspace already
+ * the prepared one's; CS_ERR_STATE if `prepared` is itself a share.
+ */
+cs_status cs_frame_share(cs_renderer *r, cs_workspace *ws, const cs_renderer *prepared);
 
 /*
  * Renders cels [cel_first, cel_first+cel_count) of `scene` alone at `opts`

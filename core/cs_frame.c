@@ -75,8 +75,8 @@ static void segment_xbounds(cs_segment *s, float x0, float width)
 /* Appends the monotone pieces of segment `si`, whose end y is `y_end`. */
 static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t operand)
 {
-    cs_workspace *ws = r->ws;
-    const cs_segment *s = &ws->segments[si];
+    cs_frame_data *fd = &r->ws->frame;
+    const cs_segment *s = &fd->segments[si];
     float cut[6];
     int n = 0;
     cut[n++] = 0.0f;
@@ -88,7 +88,7 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t
         if (ya != yb) {
             if (r->piece_count >= CS_CFG_MAX_PIECES)
                 return CS_ERR_CAP_PIECES;
-            cs_piece *pc = &ws->pieces[r->piece_count++];
+            cs_piece *pc = &fd->pieces[r->piece_count++];
             pc->u0 = cut[k];
             pc->u1 = cut[k + 1];
             pc->dir = yb > ya ? 1 : -1;
@@ -106,7 +106,8 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t
 /* Stable merge sort of piece indices by y_top, using ws->scratch. */
 static void sort_by_top(cs_workspace *ws, uint32_t n)
 {
-    cs_index *a = ws->order, *b = ws->scratch;
+    cs_frame_data *fd = &ws->frame;
+    cs_index *a = fd->order, *b = ws->scratch;
     for (uint32_t i = 0; i < n; i++)
         a[i] = (cs_index)i;
     for (uint32_t width = 1; width < n; width *= 2) {
@@ -115,7 +116,7 @@ static void sort_by_top(cs_workspace *ws, uint32_t n)
             uint32_t hi = lo + 2 * width < n ? lo + 2 * width : n;
             uint32_t i = lo, j = mid, k = lo;
             while (i < mid && j < hi)
-                b[k++] = ws->pieces[a[j]].y_top < ws->pieces[a[i]].y_top ? a[j++] : a[i++];
+                b[k++] = fd->pieces[a[j]].y_top < fd->pieces[a[i]].y_top ? a[j++] : a[i++];
             while (i < mid)
                 b[k++] = a[i++];
             while (j < hi)
@@ -125,9 +126,9 @@ static void sort_by_top(cs_workspace *ws, uint32_t n)
         a = b;
         b = t;
     }
-    if (a != ws->order)
+    if (a != fd->order)
         for (uint32_t i = 0; i < n; i++)
-            ws->order[i] = a[i];
+            fd->order[i] = a[i];
 }
 
 cs_render_opts cs_render_defaults(int width, int height)
@@ -308,6 +309,44 @@ static const cs_point *sample_points(const cs_scene *scene, const cs_track *tr, 
     return out;
 }
 
+/* The lines of ws read the frame fd (its own, while it is being prepared). */
+static void read_frame(cs_workspace *ws, const cs_frame_data *fd)
+{
+    ws->segments = fd->segments;
+    ws->pieces = fd->pieces;
+    ws->order = fd->order;
+    ws->region_cel = fd->region_cel;
+    ws->region_E = fd->region_E;
+    ws->region_T = fd->region_T;
+    ws->func_xf = fd->func_xf;
+    ws->cel_opacity = fd->cel_opacity;
+}
+
+/*
+ * The state a renderer carries from line to line, set to the top of the
+ * frame: the active list, the sticky error and, in r's workspace, the
+ * accumulators and the exact-area row memo.
+ */
+static void clear_lines(cs_renderer *r)
+{
+    cs_workspace *ws = r->ws;
+    r->active_count = r->next_order = 0;
+    r->next_line = 0;
+    cs__error(&r->sticky, CS_OK, -1, -1, -1, -1);
+    /* The line code clears what it touches; start from a clean slate in case
+     * an earlier frame was abandoned part way through a line. The runs are
+     * set up afresh by every line. */
+    for (int x = 0; x < r->vw + 2; x++)
+        ws->area[x] = ws->cover[x] = 0.0f;
+    for (uint32_t w = 0; w < sizeof ws->touched / sizeof ws->touched[0]; w++)
+        ws->touched[w] = 0u;
+#if CS_CFG_EXACT
+    if (r->opts.aa == CS_AA_EXACT) /* no row placed yet (cs_exact.c) */
+        for (uint32_t i = 0; i < r->piece_count; i++)
+            ws->level_memo[i].y = -1.0f;
+#endif
+}
+
 cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                          const cs_render_opts *opts, cs_error *err)
 {
@@ -403,13 +442,8 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         cs__error(err, CS_ERR_RANGE, -1, -1, -1, -1);
         return CS_ERR_RANGE;
     }
-    /* The line code clears what it touches; start from a clean slate in case
-     * an earlier frame was abandoned part way through a line. The runs are
-     * set up afresh by every line. */
-    for (int x = 0; x < r->vw + 2; x++)
-        ws->area[x] = ws->cover[x] = 0.0f;
-    for (uint32_t w = 0; w < sizeof ws->touched / sizeof ws->touched[0]; w++)
-        ws->touched[w] = 0u;
+    cs_frame_data *fd = &ws->frame;
+    read_frame(ws, fd);
     const float t = opts->time;
     float stack[6], bg[3];
     cs__copy3(stack, scene->stack_front);
@@ -435,7 +469,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         const cs_cel *cel = &scene->cels[ci];
         float m[6];
         float opacity = cel_world(scene, ci, t, m);
-        ws->cel_opacity[ci] = opacity;
+        fd->cel_opacity[ci] = opacity;
         float lights[6];
         cs__copy3(lights, cel->has_front ? cel->front : stack);
         cs__copy3(lights + 3, cel->back);
@@ -446,7 +480,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         cs_affine inv = affine_inverse(&dev);
         for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++) {
             const cs_region *reg = &scene->regions[ri];
-            ws->region_cel[ri] = (uint16_t)ci;
+            fd->region_cel[ri] = (uint16_t)ci;
             const cs_paint *paint = &reg->paint;
             cs_paint animated;
             if ((tr = cs__track_find(scene, CS_TRACK_PAINT, ri)) != 0 && tr->key_count) {
@@ -468,12 +502,12 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                 }
                 animated.beta *= opacity;
             }
-            region_map(paint, lights, lights + 3, srgb, ws->region_E[ri], ws->region_T[ri]);
-            grey = grey && region_grey(scene, reg, paint, ws->region_T[ri]);
+            region_map(paint, lights, lights + 3, srgb, fd->region_E[ri], fd->region_T[ri]);
+            grey = grey && region_grey(scene, reg, paint, fd->region_T[ri]);
             for (int f = 0; f < 3; f++)
                 if (reg->func[f])
                     cs__func_compile(&scene->funcs[reg->func[f] - 1u], &inv,
-                                     ws->func_xf[reg->func[f] - 1u]);
+                                     fd->func_xf[reg->func[f] - 1u]);
             for (uint32_t k = 0; k < reg->contour_count; k++) {
                 uint32_t ki = reg->first_contour + k;
                 const cs_contour *c = &scene->contours[ki];
@@ -485,7 +519,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                 int32_t bad;
                 st = cs__contour_segments(pts,
                                           &scene->intervals[c->first_point], c->point_count,
-                                          c->degree, &dev, (uint16_t)ri, &ws->segments[first],
+                                          c->degree, &dev, (uint16_t)ri, &fd->segments[first],
                                           CS_CFG_MAX_SEGMENTS - first, &n, &bad);
                 if (st == CS_OK) {
                     r->segment_count += n;
@@ -493,8 +527,8 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                     uint8_t operand = reg->csg_len ? c->operand : 0;
                     for (uint32_t i = 0; i < n && st == CS_OK; i++) {
                         uint32_t next = first + (i + 1) % n;
-                        segment_xbounds(&ws->segments[first + i], view_x, view_w);
-                        st = split_segment(r, first + i, cs__segment_y(&ws->segments[next], 0.0f),
+                        segment_xbounds(&fd->segments[first + i], view_x, view_w);
+                        st = split_segment(r, first + i, cs__segment_y(&fd->segments[next], 0.0f),
                                            operand);
                     }
                 }
@@ -508,10 +542,38 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     }
     r->grey = CS_CFG_GREY && grey;
     sort_by_top(ws, r->piece_count);
-#if CS_CFG_EXACT
-    if (opts->aa == CS_AA_EXACT) /* no row placed yet (cs_exact.c) */
-        for (uint32_t i = 0; i < r->piece_count; i++)
-            ws->level_memo[i].y = -1.0f;
-#endif
+    clear_lines(r);
+    return CS_OK;
+}
+
+cs_status cs_frame_share(cs_renderer *r, cs_workspace *ws, const cs_renderer *prepared)
+{
+    if (!r || !ws || !prepared || !prepared->ws || r == prepared || ws == prepared->ws)
+        return CS_ERR_ARG;
+    const cs_workspace *src = prepared->ws;
+    if (src->segments != src->frame.segments)
+        return CS_ERR_STATE; /* itself a share: share the renderer that prepared the frame */
+    /* Field by field: a struct copy of this size is a memcpy call, which
+     * the freestanding core does not have. The line state follows. */
+    r->scene = prepared->scene;
+    r->ws = ws;
+    r->opts = prepared->opts;
+    r->segment_count = prepared->segment_count;
+    r->piece_count = prepared->piece_count;
+    cs__copy3(r->behind, prepared->behind);
+    r->sx = prepared->sx;
+    r->sy = prepared->sy;
+    r->cel_begin = prepared->cel_begin;
+    r->cel_end = prepared->cel_end;
+    r->cache = prepared->cache;
+    r->grey = prepared->grey;
+    r->vx = prepared->vx;
+    r->vy = prepared->vy;
+    r->vw = prepared->vw;
+    r->vh = prepared->vh;
+    r->clip_lo = prepared->clip_lo;
+    r->clip_hi = prepared->clip_hi;
+    read_frame(ws, &src->frame);
+    clear_lines(r);
     return CS_OK;
 }

@@ -3,6 +3,7 @@
  *
  *   celsim render SCENE [-o OUT.png] [--size WxH] [--time T] [--aa none|N|exact]
  *                 [--encoding srgb|linear] [--repeat N] [--blend linear|srgb] [--crc]
+ *                 [--threads N]
  *
  * SCENE is authoring JSON (.json, with its "animate" tracks) or a cel stream
  * (.cels, decoded by the core's stream decoder as a board would: every
@@ -13,7 +14,9 @@
  * The scene is loaded into a cs_scene, and each frame goes through the same
  * path as on a board: the core renders lines, frame_drive converts them to the
  * display's pixel format and sends them to a HAL display, here the in-memory
- * simulator (hal/sim). The PNG is written from what the simulated display
+ * simulator (hal/sim). With --threads N > 1 the lines are rendered in bands
+ * on N threads from one prepared frame (bands.h) and reach the display in
+ * order, with the same bytes. The PNG is written from what the simulated display
  * received, so the picture is what the glass would show.
  *
  * Exit status: 0 success; 1 the scene or a file could not be read, loaded or
@@ -71,6 +74,8 @@ static const char usage_text[] =
     "                          blend (default: what the scene asks, \"canvas\": {\"blend\": ...})\n"
     "  --crc                   print 'frame crc32 XXXXXXXX' of the frame in the panel\n"
     "                          pixel format (RGB565, little-endian, rows top to bottom)\n"
+    "  --threads N             render bands of lines on N threads, 1..64 (default: the\n"
+    "                          cores this process may use); the bytes are the same\n"
     "  -h, --help              show this help\n"
     "\n"
     "exit status: 0 ok, 1 load/render/write error (or a stream with no valid commit),\n"
@@ -88,6 +93,7 @@ typedef struct options {
     int repeat;        /* 0: not timing */
     cs_blend blend;    /* CS_BLEND_SCENE unless --blend says */
     bool crc;
+    int threads;       /* 1: the lines on the calling thread, as a board renders them */
 } options;
 
 /* ------------------------------------------------------- command line */
@@ -127,13 +133,13 @@ static bool is_option(const char *arg, const char *name)
 static int parse_render_args(int argc, char **argv, options *o)
 {
     *o = (options){.aa = CS_AA_SUBSCAN, .subscanlines = DEFAULT_SUBSCANLINES,
-                   .blend = CS_BLEND_SCENE};
+                   .blend = CS_BLEND_SCENE, .threads = bands_cores()};
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *v;
-        static const char *const valued[] = {"-o",       "--output", "--size",
-                                             "--time",   "--aa",     "--encoding",
-                                             "--repeat", "--blend",  "--viewport"};
+        static const char *const valued[] = {"-o",       "--output",   "--size",    "--time",
+                                             "--aa",     "--encoding", "--repeat",  "--blend",
+                                             "--viewport", "--threads"};
         const char *name = NULL;
         for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
             if (is_option(a, valued[k]))
@@ -190,6 +196,11 @@ static int parse_render_args(int argc, char **argv, options *o)
                 o->blend = CS_BLEND_SRGB;
             else
                 return usage_error("--blend expects linear or srgb, got '%s'", v);
+        } else if (name && strcmp(name, "--threads") == 0) {
+            long n;
+            if (!cli_int(v, 10, '\0', 1, BANDS_MAX_THREADS, &n))
+                return usage_error("--threads expects a count 1..%d, got '%s'", BANDS_MAX_THREADS, v);
+            o->threads = (int)n;
         } else if (strcmp(a, "--crc") == 0) {
             o->crc = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
@@ -332,6 +343,9 @@ typedef struct sim_state {
     uint8_t *bytes;
     uint8_t *panel;
     double *times;
+    bands *pool;          /* --threads > 1 */
+    uint8_t *frame_bytes; /* the pool's lines: display bytes and panel pixels */
+    uint8_t *frame_panel;
 } sim_state;
 
 static void free_state(sim_state *s)
@@ -342,6 +356,9 @@ static void free_state(sim_state *s)
     free(s->bytes);
     free(s->panel);
     free(s->times);
+    bands_free(s->pool);
+    free(s->frame_bytes);
+    free(s->frame_panel);
 }
 
 static int render(const options *o, sim_state *s)
@@ -408,7 +425,19 @@ static int render(const options *o, sim_state *s)
         return EXIT_LOAD;
     }
 
-    frame_drive d = {.dev = &dev, .bytes = s->bytes, .panel = NULL};
+    size_t panel_line = (size_t)ow * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
+    if (o->threads > 1) {
+        s->pool = bands_new(o->threads);
+        s->frame_bytes = malloc(image_bytes);
+        if (o->crc)
+            s->frame_panel = malloc(panel_line * (size_t)oh);
+        if (!s->pool || !s->frame_bytes || (o->crc && !s->frame_panel)) {
+            fprintf(stderr, "celsim: out of memory or threads for --threads %d\n", o->threads);
+            return EXIT_LOAD;
+        }
+    }
+    frame_drive d = {.dev = &dev, .bytes = s->bytes, .panel = NULL, .pool = s->pool,
+                     .frame_bytes = s->frame_bytes, .frame_panel = s->frame_panel};
     cs_renderer r;
     int rc = FRAME_DRIVE_OK;
     uint32_t crc = 0;

@@ -8,16 +8,17 @@
 
 #include "frame_drive.h"
 
-/* Line y, already rendered into the renderer's runs, to the display. */
-static cs_status drive_line(frame_drive *d, const cs_renderer *r, int y)
+static size_t panel_bytes(const frame_drive *d)
 {
-    cs_line_pixels(r, d->geo.pixfmt, d->bytes);
-    if (d->panel != NULL) {
-        cs_line_pixels(r, CS_PANEL_PIXFMT, d->panel);
-        d->crc = cs_crc32(d->crc, d->panel,
-                          (size_t)d->geo.width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT));
-    }
-    int rc = hal_display_line_out(d->dev, y, d->bytes, d->geo.line_bytes);
+    return (size_t)d->geo.width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
+}
+
+/* Line y, converted to display bytes (and panel pixels to hash, if any), to the display. */
+static cs_status show_line(frame_drive *d, int y, const uint8_t *bytes, const uint8_t *panel)
+{
+    if (panel != NULL)
+        d->crc = cs_crc32(d->crc, panel, panel_bytes(d));
+    int rc = hal_display_line_out(d->dev, y, bytes, d->geo.line_bytes);
     if (rc != 0) {
         d->hal_rc = rc;
         d->hal_y = y;
@@ -25,6 +26,37 @@ static cs_status drive_line(frame_drive *d, const cs_renderer *r, int y)
         return CS_ERR_IO;
     }
     return CS_OK;
+}
+
+/* Line y, already rendered into the renderer's runs, to the display. */
+static cs_status drive_line(frame_drive *d, const cs_renderer *r, int y)
+{
+    cs_line_pixels(r, d->geo.pixfmt, d->bytes);
+    if (d->panel != NULL)
+        cs_line_pixels(r, CS_PANEL_PIXFMT, d->panel);
+    return show_line(d, y, d->bytes, d->panel);
+}
+
+/* Line y on a worker: its display bytes and panel pixels into the frame's storage. */
+static void band_line(void *user, const cs_renderer *r, int y)
+{
+    frame_drive *d = user;
+    cs_line_pixels(r, d->geo.pixfmt, d->frame_bytes + (size_t)y * d->geo.line_bytes);
+    if (d->panel != NULL)
+        cs_line_pixels(r, CS_PANEL_PIXFMT, d->frame_panel + (size_t)y * panel_bytes(d));
+}
+
+/* The lines of the frame r prepared, rendered by the pool and shown in order. */
+static cs_status drive_bands(frame_drive *d, const cs_renderer *r, cs_error *sticky)
+{
+    cs_status st = bands_start(d->pool, r, 0, d->geo.height, band_line, d);
+    for (int y = 0; y < d->geo.height && st == CS_OK; y++) {
+        bands_wait(d->pool, y);
+        st = show_line(d, y, d->frame_bytes + (size_t)y * d->geo.line_bytes,
+                       d->panel ? d->frame_panel + (size_t)y * panel_bytes(d) : NULL);
+    }
+    *sticky = bands_finish(d->pool);
+    return st;
 }
 
 int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
@@ -58,13 +90,19 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
     }
     /* Lines go from the core's runs straight to display bytes: each run of
      * equal pixels is converted once (cs_line_pixels). */
-    for (int y = 0; y < rows && st == CS_OK; y++) {
-        st = cs_render_line_runs(r, y0 + y);
-        if (st == CS_OK)
-            st = drive_line(d, r, y);
+    cs_error sticky;
+    if (d->pool != NULL) {
+        st = drive_bands(d, r, &sticky); /* window lines, as the display's rows */
+    } else {
+        for (int y = 0; y < rows && st == CS_OK; y++) {
+            st = cs_render_line_runs(r, y0 + y);
+            if (st == CS_OK)
+                st = drive_line(d, r, y);
+        }
+        sticky = cs_frame_error(r);
     }
     if (st == CS_OK)
-        st = cs_frame_error(r).status;
+        st = sticky.status;
     if (d->hal_rc != 0)
         return FRAME_DRIVE_HAL;
     rc = hal_display_end_frame(d->dev);
@@ -74,7 +112,7 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
         return FRAME_DRIVE_HAL;
     }
     if (st >= CS_ERR_CAP_CELS && st <= CS_ERR_CAP_CROSSINGS) {
-        d->err = cs_frame_error(r);
+        d->err = sticky;
         d->err.status = st;
         return FRAME_DRIVE_DEGRADED;
     }

@@ -15,6 +15,7 @@
 
 #include <stdint.h>
 
+#include "bands.h"
 #include "celscan.h"
 #include "display.h"
 
@@ -23,6 +24,13 @@ typedef struct frame_drive {
     const hal_display *dev;
     uint8_t *bytes;   /* geometry.line_bytes: one line in the display's format */
     uint8_t *panel;   /* NULL, or width * bytes-per-pixel of CS_PANEL_PIXFMT to hash the frame */
+    /* Optional: lines rendered on the pool's threads (bands.h). Each line is
+     * converted on its worker into frame_bytes (height lines of line_bytes)
+     * and, when panel is set, frame_panel (height lines of panel pixels),
+     * then shown and hashed in order, as one thread would. */
+    bands *pool;
+    uint8_t *frame_bytes;
+    uint8_t *frame_panel;
 
     /* Set by frame_drive_render. */
     uint32_t crc;     /* CRC-32 of the frame in CS_PANEL_PIXFMT, rows top to bottom */

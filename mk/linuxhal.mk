@@ -28,17 +28,19 @@ $(patsubst $(HOST)/tests/%,$(HOST)/obj/tests/linuxhal/%.o,$(LX_TESTS)): HOST_CFL
 LX_JSON_OBJ := $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o
 LX_JSON_LIBS = $(PKG_LIBS)
 $(HOST)/obj/firmware/linux/celfw_scene_json.o: HOST_CFLAGS += -Ihost-sim
+# ... and renders on celsim's thread pool (--threads).
+LX_BANDS_OBJ := $(HOST)/obj/host-sim/bands.o
 
 # celfw checks signed streams with the signer's own envelope code (tools/cels_sign.c, libsodium).
-$(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(LX_JSON_OBJ) \
+$(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(LX_BANDS_OBJ) \
         $(HOST)/obj/tools/cli_num.o $(HOST)/obj/tools/cels_sign.o $(HOST)/obj/tools/cels_write.o \
         $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(SODIUM_LIBS) -lm
+	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(SODIUM_LIBS) -lm -pthread
 
 # The tests also write cel streams (tools/cels_write.c) to feed celfw.
 $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(LX_FW_OBJ) \
-        $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(HOST)/obj/tools/cels_write.o $(HOST)/obj/tools/cli_num.o \
+        $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(LX_BANDS_OBJ) $(HOST)/obj/tools/cels_write.o $(HOST)/obj/tools/cli_num.o \
         $(HOST)/obj/tools/cels_sign.o $(HOST)/obj/tools/cels_read.o $(HOST)/libcelscan.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) $(SODIUM_LIBS) -lm -lpthread

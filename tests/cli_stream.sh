@@ -11,6 +11,7 @@
 #   - celc refuses bad scenes with the JSON path and exit 1, leaves no output file
 #     behind, refuses bad command lines with exit 2 (celc text and import: numbers
 #     out of range or not numbers; svgimport render likewise), and `celc import` answers;
+#   - celsim --threads N renders the frame --threads 1 does, and refuses --threads 0;
 # Byte offsets are computed here from the file sizes, independently of the decoder.
 # Last line: `cli_stream: N passed, M failed`.
 set -u
@@ -196,6 +197,17 @@ fi
 # Standard output, and the file is exactly that.
 "$celc" compile scenes/demo.json -o - >"$out/stdout.cels" 2>/dev/null
 check "celc -o - writes the same stream to standard output" cmp -s "$out/stdout.cels" "$demo"
+
+# ------------------------------------------------------ celsim --threads
+# The stream through 1, 2 and 5 threads: one thread's bytes (test_bands checks the floats).
+a=$(crc "$demo" --size 320x180 --aa exact --threads 1)
+for n in 2 5; do
+    b=$(crc "$demo" --size 320x180 --aa exact --threads $n)
+    check "celsim --threads $n gives --threads 1's frame ('$b', '$a')" [ -n "$a" -a "$a" = "$b" ]
+done
+"$celsim" render "$demo" --crc --threads 0 >/dev/null 2>"$out/bad.err"
+rc=$?
+check "celsim --threads 0 is a usage error (exit $rc)" sh -c "[ $rc -eq 2 ] && grep -q 'threads expects a count 1..64' '$out/bad.err'"
 
 echo "cli_stream: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -27,6 +27,11 @@ for aa in none 16 exact; do
     [ -n "$whole" ] && [ "$whole" = "$full" ] && ok || ko "--aa $aa: whole '$whole', full viewport '$full'"
     [ "$tile" != "$whole" ] && case $tile in "frame crc32 "*) true;; *) false;; esac && ok ||
         ko "--aa $aa: tile gave '$tile'"
+    # A window that starts below the top, on one thread and on three bands' threads.
+    one=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa --viewport 100,77,300,200 --threads 1)
+    three=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa --viewport 100,77,300,200 --threads 3)
+    case $one in "frame crc32 "*) [ "$one" = "$three" ] ;; *) false ;; esac && ok ||
+        ko "--aa $aa: viewport on 1 thread '$one', on 3 threads '$three'"
 done
 
 out=$("$bin" render scenes/demo.json --size 6000x200 --viewport 5000,0,1000,200 --crc 2>&1)

@@ -34,8 +34,9 @@ start=$(date +%s)
 {
     echo "### celsim on Many-blobs at 1920x1080, next to cairo (5 interleaved rounds)"
     echo
-    args16="render scenes/bench/blobs.json --size 1920x1080 --aa 16 --repeat 5"
-    argsx="render scenes/bench/blobs.json --size 1920x1080 --aa exact --repeat 5"
+    # one thread: the board's path (make bench-threads measures --threads 2)
+    args16="render scenes/bench/blobs.json --size 1920x1080 --aa 16 --repeat 5 --threads 1"
+    argsx="render scenes/bench/blobs.json --size 1920x1080 --aa exact --repeat 5 --threads 1"
     argsc="--profile blobs --peer cairo --frames 5"
     r16= rx= rc=
     for round in 1 2 3 4 5; do

@@ -540,6 +540,12 @@ static void serve(celfw *fw, uint64_t until)
         celfw_input_service(fw->in, pfd, n, &sink);
 }
 
+/* Render threads: a backend that pulls two lanes (HUB75) renders them itself. */
+static int render_threads(const celfw *fw)
+{
+    return fw->disp->ops->lanes == 1 ? fw->cfg.threads : 1;
+}
+
 /* Between the lines of a frame: read what arrived, every CELFW_SERVE_NS. */
 static void serve_between_lines(void *user)
 {
@@ -585,6 +591,7 @@ static const char *run(celfw *fw)
         lx_frame_stats st = {0};
         fw->in_frame = true;
         lx_status s = fw->disp->ops->present(fw->disp, &fw->src.src, &st);
+        lx_scene_source_end(&fw->src); /* no worker reads the scene past here */
         release_held(fw);
         add_stats(&fw->sum, &st);
         uint64_t took = lx_now(fw->clk.mono) - start;
@@ -678,7 +685,8 @@ int main(int argc, char **argv)
     fw->stream = celfw_stream_new();
     if (!fw->scene[0] || !fw->scene[1] || !fw->stream ||
         lx_scene_source_init(&fw->src, fw->disp->width, fw->disp->height, fw->cfg.aa,
-                             fw->cfg.subscanlines) != LX_OK) {
+                             fw->cfg.subscanlines) != LX_OK ||
+        lx_scene_source_threads(&fw->src, render_threads(fw)) != LX_OK) {
         say("error", "out of memory for %dx%d", fw->disp->width, fw->disp->height);
         fw->disp->ops->close(fw->disp);
         return EXIT_DISPLAY;
@@ -715,10 +723,10 @@ int main(int argc, char **argv)
     else
         snprintf(aa, sizeof aa, "%d", fw->cfg.subscanlines);
     say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s "
-        "trusted_keys=%d",
+        "trusted_keys=%d threads=%d",
         fw->disp->ops->name, fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
         celfw_input_describe(fw->in), fw->cfg.scene, celfw_stream_available() ? "cel-stream" : "none",
-        display_state(fw), celfw_trust_key_count(fw->trust));
+        display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw));
     if (celfw_input_public(fw->in) && celfw_trust_key_count(fw->trust) == 0)
         say("warning", "input %s listens beyond loopback and no key is trusted: anyone who can reach it "
             "can change the picture (celc keygen, then celfw --trust KEY.pub --state-dir DIR)",

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bands.h"
 #include "celfw_config.h"
 #include "cli_num.h"
 #include "gud_wire.h"
@@ -214,6 +215,15 @@ static bool p_clock(celfw_config *c, const char *v, char *err, size_t n)
 static bool p_panel(celfw_config *c, const char *v, char *err, size_t n)
 {
     return parse_size(v, &c->hub75.panel_w, &c->hub75.panel_h, err, n);
+}
+
+static bool p_threads(celfw_config *c, const char *v, char *err, size_t n)
+{
+    long k;
+    if (!parse_int(v, 1, BANDS_MAX_THREADS, &k, err, n))
+        return false;
+    c->threads = (int)k;
+    return true;
 }
 
 static bool p_chain(celfw_config *c, const char *v, char *err, size_t n)
@@ -454,6 +464,8 @@ static const setting settings[] = {
     {"size", "WxH", p_size, "render size (null: required; usb: default the device's mode)"},
     {"fps", "N", p_fps, "frames per second (default 30); 0 = unpaced. HUB75 is always unpaced"},
     {"aa", "none|N", p_aa, "anti-aliasing: pixel centres, or N sub-scanlines (default 4)"},
+    {"threads", "N", p_threads, "render bands of lines on N threads, 1..64 (default: the cores; "
+                                "HUB75 renders on one)"},
     {"input", "SPEC", p_input, "cel stream: none, stdin, file:PATH, tcp:PORT (loopback), tcp:ADDR:PORT, "
                               "tcp:[ADDR]:PORT, tty:DEV[:BAUD], mqtt[s]://HOST:PORT[/TOPIC]"},
     {"input-timeout", "SECONDS", p_input_timeout, "drop a TCP client that gets no transaction applied for this "
@@ -519,6 +531,7 @@ void celfw_config_default(celfw_config *c)
     c->fps = 30.0;
     c->aa = CS_AA_SUBSCAN;
     c->subscanlines = 4;
+    c->threads = bands_cores();
     snprintf(c->input, sizeof c->input, "none");
     snprintf(c->scene, sizeof c->scene, "builtin:demo");
     c->input_timeout = 10.0;

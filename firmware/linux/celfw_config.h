@@ -30,6 +30,7 @@ typedef struct celfw_config {
     bool fps_set;          /* fps was given (HUB75 is rescanned unpaced, so it may not be) */
     cs_aa_mode aa;
     int subscanlines;
+    int threads;           /* render threads for one-lane displays (bands.h); 1: the main thread */
     char input[256];       /* none | stdin | file:PATH | tcp:[HOST:]PORT | tty:DEVICE[:BAUD] |
                               mqtt[s]://HOST:PORT[/TOPIC] */
     char scene[256];       /* builtin:NAME | PATH.json | none */

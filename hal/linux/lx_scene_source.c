@@ -1,18 +1,50 @@
 /*
- * lx_scene_source.c - renders lines of a cs_scene on demand, in lanes.
+ * lx_scene_source.c - renders lines of a cs_scene on demand, in lanes, or
+ * ahead of demand on a thread pool (see lx_scene_source.h).
  */
 #include <stdlib.h>
 #include <string.h>
 
 #include "lx_scene_source.h"
 
+/* A pool worker: line y of its renderer's runs, as floats, into its ring slot. */
+static void ring_line(void *user, const cs_renderer *r, int y)
+{
+    lx_scene_source *s = user;
+    bands_floats(r, s->ring + (size_t)(y % s->ring_lines) * 3u * (size_t)s->src.width);
+}
+
+void lx_scene_source_end(lx_scene_source *s)
+{
+    if (!s->pooled)
+        return;
+    s->pooled = false;
+    cs_error e = bands_finish(s->pool);
+    if (e.status != CS_OK && s->err.status == CS_OK)
+        s->err = e;
+}
+
 static lx_status begin(void *user, int lanes)
 {
     lx_scene_source *s = user;
+    lx_scene_source_end(s); /* lane 0's workspace is about to change */
     if (lanes < 1 || lanes > LX_MAX_LANES || !s->scene)
         return LX_ERR_RENDER;
     s->lanes = lanes;
     memset(&s->err, 0, sizeof s->err);
+    if (s->pool && lanes == 1) {
+        cs_status st = cs_frame_begin(&s->r[0], s->ws[0], s->scene, &s->opts, &s->err);
+        if (st == CS_OK)
+            st = bands_start(s->pool, &s->r[0], LX_BAND_LINES, s->ring_lines, ring_line, s);
+        if (st != CS_OK) {
+            s->err.status = st;
+            return LX_ERR_RENDER;
+        }
+        s->pooled = true;
+        s->pool_next = 0;
+        return LX_OK;
+    }
+    s->pool_next = -1;
     for (int l = 0; l < lanes; l++) {
         cs_status st = cs_frame_begin(&s->r[l], s->ws[l], s->scene, &s->opts, &s->err);
         if (st != CS_OK)
@@ -21,20 +53,40 @@ static lx_status begin(void *user, int lanes)
     return LX_OK;
 }
 
+/* Line y from the pool's ring; lines only go forward, as in a lane. */
+static bool pool_line(lx_scene_source *s, int y, float *rgb)
+{
+    if (y < s->pool_next || y >= s->src.height)
+        return false; /* its slot may hold a later line already */
+    size_t n = 3u * (size_t)s->src.width;
+    bands_wait(s->pool, y);
+    memcpy(rgb, s->ring + (size_t)(y % s->ring_lines) * n, n * sizeof *rgb);
+    s->pool_next = y + 1;
+    bands_release(s->pool, y + 1); /* its slot may take line y + ring_lines */
+    if (y == s->src.height - 1)
+        lx_scene_source_end(s);
+    return true;
+}
+
 static lx_status line(void *user, int lane, int y, float *rgb)
 {
     lx_scene_source *s = user;
     if (lane < 0 || lane >= s->lanes)
         return LX_ERR_RENDER;
-    cs_status st = cs_render_line(&s->r[lane], s->opts.view_y + y, rgb);
-    if (st != CS_OK) {
-        s->err.status = st;
-        return LX_ERR_RENDER;
+    if (s->pool_next >= 0) {
+        if (!pool_line(s, y, rgb))
+            return LX_ERR_RENDER;
+    } else {
+        cs_status st = cs_render_line(&s->r[lane], s->opts.view_y + y, rgb);
+        if (st != CS_OK) {
+            s->err.status = st;
+            return LX_ERR_RENDER;
+        }
+        /* A capacity overflow still gives a line (the region is left out); keep
+         * the first one so celfw can report it, but carry on showing frames. */
+        if (s->r[lane].sticky.status != CS_OK && s->err.status == CS_OK)
+            s->err = s->r[lane].sticky;
     }
-    /* A capacity overflow still gives a line (the region is left out); keep
-     * the first one so celfw can report it, but carry on showing frames. */
-    if (s->r[lane].sticky.status != CS_OK && s->err.status == CS_OK)
-        s->err = s->r[lane].sticky;
     if (s->between_lines)
         s->between_lines(s->between_user);
     return LX_OK;
@@ -44,6 +96,7 @@ lx_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_
                                int subscanlines)
 {
     memset(s, 0, sizeof *s);
+    s->pool_next = -1;
     if (width <= 0 || height <= 0 || width > CS_CFG_MAX_WIDTH || height > CS_CFG_MAX_HEIGHT)
         return LX_ERR_CONFIG;
     for (int l = 0; l < LX_MAX_LANES; l++) {
@@ -88,13 +141,36 @@ void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time)
 
 cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err)
 {
+    lx_scene_source_end(s);
     cs_render_opts o = s->opts;
     o.time = 0.0f;
     return cs_scene_check_render(&s->r[0], s->ws[0], scene, &o, err);
 }
 
+lx_status lx_scene_source_threads(lx_scene_source *s, int threads)
+{
+    if (threads < 1 || threads > BANDS_MAX_THREADS)
+        return LX_ERR_CONFIG;
+    if (threads == 1 || s->pool)
+        return LX_OK;
+    s->ring_lines = 2 * threads * LX_BAND_LINES;
+    s->ring = malloc((size_t)s->ring_lines * 3u * (size_t)s->src.width * sizeof *s->ring);
+    s->pool = s->ring ? bands_new(threads) : NULL;
+    if (!s->pool) {
+        free(s->ring);
+        s->ring = NULL;
+        return LX_ERR_NOMEM;
+    }
+    return LX_OK;
+}
+
 void lx_scene_source_free(lx_scene_source *s)
 {
+    lx_scene_source_end(s);
+    bands_free(s->pool);
+    s->pool = NULL;
+    free(s->ring);
+    s->ring = NULL;
     for (int l = 0; l < LX_MAX_LANES; l++) {
         free(s->ws[l]);
         s->ws[l] = NULL;

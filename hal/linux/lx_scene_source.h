@@ -6,14 +6,23 @@
  * 0, 16, 1, 17, ... is served by lane 0 walking the top half and lane 1
  * walking the bottom half. Workspaces are allocated once, at init; nothing is
  * allocated per frame.
+ *
+ * With threads (lx_scene_source_threads), a one-lane frame is prepared once
+ * in lane 0 and its lines are rendered ahead on a pool of worker threads
+ * (host-sim/bands.h), in bands of LX_BAND_LINES, into a ring of lines
+ * that line() hands out in order: the same floats, at most the ring ahead
+ * of the display, never a frame of pixels. Two-lane backends (HUB75) keep
+ * the lanes on the calling thread.
  */
 #ifndef LX_SCENE_SOURCE_H
 #define LX_SCENE_SOURCE_H
 
+#include "bands.h"
 #include "celscan.h"
 #include "lx_display.h"
 
 #define LX_MAX_LANES 2
+#define LX_BAND_LINES 16 /* a band of the thread pool; the ring holds two a thread */
 
 typedef struct lx_scene_source {
     lx_source src;            /* hand &s->src to a backend */
@@ -27,6 +36,12 @@ typedef struct lx_scene_source {
      * input while a slow frame renders (it must not touch the scene). */
     void (*between_lines)(void *user);
     void *between_user;
+    /* lx_scene_source_threads: the pool, and its ring of ring_lines lines of 3*width floats. */
+    bands *pool;
+    float *ring;
+    int ring_lines;
+    bool pooled;              /* workers are rendering lines of the frame */
+    int pool_next;            /* the frame's next line from the pool; -1: lines in lanes */
 } lx_scene_source;
 
 /* Sets up lanes for width x height output. aa/subscanlines as in cs_render_opts. */
@@ -44,6 +59,17 @@ void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time);
 /* Whether `scene` can be rendered at this source's size (cs_scene_check_render
  * in lane 0's workspace): only between frames. */
 cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err);
+/*
+ * Renders one-lane frames on `threads` worker threads (2..BANDS_MAX_THREADS;
+ * 1 leaves the lines on the caller's thread). After init, before frames.
+ */
+lx_status lx_scene_source_threads(lx_scene_source *s, int threads);
+/*
+ * Ends the frame: waits for the workers still rendering lines of it (a
+ * backend may give up on a frame part way), and keeps its capacity error.
+ * Call after present() and before the scene changes; harmless without threads.
+ */
+void lx_scene_source_end(lx_scene_source *s);
 void lx_scene_source_free(lx_scene_source *s);
 
 #endif /* LX_SCENE_SOURCE_H */

@@ -61,6 +61,8 @@ static void test_config_errors(void)
     expect_failure("paced HUB75", (const char *[]){"--backend", "gpio", "--fps", "60", NULL}, 2,
                    "rescans it continuously");
     expect_failure("unknown option", (const char *[]){"--plains", "8", NULL}, 2, "unknown option '--plains'");
+    expect_failure("no threads", (const char *[]){"--backend", "null", "--size", "8x8", "--threads", "0", NULL}, 2,
+                   "celfw: error --threads: '0' is not an integer in 1..64");
     expect_failure("null without size", (const char *[]){"--backend", "null", NULL}, 2, "needs --size");
     /* Numbers beyond int's range are refused (sscanf's %d would be undefined). */
     expect_failure("size beyond int", (const char *[]){"--backend", "null", "--size", "99999999999x8", NULL}, 2,
@@ -121,13 +123,15 @@ static void test_usb_tcp(UMockdevTestbed *tb)
     fake_gud *dev = fake_gud_add(tb, 3, 2, &o);
     child c;
     spawn(&c,
+          /* three render threads whatever the machine: the panels are compared with one thread's */
           (const char *[]){"--backend", "usb", "--usb-device", "1d50:7101", "--scene", "builtin:anim",
                            "--time-step", "0.04", "--fps", "60", "--input", "tcp:127.0.0.1:0", "--frames", "40",
-                           "--log-interval", "0.2", NULL},
+                           "--log-interval", "0.2", "--threads", "3", NULL},
           false);
     char line[1024] = "";
     bool started = wait_line(&c, "celfw: start", 10.0, line, sizeof line);
-    CHECK(started && strstr(line, "backend=usb display=320x180") && strstr(line, "display_state=up"),
+    CHECK(started && strstr(line, "backend=usb display=320x180") && strstr(line, "display_state=up") &&
+              strstr(line, " threads=3"),
           "start line: %s", line);
     const char *tcp = strstr(line, "input=tcp:127.0.0.1:");
     int port = tcp ? atoi(tcp + strlen("input=tcp:127.0.0.1:")) : 0;

@@ -1,0 +1,76 @@
+/*
+ * bands.h - the lines of one frame rendered on several threads (Linux hosts).
+ *
+ * The frame is prepared once, by the caller, in its own renderer and
+ * workspace (cs_frame_begin). Each worker thread then renders lines of that
+ * frame in a renderer of its own over a workspace of its own
+ * (cs_frame_share): the segments, pieces and paints are only read, so the
+ * preparation is not repeated per thread, and every line comes out with the
+ * bytes one thread would give it (the core's lines are pure functions of the
+ * frame and y).
+ *
+ * Workers take bands of `chunk` lines from the top in turn, so a thread
+ * that the machine slows down takes fewer bands instead of holding up the
+ * frame. A line is handed to the caller's `emit` on the worker that
+ * rendered it, straight after rendering, to be converted out of that
+ * worker's runs into the caller's storage for that line; the caller waits
+ * for lines in order (bands_wait), so a display still gets them top to
+ * bottom. `window` bounds how far ahead of the caller the workers may go:
+ * lines y < released + window (bands_release), so a caller that keeps a
+ * ring of `window` lines instead of a frame reuses line y's slot for line
+ * y + window once it released y.
+ *
+ * The core stays free of threads: this file is host code (pthreads). The
+ * scene and the prepared renderer must stay unchanged until bands_finish.
+ */
+#ifndef HOST_SIM_BANDS_H
+#define HOST_SIM_BANDS_H
+
+#include "celscan.h"
+
+typedef struct bands bands;
+
+/*
+ * Line y was rendered into r's runs: convert it out (called on a worker
+ * thread). Lines count from the top of the window rendered: device row
+ * view_y + y with a viewport (cs_render_opts), row y without.
+ */
+typedef void (*bands_emit)(void *user, const cs_renderer *r, int y);
+
+/* Starts `threads` worker threads (1..BANDS_MAX_THREADS), each with its workspace; NULL if out of memory. */
+bands *bands_new(int threads);
+#define BANDS_MAX_THREADS 64
+
+/* The number of cores this process may run on (at least 1): the default thread count. */
+int bands_cores(void);
+
+/*
+ * Starts rendering the frame `prepared` holds on the workers, in bands of
+ * `chunk` lines (0: four bands a thread), at most `window` lines ahead of
+ * the caller's releases. Returns CS_ERR_ARG for a negative chunk, or a
+ * window smaller than a band. Ends the frame before, if one runs.
+ */
+cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int window,
+                      bands_emit emit, void *user);
+
+/* Blocks until line y of the frame (of its window) has been emitted. */
+void bands_wait(bands *b, int y);
+
+/* The caller is done with every line before y: workers may go on to y + window. */
+void bands_release(bands *b, int y);
+
+/*
+ * Ends the frame: waits for the lines in hand, lets no more start, and
+ * returns the first capacity error in line order (what cs_frame_error of
+ * one renderer drawing every line would say), CS_OK if none. Safe to call
+ * when no frame runs.
+ */
+cs_error bands_finish(bands *b);
+
+/* The line in r's runs as 3 * view width linear floats, what cs_render_line gives (for an emit). */
+void bands_floats(const cs_renderer *r, float *rgb);
+
+/* Stops and joins the threads, frees everything (NULL is fine). */
+void bands_free(bands *b);
+
+#endif /* HOST_SIM_BANDS_H */

@@ -1,0 +1,336 @@
+/*
+ * test_bands.c - a frame's lines on several threads give one thread's bytes.
+ *
+ *   test_bands SCENE_DIR     SCENE_DIR holds scenes/ (demo, beta-csg, motion, bench/blobs)
+ *
+ * The truth is the core's single-renderer path, which every other test
+ * checks against its references: cs_frame_begin, then cs_render_line on
+ * every line. Against it, for each scene, in every AA mode (none, 1, 5 and
+ * 16 sub-scanlines, exact area) and both blends, the same frame prepared
+ * once and rendered by the thread pool of host-sim/bands.c (cs_frame_share
+ * into a workspace per thread) with 1, 2, 3 and 4 threads must give the
+ * same linear floats, bit for bit, on every line; so must small bands,
+ * bands of one line, a ring of a few lines that the consumer releases as it
+ * goes, and a frame with a pre-combined cache. celfw's source
+ * (hal/linux/lx_scene_source.c) with a pool must hand out the same lines,
+ * also after a frame abandoned half way. A scene that
+ * overflows the crossings on some lines must report the capacity error one
+ * renderer reports (the first in line order), whichever thread met it.
+ * cs_frame_share's refusals are checked too. The last line is
+ * `test_bands: N passed, M failed`.
+ */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bands.h"
+#include "celscan.h"
+#include "lx_scene_source.h"
+#include "scene_json.h"
+#include "testlib.h"
+
+static cs_scene *scene;
+static cs_workspace *ws_ref, *ws_prep;
+static float *want, *got; /* whole frames of linear floats */
+static const char *dir;
+
+/* The pool's emit: line y's runs, expanded, into its slot of `got`. */
+typedef struct sink {
+    float *frame;
+    int width;
+    int slots; /* lines the frame holds: line y goes to slot y % slots */
+} sink;
+
+static void emit_floats(void *user, const cs_renderer *r, int y)
+{
+    const sink *k = user;
+    bands_floats(r, k->frame + (size_t)(y % k->slots) * 3u * (size_t)k->width);
+}
+
+/* One renderer, every line: the truth. Returns its sticky error. */
+static cs_error render_one(const cs_render_opts *o, const cs_cache *cache)
+{
+    cs_renderer r;
+    cs_error e;
+    cs_status st = cache ? cs_frame_begin_cached(&r, ws_ref, scene, o, cache, &e)
+                         : cs_frame_begin(&r, ws_ref, scene, o, &e);
+    CHECK_STATUS(st, CS_OK, "cs_frame_begin (one thread)");
+    for (int y = 0; y < o->height; y++)
+        cs_render_line(&r, y, want + (size_t)y * 3u * (size_t)o->width);
+    return cs_frame_error(&r);
+}
+
+/*
+ * The frame on `pool` in bands of `chunk` (0: the default) with a window of
+ * `window` lines (0: the whole frame); compares each line with `want` as
+ * the consumer receives it. Returns the number of lines that differ.
+ */
+static int render_pool(bands *pool, const cs_render_opts *o, const cs_cache *cache, int chunk,
+                       int window, cs_error *err)
+{
+    cs_renderer prep;
+    cs_error e;
+    cs_status st = cache ? cs_frame_begin_cached(&prep, ws_prep, scene, o, cache, &e)
+                         : cs_frame_begin(&prep, ws_prep, scene, o, &e);
+    if (st != CS_OK)
+        return o->height;
+    int slots = window > 0 ? window : o->height;
+    sink k = {got, o->width, slots};
+    size_t line_floats = 3u * (size_t)o->width;
+    if (bands_start(pool, &prep, chunk, slots, emit_floats, &k) != CS_OK)
+        return o->height;
+    int bad = 0;
+    for (int y = 0; y < o->height; y++) {
+        bands_wait(pool, y);
+        const float *line = got + (size_t)(y % slots) * line_floats;
+        if (memcmp(line, want + (size_t)y * line_floats, line_floats * sizeof(float)) != 0) {
+            if (bad == 0)
+                tl_note("first differing line %d", y);
+            bad++;
+        }
+        bands_release(pool, y + 1);
+    }
+    *err = bands_finish(pool);
+    return bad;
+}
+
+typedef struct scene_case {
+    const char *file;
+    int width, height;
+    float time;
+} scene_case;
+
+static const scene_case scenes[] = {
+    {"bench/blobs.json", 384, 216, 0.0f},
+    {"demo.json", 320, 180, 0.0f},
+    {"beta-csg.json", 256, 192, 0.0f},
+    {"motion.json", 240, 160, 1.25f},
+};
+
+static void load(const char *file)
+{
+    char path[512], msg[512];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    int rc = scene_json_load(path, scene, msg, sizeof msg);
+    if (!CHECK(rc == 0, "load %s: %s", path, msg))
+        exit(tl_summary("test_bands"));
+}
+
+/* Every scene, every AA mode, both blends, 1..4 threads, default bands. */
+static void test_threads_match_one(void)
+{
+    static const struct {
+        cs_aa_mode aa;
+        int n;
+    } modes[] = {{CS_AA_NONE, 1}, {CS_AA_SUBSCAN, 1}, {CS_AA_SUBSCAN, 5},
+                 {CS_AA_SUBSCAN, 16}, {CS_AA_EXACT, 1}};
+    bands *pool[4];
+    for (int t = 0; t < 4; t++)
+        pool[t] = bands_new(t + 1);
+    CHECK(pool[0] && pool[1] && pool[2] && pool[3], "bands_new(1..4)");
+    for (size_t s = 0; s < sizeof scenes / sizeof scenes[0]; s++) {
+        load(scenes[s].file);
+        for (size_t m = 0; m < sizeof modes / sizeof modes[0]; m++) {
+            for (int blend = CS_BLEND_LINEAR; blend <= CS_BLEND_SRGB; blend++) {
+                cs_render_opts o = cs_render_defaults(scenes[s].width, scenes[s].height);
+                o.aa = modes[m].aa;
+                o.subscanlines = modes[m].n;
+                o.time = scenes[s].time;
+                o.blend = (cs_blend)blend;
+                cs_error e1 = render_one(&o, NULL);
+                for (int t = 0; t < 4; t++) {
+                    if (!pool[t])
+                        continue;
+                    cs_error et;
+                    int bad = render_pool(pool[t], &o, NULL, 0, 0, &et);
+                    CHECK(bad == 0 && et.status == e1.status,
+                          "%s aa %d/%d blend %d, %d threads: %d lines differ from one thread "
+                          "(errors %d, %d)",
+                          scenes[s].file, (int)o.aa, o.subscanlines, blend, t + 1, bad,
+                          (int)et.status, (int)e1.status);
+                }
+            }
+        }
+    }
+    for (int t = 0; t < 4; t++)
+        bands_free(pool[t]);
+}
+
+/* Bands of one line, odd bands, a ring of a few lines, and a cached frame. */
+static void test_band_shapes(void)
+{
+    load("bench/blobs.json");
+    bands *pool = bands_new(3);
+    if (!CHECK(pool != NULL, "bands_new(3)"))
+        return;
+    cs_render_opts o = cs_render_defaults(384, 216);
+    o.aa = CS_AA_EXACT;
+    static const int shapes[][2] = {{1, 0}, {7, 0}, {500, 0}, {4, 12}, {8, 8}};
+    for (int aa = 0; aa < 2; aa++) {
+        o.aa = aa ? CS_AA_EXACT : CS_AA_SUBSCAN;
+        render_one(&o, NULL);
+        for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++) {
+            cs_error e;
+            int bad = render_pool(pool, &o, NULL, shapes[k][0], shapes[k][1], &e);
+            CHECK(bad == 0, "aa %d, bands of %d lines, window %d: %d lines differ", (int)o.aa,
+                  shapes[k][0], shapes[k][1], bad);
+        }
+    }
+    /* A window smaller than a band could never start one. */
+    cs_renderer prep;
+    cs_error e;
+    CHECK_STATUS(cs_frame_begin(&prep, ws_prep, scene, &o, &e), CS_OK, "frame");
+    sink k = {got, o.width, 4};
+    CHECK_STATUS(bands_start(pool, &prep, 8, 4, emit_floats, &k), CS_ERR_ARG, "window < band");
+    CHECK_STATUS(bands_start(pool, &prep, -1, 4, emit_floats, &k), CS_ERR_ARG, "negative band");
+    CHECK_EQ_INT(bands_finish(pool).status, CS_OK, "finish with no frame running");
+
+    /* The back cels pre-combined into a cache, shared by every thread read-only. */
+    static unsigned char buf[8u << 20];
+    cs_cache cache;
+    o.aa = CS_AA_SUBSCAN;
+    uint32_t first = scene->cel_count / 2;
+    cs_status st = cs_cache_build(&cache, buf, sizeof buf, ws_ref, scene, &o, first,
+                                  scene->cel_count - first, &e);
+    if (CHECK(st == CS_OK, "cs_cache_build: %s (%zu bytes needed)", cs_status_str(st),
+              cache.bytes_needed)) {
+        render_one(&o, &cache);
+        int bad = render_pool(pool, &o, &cache, 0, 0, &e);
+        CHECK(bad == 0, "cached frame on 3 threads: %d lines differ", bad);
+    }
+    bands_free(pool);
+}
+
+/* A comb of 2100 teeth: 4200 crossings on lines 40..59, beyond CS_CFG_MAX_CROSSINGS. */
+static void build_comb(void)
+{
+    static cs_point pts[2 * 2100 + 3];
+    int n = 0;
+    const int teeth = 2100;
+    const float d = 300.0f / (float)teeth;
+    for (int i = 0; i < teeth; i++) {
+        pts[n++] = (cs_point){10.0f + (float)i * d, 60.0f, 1.0f};
+        pts[n++] = (cs_point){10.0f + ((float)i + 0.5f) * d, 40.0f, 1.0f};
+    }
+    pts[n++] = (cs_point){10.0f + (float)teeth * d, 60.0f, 1.0f};
+    pts[n++] = (cs_point){10.0f + (float)teeth * d, 80.0f, 1.0f};
+    pts[n++] = (cs_point){10.0f, 80.0f, 1.0f};
+    cs_error e;
+    const cs_affine id = {1, 0, 0, 1, 0, 0};
+    const cs_paint paint = {{0.8f, 0.2f, 0.1f}, {0.0f, 0.0f, 0.0f}, 1.0f};
+    const cs_paint glass = {{0.1f, 0.5f, 0.9f}, {0.5f, 0.5f, 0.5f}, 0.5f};
+    const cs_point sq[4] = {{20, 5, 1}, {300, 5, 1}, {300, 95, 1}, {20, 95, 1}};
+    cs_scene_init(scene, 320.0f, 100.0f);
+    CHECK_STATUS(cs_scene_add_cel(scene, &id, NULL, NULL, &e), CS_OK, "cel");
+    CHECK_STATUS(cs_scene_add_region(scene, CS_FILL_NONZERO, &glass, &e), CS_OK, "region");
+    CHECK_STATUS(cs_scene_add_contour(scene, 1, 4, sq, NULL, &e), CS_OK, "square");
+    CHECK_STATUS(cs_scene_add_cel(scene, &id, NULL, NULL, &e), CS_OK, "cel");
+    CHECK_STATUS(cs_scene_add_region(scene, CS_FILL_NONZERO, &paint, &e), CS_OK, "region");
+    CHECK_STATUS(cs_scene_add_contour(scene, 1, n, pts, NULL, &e), CS_OK, "comb");
+}
+
+static void test_capacity_error_in_line_order(void)
+{
+    build_comb();
+    bands *pool = bands_new(4);
+    if (!CHECK(pool != NULL, "bands_new(4)"))
+        return;
+    for (int aa = 0; aa < 3; aa++) {
+        cs_render_opts o = cs_render_defaults(320, 100);
+        o.aa = (cs_aa_mode)aa;
+        o.subscanlines = 4;
+        cs_error e1 = render_one(&o, NULL);
+        CHECK_STATUS(e1.status, CS_ERR_CAP_CROSSINGS, "the comb overflows (one thread)");
+        /* Bands of 3 lines: several threads meet the overflow, the lowest line wins. */
+        cs_error e4;
+        int bad = render_pool(pool, &o, NULL, 3, 0, &e4);
+        CHECK(bad == 0, "aa %d: %d lines differ", aa, bad);
+        CHECK(e4.status == e1.status && e4.cel == e1.cel && e4.region == e1.region &&
+                  e4.item == e1.item,
+              "aa %d: 4 threads report %s at cel %d region %d line %d; one thread %s at cel %d "
+              "region %d line %d",
+              aa, cs_status_str(e4.status), e4.cel, e4.region, e4.item, cs_status_str(e1.status),
+              e1.cel, e1.region, e1.item);
+    }
+    bands_free(pool);
+}
+
+/* celfw's line source with 1 and 3 threads, as a one-lane backend pulls it. */
+static void test_celfw_source(void)
+{
+    load("demo.json");
+    const int w = 320, h = 180;
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.aa = CS_AA_SUBSCAN;
+    o.subscanlines = 4;
+    render_one(&o, NULL);
+    for (int threads = 1; threads <= 3; threads += 2) {
+        lx_scene_source src;
+        if (!CHECK(lx_scene_source_init(&src, w, h, CS_AA_SUBSCAN, 4) == LX_OK &&
+                       lx_scene_source_threads(&src, threads) == LX_OK,
+                   "source with %d threads", threads))
+            continue;
+        lx_scene_source_set(&src, scene, 0.0f);
+        float *line = tl_calloc(3u * (size_t)w, sizeof(float));
+        for (int round = 0; round < 2; round++) {
+            /* Round 0 gives up after 40 lines, as a backend that lost its device does. */
+            int bad = 0, last = round == 0 ? 40 : h;
+            CHECK(src.src.begin(src.src.user, 1) == LX_OK, "begin");
+            for (int y = 0; y < last; y++) {
+                if (src.src.line(src.src.user, 0, y, line) != LX_OK ||
+                    memcmp(line, want + (size_t)y * 3u * (size_t)w, 3u * (size_t)w * sizeof(float)))
+                    bad++;
+            }
+            CHECK(bad == 0, "%d threads, round %d: %d of %d lines differ", threads, round, bad, last);
+            if (round == 1 && threads > 1)
+                CHECK(src.src.line(src.src.user, 0, 5, line) == LX_ERR_RENDER,
+                      "a line behind the ring is refused");
+        }
+        lx_scene_source_end(&src);
+        CHECK_EQ_INT(src.err.status, CS_OK, "no capacity error");
+        free(line);
+        lx_scene_source_free(&src);
+    }
+}
+
+static void test_share_refusals(void)
+{
+    load("demo.json");
+    cs_render_opts o = cs_render_defaults(64, 36);
+    cs_renderer prep, a, b;
+    cs_error e;
+    CHECK_STATUS(cs_frame_begin(&prep, ws_prep, scene, &o, &e), CS_OK, "frame");
+    CHECK_STATUS(cs_frame_share(NULL, ws_ref, &prep), CS_ERR_ARG, "no renderer");
+    CHECK_STATUS(cs_frame_share(&a, NULL, &prep), CS_ERR_ARG, "no workspace");
+    CHECK_STATUS(cs_frame_share(&a, ws_ref, NULL), CS_ERR_ARG, "nothing to share");
+    CHECK_STATUS(cs_frame_share(&a, ws_prep, &prep), CS_ERR_ARG, "the prepared workspace itself");
+    CHECK_STATUS(cs_frame_share(&a, ws_ref, &prep), CS_OK, "a share");
+    static cs_workspace other;
+    CHECK_STATUS(cs_frame_share(&b, &other, &a), CS_ERR_STATE, "a share of a share");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: test_bands SCENE_DIR\n");
+        return 2;
+    }
+    dir = argv[1];
+    scene = tl_calloc(1, sizeof *scene);
+    ws_ref = tl_calloc(1, sizeof *ws_ref);
+    ws_prep = tl_calloc(1, sizeof *ws_prep);
+    want = tl_calloc(3u * 384u * 216u, sizeof(float));
+    got = tl_calloc(3u * 384u * 216u, sizeof(float));
+    TL_RUN(test_threads_match_one);
+    TL_RUN(test_band_shapes);
+    TL_RUN(test_capacity_error_in_line_order);
+    TL_RUN(test_celfw_source);
+    TL_RUN(test_share_refusals);
+    free(scene);
+    free(ws_ref);
+    free(ws_prep);
+    free(want);
+    free(got);
+    return tl_summary(argv[0]);
+}
