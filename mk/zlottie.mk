@@ -99,7 +99,7 @@ DEMO_TARGETS += $(LOTTIE_DEMO)/spinner.json $(LOTTIE_DEMO_FRAMES)
 # and hold easing) streamed to the mps2-an386 firmware under QEMU, frame CRCs against
 # celsim's (tools/lottie/qemu_check.sh, about 16 s; in `make test`).
 LOTTIE_QEMU_FILES := mask.json movie_loading.json spin__lil_loader_v2.json \
-        gradient_sleepy_loader.json scene:scenes/groups.json
+        gradient_sleepy_loader.json loading_animation.json scene:scenes/groups.json
 .PHONY: lottie-qemu
 lottie-qemu: firmware-mps2-an386 $(HOST)/celc $(HOST)/celsim
 	$(Q)tools/lottie/qemu_check.sh $(HOST)/celc $(HOST)/celsim $(BUILD)/mps2-an386/celfw.elf \

@@ -122,6 +122,33 @@ static void test_easing_round_trip(void)
     lt_warnings_free(&w);
 }
 
+/* A keyframe at the out point (frame 60 of 0..59 shown): the last stretch is
+ * still one cubic key, ending at 2 s on the keyframe's value. */
+static void test_tail_key(void)
+{
+    const char *text = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+                            "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]},\"r\":{\"a\":1,\"k\":["
+                            "{\"t\":20,\"s\":[0],\"o\":{\"x\":[0.33],\"y\":[0]},\"i\":{\"x\":[0.67],\"y\":[1]}},"
+                            "{\"t\":60,\"s\":[90]}]}},"
+        RECT_SHAPES "}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(text, &w, err, sizeof err, NULL);
+    if (!CHECK(scene != NULL, "import: %s", err))
+        return;
+    const cJSON *keys = path(scene, "cels.0.animate.trs.keys");
+    const cJSON *last = cJSON_GetArrayItem(keys, cJSON_GetArraySize(keys) - 1);
+    const cJSON *rot = path(cJSON_GetArrayItem(last, 1), "rotation");
+    CHECK(cJSON_GetArraySize(keys) == 3, "three keys (frames 0, 20 and 60), got %d",
+          cJSON_GetArraySize(keys));
+    CHECK(fabs(cJSON_GetArrayItem(last, 0)->valuedouble - 2.0) < 1e-9 && rot &&
+              fabs(rot->valuedouble - 90) < 0.05,
+          "the last key is the keyframe past the end: 2 s, 90 degrees (%g)",
+          rot ? rot->valuedouble : -1);
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+}
+
 static void test_parent_and_inout(void)
 {
     const char *text = HEAD "\"layers\":["
@@ -284,6 +311,7 @@ int main(int argc, char **argv)
 {
     (void)argc;
     TL_RUN(test_easing_round_trip);
+    TL_RUN(test_tail_key);
     TL_RUN(test_parent_and_inout);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);

@@ -94,6 +94,8 @@ typedef struct lt_signal {
     double tol;         /* per float, absolute */
     int nbreaks;
     double *breaks;     /* frame indices (may be fractional), sorted */
+    double tail;        /* the first keyframe after the last sample (0: none), where the
+                           last stretch's easing ends */
     int neases;
     double (*eases)[4];
 } lt_signal;
