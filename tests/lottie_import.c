@@ -122,6 +122,8 @@ static void test_easing_round_trip(void)
     lt_warnings_free(&w);
 }
 
+static void expect_refused(const char *what, const char *text, const char *msg);
+
 /* A keyframe at the out point (frame 60 of 0..59 shown): the last stretch is
  * still one cubic key, ending at 2 s on the keyframe's value. */
 static void test_tail_key(void)
@@ -147,6 +149,57 @@ static void test_tail_key(void)
           rot ? rot->valuedouble : -1);
     cJSON_Delete(scene);
     lt_warnings_free(&w);
+}
+
+/* A repeater of three copies, each 20 px right of the one before, fading
+ * from 100 % to 50 % over copy / copies: three regions, front to back copy
+ * 2, 1, 0, each moved and faded as rlottie draws them. */
+static void test_repeater(void)
+{
+    const char *text =
+        HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,\"ks\":{},"
+             "\"shapes\":[{\"ty\":\"gr\",\"it\":[{\"ty\":\"rc\",\"p\":{\"a\":0,\"k\":[10,10]},"
+             "\"s\":{\"a\":0,\"k\":[10,10]},\"r\":{\"a\":0,\"k\":0}},"
+             "{\"ty\":\"fl\",\"c\":{\"a\":0,\"k\":[1,0,0,1]},\"o\":{\"a\":0,\"k\":100}},"
+             "{\"ty\":\"tr\"}]},"
+             "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":3},\"o\":{\"a\":0,\"k\":0},\"m\":1,"
+             "\"tr\":{\"p\":{\"a\":0,\"k\":[20,0]},\"so\":{\"a\":0,\"k\":100},"
+             "\"eo\":{\"a\":0,\"k\":50}}}]}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(text, &w, err, sizeof err, NULL);
+    if (!CHECK(scene != NULL, "import: %s", err))
+        return;
+    CHECK(w.n == 0, "no warning (%d)", w.n);
+    const cJSON *regs = path(scene, "cels.0.regions");
+    if (!CHECK(cJSON_GetArraySize(regs) == 3, "three regions, one per copy (got %d)",
+               cJSON_GetArraySize(regs)))
+        goto out;
+    for (int k = 0; k < 3; k++) {
+        int copy = 2 - k;
+        const cJSON *reg = cJSON_GetArrayItem(regs, k);
+        double beta = path(reg, "paint.beta")->valuedouble, x0 = 1e9;
+        const cJSON *pt;
+        cJSON_ArrayForEach(pt, path(reg, "contours.0.points"))
+            x0 = fmin(x0, cJSON_GetArrayItem(pt, 0)->valuedouble);
+        CHECK(fabs(beta - (1 - 0.5 * copy / 3.0)) < 1e-9 && fabs(x0 - (5 + 20 * copy)) < 1e-9,
+              "copy %d: left edge %g (want %d), beta %g (want %g)", copy, x0, 5 + 20 * copy, beta,
+              1 - 0.5 * copy / 3.0);
+    }
+out:
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+    expect_refused("repeater flood",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{},\"shapes\":["
+                        "{\"ty\":\"rc\",\"s\":{\"a\":0,\"k\":[1,1]}},{\"ty\":\"fl\"},"
+                        "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":1e6}}]}]}",
+                   "copies, more than");
+    expect_refused("nested repeaters",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{},\"shapes\":["
+                        "{\"ty\":\"rc\",\"s\":{\"a\":0,\"k\":[1,1]}},{\"ty\":\"fl\"},"
+                        "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":1000}},"
+                        "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":1000}}]}]}",
+                   "shape items");
 }
 
 static void test_parent_and_inout(void)
@@ -312,6 +365,7 @@ int main(int argc, char **argv)
     (void)argc;
     TL_RUN(test_easing_round_trip);
     TL_RUN(test_tail_key);
+    TL_RUN(test_repeater);
     TL_RUN(test_parent_and_inout);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);

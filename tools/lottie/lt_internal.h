@@ -31,6 +31,8 @@
 #define LT_MAX_KEYFRAMES 100000 /* keyframes of one property */
 #define LT_MAX_DEPTH 32         /* nested groups, precomps, parent chains */
 #define LT_MAX_VERTICES 100000  /* vertices of one path */
+#define LT_MAX_COPIES 1000      /* copies of one repeater */
+#define LT_MAX_ITEMS 100000     /* shape items of a layer, repeated copies included */
 #define LT_MAX_WORK 2e7         /* floats sampled over the whole import (the conformance
                                    set's largest needs 6.2e6) */
 #define LT_MAX_DIMS 4
