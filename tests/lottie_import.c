@@ -66,6 +66,35 @@ static const cJSON *path(const cJSON *j, const char *p)
     return j;
 }
 
+/* The red a 100 x 100 scene paints at time t, in pixels: the coverage of a
+ * pure red fill (sRGB blending: coverage is the encoded value over black);
+ * -1 if it does not load. */
+static double red_area(const cJSON *scene, float t)
+{
+    cs_scene *sc = calloc(1, sizeof *sc);
+    cs_workspace *ws = calloc(1, sizeof *ws);
+    uint8_t *line = calloc(3 * 100, 1);
+    char lerr[SCENE_JSON_ERRLEN];
+    double area = -1;
+    cs_renderer r;
+    cs_render_opts o = cs_render_defaults(100, 100);
+    o.time = t;
+    cs_error ce;
+    if (CHECK(scene_json_load_tree(scene, "t", sc, lerr, sizeof lerr) == 0, "loads: %s", lerr) &&
+        cs_frame_begin(&r, ws, sc, &o, &ce) == CS_OK) {
+        area = 0;
+        for (int y = 0; y < 100; y++) {
+            cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, line);
+            for (int x = 0; x < 100; x++)
+                area += line[3 * x] / 255.0;
+        }
+    }
+    free(line);
+    free(ws);
+    free(sc);
+    return area;
+}
+
 static void test_easing_round_trip(void)
 {
     const char *text = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
@@ -94,30 +123,9 @@ static void test_easing_round_trip(void)
     /* It loads, and renders the 40 x 20 rectangle at (50,50): area 800 px at t 0
      * and turned at 1 s. The scene blends in sRGB, so coverage is the encoded
      * value of red over black. */
-    cs_scene *sc = calloc(1, sizeof *sc);
-    cs_workspace *ws = calloc(1, sizeof *ws);
-    char lerr[SCENE_JSON_ERRLEN];
-    CHECK(scene_json_load_tree(scene, "t", sc, lerr, sizeof lerr) == 0, "loads: %s", lerr);
-    uint8_t *line = calloc(3 * 100, 1);
-    double area[2] = {0, 0};
-    for (int f = 0; f < 2; f++) {
-        cs_renderer r;
-        cs_render_opts o = cs_render_defaults(100, 100);
-        o.time = f ? 1.0f : 0.0f; /* frame 30: 180 deg turned, same area */
-        cs_error ce;
-        if (cs_frame_begin(&r, ws, sc, &o, &ce) != CS_OK)
-            break;
-        for (int y = 0; y < 100; y++) {
-            cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, line);
-            for (int x = 0; x < 100; x++)
-                area[f] += line[3 * x] / 255.0; /* red: the fill's coverage (no background) */
-        }
-    }
+    double area[2] = {red_area(scene, 0), red_area(scene, 1)}; /* frame 30: 180 deg turned */
     CHECK(fabs(area[0] - 800) < 1 && fabs(area[1] - 800) < 2,
           "the rectangle covers 800 px at t 0 and 1 s (%.2f, %.2f)", area[0], area[1]);
-    free(line);
-    free(ws);
-    free(sc);
     cJSON_Delete(scene);
     lt_warnings_free(&w);
 }
@@ -200,6 +208,39 @@ out:
                         "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":1000}},"
                         "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":1000}}]}]}",
                    "shape items");
+}
+
+/* A 40 x 20 red rectangle (x 30..70) matted by a 10 x 20 white one (x 30..40)
+ * in the layer listed before it, which moves by its own transform: alpha
+ * shows 200 px, inverted 600 px, luma (white source) as alpha; a
+ * half-transparent source cannot be CSG and is warned. */
+static void test_track_matte(void)
+{
+    static const int tts[4] = {1, 2, 3, 1};
+    static const double want[4] = {200, 600, 200, 800};
+    for (int k = 0; k < 4; k++) {
+        char text[2048];
+        snprintf(text, sizeof text,
+                 HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"td\":1,\"ip\":0,\"op\":60,"
+                      "\"ks\":{\"p\":{\"a\":0,\"k\":[10,0]}},\"shapes\":[{\"ty\":\"rc\","
+                      "\"p\":{\"a\":0,\"k\":[25,50]},\"s\":{\"a\":0,\"k\":[10,20]},"
+                      "\"r\":{\"a\":0,\"k\":0}},{\"ty\":\"fl\",\"c\":{\"a\":0,\"k\":[1,1,1,1]},"
+                      "\"o\":{\"a\":0,\"k\":%d}}]},"
+                      "{\"ty\":4,\"ind\":2,\"tt\":%d,\"ip\":0,\"op\":60,\"ks\":{\"p\":{\"a\":0,"
+                      "\"k\":[50,50]}}," RECT_SHAPES "}]}",
+                 k == 3 ? 50 : 100, tts[k]);
+        lt_warnings w = {0, NULL};
+        char err[256];
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            return;
+        double a = red_area(scene, 0);
+        CHECK(fabs(a - want[k]) < 1 && w.n == (k == 3 ? 1 : 0),
+              "matte type %d%s: %.2f px shown (want %.0f), %d warnings", tts[k],
+              k == 3 ? " (half-transparent source)" : "", a, want[k], w.n);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
 }
 
 static void test_parent_and_inout(void)
@@ -366,6 +407,7 @@ int main(int argc, char **argv)
     TL_RUN(test_easing_round_trip);
     TL_RUN(test_tail_key);
     TL_RUN(test_repeater);
+    TL_RUN(test_track_matte);
     TL_RUN(test_parent_and_inout);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);

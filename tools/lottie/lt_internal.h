@@ -156,6 +156,8 @@ typedef struct lt_time {
     int nframes;
     const double *frame; /* the composition's frame at sample n (rlottie: whole frames) */
     double f0, fscale;   /* frame ~ f0 + n * fscale: where keyframes fall among the samples */
+    const sv_affine *xf; /* NULL, or a matrix per sample carrying the shapes into another
+                            layer's space (a track matte's source into its layer's) */
 } lt_time;
 
 int lt_shapes(lt_ctx *c, const cJSON *shapes, const lt_time *tm, cJSON *regions);
@@ -163,6 +165,14 @@ int lt_shapes(lt_ctx *c, const cJSON *shapes, const lt_time *tm, cJSON *regions)
 int lt_solid(lt_ctx *c, const cJSON *layer, const lt_time *tm, cJSON *regions);
 /* Masks of a layer as CSG operands over each of its regions (lt_shape.c). */
 int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions);
+/*
+ * A track matte (tt 1 alpha, 2 alpha inverted, 3 luma, 4 luma inverted) as
+ * CSG over each of the matted layer's regions, with the regions of the
+ * matte's source (already in the matted layer's space) as operands
+ * (lt_mask.c). Returns 1 when expressed, 0 when not (warned: drawn
+ * unmatted), -1 on error.
+ */
+int lt_matte(lt_ctx *c, int tt, const cJSON *src_regions, cJSON *regions);
 /* A transform's matrix at frame f, in After Effects' order (lt_shape.c). */
 void lt_xf_eval(const lt_prop *a, const lt_prop *p, const lt_prop *s, const lt_prop *r,
                 const lt_prop *sk, const lt_prop *sa, double f, sv_affine *m);

@@ -303,9 +303,93 @@ static void warn_unsupported(lt_ctx *c, const cJSON *l)
     const cJSON *ao = get(l, "ao");
     if (cJSON_IsNumber(ao) && ao->valuedouble != 0)
         lt_warn(c, LT_F_AUTO_ORIENT, "auto-orient along the motion path is not supported");
-    const cJSON *tt = get(l, "tt");
-    if (cJSON_IsNumber(tt) && tt->valuedouble != 0)
-        lt_warn(c, LT_F_MATTE, "track mattes are not supported: matted layers are drawn unmatted");
+}
+
+/* Layer i's matrix at frame f with its parents', in the composition's space. */
+static sv_affine layer_matrix(const layer_info *L, const layer_xf *X, int i, double f)
+{
+    sv_affine m = sv_affine_identity();
+    for (int k = i, d = 0; k >= 0 && d <= LT_MAX_DEPTH; k = L[k].parent, d++) {
+        sv_affine local;
+        lt_xf_eval(&X[k].a, &X[k].p, &X[k].s, &X[k].r, &X[k].sk, &X[k].sa, f, &local);
+        m = sv_affine_mul(local, m);
+    }
+    return m;
+}
+
+/*
+ * Layer i's track matte from layer i - 1 (rlottie's source: the layer
+ * listed just before, drawn only as the matte). The source's shapes are
+ * built again in layer i's space (its matrix and its parents' over layer
+ * i's, inverted, at every frame) and become CSG operands of each of layer
+ * i's regions (lt_matte). Layer i shows only while the source is within
+ * its in and out points, as rlottie draws it. Returns -1 on error, else 0
+ * (the cases CSG cannot express are warned and drawn unmatted).
+ */
+static int track_matte(lt_ctx *c, const layer_info *L, const layer_xf *X, int i, int tt,
+                       const lt_time *tm, double *visible, cJSON *regions)
+{
+    const cJSON *sj = L[i - 1].j;
+    double ty = 4, ip, op;
+    if (lt_num(c, sj, "ty", 0, 100, 4, &ty) || lt_num(c, sj, "ip", -1e7, 1e7, -1e7, &ip) ||
+        lt_num(c, sj, "op", -1e7, 1e7, 1e7, &op))
+        return -1;
+    const cJSON *masks = get(sj, "masksProperties");
+    if ((int)ty != 4 || (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)) {
+        lt_warn(c, LT_F_MATTE, "a track matte whose source is not a shape layer, or has masks, is "
+                "drawn unmatted");
+        return 0;
+    }
+    int N = tm->nframes;
+    for (int n = 0; n < N; n++) {
+        double o;
+        lt_prop_eval(&X[i - 1].o, tm->frame[n], &o);
+        if (o < 100 && tm->frame[n] >= ip && tm->frame[n] < op) {
+            lt_warn(c, LT_F_MATTE, "a track matte whose source layer fades is drawn unmatted");
+            return 0;
+        }
+    }
+    sv_affine *xf = malloc((size_t)N * sizeof *xf);
+    if (!xf || !lt_charge(c, 6.0 * N)) {
+        free(xf);
+        return xf ? -1 : lt_fail(c, "out of memory");
+    }
+    int good = -1;
+    for (int n = 0; n < N; n++) {
+        sv_affine ml = layer_matrix(L, X, i, tm->frame[n]);
+        sv_affine ms = layer_matrix(L, X, i - 1, tm->frame[n]);
+        double det = ml.a * ml.d - ml.b * ml.c;
+        if (!(fabs(det) >= 1e-6)) {
+            /* The layer is scaled below 1/1000: it covers no pixel, and the source in its
+             * space would be beyond the core's coordinates. Any frame's carry will do:
+             * the nearest one scaled enough (filled in below). */
+            xf[n] = (sv_affine){0, 0, 0, 0, NAN, 0};
+            continue;
+        }
+        good = n;
+        sv_affine inv = {ml.d / det, -ml.b / det, -ml.c / det, ml.a / det, 0, 0};
+        inv.e = -(inv.a * ml.e + inv.c * ml.f);
+        inv.f = -(inv.b * ml.e + inv.d * ml.f);
+        xf[n] = sv_affine_mul(inv, ms);
+    }
+    for (int n = 0; n < N; n++)
+        if (isnan(xf[n].e)) {
+            int k = n;
+            while (k < N && isnan(xf[k].e))
+                k++;
+            xf[n] = k < N ? xf[k] : good >= 0 ? xf[good] : sv_affine_identity();
+        }
+    lt_time stm = *tm;
+    stm.xf = xf;
+    cJSON *src = cJSON_CreateArray();
+    int rc = lt_shapes(c, get(sj, "shapes"), &stm, src);
+    free(xf);
+    if (rc == 0 && lt_matte(c, tt, src, regions) == 1)
+        for (int n = 0; n < N; n++)
+            if (!(tm->frame[n] >= ip && tm->frame[n] < op))
+                visible[n] = 0;
+    cJSON_Delete(src);
+    return rc;
 }
 
 int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
@@ -426,11 +510,18 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             }
             for (int k = 0; k < tm->nframes; k++)
                 lf[k] = tm->frame[k];
-            lt_time ltm = {tm->nframes, lf, tm->f0, tm->fscale};
+            lt_time ltm = {tm->nframes, lf, tm->f0, tm->fscale, NULL};
             rc = t == 4 ? lt_shapes(c, get(lj, "shapes"), &ltm, regions) : lt_solid(c, lj, &ltm, regions);
             free(lf);
             if (rc == 0 && cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)
                 rc = lt_masks(c, masks, tm, regions);
+            const cJSON *tt = get(lj, "tt");
+            int ttv = cJSON_IsNumber(tt) ? (int)tt->valuedouble : 0;
+            if (rc == 0 && ttv >= 1 && ttv <= 4 && i > 0)
+                rc = track_matte(c, L, X, i, ttv, tm, visible, regions);
+            else if (ttv != 0)
+                lt_warn(c, LT_F_MATTE, "track matte type %d without a source layer is drawn "
+                        "unmatted", ttv);
             if (rc == 0 && cJSON_GetArraySize(regions) > 0)
                 rc = add_content(c, name, regions, &X[i], own_xf, visible, tm, group);
             else
@@ -444,6 +535,10 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             }
             if (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)
                 lt_warn(c, LT_F_MASK, "masks on precomp layers are not supported");
+            const cJSON *tt = get(lj, "tt");
+            if (cJSON_IsNumber(tt) && tt->valuedouble != 0)
+                lt_warn(c, LT_F_MATTE, "track mattes over precomp layers are not supported: "
+                        "drawn unmatted");
             int g = add_cel(c, name, NULL, &X[i], own_xf, true, visible, tm, group);
             if (g < 0) {
                 rc = -1;
@@ -469,7 +564,7 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             }
             lt_prop_free(&remap);
             lt_time sub = {tm->nframes, fr, (tm->f0 - st) / (sr != 0 ? sr : 1),
-                           tm->fscale / (sr != 0 ? sr : 1)};
+                           tm->fscale / (sr != 0 ? sr : 1), NULL};
             if (rc == 0)
                 rc = lt_layers(c, get(asset, "layers"), &sub, g);
             free(fr);

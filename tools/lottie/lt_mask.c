@@ -182,3 +182,131 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
     free(M);
     return rc;
 }
+
+/* ------------------------------------------------------------ track mattes */
+
+/* Whether a region is opaque at every frame (beta 1, no beta function) and,
+ * for a luma matte, white: then its alpha (and luma) is its coverage. */
+static bool matte_solid(const cJSON *reg, bool luma)
+{
+    const cJSON *paint = cJSON_GetObjectItemCaseSensitive(reg, "paint");
+    const cJSON *beta = cJSON_GetObjectItemCaseSensitive(paint, "beta");
+    const cJSON *pig = cJSON_GetObjectItemCaseSensitive(paint, "pigment");
+    if (!cJSON_IsNumber(beta) || beta->valuedouble < 1)
+        return false;
+    if (luma) {
+        if (cJSON_GetArraySize(pig) != 3)
+            return false;
+        for (int k = 0; k < 3; k++)
+            if (cJSON_GetArrayItem(pig, k)->valuedouble < 1)
+                return false;
+    }
+    const cJSON *track = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(reg, "animate"), "paint");
+    const cJSON *key;
+    cJSON_ArrayForEach(key, cJSON_GetObjectItemCaseSensitive(track, "keys"))
+    {
+        const cJSON *v = cJSON_GetArrayItem(key, 1);
+        const cJSON *b = cJSON_GetObjectItemCaseSensitive(v, "beta");
+        const cJSON *pg = cJSON_GetObjectItemCaseSensitive(v, "pigment");
+        if (!cJSON_IsNumber(b) || b->valuedouble < 1)
+            return false;
+        for (int k = 0; luma && k < 3; k++)
+            if (cJSON_GetArrayItem(pg, k)->valuedouble < 1)
+                return false;
+    }
+    return !cJSON_GetObjectItemCaseSensitive(reg, "csg");
+}
+
+static const char *rule_of(const cJSON *reg)
+{
+    const cJSON *r = cJSON_GetObjectItemCaseSensitive(reg, "fill_rule");
+    return cJSON_IsString(r) ? r->valuestring : "nonzero";
+}
+
+/*
+ * The matte's coverage is the union of its source's regions when each is
+ * opaque (and white, for luma): then alpha matting is an intersection with
+ * that union, and inverted matting a difference, which the core's CSG
+ * evaluates exactly on the scanline. Each source region is one operand
+ * (its contours wind together under the matted region's fill rule, so the
+ * rules must agree where a region has several contours).
+ */
+int lt_matte(lt_ctx *c, int tt, const cJSON *src_regions, cJSON *regions)
+{
+    bool luma = tt >= 3, inv = tt == 2 || tt == 4;
+    int ns = cJSON_GetArraySize(src_regions);
+    const cJSON *sr;
+    cJSON_ArrayForEach(sr, src_regions)
+    {
+        if (!matte_solid(sr, luma)) {
+            lt_warn(c, LT_F_MATTE, "a %s track matte whose source is not opaque%s at every frame "
+                    "is drawn unmatted", luma ? "luma" : "alpha", luma ? " white" : "");
+            return 0;
+        }
+    }
+    /* Check every region first, so that a layer is matted whole or not at all. */
+    cJSON *reg;
+    cJSON_ArrayForEach(reg, regions)
+    {
+        const cJSON *csg = cJSON_GetObjectItemCaseSensitive(reg, "csg");
+        int len = csg ? cJSON_GetArraySize(csg) : 1, ops = 1;
+        const cJSON *o;
+        cJSON_ArrayForEach(o, cJSON_GetObjectItemCaseSensitive(reg, "operands"))
+            ops = o->valueint + 1 > ops ? o->valueint + 1 : ops;
+        if (ns > 0 && (len + 2 * ns > CS_CFG_MAX_CSG || ops + ns > CS_CFG_MAX_OPERANDS)) {
+            lt_warn(c, LT_F_MATTE, "a track matte of %d regions is more than the core's CSG "
+                    "holds: drawn unmatted", ns);
+            return 0;
+        }
+        cJSON_ArrayForEach(sr, src_regions)
+        {
+            if (strcmp(rule_of(sr), rule_of(reg)) != 0 &&
+                cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(sr, "contours")) > 1) {
+                lt_warn(c, LT_F_MATTE, "a track matte whose fill rule differs from its layer's "
+                        "is drawn unmatted");
+                return 0;
+            }
+        }
+    }
+    if (ns == 0) {
+        /* An empty matte: nothing shows through it, everything through its inverse. */
+        if (!inv)
+            while (cJSON_GetArraySize(regions) > 0)
+                cJSON_DeleteItemFromArray(regions, 0);
+        return 1;
+    }
+    cJSON_ArrayForEach(reg, regions)
+    {
+        cJSON *cts = cJSON_GetObjectItemCaseSensitive(reg, "contours");
+        cJSON *csg = cJSON_GetObjectItemCaseSensitive(reg, "csg");
+        cJSON *ops = cJSON_GetObjectItemCaseSensitive(reg, "operands");
+        if (!csg) {
+            csg = cJSON_AddArrayToObject(reg, "csg");
+            cJSON_AddItemToArray(csg, cJSON_CreateNumber(0));
+            ops = cJSON_AddArrayToObject(reg, "operands");
+            for (int k = cJSON_GetArraySize(cts); k > 0; k--)
+                cJSON_AddItemToArray(ops, cJSON_CreateNumber(0));
+        }
+        int next = 0;
+        const cJSON *o;
+        cJSON_ArrayForEach(o, ops)
+            next = o->valueint + 1 > next ? o->valueint + 1 : next;
+        int j = 0;
+        cJSON_ArrayForEach(sr, src_regions)
+        {
+            const cJSON *ct;
+            cJSON_ArrayForEach(ct, cJSON_GetObjectItemCaseSensitive(sr, "contours"))
+            {
+                cJSON_AddItemToArray(cts, cJSON_Duplicate(ct, true));
+                cJSON_AddItemToArray(ops, cJSON_CreateNumber(next + j));
+            }
+            cJSON_AddItemToArray(csg, cJSON_CreateNumber(next + j));
+            if (j > 0)
+                cJSON_AddItemToArray(csg, cJSON_CreateString("union"));
+            j++;
+        }
+        cJSON_AddItemToArray(csg, cJSON_CreateString(inv ? "difference" : "intersect"));
+    }
+    return 1;
+}

@@ -574,6 +574,13 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
     bool any = false, uniform = true;
     for (int n = 0; n < N; n++) {
         lt_region_contours(c, s, tm->frame[n], &fc[n], &fn[n]);
+        for (int i = 0; tm->xf && i < fn[n]; i++)
+            for (int k = 0; k < fc[n][i].count; k++) {
+                double *q = fc[n][i].pts + 3 * k;
+                sv_pt m = sv_affine_apply(tm->xf[n], sv_pt_make(q[0], q[1]));
+                q[0] = m.x, q[1] = m.y; /* control points are Euclidean: an affine map keeps
+                                           the rational curve */
+            }
         any = any || fn[n] > 0;
         uniform = uniform && lt_same_layout(fc[0], fn[0], fc[n], fn[n]);
         double w = 0;
