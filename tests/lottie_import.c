@@ -241,6 +241,26 @@ static void test_track_matte(void)
         cJSON_Delete(scene);
         lt_warnings_free(&w);
     }
+    /* The same rectangle inside a precomp, shifted 10 px left by the precomp layer
+     * and back by its own position: the matte reaches the precomp's layers. */
+    const char *pre =
+        HEAD "\"assets\":[{\"id\":\"a\",\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,"
+             "\"ks\":{\"p\":{\"a\":0,\"k\":[60,50]}}," RECT_SHAPES "}]}],"
+             "\"layers\":[{\"ty\":4,\"ind\":1,\"td\":1,\"ip\":0,\"op\":60,\"ks\":{},"
+             "\"shapes\":[{\"ty\":\"rc\",\"p\":{\"a\":0,\"k\":[35,50]},"
+             "\"s\":{\"a\":0,\"k\":[10,20]},\"r\":{\"a\":0,\"k\":0}},{\"ty\":\"fl\"}]},"
+             "{\"ty\":0,\"ind\":2,\"tt\":1,\"refId\":\"a\",\"ip\":0,\"op\":60,"
+             "\"ks\":{\"p\":{\"a\":0,\"k\":[-10,0]}}}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(pre, &w, err, sizeof err, NULL);
+    if (!CHECK(scene != NULL, "import: %s", err))
+        return;
+    double a = red_area(scene, 0);
+    CHECK(fabs(a - 200) < 1 && w.n == 0, "alpha matte over a precomp: %.2f px (want 200), %d warnings",
+          a, w.n);
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
 }
 
 static void test_parent_and_inout(void)

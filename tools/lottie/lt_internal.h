@@ -125,6 +125,15 @@ typedef enum lt_feature {
     LT_F_STROKE_ANIM, LT_F_GRADIENT, LT_F_BLEND, LT_F_OTHER, LT_F_COUNT_
 } lt_feature;
 
+/* A track matte over a precomp, for the composition's layers: the source's
+ * shapes, the matte type, and the source's space in the composition's at
+ * every sample. */
+typedef struct lt_matte_ctx {
+    const cJSON *shapes;
+    int tt;
+    sv_affine *xf;
+} lt_matte_ctx;
+
 struct lt_ctx {
     const cJSON *root;
     const cJSON *assets;
@@ -139,6 +148,7 @@ struct lt_ctx {
     lt_warnings *warnings;
     cJSON *cels;            /* the scene's "cels", front to back */
     int depth;
+    const lt_matte_ctx *matte; /* the matte of the precomp being read, or NULL */
 };
 
 /* Records an error (the first one wins); returns -1. */
