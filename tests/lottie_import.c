@@ -263,6 +263,37 @@ static void test_track_matte(void)
     lt_warnings_free(&w);
 }
 
+/* Masks over the 40 x 20 rectangle (layer space x -20..20): A (x -20..0) then
+ * B (x -10..10) in difference mode show A xor B, 400 px; A alone at 50 %
+ * opacity shows its 400 px at half strength. */
+#define MASK(mode, x0, x1, o)                                                                      \
+    "{\"mode\":\"" mode "\",\"o\":{\"a\":0,\"k\":" #o "},\"pt\":{\"a\":0,\"k\":{\"c\":true,"         \
+    "\"v\":[[" #x0 ",-10],[" #x1 ",-10],[" #x1 ",10],[" #x0 ",10]],"                                \
+    "\"i\":[[0,0],[0,0],[0,0],[0,0]],\"o\":[[0,0],[0,0],[0,0],[0,0]]}}}"
+
+static void test_mask_modes(void)
+{
+    const char *texts[2] = {
+        HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"ks\":{\"p\":{\"a\":0,"
+             "\"k\":[50,50]}},\"masksProperties\":[" MASK("a", -20, 0, 100) ","
+             MASK("f", -10, 10, 100) "]," RECT_SHAPES "}]}",
+        HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"ks\":{\"p\":{\"a\":0,"
+             "\"k\":[50,50]}},\"masksProperties\":[" MASK("a", -20, 0, 50) "]," RECT_SHAPES "}]}"};
+    const char *what[2] = {"difference mask", "mask at 50 % opacity"};
+    for (int k = 0; k < 2; k++) {
+        lt_warnings w = {0, NULL};
+        char err[256];
+        cJSON *scene = import(texts[k], &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            return;
+        double a = red_area(scene, 0), want = k == 0 ? 400 : 200;
+        CHECK(fabs(a - want) < 1 && w.n == 0, "%s: %.2f px (want %.0f), %d warnings", what[k], a,
+              want, w.n);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
 static void test_parent_and_inout(void)
 {
     const char *text = HEAD "\"layers\":["
@@ -428,6 +459,7 @@ int main(int argc, char **argv)
     TL_RUN(test_tail_key);
     TL_RUN(test_repeater);
     TL_RUN(test_track_matte);
+    TL_RUN(test_mask_modes);
     TL_RUN(test_parent_and_inout);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);

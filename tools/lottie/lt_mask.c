@@ -8,9 +8,13 @@
  * keeps its own contours as operand 0 and gains one operand per mask, and
  * its program is 0 (masks combined) intersect. Mask paths are in the
  * layer's space, which is the cel's; an animated mask path is a points
- * track like any other. Mask opacity, feather, expansion and the lighten /
- * darken / difference modes have no CSG form: each is warned and the mask
- * drawn as a plain add (or left out, for mode "n").
+ * track like any other. Difference is xor (rlottie's reading); an inverted
+ * mask after the first is the region minus it (the same within the final
+ * intersection). A static opacity on a single add or intersect mask fades
+ * the layer's paints inside it, as rlottie scales the mask's coverage.
+ * Feather, expansion, the lighten / darken modes, animated mask opacity and
+ * opacity with several masks have no such form: each is warned and the
+ * mask drawn as a plain add (or left out, for mode "n") at full opacity.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -73,13 +77,39 @@ static int mask_geometry(lt_ctx *c, mask *m, const lt_time *tm)
     return 0;
 }
 
+/* Multiplies a region's beta by f: its constant, its paint track's keys, a beta function's stops. */
+static void fade_region(cJSON *reg, double f)
+{
+    cJSON *paint = cJSON_GetObjectItemCaseSensitive(reg, "paint");
+    cJSON *beta = cJSON_GetObjectItemCaseSensitive(paint, "beta"), *x;
+    if (cJSON_IsNumber(beta))
+        cJSON_SetNumberValue(beta, beta->valuedouble * f);
+    else if (!beta)
+        cJSON_AddNumberToObject(paint, "beta", f);
+    cJSON_ArrayForEach(x, cJSON_GetObjectItemCaseSensitive(beta, "stops"))
+    {
+        cJSON *v = cJSON_GetArrayItem(x, 1);
+        if (cJSON_IsNumber(v))
+            cJSON_SetNumberValue(v, v->valuedouble * f);
+    }
+    cJSON *track = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(reg, "animate"), "paint");
+    cJSON_ArrayForEach(x, cJSON_GetObjectItemCaseSensitive(track, "keys"))
+    {
+        cJSON *b = cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(x, 1), "beta");
+        if (cJSON_IsNumber(b))
+            cJSON_SetNumberValue(b, b->valuedouble * f);
+    }
+}
+
 int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
 {
     int nm = cJSON_GetArraySize(masks);
     mask *M = calloc((size_t)(nm ? nm : 1), sizeof *M);
     if (!M)
         return lt_fail(c, "out of memory");
-    int used = 0, rc = 0;
+    int used = 0, rc = 0, tokens = 1, faded = 0;
+    double fade = 1;
     const cJSON *mj;
     cJSON_ArrayForEach(mj, masks)
     {
@@ -87,7 +117,7 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
         char md = cJSON_IsString(mode) && mode->valuestring[0] ? mode->valuestring[0] : 'a';
         if (md == 'n')
             continue;
-        if (md != 'a' && md != 's' && md != 'i') {
+        if (md != 'a' && md != 's' && md != 'i' && md != 'f') {
             lt_warn(c, LT_F_MASK, "mask mode \"%c\" is drawn as add", md);
             md = 'a';
         }
@@ -99,17 +129,22 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
             break;
         }
         lt_prop_eval(&o, tm->frame[0], &ov);
-        if (ov < 100 || lt_prop_animated(&o))
-            lt_warn(c, LT_F_MASK, "mask opacity below 100%% is drawn as 100%%");
+        if (lt_prop_animated(&o))
+            lt_warn(c, LT_F_MASK, "animated mask opacity is drawn as 100%%");
+        else if (ov < 100)
+            fade = ov < 0 ? 0 : ov / 100, faded++;
         lt_prop_free(&o);
-        if (used >= CS_CFG_MAX_OPERANDS - 1 || 3 + 2 * used + 2 > CS_CFG_MAX_CSG) {
+        bool inv = cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(mj, "inv"));
+        int need = used == 0 ? 3 : 2 + (inv ? 3 : 0);
+        if (used >= CS_CFG_MAX_OPERANDS - 1 || tokens + need + 1 > CS_CFG_MAX_CSG) {
             lt_warn(c, LT_F_MASK, "more masks than the core's CSG holds: the first %d are used",
                     used);
             break;
         }
+        tokens += need;
         mask *m = &M[used];
         m->mode = md;
-        m->inv = cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(mj, "inv"));
+        m->inv = inv;
         if (lt_prop_parse_path(c, cJSON_GetObjectItemCaseSensitive(mj, "pt"), "mask path", &m->pt,
                                &m->nverts) != 0 ||
             mask_geometry(c, m, tm) != 0) {
@@ -118,6 +153,17 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
             break;
         }
         used++;
+    }
+    /* A mask's opacity scales its coverage (rlottie): for one mask that adds or
+     * intersects, that is the layer's paints' beta times it inside the mask. */
+    if (faded && !(faded == 1 && used == 1 && !M[0].inv && M[0].mode != 's')) {
+        lt_warn(c, LT_F_MASK, "mask opacity below 100%% is drawn as 100%% (beyond one add mask)");
+        faded = 0;
+    }
+    if (rc == 0 && faded) {
+        cJSON *reg;
+        cJSON_ArrayForEach(reg, regions)
+            fade_region(reg, fade);
     }
     if (rc == 0 && used > 0) {
         /* RPN: 0, the masks combined in order, intersect. */
@@ -139,11 +185,16 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
                 }
                 continue;
             }
+            /* An inverted mask is the region's own shape minus it: the same, within the
+             * final intersection with the region. */
             if (M[k].inv)
-                lt_warn(c, LT_F_MASK, "an inverted mask after the first is drawn uninverted");
+                rpn[nr++] = 0;
             rpn[nr++] = op;
+            if (M[k].inv)
+                rpn[nr++] = CS_CSG_DIFFERENCE;
             rpn[nr++] = M[k].mode == 'a' ? CS_CSG_UNION
-                        : M[k].mode == 's' ? CS_CSG_DIFFERENCE : CS_CSG_INTERSECT;
+                        : M[k].mode == 's' ? CS_CSG_DIFFERENCE
+                        : M[k].mode == 'f' ? CS_CSG_XOR : CS_CSG_INTERSECT;
         }
         rpn[nr++] = CS_CSG_INTERSECT;
         static const char *const names[] = {"", "union", "intersect", "difference", "xor"};
