@@ -178,8 +178,8 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions);
 /*
  * A track matte (tt 1 alpha, 2 alpha inverted, 3 luma, 4 luma inverted) as
  * CSG over each of the matted layer's regions, with the regions of the
- * matte's source (already in the matted layer's space) as operands
- * (lt_mask.c). Returns 1 when expressed, 0 when not (warned: drawn
+ * matte's source (already in the matted layer's space) as operands, and a
+ * single source region's constant beta as the matted paints' (lt_mask.c). Returns 1 when expressed, 0 when not (warned: drawn
  * unmatted), -1 on error.
  */
 int lt_matte(lt_ctx *c, int tt, const cJSON *src_regions, cJSON *regions);

@@ -236,21 +236,22 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
 
 /* ------------------------------------------------------------ track mattes */
 
-/* Whether a region is opaque at every frame (beta 1, no beta function) and,
- * for a luma matte, white: then its alpha (and luma) is its coverage. */
-static bool matte_solid(const cJSON *reg, bool luma)
+/* A region's beta when it is one constant at every frame (no beta function;
+ * for a luma matte, also white): then its alpha (and luma) is its coverage
+ * times that; else -1. */
+static double matte_beta(const cJSON *reg, bool luma)
 {
     const cJSON *paint = cJSON_GetObjectItemCaseSensitive(reg, "paint");
     const cJSON *beta = cJSON_GetObjectItemCaseSensitive(paint, "beta");
     const cJSON *pig = cJSON_GetObjectItemCaseSensitive(paint, "pigment");
-    if (!cJSON_IsNumber(beta) || beta->valuedouble < 1)
-        return false;
+    if (!cJSON_IsNumber(beta) || cJSON_GetObjectItemCaseSensitive(reg, "csg"))
+        return -1;
     if (luma) {
         if (cJSON_GetArraySize(pig) != 3)
-            return false;
+            return -1;
         for (int k = 0; k < 3; k++)
             if (cJSON_GetArrayItem(pig, k)->valuedouble < 1)
-                return false;
+                return -1;
     }
     const cJSON *track = cJSON_GetObjectItemCaseSensitive(
         cJSON_GetObjectItemCaseSensitive(reg, "animate"), "paint");
@@ -260,13 +261,13 @@ static bool matte_solid(const cJSON *reg, bool luma)
         const cJSON *v = cJSON_GetArrayItem(key, 1);
         const cJSON *b = cJSON_GetObjectItemCaseSensitive(v, "beta");
         const cJSON *pg = cJSON_GetObjectItemCaseSensitive(v, "pigment");
-        if (!cJSON_IsNumber(b) || b->valuedouble < 1)
-            return false;
+        if (!cJSON_IsNumber(b) || b->valuedouble != beta->valuedouble)
+            return -1;
         for (int k = 0; luma && k < 3; k++)
             if (cJSON_GetArrayItem(pg, k)->valuedouble < 1)
-                return false;
+                return -1;
     }
-    return !cJSON_GetObjectItemCaseSensitive(reg, "csg");
+    return beta->valuedouble;
 }
 
 static const char *rule_of(const cJSON *reg)
@@ -288,9 +289,15 @@ int lt_matte(lt_ctx *c, int tt, const cJSON *src_regions, cJSON *regions)
     bool luma = tt >= 3, inv = tt == 2 || tt == 4;
     int ns = cJSON_GetArraySize(src_regions);
     const cJSON *sr;
+    double fade = 1;
     cJSON_ArrayForEach(sr, src_regions)
     {
-        if (!matte_solid(sr, luma)) {
+        /* One source region of constant beta b mattes by b inside it (a plain
+         * matte, not inverted): the matted paints' beta times b. */
+        double b = matte_beta(sr, luma);
+        if (ns == 1 && !inv && b >= 0)
+            fade = b;
+        else if (b != 1) {
             lt_warn(c, LT_F_MATTE, "a %s track matte whose source is not opaque%s at every frame "
                     "is drawn unmatted", luma ? "luma" : "alpha", luma ? " white" : "");
             return 0;
@@ -358,6 +365,8 @@ int lt_matte(lt_ctx *c, int tt, const cJSON *src_regions, cJSON *regions)
             j++;
         }
         cJSON_AddItemToArray(csg, cJSON_CreateString(inv ? "difference" : "intersect"));
+        if (fade != 1)
+            fade_region(reg, fade);
     }
     return 1;
 }
