@@ -387,9 +387,11 @@ int main(int argc, char **argv)
            "frames: %d of %d pass (%.1f%%)\n",
            tried, accepted, refused, refused_mappable, fits, passed, passed + failed, 100 * rate);
     if (tab) {
-        fprintf(tab, "\n%d files tried, %d accepted, %d of them fit a 64 KiB board (its 16 KiB store and capacities); "
+        fprintf(tab, "\n%d files tried, %d accepted (%d refused, %d of them marked mappable by the "
+                     "inventory), %d of them fit a 64 KiB board (its 16 KiB store and capacities); "
                      "%d of %d frames (%.1f %%) within 30 dB of rlottie.\n",
-                tried, accepted, fits, passed, passed + failed, 100 * rate);
+                tried, accepted, refused, refused_mappable, fits, passed, passed + failed,
+                100 * rate);
         fclose(tab);
     }
     /* Checks: the pass rate's floor, and every file the inventory marks mappable accepted. */
