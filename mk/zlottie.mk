@@ -98,10 +98,12 @@ DEMO_TARGETS += $(LOTTIE_DEMO)/spinner.json $(LOTTIE_DEMO_FRAMES)
 
 # Imported Lottie files on the 64 KiB board: the conformance files that fit it (make
 # lottie-conformance's "fits a board" column) and scenes/groups.json (cel groups, TRS, cubic
-# and hold easing) streamed to the mps2-an386 firmware under QEMU, frame CRCs against
-# celsim's (tools/lottie/qemu_check.sh, about 16 s; in `make test`).
+# and hold easing) and scenes/lottie/matte_repeat.json (a repeater under a track matte, made for
+# this check) streamed to the mps2-an386 firmware under QEMU, frame CRCs against celsim's
+# (tools/lottie/qemu_check.sh, about 17 s; in `make test`).
 LOTTIE_QEMU_FILES := mask.json movie_loading.json spin__lil_loader_v2.json \
-        gradient_sleepy_loader.json loading_animation.json scene:scenes/groups.json
+        gradient_sleepy_loader.json loading_animation.json scene:scenes/groups.json \
+        lottie:scenes/lottie/matte_repeat.json
 .PHONY: lottie-qemu
 lottie-qemu: firmware-mps2-an386 $(HOST)/celc $(HOST)/celsim
 	$(Q)tools/lottie/qemu_check.sh $(HOST)/celc $(HOST)/celsim $(BUILD)/mps2-an386/celfw.elf \
