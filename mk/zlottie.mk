@@ -54,7 +54,8 @@ TEST_PROGS += $(HOST)/lottie_import
 TEST_DEPS += $(HOST)/lottie_import
 
 # Fuzzing (FUZZ, FUZZ_CC from mk/stream.mk): the importer, celsim's loader and the core
-# under coverage and sanitizers; seeds are the conformance set's files under 6 KB.
+# under coverage and sanitizers; seeds are the conformance set's files under 6 KB and
+# scenes/lottie (a repeater, a track matte).
 #   make fuzz-lottie         FUZZ_TIME s (default 60)
 #   make fuzz-lottie-smoke   FUZZ_LOTTIE_SMOKE_TIME s (default 15), in `make test`
 FUZZ_LOTTIE_SMOKE_TIME ?= 15
@@ -70,7 +71,7 @@ $(FUZZ)/lottie/%.o: %.c $(CORE_HDR) tests/fuzz_check.h $(wildcard tools/lottie/*
 $(FUZZ)/fuzz_lottie: $(patsubst %.c,$(FUZZ)/lottie/%.o,$(FUZZ_LOTTIE_SRC) $(CORE_SRC))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
 
-FUZZ_SEEDS_fuzz_lottie = find $(LOTTIE_DIR) -name '*.json' -size -6k 2>/dev/null | \
+FUZZ_SEEDS_fuzz_lottie = find $(LOTTIE_DIR) scenes/lottie -name '*.json' -size -6k 2>/dev/null | \
         while read -r f; do cp "$$f" $(FUZZ)/fuzz_lottie.corpus/; done; true
 FUZZ_OPTS_fuzz_lottie = -timeout=10 -dict=$(CURDIR)/tests/fuzz_lottie.dict -max_len=32768 \
         -rss_limit_mb=2048

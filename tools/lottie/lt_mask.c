@@ -125,6 +125,7 @@ int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions)
         double ov = 100;
         if (lt_prop_parse(c, cJSON_GetObjectItemCaseSensitive(mj, "o"), 1, (const double[]){100},
                           "mask opacity", &o) != 0) {
+            lt_prop_free(&o); /* a refused property keeps its default's buffer */
             rc = -1;
             break;
         }

@@ -121,14 +121,13 @@ static int parse_shape(lt_ctx *c, const cJSON *it, const char *ty, sh_node *node
              lt_prop_parse(c, get(it, "or"), 1, d_zero, "polystar outer radius", &p->or_);
         double is = 0, os = 0;
         lt_prop q;
-        if (lt_prop_parse(c, get(it, "is"), 1, d_zero, "polystar roundness", &q) == 0) {
+        /* A refused property keeps its default's buffer: freed either way. */
+        if (lt_prop_parse(c, get(it, "is"), 1, d_zero, "polystar roundness", &q) == 0)
             lt_prop_eval(&q, 0, &is);
-            lt_prop_free(&q);
-        }
-        if (lt_prop_parse(c, get(it, "os"), 1, d_zero, "polystar roundness", &q) == 0) {
+        lt_prop_free(&q);
+        if (lt_prop_parse(c, get(it, "os"), 1, d_zero, "polystar roundness", &q) == 0)
             lt_prop_eval(&q, 0, &os);
-            lt_prop_free(&q);
-        }
+        lt_prop_free(&q);
         if (is != 0 || os != 0)
             lt_warn(c, LT_F_STAR_ROUND, "polystar roundness is drawn as sharp corners");
     }
@@ -210,9 +209,10 @@ static int parse_style(lt_ctx *c, const cJSON *it, const char *ty, sh_node *node
                 if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash offset", &s->dash_offset))
                     return -1;
             } else if (s->ndash < 16) {
-                if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash", &s->dash[s->ndash]))
-                    return -1;
+                /* Counted before parsing, so that a refused one is freed with the rest. */
                 s->ndash++;
+                if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash", &s->dash[s->ndash - 1]))
+                    return -1;
             }
         }
         s->has_dash = s->ndash > 0;
