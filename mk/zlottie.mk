@@ -16,7 +16,8 @@ $(HOST)/celc: $(LOTTIE_OBJ)
 # Conformance against rlottie (tests/lottie_conf.c; librlottie-dev is the reference renderer).
 #   make lottie-conformance   every mappable file of the conformance set, 10 frames each, with
 #                             speed; writes the table into docs/LOTTIE.md
-#   make test-lottie          a bounded part for `make test`: a few files, 4 frames each, floor 90 %
+#   make test-lottie          a bounded part for `make test`: a few files (a repeater and a track
+#                             matte among them), 4 frames each, floor 90 %
 LOTTIE_DIR ?= ../shared/conformance/lottie
 LOTTIE_CONF_OBJ := $(HOST)/obj/tests/lottie_conf.o $(HOST)/obj/host-sim/scene_json.o \
         $(HOST)/obj/host-sim/png_out.o \
@@ -28,6 +29,7 @@ $(HOST)/lottie_conf: $(LOTTIE_CONF_OBJ) $(HOST)/libsvgimport.a $(HOST)/libcelsca
 	$(Q)$(CC) -o $@ $^ $(SVG_LIBS) $(shell pkg-config --libs rlottie 2>/dev/null)
 
 LOTTIE_SMOKE := gears.json,mask.json,loading_rectangles.json,like.json,telegram.json,done.json
+LOTTIE_SMOKE := $(LOTTIE_SMOKE),abstract_circle.json,settings.json
 .PHONY: lottie-conformance test-lottie
 lottie-conformance: $(HOST)/lottie_conf
 	@mkdir -p $(BUILD)/lottie
@@ -52,7 +54,8 @@ TEST_PROGS += $(HOST)/lottie_import
 TEST_DEPS += $(HOST)/lottie_import
 
 # Fuzzing (FUZZ, FUZZ_CC from mk/stream.mk): the importer, celsim's loader and the core
-# under coverage and sanitizers; seeds are the conformance set's files under 6 KB.
+# under coverage and sanitizers; seeds are the conformance set's files under 6 KB and
+# scenes/lottie (a repeater, a track matte).
 #   make fuzz-lottie         FUZZ_TIME s (default 60)
 #   make fuzz-lottie-smoke   FUZZ_LOTTIE_SMOKE_TIME s (default 15), in `make test`
 FUZZ_LOTTIE_SMOKE_TIME ?= 15
@@ -68,9 +71,9 @@ $(FUZZ)/lottie/%.o: %.c $(CORE_HDR) tests/fuzz_check.h $(wildcard tools/lottie/*
 $(FUZZ)/fuzz_lottie: $(patsubst %.c,$(FUZZ)/lottie/%.o,$(FUZZ_LOTTIE_SRC) $(CORE_SRC))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
 
-# Seeds: the small conformance files, and inputs that once failed (tests/fuzz-lottie-corpus).
+# Seeds: the small conformance files and scenes/lottie, and inputs that once failed (tests/fuzz-lottie-corpus).
 FUZZ_SEEDS_fuzz_lottie = cp tests/fuzz-lottie-corpus/* $(FUZZ)/fuzz_lottie.corpus/; \
-        find $(LOTTIE_DIR) -name '*.json' -size -6k 2>/dev/null | \
+        find $(LOTTIE_DIR) scenes/lottie -name '*.json' -size -6k 2>/dev/null | \
         while read -r f; do cp "$$f" $(FUZZ)/fuzz_lottie.corpus/; done; true
 FUZZ_OPTS_fuzz_lottie = -timeout=10 -dict=$(CURDIR)/tests/fuzz_lottie.dict -max_len=32768 \
         -rss_limit_mb=2048
@@ -98,10 +101,12 @@ DEMO_TARGETS += $(LOTTIE_DEMO)/spinner.json $(LOTTIE_DEMO_FRAMES)
 
 # Imported Lottie files on the 64 KiB board: the conformance files that fit it (make
 # lottie-conformance's "fits a board" column) and scenes/groups.json (cel groups, TRS, cubic
-# and hold easing) streamed to the mps2-an386 firmware under QEMU, frame CRCs against
-# celsim's (tools/lottie/qemu_check.sh, about 16 s; in `make test`).
+# and hold easing) and scenes/lottie/matte_repeat.json (a repeater under a track matte, made for
+# this check) streamed to the mps2-an386 firmware under QEMU, frame CRCs against celsim's
+# (tools/lottie/qemu_check.sh, about 17 s; in `make test`).
 LOTTIE_QEMU_FILES := mask.json movie_loading.json spin__lil_loader_v2.json \
-        gradient_sleepy_loader.json scene:scenes/groups.json
+        gradient_sleepy_loader.json loading_animation.json scene:scenes/groups.json \
+        lottie:scenes/lottie/matte_repeat.json
 .PHONY: lottie-qemu
 lottie-qemu: firmware-mps2-an386 $(HOST)/celc $(HOST)/celsim
 	$(Q)tools/lottie/qemu_check.sh $(HOST)/celc $(HOST)/celsim $(BUILD)/mps2-an386/celfw.elf \

@@ -4,8 +4,10 @@
  *   lottie_conf DIR [--files a.json,b.json] [--frames N] [--table OUT.md]
  *               [--floor RATE] [--speed] [--all] [--dump DIR]
  *
- * For every file of DIR/INVENTORY.tsv whose features the importer maps
- * (column "mappable" or "mappable_if_trim" yes; --all: every file), imports
+ * For every file of DIR/INVENTORY.tsv whose features are all in issue 25's
+ * list (column "mappable" or "mappable_if_trim" yes, or every feature of
+ * column "needs" one of precomps, polystars, repeaters, trim paths, track
+ * mattes and time remapping; --all: every file), imports
  * it (tools/lottie), loads the scene JSON as celsim does, and renders N
  * evenly spaced frames of rlottie's range (frame index n is time n / fr)
  * with the celscan core and with rlottie (librlottie, the C API) at the
@@ -37,6 +39,23 @@
 #include "celscan.h"
 
 #define BOARD_STORE 16384
+
+/* Whether every feature of a "needs" value (comma-separated) is one the issue lists. */
+static bool needs_listed(const char *needs)
+{
+    static const char *const listed[] = {"precomp", "polystar", "repeater", "trim-path",
+                                         "track-matte", "time-remap"};
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", needs);
+    for (char *save = NULL, *f = strtok_r(buf, ",", &save); f; f = strtok_r(NULL, ",", &save)) {
+        bool ok = false;
+        for (size_t i = 0; i < sizeof listed / sizeof *listed && !ok; i++)
+            ok = !strcmp(f, listed[i]);
+        if (!ok)
+            return false;
+    }
+    return true;
+}
 #define BOARD_CONFIG "firmware/boards/cs_config_480x272.h"
 
 /* The 64 KiB boards' capacities, read from their configuration header. */
@@ -233,6 +252,7 @@ int main(int argc, char **argv)
         fprintf(tab, "|---|---:|---:|---:|---:|---:|:---:|%s\n", do_speed ? "---:|---:|" : "");
     }
     int passed = 0, failed = 0, accepted = 0, tried = 0, refused_mappable = 0, fits = 0;
+    int refused = 0;
     bool header = true;
     while (fgets(line, sizeof line, inv)) {
         if (header) {
@@ -247,6 +267,7 @@ int main(int argc, char **argv)
             continue;
         const char *name = col[0];
         bool mappable = !strcmp(col[21], "yes") || !strcmp(col[22], "yes");
+        bool listed = mappable || needs_listed(col[20]);
         if (files) {
             char pat[300];
             snprintf(pat, sizeof pat, ",%s,", name);
@@ -254,7 +275,7 @@ int main(int argc, char **argv)
             snprintf(list, sizeof list, ",%s,", files);
             if (!strstr(list, pat))
                 continue;
-        } else if (!mappable && !all) {
+        } else if (!listed && !all) {
             continue;
         }
         tried++;
@@ -272,6 +293,7 @@ int main(int argc, char **argv)
         cJSON_Delete(scene);
         if (loaded != 0) {
             printf("%-40s refused: %s\n", name, scene ? lerr : err);
+            refused++;
             if (mappable)
                 refused_mappable++;
             if (tab)
@@ -361,13 +383,15 @@ int main(int argc, char **argv)
     }
     fclose(inv);
     double rate = passed + failed ? (double)passed / (passed + failed) : 0;
-    printf("files: %d tried, %d accepted (%d fit a 64 KiB board); frames: %d of %d pass "
-           "(%.1f%%)\n",
-           tried, accepted, fits, passed, passed + failed, 100 * rate);
+    printf("files: %d tried, %d accepted, %d refused (%d marked mappable) (%d fit a 64 KiB board); "
+           "frames: %d of %d pass (%.1f%%)\n",
+           tried, accepted, refused, refused_mappable, fits, passed, passed + failed, 100 * rate);
     if (tab) {
-        fprintf(tab, "\n%d files tried, %d accepted, %d of them fit a 64 KiB board (its 16 KiB store and capacities); "
+        fprintf(tab, "\n%d files tried, %d accepted (%d refused, %d of them marked mappable by the "
+                     "inventory), %d of them fit a 64 KiB board (its 16 KiB store and capacities); "
                      "%d of %d frames (%.1f %%) within 30 dB of rlottie.\n",
-                tried, accepted, fits, passed, passed + failed, 100 * rate);
+                tried, accepted, refused, refused_mappable, fits, passed, passed + failed,
+                100 * rate);
         fclose(tab);
     }
     /* Checks: the pass rate's floor, and every file the inventory marks mappable accepted. */

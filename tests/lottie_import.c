@@ -66,6 +66,35 @@ static const cJSON *path(const cJSON *j, const char *p)
     return j;
 }
 
+/* The red a 100 x 100 scene paints at time t, in pixels: the coverage of a
+ * pure red fill (sRGB blending: coverage is the encoded value over black);
+ * -1 if it does not load. */
+static double red_area(const cJSON *scene, float t)
+{
+    cs_scene *sc = calloc(1, sizeof *sc);
+    cs_workspace *ws = calloc(1, sizeof *ws);
+    uint8_t *line = calloc(3 * 100, 1);
+    char lerr[SCENE_JSON_ERRLEN];
+    double area = -1;
+    cs_renderer r;
+    cs_render_opts o = cs_render_defaults(100, 100);
+    o.time = t;
+    cs_error ce;
+    if (CHECK(scene_json_load_tree(scene, "t", sc, lerr, sizeof lerr) == 0, "loads: %s", lerr) &&
+        cs_frame_begin(&r, ws, sc, &o, &ce) == CS_OK) {
+        area = 0;
+        for (int y = 0; y < 100; y++) {
+            cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, line);
+            for (int x = 0; x < 100; x++)
+                area += line[3 * x] / 255.0;
+        }
+    }
+    free(line);
+    free(ws);
+    free(sc);
+    return area;
+}
+
 static void test_easing_round_trip(void)
 {
     const char *text = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
@@ -94,32 +123,177 @@ static void test_easing_round_trip(void)
     /* It loads, and renders the 40 x 20 rectangle at (50,50): area 800 px at t 0
      * and turned at 1 s. The scene blends in sRGB, so coverage is the encoded
      * value of red over black. */
-    cs_scene *sc = calloc(1, sizeof *sc);
-    cs_workspace *ws = calloc(1, sizeof *ws);
-    char lerr[SCENE_JSON_ERRLEN];
-    CHECK(scene_json_load_tree(scene, "t", sc, lerr, sizeof lerr) == 0, "loads: %s", lerr);
-    uint8_t *line = calloc(3 * 100, 1);
-    double area[2] = {0, 0};
-    for (int f = 0; f < 2; f++) {
-        cs_renderer r;
-        cs_render_opts o = cs_render_defaults(100, 100);
-        o.time = f ? 1.0f : 0.0f; /* frame 30: 180 deg turned, same area */
-        cs_error ce;
-        if (cs_frame_begin(&r, ws, sc, &o, &ce) != CS_OK)
-            break;
-        for (int y = 0; y < 100; y++) {
-            cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, line);
-            for (int x = 0; x < 100; x++)
-                area[f] += line[3 * x] / 255.0; /* red: the fill's coverage (no background) */
-        }
-    }
+    double area[2] = {red_area(scene, 0), red_area(scene, 1)}; /* frame 30: 180 deg turned */
     CHECK(fabs(area[0] - 800) < 1 && fabs(area[1] - 800) < 2,
           "the rectangle covers 800 px at t 0 and 1 s (%.2f, %.2f)", area[0], area[1]);
-    free(line);
-    free(ws);
-    free(sc);
     cJSON_Delete(scene);
     lt_warnings_free(&w);
+}
+
+static void expect_refused(const char *what, const char *text, const char *msg);
+
+/* A keyframe at the out point (frame 60 of 0..59 shown): the last stretch is
+ * still one cubic key, ending at 2 s on the keyframe's value. */
+static void test_tail_key(void)
+{
+    const char *text = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+                            "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]},\"r\":{\"a\":1,\"k\":["
+                            "{\"t\":20,\"s\":[0],\"o\":{\"x\":[0.33],\"y\":[0]},\"i\":{\"x\":[0.67],\"y\":[1]}},"
+                            "{\"t\":60,\"s\":[90]}]}},"
+        RECT_SHAPES "}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(text, &w, err, sizeof err, NULL);
+    if (!CHECK(scene != NULL, "import: %s", err))
+        return;
+    const cJSON *keys = path(scene, "cels.0.animate.trs.keys");
+    const cJSON *last = cJSON_GetArrayItem(keys, cJSON_GetArraySize(keys) - 1);
+    const cJSON *rot = path(cJSON_GetArrayItem(last, 1), "rotation");
+    CHECK(cJSON_GetArraySize(keys) == 3, "three keys (frames 0, 20 and 60), got %d",
+          cJSON_GetArraySize(keys));
+    CHECK(fabs(cJSON_GetArrayItem(last, 0)->valuedouble - 2.0) < 1e-9 && rot &&
+              fabs(rot->valuedouble - 90) < 0.05,
+          "the last key is the keyframe past the end: 2 s, 90 degrees (%g)",
+          rot ? rot->valuedouble : -1);
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+}
+
+/* A repeater of three copies, each 20 px right of the one before, fading
+ * from 100 % to 50 % over copy / copies: three regions, front to back copy
+ * 2, 1, 0, each moved and faded as rlottie draws them. */
+static void test_repeater(void)
+{
+    const char *text =
+        HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,\"ks\":{},"
+             "\"shapes\":[{\"ty\":\"gr\",\"it\":[{\"ty\":\"rc\",\"p\":{\"a\":0,\"k\":[10,10]},"
+             "\"s\":{\"a\":0,\"k\":[10,10]},\"r\":{\"a\":0,\"k\":0}},"
+             "{\"ty\":\"fl\",\"c\":{\"a\":0,\"k\":[1,0,0,1]},\"o\":{\"a\":0,\"k\":100}},"
+             "{\"ty\":\"tr\"}]},"
+             "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":3},\"o\":{\"a\":0,\"k\":0},\"m\":1,"
+             "\"tr\":{\"p\":{\"a\":0,\"k\":[20,0]},\"so\":{\"a\":0,\"k\":100},"
+             "\"eo\":{\"a\":0,\"k\":50}}}]}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(text, &w, err, sizeof err, NULL);
+    if (!CHECK(scene != NULL, "import: %s", err))
+        return;
+    CHECK(w.n == 0, "no warning (%d)", w.n);
+    const cJSON *regs = path(scene, "cels.0.regions");
+    if (!CHECK(cJSON_GetArraySize(regs) == 3, "three regions, one per copy (got %d)",
+               cJSON_GetArraySize(regs)))
+        goto out;
+    for (int k = 0; k < 3; k++) {
+        int copy = 2 - k;
+        const cJSON *reg = cJSON_GetArrayItem(regs, k);
+        double beta = path(reg, "paint.beta")->valuedouble, x0 = 1e9;
+        const cJSON *pt;
+        cJSON_ArrayForEach(pt, path(reg, "contours.0.points"))
+            x0 = fmin(x0, cJSON_GetArrayItem(pt, 0)->valuedouble);
+        CHECK(fabs(beta - (1 - 0.5 * copy / 3.0)) < 1e-9 && fabs(x0 - (5 + 20 * copy)) < 1e-9,
+              "copy %d: left edge %g (want %d), beta %g (want %g)", copy, x0, 5 + 20 * copy, beta,
+              1 - 0.5 * copy / 3.0);
+    }
+out:
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+    expect_refused("repeater flood",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{},\"shapes\":["
+                        "{\"ty\":\"rc\",\"s\":{\"a\":0,\"k\":[1,1]}},{\"ty\":\"fl\"},"
+                        "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":1e6}}]}]}",
+                   "copies, more than");
+    expect_refused("nested repeaters",
+                   HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ks\":{},\"shapes\":["
+                        "{\"ty\":\"rc\",\"s\":{\"a\":0,\"k\":[1,1]}},{\"ty\":\"fl\"},"
+                        "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":1000}},"
+                        "{\"ty\":\"rp\",\"c\":{\"a\":0,\"k\":1000}}]}]}",
+                   "shape items");
+}
+
+/* A 40 x 20 red rectangle (x 30..70) matted by a 10 x 20 white one (x 30..40)
+ * in the layer listed before it, which moves by its own transform: alpha
+ * shows 200 px, inverted 600 px, luma (white source) as alpha; a source at
+ * 50 % shows the 200 px at half strength, and inverted it cannot be CSG and
+ * is warned (drawn unmatted). */
+static void test_track_matte(void)
+{
+    static const int tts[5] = {1, 2, 3, 1, 2}, opacity[5] = {100, 100, 100, 50, 50};
+    static const int warns[5] = {0, 0, 0, 0, 1};
+    static const double want[5] = {200, 600, 200, 100, 800};
+    for (int k = 0; k < 5; k++) {
+        char text[2048];
+        snprintf(text, sizeof text,
+                 HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"td\":1,\"ip\":0,\"op\":60,"
+                      "\"ks\":{\"p\":{\"a\":0,\"k\":[10,0]}},\"shapes\":[{\"ty\":\"rc\","
+                      "\"p\":{\"a\":0,\"k\":[25,50]},\"s\":{\"a\":0,\"k\":[10,20]},"
+                      "\"r\":{\"a\":0,\"k\":0}},{\"ty\":\"fl\",\"c\":{\"a\":0,\"k\":[1,1,1,1]},"
+                      "\"o\":{\"a\":0,\"k\":%d}}]},"
+                      "{\"ty\":4,\"ind\":2,\"tt\":%d,\"ip\":0,\"op\":60,\"ks\":{\"p\":{\"a\":0,"
+                      "\"k\":[50,50]}}," RECT_SHAPES "}]}",
+                 opacity[k], tts[k]);
+        lt_warnings w = {0, NULL};
+        char err[256];
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            return;
+        double a = red_area(scene, 0);
+        CHECK(fabs(a - want[k]) < 1 && w.n == warns[k],
+              "matte type %d, source at %d %%: %.2f px shown (want %.0f), %d warnings", tts[k],
+              opacity[k], a, want[k], w.n);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+    /* The same rectangle inside a precomp, shifted 10 px left by the precomp layer
+     * and back by its own position: the matte reaches the precomp's layers. */
+    const char *pre =
+        HEAD "\"assets\":[{\"id\":\"a\",\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,"
+             "\"ks\":{\"p\":{\"a\":0,\"k\":[60,50]}}," RECT_SHAPES "}]}],"
+             "\"layers\":[{\"ty\":4,\"ind\":1,\"td\":1,\"ip\":0,\"op\":60,\"ks\":{},"
+             "\"shapes\":[{\"ty\":\"rc\",\"p\":{\"a\":0,\"k\":[35,50]},"
+             "\"s\":{\"a\":0,\"k\":[10,20]},\"r\":{\"a\":0,\"k\":0}},{\"ty\":\"fl\"}]},"
+             "{\"ty\":0,\"ind\":2,\"tt\":1,\"refId\":\"a\",\"ip\":0,\"op\":60,"
+             "\"ks\":{\"p\":{\"a\":0,\"k\":[-10,0]}}}]}";
+    lt_warnings w = {0, NULL};
+    char err[256];
+    cJSON *scene = import(pre, &w, err, sizeof err, NULL);
+    if (!CHECK(scene != NULL, "import: %s", err))
+        return;
+    double a = red_area(scene, 0);
+    CHECK(fabs(a - 200) < 1 && w.n == 0, "alpha matte over a precomp: %.2f px (want 200), %d warnings",
+          a, w.n);
+    cJSON_Delete(scene);
+    lt_warnings_free(&w);
+}
+
+/* Masks over the 40 x 20 rectangle (layer space x -20..20): A (x -20..0) then
+ * B (x -10..10) in difference mode show A xor B, 400 px; A alone at 50 %
+ * opacity shows its 400 px at half strength. */
+#define MASK(mode, x0, x1, o)                                                                      \
+    "{\"mode\":\"" mode "\",\"o\":{\"a\":0,\"k\":" #o "},\"pt\":{\"a\":0,\"k\":{\"c\":true,"         \
+    "\"v\":[[" #x0 ",-10],[" #x1 ",-10],[" #x1 ",10],[" #x0 ",10]],"                                \
+    "\"i\":[[0,0],[0,0],[0,0],[0,0]],\"o\":[[0,0],[0,0],[0,0],[0,0]]}}}"
+
+static void test_mask_modes(void)
+{
+    const char *texts[2] = {
+        HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"ks\":{\"p\":{\"a\":0,"
+             "\"k\":[50,50]}},\"masksProperties\":[" MASK("a", -20, 0, 100) ","
+             MASK("f", -10, 10, 100) "]," RECT_SHAPES "}]}",
+        HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"ks\":{\"p\":{\"a\":0,"
+             "\"k\":[50,50]}},\"masksProperties\":[" MASK("a", -20, 0, 50) "]," RECT_SHAPES "}]}"};
+    const char *what[2] = {"difference mask", "mask at 50 % opacity"};
+    for (int k = 0; k < 2; k++) {
+        lt_warnings w = {0, NULL};
+        char err[256];
+        cJSON *scene = import(texts[k], &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            return;
+        double a = red_area(scene, 0), want = k == 0 ? 400 : 200;
+        CHECK(fabs(a - want) < 1 && w.n == 0, "%s: %.2f px (want %.0f), %d warnings", what[k], a,
+              want, w.n);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
 }
 
 static void test_parent_and_inout(void)
@@ -284,6 +458,10 @@ int main(int argc, char **argv)
 {
     (void)argc;
     TL_RUN(test_easing_round_trip);
+    TL_RUN(test_tail_key);
+    TL_RUN(test_repeater);
+    TL_RUN(test_track_matte);
+    TL_RUN(test_mask_modes);
     TL_RUN(test_parent_and_inout);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);

@@ -41,9 +41,48 @@ void lt_xf_eval(const lt_prop *a, const lt_prop *p, const lt_prop *s, const lt_p
     *m = sv_affine_mul(rot, acc);
 }
 
+/*
+ * Copy k of a repeater at frame f, as rlottie draws it: with m = k + offset,
+ * translate(m p) translate(a) scale(s^m) rotate(m r) translate(-a), so that
+ * copy k is the repeater's transform applied k + offset times (exactly so
+ * for a uniform scale, which is what repeaters use).
+ */
+static sv_affine rep_matrix(const sh_rep *r, int copy, double f)
+{
+    double off, a[2], p[2], s[2], rot;
+    lt_prop_eval(&r->o, f, &off);
+    lt_prop_eval(&r->a, f, a);
+    lt_prop_eval(&r->p, f, p);
+    lt_prop_eval(&r->s, f, s);
+    lt_prop_eval(&r->r, f, &rot);
+    double m = copy + off, d = M_PI / 180;
+    double sx = pow(s[0] / 100, m), sy = pow(s[1] / 100, m);
+    if (!isfinite(sx) || !isfinite(sy)) /* a negative scale to a fractional power */
+        sx = sy = 0;
+    double cr = cos(m * rot * d), sr = sin(m * rot * d);
+    sv_affine t = {sx * cr, sy * sr, -sx * sr, sy * cr, 0, 0};
+    t.e = a[0] + m * p[0] - (t.a * a[0] + t.c * a[1]);
+    t.f = a[1] + m * p[1] - (t.b * a[0] + t.d * a[1]);
+    return t;
+}
+
+/* Copy k's opacity: start to end opacity over k / copies; 0 from copy int(copies) on. */
+static double rep_opacity(const sh_rep *r, int copy, double f)
+{
+    double cv, so, eo;
+    lt_prop_eval(&r->c, f, &cv);
+    lt_prop_eval(&r->so, f, &so);
+    lt_prop_eval(&r->eo, f, &eo);
+    if (copy >= (int)cv)
+        return 0;
+    return (so + (eo - so) * (copy / cv)) / 100;
+}
+
 sv_affine lt_node_matrix(const sh_node *n, double f)
 {
     sv_affine m = sv_affine_identity();
+    if (n->rep)
+        return rep_matrix(n->rep, n->copy, f);
     if (n->has_xf)
         lt_xf_eval(&n->a, &n->p, &n->s, &n->r, &n->sk, &n->sa, f, &m);
     return m;
@@ -52,6 +91,8 @@ sv_affine lt_node_matrix(const sh_node *n, double f)
 double lt_node_opacity(const sh_node *n, double f)
 {
     double o = 100;
+    if (n->rep)
+        return rep_opacity(n->rep, n->copy, f);
     if (n->has_xf)
         lt_prop_eval(&n->o, f, &o);
     return o / 100;

@@ -155,7 +155,7 @@ cJSON *lt_import(const cJSON *root, const lt_opts *opts, lt_warnings *warnings, 
     cJSON_AddNumberToObject(canvas, "height", c.h);
     cJSON_AddStringToObject(canvas, "blend", "srgb");
     c.cels = cJSON_AddArrayToObject(scene, "cels");
-    lt_time tm = {c.nframes, frames, ip, 1};
+    lt_time tm = {c.nframes, frames, ip, 1, NULL};
     int rc = lt_layers(&c, cJSON_GetObjectItemCaseSensitive(root, "layers"), &tm, -1);
     free(frames);
     if (rc != 0 || c.failed) {

@@ -31,6 +31,8 @@
 #define LT_MAX_KEYFRAMES 100000 /* keyframes of one property */
 #define LT_MAX_DEPTH 32         /* nested groups, precomps, parent chains */
 #define LT_MAX_VERTICES 100000  /* vertices of one path */
+#define LT_MAX_COPIES 1000      /* copies of one repeater */
+#define LT_MAX_ITEMS 100000     /* shape items of a layer, repeated copies included */
 #define LT_MAX_WORK 2e7         /* floats sampled over the whole import (the conformance
                                    set's largest needs 6.2e6) */
 #define LT_MAX_DIMS 4
@@ -94,6 +96,8 @@ typedef struct lt_signal {
     double tol;         /* per float, absolute */
     int nbreaks;
     double *breaks;     /* frame indices (may be fractional), sorted */
+    double tail;        /* the first keyframe after the last sample (0: none), where the
+                           last stretch's easing ends */
     int neases;
     double (*eases)[4];
 } lt_signal;
@@ -121,6 +125,15 @@ typedef enum lt_feature {
     LT_F_STROKE_ANIM, LT_F_GRADIENT, LT_F_BLEND, LT_F_OTHER, LT_F_COUNT_
 } lt_feature;
 
+/* A track matte over a precomp, for the composition's layers: the source's
+ * shapes, the matte type, and the source's space in the composition's at
+ * every sample. */
+typedef struct lt_matte_ctx {
+    const cJSON *shapes;
+    int tt;
+    sv_affine *xf;
+} lt_matte_ctx;
+
 struct lt_ctx {
     const cJSON *root;
     const cJSON *assets;
@@ -135,6 +148,7 @@ struct lt_ctx {
     lt_warnings *warnings;
     cJSON *cels;            /* the scene's "cels", front to back */
     int depth;
+    const lt_matte_ctx *matte; /* the matte of the precomp being read, or NULL */
 };
 
 /* Records an error (the first one wins); returns -1. */
@@ -152,6 +166,8 @@ typedef struct lt_time {
     int nframes;
     const double *frame; /* the composition's frame at sample n (rlottie: whole frames) */
     double f0, fscale;   /* frame ~ f0 + n * fscale: where keyframes fall among the samples */
+    const sv_affine *xf; /* NULL, or a matrix per sample carrying the shapes into another
+                            layer's space (a track matte's source into its layer's) */
 } lt_time;
 
 int lt_shapes(lt_ctx *c, const cJSON *shapes, const lt_time *tm, cJSON *regions);
@@ -159,6 +175,14 @@ int lt_shapes(lt_ctx *c, const cJSON *shapes, const lt_time *tm, cJSON *regions)
 int lt_solid(lt_ctx *c, const cJSON *layer, const lt_time *tm, cJSON *regions);
 /* Masks of a layer as CSG operands over each of its regions (lt_shape.c). */
 int lt_masks(lt_ctx *c, const cJSON *masks, const lt_time *tm, cJSON *regions);
+/*
+ * A track matte (tt 1 alpha, 2 alpha inverted, 3 luma, 4 luma inverted) as
+ * CSG over each of the matted layer's regions, with the regions of the
+ * matte's source (already in the matted layer's space) as operands, and a
+ * single source region's constant beta as the matted paints' (lt_mask.c). Returns 1 when expressed, 0 when not (warned: drawn
+ * unmatted), -1 on error.
+ */
+int lt_matte(lt_ctx *c, int tt, const cJSON *src_regions, cJSON *regions);
 /* A transform's matrix at frame f, in After Effects' order (lt_shape.c). */
 void lt_xf_eval(const lt_prop *a, const lt_prop *p, const lt_prop *s, const lt_prop *r,
                 const lt_prop *sk, const lt_prop *sa, double f, sv_affine *m);

@@ -303,9 +303,179 @@ static void warn_unsupported(lt_ctx *c, const cJSON *l)
     const cJSON *ao = get(l, "ao");
     if (cJSON_IsNumber(ao) && ao->valuedouble != 0)
         lt_warn(c, LT_F_AUTO_ORIENT, "auto-orient along the motion path is not supported");
-    const cJSON *tt = get(l, "tt");
-    if (cJSON_IsNumber(tt) && tt->valuedouble != 0)
-        lt_warn(c, LT_F_MATTE, "track mattes are not supported: matted layers are drawn unmatted");
+}
+
+/* Layer i's matrix at frame f with its parents', in the composition's space. */
+static sv_affine layer_matrix(const layer_info *L, const layer_xf *X, int i, double f)
+{
+    sv_affine m = sv_affine_identity();
+    for (int k = i, d = 0; k >= 0 && d <= LT_MAX_DEPTH; k = L[k].parent, d++) {
+        sv_affine local;
+        lt_xf_eval(&X[k].a, &X[k].p, &X[k].s, &X[k].r, &X[k].sk, &X[k].sa, f, &local);
+        m = sv_affine_mul(local, m);
+    }
+    return m;
+}
+
+/* The inverse of an affine map, or false when it is (nearly) singular: scaled
+ * below 1/1000, a layer covers no pixel, and a matte carried into its space
+ * would be beyond the core's coordinates. */
+static bool invert(sv_affine m, sv_affine *out)
+{
+    double det = m.a * m.d - m.b * m.c;
+    if (!(fabs(det) >= 1e-6))
+        return false;
+    sv_affine v = {m.d / det, -m.b / det, -m.c / det, m.a / det, 0, 0};
+    v.e = -(v.a * m.e + v.c * m.f);
+    v.f = -(v.b * m.e + v.d * m.f);
+    *out = v;
+    return true;
+}
+
+/*
+ * to[n] = space[n]^-1 * from[n] for every sample. Where space[n] cannot be
+ * inverted, the nearest sample's result stands in (what it maps is drawn
+ * nowhere). Returns a malloc'd array, or NULL (error set).
+ */
+static sv_affine *carry(lt_ctx *c, const sv_affine *space, const sv_affine *from, int N)
+{
+    sv_affine *to = malloc((size_t)N * sizeof *to);
+    bool *ok = malloc((size_t)N * sizeof *ok);
+    if (!to || !ok || !lt_charge(c, 6.0 * N)) {
+        free(to), free(ok);
+        if (!c->failed)
+            lt_fail(c, "out of memory");
+        return NULL;
+    }
+    int good = -1;
+    for (int n = 0; n < N; n++) {
+        sv_affine inv;
+        ok[n] = invert(space[n], &inv);
+        if (ok[n]) {
+            to[n] = sv_affine_mul(inv, from[n]);
+            good = n;
+        }
+    }
+    for (int n = N - 1, next = -1; n >= 0; n--) {
+        if (ok[n])
+            next = n;
+        else
+            to[n] = next >= 0 ? to[next] : good >= 0 ? to[good] : sv_affine_identity();
+    }
+    free(ok);
+    return to;
+}
+
+/* Layer i's matrices (with its parents') at every sample. */
+static sv_affine *layer_matrices(lt_ctx *c, const layer_info *L, const layer_xf *X, int i,
+                                 const lt_time *tm)
+{
+    sv_affine *m = malloc((size_t)tm->nframes * sizeof *m);
+    if (!m || !lt_charge(c, 6.0 * tm->nframes)) {
+        free(m);
+        if (!c->failed)
+            lt_fail(c, "out of memory");
+        return NULL;
+    }
+    for (int n = 0; n < tm->nframes; n++)
+        m[n] = layer_matrix(L, X, i, tm->frame[n]);
+    return m;
+}
+
+/*
+ * Whether layer s can be a track matte's source as CSG: a shape layer
+ * without masks whose opacity is 100 % while it is within its in and out
+ * points (out of them the matted layer is hidden, as rlottie draws it).
+ * Else warned (0).
+ */
+static int matte_source_ok(lt_ctx *c, const layer_info *L, const layer_xf *X, int s,
+                           const lt_time *tm, double *ip, double *op)
+{
+    const cJSON *sj = L[s].j;
+    double ty = 4;
+    if (lt_num(c, sj, "ty", 0, 100, 4, &ty) || lt_num(c, sj, "ip", -1e7, 1e7, -1e7, ip) ||
+        lt_num(c, sj, "op", -1e7, 1e7, 1e7, op))
+        return -1;
+    const cJSON *masks = get(sj, "masksProperties");
+    if ((int)ty != 4 || (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)) {
+        lt_warn(c, LT_F_MATTE, "a track matte whose source is not a shape layer, or has masks, is "
+                "drawn unmatted");
+        return 0;
+    }
+    for (int n = 0; n < tm->nframes; n++) {
+        double o;
+        lt_prop_eval(&X[s].o, tm->frame[n], &o);
+        if (o < 100 && tm->frame[n] >= *ip && tm->frame[n] < *op) {
+            lt_warn(c, LT_F_MATTE, "a track matte whose source layer fades is drawn unmatted");
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/*
+ * A matte (source shapes, type, and the source's space in this
+ * composition's at every sample) over the regions of layer i: the source's
+ * shapes are built again in layer i's space and become CSG operands of its
+ * regions (lt_matte). Returns -1 on error, 1 when matted, 0 when warned.
+ */
+static int apply_matte(lt_ctx *c, const cJSON *shapes, int tt, const sv_affine *src_space,
+                       const layer_info *L, const layer_xf *X, int i, const lt_time *tm,
+                       cJSON *regions)
+{
+    sv_affine *mi = layer_matrices(c, L, X, i, tm);
+    sv_affine *xf = mi ? carry(c, mi, src_space, tm->nframes) : NULL;
+    free(mi);
+    if (!xf)
+        return -1;
+    lt_time stm = *tm;
+    stm.xf = xf;
+    cJSON *src = cJSON_CreateArray();
+    int rc = lt_shapes(c, shapes, &stm, src);
+    free(xf);
+    if (rc == 0)
+        rc = lt_matte(c, tt, src, regions);
+    cJSON_Delete(src);
+    return rc;
+}
+
+/*
+ * Layer i's own track matte (tt) from layer i - 1, rlottie's source: the
+ * layer listed just before, drawn only as the matte. For a shape or solid
+ * layer it is applied to its regions here; for a precomp layer it becomes
+ * the context matte of the composition's layers (c->matte), carried into
+ * the precomp's space. Layer i shows only while the source is within its
+ * in and out points. Returns -1 on error, else 0.
+ */
+static int own_matte(lt_ctx *c, const layer_info *L, const layer_xf *X, int i, int tt,
+                     const lt_time *tm, double *visible, cJSON *regions, lt_matte_ctx *inner)
+{
+    double ip, op;
+    int ok = matte_source_ok(c, L, X, i - 1, tm, &ip, &op);
+    if (ok <= 0)
+        return ok;
+    sv_affine *ms = layer_matrices(c, L, X, i - 1, tm);
+    if (!ms)
+        return -1;
+    int rc;
+    if (regions) {
+        rc = apply_matte(c, get(L[i - 1].j, "shapes"), tt, ms, L, X, i, tm, regions);
+        free(ms);
+    } else {
+        /* A precomp: the source in the precomp's space, for its layers. */
+        sv_affine *mi = layer_matrices(c, L, X, i, tm);
+        inner->xf = mi ? carry(c, mi, ms, tm->nframes) : NULL;
+        free(mi);
+        free(ms);
+        inner->shapes = get(L[i - 1].j, "shapes");
+        inner->tt = tt;
+        rc = inner->xf ? 1 : -1;
+    }
+    if (rc == 1)
+        for (int n = 0; n < tm->nframes; n++)
+            if (!(tm->frame[n] >= ip && tm->frame[n] < op))
+                visible[n] = 0;
+    return rc < 0 ? -1 : 0;
 }
 
 int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
@@ -399,6 +569,11 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             break;
         }
         warn_unsupported(c, lj);
+        const cJSON *ttj = get(lj, "tt");
+        int ttv = cJSON_IsNumber(ttj) ? (int)ttj->valuedouble : 0;
+        if (ttv != 0 && !(ttv >= 1 && ttv <= 4 && i > 0))
+            lt_warn(c, LT_F_MATTE, "track matte type %d without a source layer is drawn unmatted",
+                    ttv);
         bool any = false;
         for (int k = 0; k < tm->nframes; k++) {
             visible[k] = tm->frame[k] >= ip && tm->frame[k] < op ? 1 : 0;
@@ -426,11 +601,17 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             }
             for (int k = 0; k < tm->nframes; k++)
                 lf[k] = tm->frame[k];
-            lt_time ltm = {tm->nframes, lf, tm->f0, tm->fscale};
+            lt_time ltm = {tm->nframes, lf, tm->f0, tm->fscale, NULL};
             rc = t == 4 ? lt_shapes(c, get(lj, "shapes"), &ltm, regions) : lt_solid(c, lj, &ltm, regions);
             free(lf);
             if (rc == 0 && cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)
                 rc = lt_masks(c, masks, tm, regions);
+            if (rc == 0 && ttv >= 1 && ttv <= 4 && i > 0)
+                rc = own_matte(c, L, X, i, ttv, tm, visible, regions, NULL);
+            if (rc == 0 && c->matte && c->matte->shapes &&
+                apply_matte(c, c->matte->shapes, c->matte->tt, c->matte->xf, L, X, i, tm,
+                            regions) < 0)
+                rc = -1;
             if (rc == 0 && cJSON_GetArraySize(regions) > 0)
                 rc = add_content(c, name, regions, &X[i], own_xf, visible, tm, group);
             else
@@ -444,15 +625,34 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             }
             if (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)
                 lt_warn(c, LT_F_MASK, "masks on precomp layers are not supported");
-            int g = add_cel(c, name, NULL, &X[i], own_xf, true, visible, tm, group);
-            if (g < 0) {
+            /* The matte its layers take: its own, or the one it is in, carried into its
+             * space (one level: a matted precomp within a matted precomp is warned). */
+            lt_matte_ctx inner = {NULL, 0, NULL};
+            const lt_matte_ctx *outer = c->matte;
+            if (ttv >= 1 && ttv <= 4 && i > 0 && outer && outer->shapes)
+                lt_warn(c, LT_F_MATTE, "a matted precomp within a matted precomp is drawn with "
+                        "the outer matte only");
+            else if (ttv >= 1 && ttv <= 4 && i > 0 &&
+                     own_matte(c, L, X, i, ttv, tm, visible, NULL, &inner) < 0) {
                 rc = -1;
                 break;
             }
+            if (!inner.shapes && outer && outer->shapes) {
+                sv_affine *mi = layer_matrices(c, L, X, i, tm);
+                inner = *outer;
+                inner.xf = mi ? carry(c, mi, outer->xf, tm->nframes) : NULL;
+                free(mi);
+                if (!inner.xf) {
+                    rc = -1;
+                    break;
+                }
+            }
+            int g = add_cel(c, name, NULL, &X[i], own_xf, true, visible, tm, group);
             /* The composition's own frames at each sample. */
-            double *fr = malloc((size_t)tm->nframes * sizeof *fr);
+            double *fr = g < 0 ? NULL : malloc((size_t)tm->nframes * sizeof *fr);
             if (!fr) {
-                rc = lt_fail(c, "out of memory");
+                free(inner.xf);
+                rc = g < 0 ? -1 : lt_fail(c, "out of memory");
                 break;
             }
             lt_prop remap;
@@ -469,9 +669,12 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             }
             lt_prop_free(&remap);
             lt_time sub = {tm->nframes, fr, (tm->f0 - st) / (sr != 0 ? sr : 1),
-                           tm->fscale / (sr != 0 ? sr : 1)};
+                           tm->fscale / (sr != 0 ? sr : 1), NULL};
+            c->matte = inner.shapes ? &inner : NULL;
             if (rc == 0)
                 rc = lt_layers(c, get(asset, "layers"), &sub, g);
+            c->matte = outer;
+            free(inner.xf);
             free(fr);
         } else if (t == 3) {
             /* A null layer draws nothing; as a parent it is a group already. */

@@ -32,6 +32,8 @@ typedef struct sh_tree {
     sh_trim **trims;
     int nstyles, nstyles_cap;
     sh_style **styles;
+    int nreps, nreps_cap;
+    sh_rep **reps;
 } sh_tree;
 
 static const double d_zero[4] = {0, 0, 0, 0};
@@ -119,6 +121,7 @@ static int parse_shape(lt_ctx *c, const cJSON *it, const char *ty, sh_node *node
              lt_prop_parse(c, get(it, "or"), 1, d_zero, "polystar outer radius", &p->or_);
         double is = 0, os = 0;
         lt_prop q;
+        /* A refused property holds nothing (lt_prop_parse frees it). */
         if (lt_prop_parse(c, get(it, "is"), 1, d_zero, "polystar roundness", &q) == 0) {
             lt_prop_eval(&q, 0, &is);
             lt_prop_free(&q);
@@ -208,9 +211,10 @@ static int parse_style(lt_ctx *c, const cJSON *it, const char *ty, sh_node *node
                 if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash offset", &s->dash_offset))
                     return -1;
             } else if (s->ndash < 16) {
-                if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash", &s->dash[s->ndash]))
-                    return -1;
+                /* Counted before parsing, so that a refused one is freed with the rest. */
                 s->ndash++;
+                if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash", &s->dash[s->ndash - 1]))
+                    return -1;
             }
         }
         s->has_dash = s->ndash > 0;
@@ -226,16 +230,92 @@ static int parse_style(lt_ctx *c, const cJSON *it, const char *ty, sh_node *node
     return 0;
 }
 
+static int parse_items(lt_ctx *c, const cJSON *first, int count, sh_node *node, sh_tree *t,
+                       path_list *acc);
+
+/*
+ * A repeater: the `count` items before it in its group, once per copy,
+ * each copy under a node that carries the copy's transform and opacity.
+ * rlottie draws copy 0 at the back, so the last copy is walked first (the
+ * walk goes front to back). Copies are as many as the largest value the
+ * copy count takes; those beyond the count at a frame have opacity 0.
+ */
+static int parse_repeater(lt_ctx *c, const cJSON *rp, const cJSON *first, int count,
+                          sh_node *node, sh_tree *t, path_list *acc)
+{
+    sh_rep *r = calloc(1, sizeof *r);
+    if (!r)
+        return lt_fail(c, "out of memory");
+    PUSH(c, t->reps, t->nreps, t->nreps_cap, r);
+    const cJSON *tr = get(rp, "tr"), *m = get(rp, "m");
+    if (cJSON_IsNumber(m) && m->valuedouble == 2)
+        lt_warn(c, LT_F_REPEATER, "repeater copies composited below are drawn above (as rlottie does)");
+    const double one[1] = {1}, hundred[1] = {100};
+    if (lt_prop_parse(c, get(rp, "c"), 1, one, "repeater copies", &r->c) ||
+        lt_prop_parse(c, get(rp, "o"), 1, d_zero, "repeater offset", &r->o) ||
+        lt_prop_parse(c, get(tr, "a"), 2, d_zero, "repeater anchor", &r->a) ||
+        lt_prop_parse(c, get(tr, "p"), 2, d_zero, "repeater position", &r->p) ||
+        lt_prop_parse(c, get(tr, "s"), 2, d_hundred, "repeater scale", &r->s) ||
+        lt_prop_parse(c, get(tr, "r"), 1, d_zero, "repeater rotation", &r->r) ||
+        lt_prop_parse(c, get(tr, "so"), 1, hundred, "repeater start opacity", &r->so) ||
+        lt_prop_parse(c, get(tr, "eo"), 1, hundred, "repeater end opacity", &r->eo))
+        return -1;
+    double most = r->c.nkeys ? 0 : r->c.value[0];
+    for (int k = 0; k < r->c.nkeys; k++) {
+        most = fmax(most, r->c.keys[k].s[0]);
+        if (r->c.keys[k].e)
+            most = fmax(most, r->c.keys[k].e[0]);
+    }
+    if (most > LT_MAX_COPIES)
+        return lt_fail(c, "repeater: %.0f copies, more than %d", most, LT_MAX_COPIES);
+    for (int k = (int)most - 1; k >= 0; k--) {
+        if (t->nnodes + t->npaths_all + t->nstyles > LT_MAX_ITEMS)
+            return lt_fail(c, "repeaters make more than %d shape items", LT_MAX_ITEMS);
+        sh_node *n = calloc(1, sizeof *n);
+        if (!n)
+            return lt_fail(c, "out of memory");
+        PUSH(c, t->nodes, t->nnodes, t->nnodes_cap, n);
+        n->parent = node;
+        n->rep = r;
+        n->copy = k;
+        path_list mine = {0, 0, NULL};
+        int rc = parse_items(c, first, count, n, t, &mine);
+        for (int i = 0; i < mine.n && rc == 0; i++)
+            PUSH(c, acc->v, acc->n, acc->cap, mine.v[i]);
+        free(mine.v);
+        if (rc)
+            return -1;
+    }
+    return 0;
+}
+
 /* One group's items in list order; `acc` collects its paths for the caller. */
 static int parse_group(lt_ctx *c, const cJSON *items, sh_node *node, sh_tree *t, path_list *acc)
 {
-    if (++c->depth > LT_MAX_DEPTH)
-        return lt_fail(c, "shape groups nested deeper than %d", LT_MAX_DEPTH);
     if (!cJSON_IsArray(items))
         return lt_fail(c, "a group's items (\"it\" or \"shapes\") are not an array");
-    const cJSON *it;
-    cJSON_ArrayForEach(it, items)
-    {
+    return parse_items(c, items->child, cJSON_GetArraySize(items), node, t, acc);
+}
+
+/* `count` items from `first` on, in list order. A repeater takes the items
+ * before it (the last repeater first; it meets the earlier ones in them). */
+static int parse_items(lt_ctx *c, const cJSON *first, int count, sh_node *node, sh_tree *t,
+                       path_list *acc)
+{
+    if (++c->depth > LT_MAX_DEPTH)
+        return lt_fail(c, "shape groups or repeaters nested deeper than %d", LT_MAX_DEPTH);
+    const cJSON *it = first, *rp = NULL;
+    int at = -1, pos = 0;
+    for (; it && pos < count; it = it->next, pos++)
+        if (cJSON_IsObject(it) && !hidden(it) && !strcmp(ty_of(it), "rp"))
+            rp = it, at = pos;
+    if (rp) {
+        if (parse_repeater(c, rp, first, at, node, t, acc) != 0)
+            return -1;
+        first = rp->next;
+        count -= at + 1;
+    }
+    for (it = first, pos = 0; it && pos < count; it = it->next, pos++) {
         if (!cJSON_IsObject(it))
             return lt_fail(c, "a shape item is not an object");
         const char *ty = ty_of(it);
@@ -284,8 +364,6 @@ static int parse_group(lt_ctx *c, const cJSON *items, sh_node *node, sh_tree *t,
                     acc->v[i]->trims[acc->v[i]->ntrims++] = tm;
         } else if (!strcmp(ty, "mm")) {
             lt_warn(c, LT_F_MERGE, "merge paths are not supported: the paths are drawn unmerged");
-        } else if (!strcmp(ty, "rp")) {
-            lt_warn(c, LT_F_REPEATER, "repeaters are not supported: one copy is drawn");
         } else if (!strcmp(ty, "rd")) {
             lt_warn(c, LT_F_ROUND, "round corners are not supported: corners stay sharp");
         } else {
@@ -326,8 +404,15 @@ static void tree_free(sh_tree *t)
     }
     free(t->nodes);
     free(t->paths);
+    for (int i = 0; i < t->nreps; i++) {
+        sh_rep *r = t->reps[i];
+        lt_prop_free(&r->c), lt_prop_free(&r->o), lt_prop_free(&r->a), lt_prop_free(&r->p);
+        lt_prop_free(&r->s), lt_prop_free(&r->r), lt_prop_free(&r->so), lt_prop_free(&r->eo);
+        free(r);
+    }
     free(t->trims);
     free(t->styles);
+    free(t->reps);
 }
 
 
@@ -388,7 +473,12 @@ static double style_opacity(const sh_style *s, double f)
 static void note_node_chain(lt_signal *sg, const sh_node *n, const lt_time *tm)
 {
     for (; n; n = n->parent)
-        if (n->has_xf) {
+        if (n->rep) {
+            const sh_rep *r = n->rep;
+            const lt_prop *ps[8] = {&r->c, &r->o, &r->a, &r->p, &r->s, &r->r, &r->so, &r->eo};
+            for (int k = 0; k < 8; k++)
+                lt_signal_note_prop(sg, ps[k], tm->f0, tm->fscale);
+        } else if (n->has_xf) {
             const lt_prop *ps[7] = {&n->a, &n->p, &n->s, &n->r, &n->o, &n->sk, &n->sa};
             for (int k = 0; k < 7; k++)
                 lt_signal_note_prop(sg, ps[k], tm->f0, tm->fscale);
@@ -486,6 +576,13 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
     bool any = false, uniform = true;
     for (int n = 0; n < N; n++) {
         lt_region_contours(c, s, tm->frame[n], &fc[n], &fn[n]);
+        for (int i = 0; tm->xf && i < fn[n]; i++)
+            for (int k = 0; k < fc[n][i].count; k++) {
+                double *q = fc[n][i].pts + 3 * k;
+                sv_pt m = sv_affine_apply(tm->xf[n], sv_pt_make(q[0], q[1]));
+                q[0] = m.x, q[1] = m.y; /* control points are Euclidean: an affine map keeps
+                                           the rational curve */
+            }
         any = any || fn[n] > 0;
         uniform = uniform && lt_same_layout(fc[0], fn[0], fc[n], fn[n]);
         double w = 0;
@@ -542,6 +639,17 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
         if (s->type == ST_FILL || s->type == ST_STROKE)
             lt_prop_eval(&s->c, f, v);
         v[3] = style_opacity(s, f);
+    }
+    bool shown = false;
+    for (int n = 0; n < N && !shown; n++)
+        shown = pt.v[4 * (size_t)n + 3] > 0;
+    if (!shown) { /* a repeater's copy beyond its count at every frame, or faded out */
+        for (int i = 0; i < nfirst; i++)
+            lt_signal_free(&geo[i]);
+        free(geo);
+        lt_signal_free(&pt);
+        lt_free_contours(first, nfirst);
+        return 0;
     }
     cJSON *reg = cJSON_CreateObject();
     cJSON_AddStringToObject(reg, "fill_rule",

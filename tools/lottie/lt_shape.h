@@ -10,10 +10,18 @@
 enum { SH_PATH, SH_ELLIPSE, SH_RECT, SH_STAR };
 enum { ST_FILL, ST_STROKE, ST_GFILL, ST_GSTROKE };
 
+/* A repeater ("rp"): copies, offset, and its transform with start and end opacity. */
+typedef struct sh_rep {
+    lt_prop c, o, a, p, s, r, so, eo;
+} sh_rep;
+
+/* A group's transform, or (rep set) one copy of a repeater's items. */
 typedef struct sh_node {
     struct sh_node *parent;
     bool has_xf;
     lt_prop a, p, s, r, o, sk, sa;
+    const sh_rep *rep;
+    int copy;
 } sh_node;
 
 typedef struct sh_trim {

@@ -44,6 +44,8 @@ void lt_signal_free(lt_signal *s)
 
 void lt_signal_break(lt_signal *s, double n)
 {
+    if (n > s->nframes - 1 && (s->tail == 0 || n < s->tail))
+        s->tail = n;
     if (!(n > 0 && n < s->nframes - 1))
         return;
     for (int i = 0; i < s->nbreaks; i++)
@@ -137,6 +139,33 @@ static bool holds(const lt_signal *s, int a, int b)
     return !same(s, frame(s, a), frame(s, b));
 }
 
+/*
+ * The last stretch, from a to the end of the samples, when its keyframe
+ * lies beyond them (a composition whose last keyframe is at its out point
+ * shows frames up to op - 1 only): easing e from a to s->tail, with the
+ * end value that the last sample implies, carries every sample from a.
+ * The end value goes into vt. A key past the last frame is never shown;
+ * it only lets one cubic key stand for the stretch.
+ */
+static bool eases_to_tail(const lt_signal *s, int a, const double *e, double *vt)
+{
+    int last = s->nframes - 1;
+    double span = s->tail - a, wl = lt_ease(e, (last - a) / span);
+    if (s->tail != floor(s->tail) || last - a < 2 || !(fabs(wl) > 0.05))
+        return false;
+    const double *va = frame(s, a), *vl = frame(s, last);
+    for (int k = 0; k < s->width; k++)
+        vt[k] = va[k] + (vl[k] - va[k]) / wl;
+    for (int n = a + 1; n <= last; n++) {
+        double w = lt_ease(e, (n - a) / span);
+        const double *v = frame(s, n);
+        for (int k = 0; k < s->width; k++)
+            if (fabs(va[k] + w * (vt[k] - va[k]) - v[k]) > s->tol)
+                return false;
+    }
+    return true;
+}
+
 typedef struct key_out {
     int frame;
     int kind; /* 0 linear, 1 cubic (ease), 2 hold */
@@ -151,6 +180,12 @@ cJSON *lt_signal_track(const lt_signal *s, double fr,
     key_out *keys = calloc((size_t)s->nframes + 1, sizeof *keys);
     if (!keys)
         return NULL;
+    double *vt = malloc((size_t)(s->width ? s->width : 1) * sizeof *vt);
+    if (!vt) {
+        free(keys);
+        return NULL;
+    }
+    bool to_tail = false;
     int nk = 0;
     /* Stretches between breaks on whole frames; others are cut linearly. */
     int a = 0;
@@ -181,6 +216,18 @@ cJSON *lt_signal_track(const lt_signal *s, double fr,
             continue;
         }
         bool done = false;
+        if (bi >= s->nbreaks && s->tail > 0)
+            for (int e = 0; e < s->neases && !to_tail; e++)
+                if (eases_to_tail(s, a, s->eases[e], vt)) {
+                    k->kind = 1;
+                    memcpy(k->ease, s->eases[e], sizeof k->ease);
+                    to_tail = true;
+                }
+        if (to_tail) {
+            nk++;
+            a = s->nframes - 1;
+            break;
+        }
         if (whole && b - a > 1) {
             if (eases_through(s, a, b, NULL)) {
                 k->kind = 0;
@@ -220,8 +267,9 @@ cJSON *lt_signal_track(const lt_signal *s, double fr,
     for (int i = 0; i < nk; i++) {
         const key_out *k = &keys[i];
         cJSON *key = cJSON_CreateArray();
-        cJSON_AddItemToArray(key, cJSON_CreateNumber((double)k->frame / fr));
-        cJSON_AddItemToArray(key, value_fn(frame(s, k->frame), s->width));
+        bool tail_key = to_tail && i + 1 == nk;
+        cJSON_AddItemToArray(key, cJSON_CreateNumber((tail_key ? s->tail : k->frame) / fr));
+        cJSON_AddItemToArray(key, value_fn(tail_key ? vt : frame(s, k->frame), s->width));
         if (i + 1 < nk && k->kind == 1)
             cJSON_AddItemToArray(key, lt_num_array(k->ease, 4));
         else if (i + 1 < nk && k->kind == 2)
@@ -231,5 +279,6 @@ cJSON *lt_signal_track(const lt_signal *s, double fr,
     if (cubic)
         cJSON_AddStringToObject(track, "ease", "cubic");
     free(keys);
+    free(vt);
     return track;
 }

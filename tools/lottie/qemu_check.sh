@@ -7,7 +7,7 @@
 # (the board's setting) at t = 0.2 s and 0.5 s; each frame's CRC must equal
 # celsim's for the same stream, size, time and AA. A FILE written
 # scene:PATH is a scene JSON of the project, compiled with `celc compile`
-# instead. Prints one line per frame and ends with
+# instead; one written lottie:PATH is a Lottie file of the project, imported. Prints one line per frame and ends with
 # "lottie-qemu: N passed, M failed".
 set -u
 celc=$1 celsim=$2 elf=$3 dir=$4
@@ -19,6 +19,7 @@ for f in "$@"; do
     s=$tmp/$(basename "$f" .json).cels
     case $f in
     scene:*) make_it="$celc compile ${f#scene:} -o $s" ;;
+    lottie:*) make_it="$celc import ${f#lottie:} -o $s -q" ;;
     *) make_it="$celc import $dir/$f -o $s -q" ;;
     esac
     if ! $make_it; then
