@@ -1,0 +1,69 @@
+/*
+ * kms_priv.h - the DRM/KMS backend's state, shared by its two files.
+ *
+ * kms_card.c finds the card, connector, mode and CRTC (what a reconnect does
+ * again); kms.c owns the dumb buffers and shows frames. Nothing here is for
+ * callers: they see kms.h only.
+ */
+#ifndef KMS_PRIV_H
+#define KMS_PRIV_H
+
+#include <xf86drm.h>
+#include <xf86drmMode.h>
+
+#include "kms.h"
+#include "lx_damage.h"
+
+#define KMS_MAX_CARDS 8 /* /dev/dri/card0..7 are tried when no device is named */
+
+typedef struct kms_buf {
+    uint32_t handle, fb;
+    uint8_t *map;
+    size_t size;
+    lx_damage held; /* hash of each line the buffer holds (0 = unknown) */
+} kms_buf;
+
+typedef struct kms_dev {
+    lx_display d;
+    kms_config cfg;
+    int fd;
+    char path[128];
+    uint32_t conn_id, crtc_id;
+    char conn_name[32];
+    drmModeModeInfo mode;
+    drmModeCrtc *saved; /* the CRTC as we found it, put back at close */
+    uint32_t fourcc;
+    unsigned bpp;
+    uint32_t pitch;
+    kms_buf buf[2];
+    int front;          /* the buffer on screen; -1 = none of ours yet */
+    bool flips, dirty_fb, flip_pending;
+    int width, height;  /* fixed for the life of the display: the source's size */
+    uint8_t *line;      /* one line in the buffer format */
+    uint8_t *rgb888;
+    float *rgb;
+    bool connected;
+    uint64_t next_attempt_ns, next_probe_ns;
+    uint64_t flips_done, modesets, connects;
+    int quiet_failures;
+    char why[200];      /* detail of the last failure */
+} kms_dev;
+
+void kms_say(kms_dev *k, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* LX_ERR_NO_DEVICE for errno values that mean the card or screen went away. */
+lx_status kms_errno_status(int e);
+
+/*
+ * Opens the card (the configured one, or the first with a connected
+ * connector) and chooses connector, mode (of k->width x k->height once that
+ * is fixed), CRTC and pixel format. On failure the fd is closed and err says
+ * why; LX_ERR_CONFIG means the connector lacks the mode asked for.
+ */
+lx_status kms_card_open(kms_dev *k, char *err, size_t errlen);
+/* Puts the CRTC back as it was (if the card is still there) and closes the fd. */
+void kms_card_close(kms_dev *k);
+/* LX_OK while the connector still reports a connected screen. */
+lx_status kms_card_probe(kms_dev *k);
+
+#endif /* KMS_PRIV_H */
