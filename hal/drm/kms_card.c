@@ -199,22 +199,25 @@ lx_status kms_card_open(kms_dev *k, char *err, size_t errlen)
 {
     if (k->cfg.device[0])
         return open_path(k, k->cfg.device, err, errlen);
-    char path[32], last[256] = "";
-    lx_status s = LX_ERR_NO_DEVICE;
+    /* The reason worth telling is that of the first card there, not of the last one tried. */
+    char path[32], why[256], first[256] = "";
     for (int i = 0; i < KMS_MAX_CARDS; i++) {
         snprintf(path, sizeof path, "/dev/dri/card%d", i);
-        s = open_path(k, path, last, sizeof last);
-        if (s == LX_OK || s == LX_ERR_CONFIG)
-            break;
+        if (access(path, F_OK) != 0)
+            continue;
+        lx_status s = open_path(k, path, why, sizeof why);
+        if (s == LX_OK)
+            return s;
+        if (s == LX_ERR_CONFIG) {
+            snprintf(err, errlen, "%s", why);
+            return s;
+        }
+        if (!first[0])
+            snprintf(first, sizeof first, "%s", why);
     }
-    if (s == LX_OK)
-        return s;
-    if (s == LX_ERR_CONFIG)
-        snprintf(err, errlen, "%s", last);
-    else
-        snprintf(err, errlen, "no DRM card with a connected screen in /dev/dri/card0..%d (last: %s)",
-                 KMS_MAX_CARDS - 1, last);
-    return s;
+    snprintf(err, errlen, "no DRM card with a connected screen in /dev/dri/card0..%d (%s)", KMS_MAX_CARDS - 1,
+             first[0] ? first : "there is none");
+    return LX_ERR_NO_DEVICE;
 }
 
 lx_status kms_card_probe(kms_dev *k)
