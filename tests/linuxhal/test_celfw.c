@@ -71,7 +71,14 @@ static void test_config_errors(void)
                    (const char *[]){"--backend", "usb", "--usb-device", "1d50:fffffffffffffffff", NULL}, 2,
                    "'1d50:fffffffffffffffff' is not VID:PID in hex");
     expect_failure("bad backend", (const char *[]){"--backend", "hdmi", NULL}, 2,
-                   "'hdmi' is not a backend (gpio, usb or null)");
+                   "'hdmi' is not a backend (gpio, usb, drm or null)");
+    expect_failure("bad mode", (const char *[]){"--backend", "drm", "--mode", "1280x720@", NULL}, 2,
+                   "'1280x720@' is not a mode WxH or WxH@HZ");
+    expect_failure("size against mode",
+                   (const char *[]){"--backend", "drm", "--size", "640x480", "--mode", "1280x720", NULL}, 2,
+                   "size 640x480 differs from mode 1280x720");
+    expect_failure("missing drm card", (const char *[]){"--backend", "drm", "--drm-device", "/dev/dri/card9", NULL},
+                   4, "celfw: error drm: /dev/dri/card9: No such file or directory");
     expect_failure("1/32 scan without E",
                    (const char *[]){"--backend", "gpio", "--panel", "64x64", "--pins", "e=none", NULL}, 2,
                    "needs address line E");
