@@ -462,6 +462,11 @@ static bool p_mode(celfw_config *c, const char *v, char *err, size_t n)
     return true;
 }
 
+static bool p_drm_wait(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return parse_bool(v, &c->drm.wait, err, n);
+}
+
 static bool p_bench(celfw_config *c, const char *v, char *err, size_t n)
 {
     return parse_bool(v, &c->bench_gpio, err, n);
@@ -509,6 +514,7 @@ static const setting settings[] = {
     {"usb-wait", "yes|no", p_usb_wait, "USB: start even if the display is absent (needs size)"},
     {"drm-device", "PATH", p_drm_device, "DRM: the card (default the first /dev/dri/cardN with a screen)"},
     {"mode", "WxH[@HZ]", p_mode, "DRM: the screen mode (default the connector's preferred one)"},
+    {"drm-wait", "yes|no", p_drm_wait, "DRM: start even if no screen is connected (needs mode or size)"},
 };
 
 static const setting *find(const char *name)
@@ -750,6 +756,10 @@ bool celfw_config_check(celfw_config *c, char *err, size_t errlen)
         if (c->width && !c->drm_mode_set) { /* the size asks for the mode of that size */
             c->drm.width = c->width;
             c->drm.height = c->height;
+        }
+        if (c->drm.wait && !c->drm.width) {
+            snprintf(err, errlen, "drm-wait needs --mode or --size (the screen may not be there to ask)");
+            return false;
         }
         break;
     }

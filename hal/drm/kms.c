@@ -413,9 +413,11 @@ lx_status kms_open(lx_display **out, const kms_config *c, const lx_clock *clock,
                    void *log_user, char *err, size_t errlen)
 {
     if (c->width < 0 || c->height < 0 || c->width > CS_CFG_MAX_WIDTH || c->height > CS_CFG_MAX_HEIGHT ||
-        (c->width == 0) != (c->height == 0) || c->refresh < 0 || (c->refresh && !c->width)) {
-        snprintf(err, errlen, "drm: mode %dx%d@%d out of range (%dx%d at most; a rate needs a size)", c->width,
-                 c->height, c->refresh, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+        (c->width == 0) != (c->height == 0) || c->refresh < 0 || (c->refresh && !c->width) ||
+        (c->wait && !c->width)) {
+        snprintf(err, errlen, "drm: mode %dx%d@%d out of range (%dx%d at most; a rate, and waiting for an "
+                 "absent screen, need a size)", c->width, c->height, c->refresh, CS_CFG_MAX_WIDTH,
+                 CS_CFG_MAX_HEIGHT);
         return LX_ERR_CONFIG;
     }
     kms_dev *k = calloc(1, sizeof *k);
@@ -430,10 +432,22 @@ lx_status kms_open(lx_display **out, const kms_config *c, const lx_clock *clock,
     k->d.log_user = log_user;
     char why[256];
     lx_status s = connect_card(k, why, sizeof why);
-    if (s != LX_OK) {
+    /* Waiting, a card that is absent, busy or broken counts as absent: the
+     * screen may come. A connector without the mode asked for is the user's to fix. */
+    if (s != LX_OK && !(c->wait && s != LX_ERR_CONFIG && s != LX_ERR_NOMEM)) {
         snprintf(err, errlen, "drm: %s", why);
         kms_close(&k->d);
         return s;
+    }
+    if (s != LX_OK) {
+        k->width = c->width;
+        k->height = c->height;
+        if (!alloc_lines(k)) {
+            kms_close(&k->d);
+            return LX_ERR_NOMEM;
+        }
+        snprintf(k->why, sizeof k->why, "%.190s", why);
+        kms_say(k, "no screen yet (%s); waiting", why);
     }
     k->d.width = k->width;
     k->d.height = k->height;

@@ -17,11 +17,13 @@
  * buffers are often write-combined memory that is slow to touch; a frame
  * with no line differing from the screen is not flipped at all.
  *
- * Failures are values: a card that is not there, a connector with nothing
+ * Failures are values: a card that is not there (or that another program,
+ * such as a desktop, holds as DRM master), a connector with nothing
  * connected, a connector that reports disconnected mid-run (checked every
  * probe_ms) or ioctls that fail with ENODEV (the card went away) turn
  * present() into a cheap LX_ERR_NO_DEVICE; the backend retries every
- * reconnect_ms and repaints the whole frame once the screen is back.
+ * reconnect_ms and repaints the whole frame once the screen is back. With
+ * `wait` it starts that way too, when the screen is not there at start.
  */
 #ifndef KMS_H
 #define KMS_H
@@ -39,6 +41,7 @@ typedef struct kms_config {
     unsigned reconnect_ms;     /* between attempts while the screen is away */
     unsigned probe_ms;         /* between connector status checks; 0 = every frame */
     unsigned flip_timeout_ms;  /* longest wait for a page flip to complete */
+    bool wait;                 /* open even with no screen there (needs width/height) */
 } kms_config;
 
 void kms_config_default(kms_config *c);

@@ -175,7 +175,11 @@ static lx_status open_path(kms_dev *k, const char *path, char *err, size_t n)
     }
     drmModeRes *res = drmModeGetResources(k->fd);
     lx_status s;
-    if (!res) {
+    if (res && !drmIsMaster(k->fd)) {
+        /* Mode sets and flips would fail with EACCES on every frame. */
+        snprintf(err, n, "%s: another program (a desktop or compositor?) holds the screen as DRM master", path);
+        s = LX_ERR_IO;
+    } else if (!res) {
         int e = errno;
         snprintf(err, n, "%s is not a KMS device (%s)", path, strerror(e));
         s = e == ENODEV ? LX_ERR_NO_DEVICE : LX_ERR_PROTOCOL;

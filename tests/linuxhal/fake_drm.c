@@ -314,6 +314,8 @@ static int create_dumb(fake_drm *f, UMockdevIoctlData *d)
     if (!slot)
         return ENOMEM;
     uint32_t pitch = (c->width * (c->bpp / 8u) + 63u) & ~63u; /* drivers align pitch; callers must use it */
+    if (f->o.pitch_short)
+        pitch = c->width * (c->bpp / 8u) - (uint32_t)f->o.pitch_short;
     size_t size = ((size_t)pitch * c->height + 4095u) & ~(size_t)4095u;
     int fd = memfd_create("fake-drm-dumb", MFD_CLOEXEC);
     if (fd < 0 || ftruncate(fd, (off_t)size) != 0) {
@@ -444,6 +446,13 @@ static int dirty_fb(fake_drm *f, UMockdevIoctlData *d)
     return 0;
 }
 
+/* drmIsMaster() asks to authenticate magic 0: EINVAL for the master, EACCES for others. */
+static int auth_magic(fake_drm *f, UMockdevIoctlData *d)
+{
+    (void)d;
+    return f->o.not_master ? EACCES : EINVAL;
+}
+
 static int get_cap(fake_drm *f, UMockdevIoctlData *d)
 {
     struct drm_get_cap *c = (struct drm_get_cap *)d->data;
@@ -464,6 +473,7 @@ typedef struct op {
 
 static const op ops[] = {
     {DRM_IOCTL_GET_CAP, sizeof(struct drm_get_cap), get_cap},
+    {DRM_IOCTL_AUTH_MAGIC, sizeof(struct drm_auth), auth_magic},
     {DRM_IOCTL_MODE_GETRESOURCES, sizeof(struct drm_mode_card_res), get_resources},
     {DRM_IOCTL_MODE_GETCONNECTOR, sizeof(struct drm_mode_get_connector), get_connector},
     {DRM_IOCTL_MODE_GETENCODER, sizeof(struct drm_mode_get_encoder), get_encoder},
@@ -503,7 +513,8 @@ static gboolean on_ioctl(UMockdevIoctlBase *base, UMockdevIoctlClient *client, g
             e = EFAULT;
             break;
         }
-        e = ops[i].fn(f, d);
+        bool master_only = req == DRM_IOCTL_MODE_SETCRTC || req == DRM_IOCTL_MODE_PAGE_FLIP;
+        e = f->o.not_master && master_only ? EACCES : ops[i].fn(f, d);
         break;
     }
     if (req == DRM_IOCTL_SET_CLIENT_CAP) /* accepted, as for universal planes; atomic is not offered */

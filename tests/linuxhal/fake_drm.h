@@ -37,6 +37,8 @@ typedef struct fake_drm_opts {
     unsigned preferred_depth; /* DRM_CAP_DUMB_PREFERRED_DEPTH: 24 or 16 */
     bool no_flip;           /* PAGE_FLIP fails with EINVAL, as on drivers without it */
     bool no_dirty;          /* DIRTYFB fails with ENOSYS, as on drivers without it */
+    bool not_master;        /* another program is DRM master: master-only ioctls are EACCES */
+    int pitch_short;        /* CREATE_DUMB lies: the pitch is this many bytes short of a line */
 } fake_drm_opts;
 
 typedef struct fake_drm fake_drm;

@@ -482,6 +482,71 @@ static void test_missing(UMockdevTestbed *tb)
     rig_close(&r, s == LX_OK);
 }
 
+/* Started with no screen: waiting, then the screen comes. */
+static void test_wait(UMockdevTestbed *tb)
+{
+    rig r;
+    rig_defaults(&r);
+    r.o.disconnected = true;
+    r.cfg.wait = true;
+    char err[320];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_ERR_CONFIG && strstr(err, "need a size"), "waiting without a size: %s: %s", lx_status_str(s),
+          err);
+    fake_drm_free(r.card);
+    kms_parse_mode("96x64", &r.cfg);
+    s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK && !r.d->ops->connected(r.d), "waiting: %s: %s", lx_status_str(s), err);
+    if (s != LX_OK) {
+        rig_close(&r, false);
+        return;
+    }
+    lx_frame_stats st;
+    s = show(&r, "demo", 0.0f, &st);
+    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "no connector has a screen connected"), "no screen: %s: %s",
+          lx_status_str(s), r.d->err);
+    fake_drm_set_connected(r.card, true);
+    usleep(30 * 1000);
+    s = show(&r, "demo", 0.0f, &st);
+    CHECK(s == LX_OK && compare(&r) == 0, "the screen came: %s: %s", lx_status_str(s), r.d->err);
+    rig_close(&r, true);
+}
+
+/* Drivers and situations that must be refused with a reason, not crash. */
+static void test_refusals(UMockdevTestbed *tb)
+{
+    const struct { const char *what; fake_drm_opts o; lx_status want; const char *needle; int w; } cases[] = {
+        {"not master", {.modes = {{96, 64, 60, true}}, .nmodes = 1, .not_master = true}, LX_ERR_NO_DEVICE,
+         "holds the screen as DRM master", 0},
+        {"short pitch", {.modes = {{96, 64, 60, true}}, .nmodes = 1, .pitch_short = 4}, LX_ERR_PROTOCOL,
+         "dumb buffer of pitch 380", 0},
+        {"0x0 preferred", {.modes = {{0, 0, 60, true}, {64, 48, 75, false}}, .nmodes = 2}, LX_OK, NULL, 64},
+        {"too wide preferred", {.modes = {{5000, 100, 60, true}, {64, 48, 75, false}}, .nmodes = 2}, LX_OK, NULL,
+         64},
+        {"only unusable modes", {.modes = {{0, 0, 60, true}, {9000, 9000, 30, false}}, .nmodes = 2}, LX_ERR_CONFIG,
+         "offers no usable mode (it has 0x0@60, 9000x9000@30)", 0},
+        {"no modes", {.nmodes = 0}, LX_ERR_CONFIG, "offers no usable mode (it has none)", 0},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        rig r;
+        rig_defaults(&r);
+        r.o = cases[i].o;
+        char err[320];
+        lx_status s = rig_open(&r, tb, err, sizeof err);
+        CHECK(s == cases[i].want && (!cases[i].needle || strstr(err, cases[i].needle)), "%s: %s: %s",
+              cases[i].what, lx_status_str(s), err);
+        if (s == LX_OK) {
+            lx_frame_stats st;
+            CHECK(r.d->width == cases[i].w, "%s: chose width %d", cases[i].what, r.d->width);
+            s = show(&r, "demo", 0.0f, &st);
+            CHECK(s == LX_OK && compare(&r) == 0, "%s: frame: %s", cases[i].what, r.d->err);
+        } else {
+            CHECK(all_freed(r.card), "%s: a refused card kept buffers", cases[i].what);
+        }
+        rig_close(&r, s == LX_OK);
+    }
+}
+
 int main(void)
 {
     UMockdevTestbed *tb = umockdev_testbed_new();
@@ -498,6 +563,8 @@ int main(void)
     test_gone_at_flip(tb);
     test_flip_timeout(tb);
     test_missing(tb);
+    test_wait(tb);
+    test_refusals(tb);
     g_object_unref(tb);
     return lx_test_report("test_drm");
 }
