@@ -10,7 +10,9 @@
  * out and the changed bands are reported with DirtyFB, which is what the
  * drivers without flips (manual-update panels, virtual GPUs) need to upload
  * them; a driver without DirtyFB (ENOSYS) is not asked again. A legacy flip
- * carries no damage, so the kernel counts the whole plane as changed there.
+ * carries no damage, so the kernel counts the whole plane as changed there;
+ * where the driver has atomic modesetting and damage clips, kms_atomic.c
+ * shows the frames instead, and its flips carry the changed bands.
  *
  * Which lines a buffer holds is known from a hash per line (lx_damage), so
  * an unchanged line costs no write to the (write-combined, slow to read)
@@ -138,6 +140,7 @@ static lx_status make_buffer(kms_dev *k, kms_buf *b)
 static void disconnect(kms_dev *k)
 {
     if (k->fd >= 0) {
+        kms_atomic_release(k);
         drop_buffer(k, &k->buf[0]);
         drop_buffer(k, &k->buf[1]);
         kms_card_close(k);
@@ -182,6 +185,7 @@ static lx_status connect_card(kms_dev *k, char *err, size_t n)
     }
     k->flips = true;
     k->dirty_fb = true;
+    kms_atomic_setup(k);
     k->connected = true;
     k->connects++;
     k->next_probe_ns = 0;
@@ -246,6 +250,14 @@ static lx_status modeset(kms_dev *k, int b)
 /* Puts buffer b on screen; clips are the bands that changed from the screen. */
 static lx_status show(kms_dev *k, int b, drmModeClip *clips, int nclips)
 {
+    if (k->atomic.on && (k->front < 0 || b != k->front)) {
+        lx_status s = kms_atomic_show(k, b, clips, nclips, k->front < 0);
+        int e = errno;
+        if (s == LX_OK || s == LX_ERR_NO_DEVICE || s == LX_ERR_NOMEM || e == EBUSY)
+            return s;
+        kms_say(k, "the driver refuses an atomic commit (%s): legacy calls from now on", k->why);
+        kms_atomic_release(k);
+    }
     if (k->front < 0)
         return modeset(k, b);
     if (b != k->front) {
@@ -469,6 +481,7 @@ void kms_get_info(lx_display *d, kms_info *info)
     info->refresh = (int)k->mode.vrefresh;
     info->fourcc = k->fourcc;
     info->flips = k->flips;
+    info->atomic = k->atomic.on;
     info->dirty_fb = k->dirty_fb;
     info->flips_done = k->flips_done;
     info->modesets = k->modesets;

@@ -8,9 +8,10 @@
  * dumb buffers in turn (double buffering): lines are written into the back
  * buffer, in XRGB8888 or in RGB565 when the driver prefers 16-bit dumb
  * buffers, as celfw pulls them, and the back buffer is shown with a page
- * flip, or with a mode set where the driver refuses flips (then the changed
- * bands also go to the driver as damage clips, drmModeDirtyFB, if it takes
- * them: the manual-update panels that lack flips are the ones that need it).
+ * flip: an atomic commit whose FB_DAMAGE_CLIPS name the changed bands where
+ * the driver has atomic modesetting and that property, else a legacy flip.
+ * A driver that refuses flips gets one buffer, and the changed bands go to
+ * it as DirtyFB damage clips if it takes them.
  *
  * Only the lines that differ from what a buffer holds are written into it,
  * known from one 64-bit hash per line and buffer (lx_damage), because dumb
@@ -60,7 +61,8 @@ typedef struct kms_info {
     uint32_t connector_id, crtc_id;
     int width, height, refresh;
     uint32_t fourcc;        /* DRM_FORMAT_XRGB8888 or DRM_FORMAT_RGB565 */
-    bool flips;             /* page flips (false: mode sets + damage clips) */
+    bool flips;             /* page flips (false: one buffer + DirtyFB damage clips) */
+    bool atomic;            /* atomic commits whose flips carry FB_DAMAGE_CLIPS */
     bool dirty_fb;          /* the driver takes DirtyFB damage clips */
     uint64_t flips_done, modesets, connects;
 } kms_info;

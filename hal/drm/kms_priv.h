@@ -2,8 +2,9 @@
  * kms_priv.h - the DRM/KMS backend's state, shared by its two files.
  *
  * kms_card.c finds the card, connector, mode and CRTC (what a reconnect does
- * again); kms.c owns the dumb buffers and shows frames. Nothing here is for
- * callers: they see kms.h only.
+ * again); kms.c owns the dumb buffers and shows frames, through kms_atomic.c
+ * where the driver has atomic modesetting with damage clips. Nothing here is
+ * for callers: they see kms.h only.
  */
 #ifndef KMS_PRIV_H
 #define KMS_PRIV_H
@@ -23,6 +24,17 @@ typedef struct kms_buf {
     lx_damage held; /* hash of each line the buffer holds (0 = unknown) */
 } kms_buf;
 
+/* The atomic path: property ids of the objects a commit touches. */
+enum { KP_FB_ID, KP_CRTC_ID, KP_SRC_X, KP_SRC_Y, KP_SRC_W, KP_SRC_H, KP_CRTC_X, KP_CRTC_Y, KP_CRTC_W,
+       KP_CRTC_H, KP_FB_DAMAGE_CLIPS, KP_NPLANE };
+typedef struct kms_atomic {
+    bool on;                 /* commits go through the atomic API */
+    uint32_t plane;          /* the CRTC's primary plane */
+    uint32_t plane_prop[KP_NPLANE];
+    uint32_t crtc_mode_id, crtc_active, conn_crtc_id;
+    uint32_t mode_blob;
+} kms_atomic;
+
 typedef struct kms_dev {
     lx_display d;
     kms_config cfg;
@@ -38,6 +50,7 @@ typedef struct kms_dev {
     kms_buf buf[2];
     int front;          /* the buffer on screen; -1 = none of ours yet */
     bool flips, dirty_fb, flip_pending;
+    kms_atomic atomic;
     int width, height;  /* fixed for the life of the display: the source's size */
     uint8_t *line;      /* one line in the buffer format */
     uint8_t *rgb888;
@@ -65,5 +78,17 @@ lx_status kms_card_open(kms_dev *k, char *err, size_t errlen);
 void kms_card_close(kms_dev *k);
 /* LX_OK while the connector still reports a connected screen. */
 lx_status kms_card_probe(kms_dev *k);
+
+/*
+ * Turns the atomic path on when the driver offers atomic modesetting and the
+ * CRTC's primary plane takes FB_DAMAGE_CLIPS; otherwise leaves it off (the
+ * legacy calls then serve). Never fails: the legacy path is always there.
+ */
+void kms_atomic_setup(kms_dev *k);
+/* One commit showing buffer b: a full mode set if modeset, else a flip with
+ * the damage clips and a completion event. */
+lx_status kms_atomic_show(kms_dev *k, int b, const drmModeClip *clips, int nclips, bool modeset);
+/* Frees the mode blob (before the fd is closed). */
+void kms_atomic_release(kms_dev *k);
 
 #endif /* KMS_PRIV_H */

@@ -26,54 +26,7 @@
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
-#include "fake_drm.h"
-
-#define MAX_DUMBS 8
-#define MAX_FBS 8
-#define MAX_EVENTS 4
-#define ID_CRTC 31u
-#define ID_ENCODER 32u
-#define ID_CONNECTOR 33u
-#define FB_ID_BASE 40u
-
-typedef struct dumb {
-    uint32_t handle; /* 0 = free slot */
-    UMockdevIoctlClient *owner; /* the open file that made it */
-    bool handle_live;
-    int fbs;         /* framebuffers holding it */
-    int memfd;
-    uint8_t *map;
-    size_t size;
-    uint32_t pitch, width, height, bpp;
-} dumb;
-
-typedef struct fb {
-    uint32_t id; /* 0 = free slot */
-    UMockdevIoctlClient *owner;
-    dumb *bo;
-    uint32_t width, height, pitch, fourcc, offset;
-} fb;
-
-struct fake_drm {
-    UMockdevTestbed *tb;
-    fake_drm_opts o;
-    char node[64];
-    UMockdevIoctlBase *h;
-    GMutex mu;
-    bool connected, gone, hold, flip_pending;
-    dumb dumbs[MAX_DUMBS];
-    fb fbs[MAX_FBS];
-    uint32_t next_handle, next_fb;
-    uint32_t scanout_fb;
-    bool mode_valid;
-    struct drm_mode_modeinfo mode;
-    struct drm_event_vblank events[MAX_EVENTS];
-    int nevents;
-    unsigned count[FAKE_DRM_NCOUNT];
-    int nclips, clip_y[2 * 64];
-    UMockdevIoctlClient *cur; /* the caller of the ioctl being answered */
-    fake_drm *next_live;
-};
+#include "fake_drm_priv.h"
 
 /* Every live fake, for fake_drm_mmap(); the test is the only user. */
 static fake_drm *live_fakes;
@@ -90,7 +43,7 @@ static uint64_t map_offset(const fake_drm *f, uint32_t handle)
     return ((uint64_t)(f->o.index + 1) << 40) | ((uint64_t)handle << 28);
 }
 
-static void fill_mode(struct drm_mode_modeinfo *m, const fake_drm_mode *fm)
+void fake_drm_fill_mode(struct drm_mode_modeinfo *m, const fake_drm_mode *fm)
 {
     memset(m, 0, sizeof *m);
     m->hdisplay = (uint16_t)fm->w;
@@ -115,7 +68,7 @@ static dumb *find_dumb(fake_drm *f, uint32_t handle)
     return NULL;
 }
 
-static fb *find_fb(fake_drm *f, uint32_t id)
+fb *fake_drm_find_fb(fake_drm *f, uint32_t id)
 {
     for (int i = 0; i < MAX_FBS; i++)
         if (id && f->fbs[i].id == id)
@@ -216,7 +169,7 @@ static int get_connector(fake_drm *f, UMockdevIoctlData *d)
             return EFAULT;
         }
         for (uint32_t i = 0; m && i < n; i++)
-            fill_mode((struct drm_mode_modeinfo *)m->data + i, &f->o.modes[i]);
+            fake_drm_fill_mode((struct drm_mode_modeinfo *)m->data + i, &f->o.modes[i]);
     }
     uint32_t enc = ID_ENCODER;
     int e = put_ids(d, offsetof(struct drm_mode_get_connector, encoders_ptr), c->count_encoders, &enc, 1);
@@ -270,7 +223,7 @@ static int set_crtc(fake_drm *f, UMockdevIoctlData *d)
         f->scanout_fb = 0;
         return 0;
     }
-    fb *b = find_fb(f, c->fb_id);
+    fb *b = fake_drm_find_fb(f, c->fb_id);
     if (!b)
         return ENOENT;
     if (!c->mode_valid || c->count_connectors != 1)
@@ -287,7 +240,7 @@ static int set_crtc(fake_drm *f, UMockdevIoctlData *d)
     bool known = false;
     for (int i = 0; i < f->o.nmodes; i++) {
         struct drm_mode_modeinfo m;
-        fill_mode(&m, &f->o.modes[i]);
+        fake_drm_fill_mode(&m, &f->o.modes[i]);
         known |= m.hdisplay == c->mode.hdisplay && m.vdisplay == c->mode.vdisplay &&
                  m.vrefresh == c->mode.vrefresh && m.clock == c->mode.clock;
     }
@@ -363,7 +316,7 @@ static int add_fb2(fake_drm *f, UMockdevIoctlData *d)
 
 static int rm_fb(fake_drm *f, UMockdevIoctlData *d)
 {
-    fb *b = find_fb(f, *(uint32_t *)d->data);
+    fb *b = fake_drm_find_fb(f, *(uint32_t *)d->data);
     if (!b)
         return ENOENT;
     remove_fb(f, b);
@@ -396,7 +349,7 @@ static int page_flip(fake_drm *f, UMockdevIoctlData *d)
         return ENOENT;
     if (f->o.no_flip)
         return EINVAL;
-    fb *b = find_fb(f, p->fb_id);
+    fb *b = fake_drm_find_fb(f, p->fb_id);
     if (!b)
         return ENOENT;
     if (!f->mode_valid || (p->flags & ~(uint32_t)DRM_MODE_PAGE_FLIP_FLAGS))
@@ -405,23 +358,30 @@ static int page_flip(fake_drm *f, UMockdevIoctlData *d)
         return EBUSY;
     f->count[FAKE_DRM_FLIP]++;
     f->scanout_fb = b->id;
-    if (p->flags & DRM_MODE_PAGE_FLIP_EVENT) {
-        struct drm_event_vblank *ev = &f->events[f->nevents++];
-        memset(ev, 0, sizeof *ev);
-        ev->base.type = DRM_EVENT_FLIP_COMPLETE;
-        ev->base.length = sizeof *ev;
-        ev->user_data = p->user_data;
-        ev->sequence = f->count[FAKE_DRM_FLIP];
-        ev->crtc_id = ID_CRTC;
-        f->flip_pending = f->hold; /* held: no vblank, the event stays unreadable */
-    }
+    if (p->flags & DRM_MODE_PAGE_FLIP_EVENT)
+        fake_drm_queue_flip(f, p->user_data);
     return 0;
+}
+
+bool fake_drm_queue_flip(fake_drm *f, uint64_t user_data)
+{
+    if (f->flip_pending || f->nevents == MAX_EVENTS)
+        return false;
+    struct drm_event_vblank *ev = &f->events[f->nevents++];
+    memset(ev, 0, sizeof *ev);
+    ev->base.type = DRM_EVENT_FLIP_COMPLETE;
+    ev->base.length = sizeof *ev;
+    ev->user_data = user_data;
+    ev->sequence = f->count[FAKE_DRM_FLIP] + f->count[FAKE_DRM_ATOMIC];
+    ev->crtc_id = ID_CRTC;
+    f->flip_pending = f->hold; /* held: no vblank, the event stays unreadable */
+    return true;
 }
 
 static int dirty_fb(fake_drm *f, UMockdevIoctlData *d)
 {
     struct drm_mode_fb_dirty_cmd *c = (struct drm_mode_fb_dirty_cmd *)d->data;
-    if (!find_fb(f, c->fb_id))
+    if (!fake_drm_find_fb(f, c->fb_id))
         return ENOENT;
     if (f->o.no_dirty)
         return ENOSYS;
@@ -486,6 +446,14 @@ static const op ops[] = {
     {DRM_IOCTL_MODE_RMFB, sizeof(uint32_t), rm_fb},
     {DRM_IOCTL_MODE_PAGE_FLIP, sizeof(struct drm_mode_crtc_page_flip), page_flip},
     {DRM_IOCTL_MODE_DIRTYFB, sizeof(struct drm_mode_fb_dirty_cmd), dirty_fb},
+    {DRM_IOCTL_SET_CLIENT_CAP, sizeof(struct drm_set_client_cap), fake_drm_set_client_cap},
+    {DRM_IOCTL_MODE_GETPLANERESOURCES, sizeof(struct drm_mode_get_plane_res), fake_drm_get_plane_resources},
+    {DRM_IOCTL_MODE_GETPLANE, sizeof(struct drm_mode_get_plane), fake_drm_get_plane},
+    {DRM_IOCTL_MODE_OBJ_GETPROPERTIES, sizeof(struct drm_mode_obj_get_properties), fake_drm_obj_get_properties},
+    {DRM_IOCTL_MODE_GETPROPERTY, sizeof(struct drm_mode_get_property), fake_drm_get_property},
+    {DRM_IOCTL_MODE_CREATEPROPBLOB, sizeof(struct drm_mode_create_blob), fake_drm_create_blob},
+    {DRM_IOCTL_MODE_DESTROYPROPBLOB, sizeof(struct drm_mode_destroy_blob), fake_drm_destroy_blob},
+    {DRM_IOCTL_MODE_ATOMIC, sizeof(struct drm_mode_atomic), fake_drm_atomic},
 };
 
 static gboolean on_ioctl(UMockdevIoctlBase *base, UMockdevIoctlClient *client, gpointer user)
@@ -513,12 +481,11 @@ static gboolean on_ioctl(UMockdevIoctlBase *base, UMockdevIoctlClient *client, g
             e = EFAULT;
             break;
         }
-        bool master_only = req == DRM_IOCTL_MODE_SETCRTC || req == DRM_IOCTL_MODE_PAGE_FLIP;
+        bool master_only = req == DRM_IOCTL_MODE_SETCRTC || req == DRM_IOCTL_MODE_PAGE_FLIP ||
+                           req == DRM_IOCTL_MODE_ATOMIC;
         e = f->o.not_master && master_only ? EACCES : ops[i].fn(f, d);
         break;
     }
-    if (req == DRM_IOCTL_SET_CLIENT_CAP) /* accepted, as for universal planes; atomic is not offered */
-        e = f->gone ? ENODEV : 0;
     g_mutex_unlock(&f->mu);
     umockdev_ioctl_client_complete(client, e ? -1 : 0, e);
     return TRUE;
@@ -611,6 +578,8 @@ void fake_drm_free(fake_drm *f)
     for (int i = 0; i < MAX_FBS; i++)
         if (f->fbs[i].id)
             remove_fb(f, &f->fbs[i]);
+    for (int i = 0; i < MAX_BLOBS; i++)
+        free(f->blobs[i].data);
     for (int i = 0; i < MAX_DUMBS; i++)
         if (f->dumbs[i].handle) {
             f->dumbs[i].handle_live = false;
@@ -646,7 +615,7 @@ void fake_drm_hold_flips(fake_drm *f, bool hold)
 bool fake_drm_get_scanout(fake_drm *f, fake_drm_scanout *s)
 {
     g_mutex_lock(&f->mu);
-    fb *b = f->mode_valid ? find_fb(f, f->scanout_fb) : NULL;
+    fb *b = f->mode_valid ? fake_drm_find_fb(f, f->scanout_fb) : NULL;
     if (b)
         *s = (fake_drm_scanout){b->bo->map + b->offset, (int)b->width, (int)b->height, b->pitch, b->fourcc, b->id,
                                 f->mode.hdisplay, f->mode.vdisplay, (int)f->mode.vrefresh};

@@ -4,10 +4,12 @@
  * The real libdrm runs unchanged against it: the testbed gets the node and
  * an ioctl handler that answers the legacy KMS uAPI as the kernel's DRM core
  * does for a simple driver with one connector (two modes, or as set), one
- * encoder, one CRTC: resources, connector, encoder, CRTC get/set, dumb
- * buffers (create, map, destroy), framebuffers (ADDFB2, RMFB), page flips
- * with their completion event (read(2) on the fd, also answered here),
- * DirtyFB, GET_CAP and SET_CLIENT_CAP.
+ * encoder, one CRTC, one primary plane: resources, connector, encoder, CRTC
+ * get/set, dumb buffers (create, map, destroy), framebuffers (ADDFB2, RMFB),
+ * page flips with their completion event (read(2) on the fd, also answered
+ * here), DirtyFB, GET_CAP and SET_CLIENT_CAP; and, if asked, atomic
+ * modesetting: planes, object properties, property blobs and ATOMIC
+ * commits, with FB_DAMAGE_CLIPS on the plane if asked.
  *
  * umockdev forwards ioctl, read and write of an emulated node but not mmap,
  * so a dumb buffer's memory is a memfd the fake owns, and MAP_DUMB hands out
@@ -39,6 +41,8 @@ typedef struct fake_drm_opts {
     bool no_dirty;          /* DIRTYFB fails with ENOSYS, as on drivers without it */
     bool not_master;        /* another program is DRM master: master-only ioctls are EACCES */
     int pitch_short;        /* CREATE_DUMB lies: the pitch is this many bytes short of a line */
+    bool atomic;            /* the driver offers atomic modesetting */
+    bool damage_clips;      /* its primary plane has FB_DAMAGE_CLIPS */
 } fake_drm_opts;
 
 typedef struct fake_drm fake_drm;
@@ -64,12 +68,13 @@ typedef struct fake_drm_scanout {
 bool fake_drm_get_scanout(fake_drm *f, fake_drm_scanout *s);
 
 enum { FAKE_DRM_SETCRTC, FAKE_DRM_FLIP, FAKE_DRM_DIRTY, FAKE_DRM_CREATE_DUMB, FAKE_DRM_EVENTS_READ,
-       FAKE_DRM_NCOUNT };
+       FAKE_DRM_ATOMIC, FAKE_DRM_NCOUNT };
 unsigned fake_drm_count(fake_drm *f, int what);
 /* Dumb buffers and framebuffers alive now. */
 unsigned fake_drm_live_dumbs(fake_drm *f);
 unsigned fake_drm_live_fbs(fake_drm *f);
-/* The clips of the last DirtyFB: n, and up to max of them as y1, y2 pairs. */
+/* The clips of the last DirtyFB or atomic commit with FB_DAMAGE_CLIPS: n,
+ * and up to max of them as y1, y2 pairs. */
 int fake_drm_last_clips(fake_drm *f, int *y, int max);
 
 /* For the test's mmap(): maps a MAP_DUMB offset of any live fake, or

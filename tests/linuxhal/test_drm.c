@@ -482,6 +482,66 @@ static void test_missing(UMockdevTestbed *tb)
     rig_close(&r, s == LX_OK);
 }
 
+/* A driver with atomic modesetting: flips are commits whose FB_DAMAGE_CLIPS are the changed bands. */
+static void test_atomic(UMockdevTestbed *tb, bool damage_clips)
+{
+    rig r;
+    rig_defaults(&r);
+    r.o.atomic = true;
+    r.o.damage_clips = damage_clips;
+    char err[320];
+    lx_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "open: %s", err);
+    if (s != LX_OK) {
+        rig_close(&r, false);
+        return;
+    }
+    kms_info info;
+    kms_get_info(r.d, &info);
+    CHECK(info.atomic == damage_clips, "atomic path %d with damage clips %d", info.atomic, damage_clips);
+    lx_frame_stats st;
+    uint8_t *before = NULL;
+    const float times[] = {0.0f, 0.3f, 0.35f, 0.9f};
+    for (int i = 0; i < 4; i++) {
+        s = show(&r, "anim", times[i], &st);
+        CHECK(s == LX_OK && compare(&r) == 0, "atomic %d, frame %d: %s: %s", damage_clips, i, lx_status_str(s),
+              r.d->err);
+        uint8_t *after = expected(&r.scene, 96, 64, DRM_FORMAT_XRGB8888);
+        if (before && damage_clips) {
+            int want[64], got[128];
+            int nwant = diff_bands(before, after, 96, 64, want);
+            int ngot = fake_drm_last_clips(r.card, got, 64);
+            bool same = ngot == nwant;
+            for (int j = 0; same && j < 2 * nwant; j++)
+                same = got[j] == want[j];
+            CHECK(same, "frame %d: FB_DAMAGE_CLIPS %d bands (first %d..%d), changed lines %d bands (first %d..%d)",
+                  i, ngot, ngot ? got[0] : -1, ngot ? got[1] : -1, nwant, want[0], want[1]);
+        }
+        free(before);
+        before = after;
+    }
+    free(before);
+    unsigned atomic = fake_drm_count(r.card, FAKE_DRM_ATOMIC), legacy_flips = fake_drm_count(r.card, FAKE_DRM_FLIP);
+    unsigned legacy_sets = fake_drm_count(r.card, FAKE_DRM_SETCRTC);
+    if (damage_clips)
+        CHECK(atomic == 4 && legacy_flips == 0 && legacy_sets == 0, "atomic commits %u, legacy flips %u, sets %u",
+              atomic, legacy_flips, legacy_sets);
+    else
+        CHECK(atomic == 0 && legacy_flips == 3 && legacy_sets == 1, "no damage property: atomic %u, legacy flips "
+              "%u, sets %u", atomic, legacy_flips, legacy_sets);
+    kms_get_info(r.d, &info);
+    /* each flip's event is taken when the next frame needs its buffer: the last is still unread */
+    CHECK(info.flips_done == 2, "%llu flip events handled", (unsigned long long)info.flips_done);
+    /* A lost screen and its return go through the same commits. */
+    fake_drm_set_connected(r.card, false);
+    CHECK(show(&r, "bars", 0.0f, &st) == LX_ERR_NO_DEVICE, "unplugged: %s", r.d->err);
+    fake_drm_set_connected(r.card, true);
+    usleep(30 * 1000);
+    s = show(&r, "bars", 0.0f, &st);
+    CHECK(s == LX_OK && compare(&r) == 0, "replugged: %s: %s", lx_status_str(s), r.d->err);
+    rig_close(&r, true);
+}
+
 /* Started with no screen: waiting, then the screen comes. */
 static void test_wait(UMockdevTestbed *tb)
 {
@@ -564,6 +624,8 @@ int main(void)
     test_flip_timeout(tb);
     test_missing(tb);
     test_wait(tb);
+    test_atomic(tb, true);
+    test_atomic(tb, false);
     test_refusals(tb);
     g_object_unref(tb);
     return lx_test_report("test_drm");
