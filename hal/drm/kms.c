@@ -323,7 +323,7 @@ static lx_status reconnect(kms_dev *k)
 static lx_status fail(kms_dev *k, lx_status s, const char *during)
 {
     if (s == LX_ERR_NO_DEVICE) {
-        snprintf(k->d.err, sizeof k->d.err, "drm: screen disconnected: %.200s", k->why);
+        snprintf(k->d.err, sizeof k->d.err, "drm: screen lost: %.200s", k->why);
         lost(k, during);
     } else {
         snprintf(k->d.err, sizeof k->d.err, "drm: %.240s", k->why);

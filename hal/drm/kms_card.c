@@ -23,9 +23,10 @@
 #include "celscan.h"
 #include "kms_priv.h"
 
+/* EACCES: another program took the screen (DRM master); it is ours again only after it lets go. */
 lx_status kms_errno_status(int e)
 {
-    return e == ENODEV || e == ENXIO || e == ENOENT ? LX_ERR_NO_DEVICE : LX_ERR_IO;
+    return e == ENODEV || e == ENXIO || e == ENOENT || e == EACCES ? LX_ERR_NO_DEVICE : LX_ERR_IO;
 }
 
 static void connector_name(const drmModeConnector *c, char *out, size_t n)
@@ -178,7 +179,7 @@ static lx_status open_path(kms_dev *k, const char *path, char *err, size_t n)
     if (res && !drmIsMaster(k->fd)) {
         /* Mode sets and flips would fail with EACCES on every frame. */
         snprintf(err, n, "%s: another program (a desktop or compositor?) holds the screen as DRM master", path);
-        s = LX_ERR_IO;
+        s = LX_ERR_NO_DEVICE;
     } else if (!res) {
         int e = errno;
         snprintf(err, n, "%s is not a KMS device (%s)", path, strerror(e));

@@ -64,7 +64,7 @@ typedef struct kms_dev {
 
 void kms_say(kms_dev *k, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* LX_ERR_NO_DEVICE for errno values that mean the card or screen went away. */
+/* LX_ERR_NO_DEVICE for errno values that mean the card or screen went away (or was taken). */
 lx_status kms_errno_status(int e);
 
 /*

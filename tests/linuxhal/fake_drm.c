@@ -603,6 +603,13 @@ void fake_drm_set_gone(fake_drm *f, bool gone)
     g_mutex_unlock(&f->mu);
 }
 
+void fake_drm_set_not_master(fake_drm *f, bool taken)
+{
+    g_mutex_lock(&f->mu);
+    f->o.not_master = taken;
+    g_mutex_unlock(&f->mu);
+}
+
 void fake_drm_hold_flips(fake_drm *f, bool hold)
 {
     g_mutex_lock(&f->mu);

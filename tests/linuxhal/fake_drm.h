@@ -54,6 +54,8 @@ void fake_drm_free(fake_drm *f);
 void fake_drm_set_connected(fake_drm *f, bool on);
 /* The card gone: every ioctl and read fails with ENODEV. */
 void fake_drm_set_gone(fake_drm *f, bool gone);
+/* Another program takes DRM master (true) or lets it go (false). */
+void fake_drm_set_not_master(fake_drm *f, bool taken);
 /* Flips stay pending (no vblank comes) until released. */
 void fake_drm_hold_flips(fake_drm *f, bool hold);
 

@@ -404,6 +404,20 @@ static void test_unplug(UMockdevTestbed *tb)
     usleep(30 * 1000);
     s = show(&r, "anim", 0.7f, &st);
     CHECK(s == LX_OK && compare(&r) == 0, "after ENODEV: %s: %s", lx_status_str(s), r.d->err);
+
+    /* Another program takes the screen (DRM master): lost until it lets go. */
+    fake_drm_set_not_master(r.card, true);
+    s = show(&r, "bars", 0.0f, &st);
+    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, strerror(EACCES)), "master taken: %s: %s", lx_status_str(s),
+          r.d->err);
+    usleep(30 * 1000);
+    s = show(&r, "bars", 0.0f, &st);
+    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "holds the screen as DRM master"), "still taken: %s: %s",
+          lx_status_str(s), r.d->err);
+    fake_drm_set_not_master(r.card, false);
+    usleep(30 * 1000);
+    s = show(&r, "anim", 0.8f, &st);
+    CHECK(s == LX_OK && compare(&r) == 0, "master back: %s: %s", lx_status_str(s), r.d->err);
     rig_close(&r, true);
 }
 
