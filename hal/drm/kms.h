@@ -6,8 +6,8 @@
  * it: the preferred one, or the one --mode WxH[@Hz] names (a mode the
  * connector lacks is refused, naming the modes it has). It scans out two
  * dumb buffers in turn (double buffering): lines are written into the back
- * buffer, in XRGB8888 or in RGB565 when the driver prefers 16-bit dumb
- * buffers, as celfw pulls them, and the back buffer is shown with a page
+ * buffer, in XRGB8888 or in RGB565 (when the primary plane takes only
+ * that, or the driver prefers 16-bit dumb buffers), as celfw pulls them, and the back buffer is shown with a page
  * flip: an atomic commit whose FB_DAMAGE_CLIPS name the changed bands where
  * the driver has atomic modesetting and that property, else a legacy flip.
  * A driver that refuses flips gets one buffer, and the changed bands go to

@@ -26,81 +26,21 @@ static const char *const plane_names[KP_NPLANE] = {
     "FB_DAMAGE_CLIPS",
 };
 
-/*
- * Looks up the properties `names` of object id (type) into ids (0 = absent)
- * and the value of property `value_of`, if asked. Returns false if the
- * object's properties cannot be read.
- */
-static bool find_props(int fd, uint32_t id, uint32_t type, const char *const *names, int n, uint32_t *ids,
-                       const char *value_of, uint64_t *value)
-{
-    drmModeObjectProperties *props = drmModeObjectGetProperties(fd, id, type);
-    if (!props)
-        return false;
-    memset(ids, 0, (size_t)n * sizeof *ids);
-    for (uint32_t i = 0; i < props->count_props; i++) {
-        drmModePropertyRes *p = drmModeGetProperty(fd, props->props[i]);
-        if (!p)
-            continue;
-        for (int j = 0; j < n; j++)
-            if (!strcmp(p->name, names[j]))
-                ids[j] = p->prop_id;
-        if (value_of && !strcmp(p->name, value_of))
-            *value = props->prop_values[i];
-        drmModeFreeProperty(p);
-    }
-    drmModeFreeObjectProperties(props);
-    return true;
-}
-
-/* The index of the CRTC among the card's CRTCs (what possible_crtcs bits count). */
-static int crtc_index(int fd, uint32_t crtc)
-{
-    drmModeRes *res = drmModeGetResources(fd);
-    int idx = -1;
-    for (int i = 0; res && i < res->count_crtcs; i++)
-        if (res->crtcs[i] == crtc)
-            idx = i;
-    drmModeFreeResources(res);
-    return idx;
-}
-
-static uint32_t primary_plane(kms_dev *k)
-{
-    int idx = crtc_index(k->fd, k->crtc_id);
-    drmModePlaneRes *pr = drmModeGetPlaneResources(k->fd);
-    uint32_t found = 0;
-    for (uint32_t i = 0; pr && idx >= 0 && idx < 32 && i < pr->count_planes && !found; i++) {
-        drmModePlane *pl = drmModeGetPlane(k->fd, pr->planes[i]);
-        if (!pl)
-            continue;
-        uint64_t type = DRM_PLANE_TYPE_OVERLAY;
-        uint32_t none;
-        if ((pl->possible_crtcs & (1u << idx)) &&
-            find_props(k->fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, NULL, 0, &none, "type", &type) &&
-            type == DRM_PLANE_TYPE_PRIMARY)
-            found = pl->plane_id;
-        drmModeFreePlane(pl);
-    }
-    drmModeFreePlaneResources(pr);
-    return found;
-}
-
 void kms_atomic_setup(kms_dev *k)
 {
     kms_atomic *a = &k->atomic;
     memset(a, 0, sizeof *a);
-    if (drmSetClientCap(k->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0)
+    if (!k->plane || drmSetClientCap(k->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0)
         return; /* no atomic modesetting: the legacy calls serve */
-    a->plane = primary_plane(k);
+    a->plane = k->plane;
     static const char *const crtc_names[] = {"MODE_ID", "ACTIVE"};
     static const char *const conn_names[] = {"CRTC_ID"};
     uint32_t crtc_ids[2], conn_ids[1];
     bool ok = a->plane &&
-              find_props(k->fd, a->plane, DRM_MODE_OBJECT_PLANE, plane_names, KP_NPLANE, a->plane_prop, NULL,
+              kms_find_props(k->fd, a->plane, DRM_MODE_OBJECT_PLANE, plane_names, KP_NPLANE, a->plane_prop, NULL,
                          NULL) &&
-              find_props(k->fd, k->crtc_id, DRM_MODE_OBJECT_CRTC, crtc_names, 2, crtc_ids, NULL, NULL) &&
-              find_props(k->fd, k->conn_id, DRM_MODE_OBJECT_CONNECTOR, conn_names, 1, conn_ids, NULL, NULL);
+              kms_find_props(k->fd, k->crtc_id, DRM_MODE_OBJECT_CRTC, crtc_names, 2, crtc_ids, NULL, NULL) &&
+              kms_find_props(k->fd, k->conn_id, DRM_MODE_OBJECT_CONNECTOR, conn_names, 1, conn_ids, NULL, NULL);
     for (int i = 0; ok && i < KP_NPLANE; i++)
         ok = a->plane_prop[i] != 0; /* FB_DAMAGE_CLIPS too: without it atomic brings nothing here */
     a->crtc_mode_id = crtc_ids[0];

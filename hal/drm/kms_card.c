@@ -18,8 +18,6 @@
 #include <string.h>
 #include <unistd.h>
 
-#include <drm_fourcc.h>
-
 #include "celscan.h"
 #include "kms_priv.h"
 
@@ -148,7 +146,7 @@ static lx_status pick_output(kms_dev *k, drmModeRes *res, char *err, size_t n)
     return LX_ERR_NO_DEVICE;
 }
 
-/* Dumb buffers are a must; their preferred depth says RGB565 or XRGB8888. */
+/* Dumb buffers are a must; the plane's formats and their preferred depth say RGB565 or XRGB8888. */
 static lx_status pick_format(kms_dev *k, char *err, size_t n)
 {
     uint64_t dumb = 0, depth = 0;
@@ -156,14 +154,8 @@ static lx_status pick_format(kms_dev *k, char *err, size_t n)
         snprintf(err, n, "%s: the driver offers no dumb buffers", k->path);
         return errno == ENODEV ? LX_ERR_NO_DEVICE : LX_ERR_PROTOCOL;
     }
-    if (drmGetCap(k->fd, DRM_CAP_DUMB_PREFERRED_DEPTH, &depth) == 0 && depth == 16) {
-        k->fourcc = DRM_FORMAT_RGB565;
-        k->bpp = 16;
-    } else {
-        k->fourcc = DRM_FORMAT_XRGB8888;
-        k->bpp = 32;
-    }
-    return LX_OK;
+    bool prefer16 = drmGetCap(k->fd, DRM_CAP_DUMB_PREFERRED_DEPTH, &depth) == 0 && depth == 16;
+    return kms_plane_format(k, prefer16, err, n);
 }
 
 static lx_status open_path(kms_dev *k, const char *path, char *err, size_t n)

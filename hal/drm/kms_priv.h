@@ -2,8 +2,9 @@
  * kms_priv.h - the DRM/KMS backend's state, shared by its two files.
  *
  * kms_card.c finds the card, connector, mode and CRTC (what a reconnect does
- * again); kms.c owns the dumb buffers and shows frames, through kms_atomic.c
- * where the driver has atomic modesetting with damage clips. Nothing here is
+ * again) with kms_plane.c (the primary plane and its formats); kms.c owns the
+ * dumb buffers and shows frames, through kms_atomic.c where the driver has
+ * atomic modesetting with damage clips. Nothing here is
  * for callers: they see kms.h only.
  */
 #ifndef KMS_PRIV_H
@@ -41,6 +42,7 @@ typedef struct kms_dev {
     int fd;
     char path[128];
     uint32_t conn_id, crtc_id;
+    uint32_t plane;     /* the CRTC's primary plane; 0 = the driver lists none */
     char conn_name[32];
     drmModeModeInfo mode;
     drmModeCrtc *saved; /* the CRTC as we found it, put back at close */
@@ -79,6 +81,19 @@ void kms_card_close(kms_dev *k);
 /* LX_OK while the connector still reports a connected screen. */
 lx_status kms_card_probe(kms_dev *k);
 
+/*
+ * Finds the CRTC's primary plane (k->plane) and chooses the pixel format it
+ * takes: XRGB8888, or RGB565 if the plane takes only that or prefer16 and
+ * it takes both. LX_ERR_PROTOCOL, naming its formats, if it takes neither.
+ */
+lx_status kms_plane_format(kms_dev *k, bool prefer16, char *err, size_t n);
+/*
+ * Looks up the properties `names` of object id (type) into ids (0 = absent)
+ * and the value of property `value_of`, if asked. false if the object's
+ * properties cannot be read.
+ */
+bool kms_find_props(int fd, uint32_t id, uint32_t type, const char *const *names, int n, uint32_t *ids,
+                    const char *value_of, uint64_t *value);
 /*
  * Turns the atomic path on when the driver offers atomic modesetting and the
  * CRTC's primary plane takes FB_DAMAGE_CLIPS; otherwise leaves it off (the

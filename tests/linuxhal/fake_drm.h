@@ -41,6 +41,7 @@ typedef struct fake_drm_opts {
     bool no_dirty;          /* DIRTYFB fails with ENOSYS, as on drivers without it */
     bool not_master;        /* another program is DRM master: master-only ioctls are EACCES */
     int pitch_short;        /* CREATE_DUMB lies: the pitch is this many bytes short of a line */
+    uint32_t plane_formats[4]; /* what the primary plane scans out; none set = XRGB8888, RGB565 */
     bool atomic;            /* the driver offers atomic modesetting */
     bool damage_clips;      /* its primary plane has FB_DAMAGE_CLIPS */
 } fake_drm_opts;

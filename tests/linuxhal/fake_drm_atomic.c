@@ -154,11 +154,14 @@ int fake_drm_get_plane(fake_drm *f, UMockdevIoctlData *d)
     struct drm_mode_get_plane *p = (struct drm_mode_get_plane *)d->data;
     if (p->plane_id != ID_PLANE || !client_cap(f, "fake-drm-universal"))
         return ENOENT;
-    static const uint32_t formats[] = {DRM_FORMAT_XRGB8888, DRM_FORMAT_RGB565};
-    int e = p->count_format_types >= 2
-                ? put_array(d, offsetof(struct drm_mode_get_plane, format_type_ptr), formats, 2, sizeof formats[0])
+    uint32_t formats[4] = {DRM_FORMAT_XRGB8888, DRM_FORMAT_RGB565}, n = 2;
+    if (f->o.plane_formats[0])
+        for (n = 0; n < 4 && f->o.plane_formats[n]; n++)
+            formats[n] = f->o.plane_formats[n];
+    int e = p->count_format_types >= n
+                ? put_array(d, offsetof(struct drm_mode_get_plane, format_type_ptr), formats, n, sizeof formats[0])
                 : 0;
-    p->count_format_types = 2;
+    p->count_format_types = n;
     p->crtc_id = f->mode_valid ? ID_CRTC : 0;
     p->fb_id = f->scanout_fb;
     p->possible_crtcs = 1;

@@ -272,11 +272,15 @@ static void test_modes(UMockdevTestbed *tb)
         CHECK(!kms_parse_mode(bad[i], &c), "mode '%s' accepted", bad[i]);
 }
 
-static void test_rgb565(UMockdevTestbed *tb)
+/* RGB565 when the driver prefers 16-bit dumb buffers, or when the plane takes nothing else. */
+static void test_rgb565(UMockdevTestbed *tb, bool plane_only)
 {
     rig r;
     rig_defaults(&r);
-    r.o.preferred_depth = 16;
+    if (plane_only)
+        r.o.plane_formats[0] = DRM_FORMAT_RGB565;
+    else
+        r.o.preferred_depth = 16;
     char err[320];
     lx_status s = rig_open(&r, tb, err, sizeof err);
     CHECK(s == LX_OK, "open: %s", err);
@@ -600,6 +604,8 @@ static void test_refusals(UMockdevTestbed *tb)
         {"only unusable modes", {.modes = {{0, 0, 60, true}, {9000, 9000, 30, false}}, .nmodes = 2}, LX_ERR_CONFIG,
          "offers no usable mode (it has 0x0@60, 9000x9000@30)", 0},
         {"no modes", {.nmodes = 0}, LX_ERR_CONFIG, "offers no usable mode (it has none)", 0},
+        {"plane takes NV12 only", {.modes = {{96, 64, 60, true}}, .nmodes = 1, .plane_formats = {DRM_FORMAT_NV12}},
+         LX_ERR_NO_DEVICE, "the primary plane takes neither XRGB8888 nor RGB565 (it takes NV12)", 0},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         rig r;
@@ -630,7 +636,8 @@ int main(void)
     }
     test_frames(tb);
     test_modes(tb);
-    test_rgb565(tb);
+    test_rgb565(tb, false);
+    test_rgb565(tb, true);
     test_no_flips(tb, true);
     test_no_flips(tb, false);
     test_unplug(tb);
