@@ -43,11 +43,18 @@ $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(L
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) $(SODIUM_LIBS) -lm -lpthread
 
-# The tests run the real libgpiod and libusb against emulated device nodes:
-# libumockdev-preload redirects /dev and /sys into the test's own testbed.
+# umockdev does not forward mmap: the emulated DRM card's dumb buffers are
+# mapped by this mmap(), linked into test_drm and preloaded into its celfw.
+$(HOST)/tests/test_drm: $(HOST)/obj/tests/linuxhal/shim/drm_mmap.o
+$(HOST)/tests/drm_mmap.so: tests/linuxhal/shim/drm_mmap.c tests/linuxhal/shim/drm_mmap.h
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) -shared -fPIC -O2 -Wall -Wextra -o $@ $<
+
+# The tests run the real libgpiod, libusb and libdrm against emulated device
+# nodes: libumockdev-preload redirects /dev and /sys into the test's own testbed.
 LX_PRELOAD := umockdev-wrapper
 .PHONY: test-linuxhal
-test-linuxhal: $(LX_TESTS) $(HOST)/celfw
+test-linuxhal: $(LX_TESTS) $(HOST)/celfw $(HOST)/tests/drm_mmap.so
 	$(Q)CELFW=$(HOST)/celfw tests/run.sh -- $(foreach t,$(LX_TESTS),"$(LX_PRELOAD) $(t)")
 
 all: $(HOST)/celfw

@@ -19,7 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
-#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <drm_fourcc.h>
@@ -27,21 +26,7 @@
 #include <xf86drmMode.h>
 
 #include "fake_drm_priv.h"
-
-/* Every live fake, for fake_drm_mmap(); the test is the only user. */
-static fake_drm *live_fakes;
-static GMutex live_mu;
-
-/* The kernel's mmap, past the test's own mmap() (which asks fake_drm_mmap). */
-static void *sys_mmap(void *addr, size_t len, int prot, int flags, int fd, off_t off)
-{
-    return (void *)syscall(SYS_mmap, addr, len, prot, flags, fd, off);
-}
-
-static uint64_t map_offset(const fake_drm *f, uint32_t handle)
-{
-    return ((uint64_t)(f->o.index + 1) << 40) | ((uint64_t)handle << 28);
-}
+#include "shim/drm_mmap.h"
 
 void fake_drm_fill_mode(struct drm_mode_modeinfo *m, const fake_drm_mode *fm)
 {
@@ -276,7 +261,7 @@ static int create_dumb(fake_drm *f, UMockdevIoctlData *d)
             close(fd);
         return ENOMEM;
     }
-    void *map = sys_mmap(NULL, size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    void *map = mmap(NULL, size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
     if (map == MAP_FAILED) {
         close(fd);
         return ENOMEM;
@@ -328,7 +313,7 @@ static int map_dumb(fake_drm *f, UMockdevIoctlData *d)
     struct drm_mode_map_dumb *m = (struct drm_mode_map_dumb *)d->data;
     if (!find_dumb(f, m->handle))
         return ENOENT;
-    m->offset = map_offset(f, m->handle);
+    m->offset = drm_mmap_offset(find_dumb(f, m->handle)->memfd);
     return 0;
 }
 
@@ -552,10 +537,6 @@ fake_drm *fake_drm_add(UMockdevTestbed *tb, const fake_drm_opts *o)
         fprintf(stderr, "fake_drm: %s\n", err->message);
         abort();
     }
-    g_mutex_lock(&live_mu);
-    f->next_live = live_fakes;
-    live_fakes = f;
-    g_mutex_unlock(&live_mu);
     return f;
 }
 
@@ -563,13 +544,6 @@ void fake_drm_free(fake_drm *f)
 {
     if (!f)
         return;
-    g_mutex_lock(&live_mu);
-    for (fake_drm **p = &live_fakes; *p; p = &(*p)->next_live)
-        if (*p == f) {
-            *p = f->next_live;
-            break;
-        }
-    g_mutex_unlock(&live_mu);
     umockdev_testbed_detach_ioctl(f->tb, f->node, NULL);
     g_object_unref(f->h);
     char sysdir[128];
@@ -670,28 +644,4 @@ int fake_drm_last_clips(fake_drm *f, int *y, int max)
     }
     g_mutex_unlock(&f->mu);
     return n;
-}
-
-void *fake_drm_mmap(void *addr, size_t len, int prot, int flags, off_t off)
-{
-    void *res = NULL;
-    g_mutex_lock(&live_mu);
-    for (fake_drm *f = live_fakes; f && !res; f = f->next_live) {
-        g_mutex_lock(&f->mu);
-        for (int i = 0; i < MAX_DUMBS; i++) {
-            dumb *d = &f->dumbs[i];
-            if (d->handle_live && (uint64_t)off == map_offset(f, d->handle)) {
-                if (len > d->size) {
-                    errno = EINVAL;
-                    res = MAP_FAILED;
-                } else {
-                    res = sys_mmap(addr, len, prot, flags, d->memfd, 0);
-                }
-                break;
-            }
-        }
-        g_mutex_unlock(&f->mu);
-    }
-    g_mutex_unlock(&live_mu);
-    return res;
 }

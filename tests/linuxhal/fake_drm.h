@@ -13,8 +13,9 @@
  *
  * umockdev forwards ioctl, read and write of an emulated node but not mmap,
  * so a dumb buffer's memory is a memfd the fake owns, and MAP_DUMB hands out
- * a fake offset that fake_drm_mmap() (called from the test's own mmap())
- * turns into a mapping of that memfd, as the kernel maps the GEM object.
+ * an offset naming it (shim/drm_mmap.h) that the mmap() of shim/drm_mmap.c,
+ * linked into the test or preloaded into celfw, maps as the kernel maps the
+ * GEM object. A child process needs FAKE_DRM_PID set to the test's pid.
  */
 #ifndef FAKE_DRM_H
 #define FAKE_DRM_H
@@ -79,9 +80,5 @@ unsigned fake_drm_live_fbs(fake_drm *f);
 /* The clips of the last DirtyFB or atomic commit with FB_DAMAGE_CLIPS: n,
  * and up to max of them as y1, y2 pairs. */
 int fake_drm_last_clips(fake_drm *f, int *y, int max);
-
-/* For the test's mmap(): maps a MAP_DUMB offset of any live fake, or
- * returns NULL when the offset is none of theirs (a real mmap then). */
-void *fake_drm_mmap(void *addr, size_t len, int prot, int flags, off_t off);
 
 #endif /* FAKE_DRM_H */

@@ -68,7 +68,6 @@ struct fake_drm {
     UMockdevIoctlClient *cur; /* the caller of the ioctl being answered */
     blob blobs[MAX_BLOBS];
     uint32_t next_blob;
-    fake_drm *next_live;
 };
 
 void fake_drm_fill_mode(struct drm_mode_modeinfo *m, const fake_drm_mode *fm);

@@ -13,31 +13,21 @@
  * answers ENODEV mid-run (a clear error, then a reconnect), and no card.
  */
 #include <errno.h>
+#include <libgen.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <drm_fourcc.h>
 
+#include "celfw_child.h"
 #include "celfw_scenes.h"
 #include "fake_drm.h"
 #include "kms.h"
 #include "lx_scene_source.h"
 #include "lx_test.h"
-
-/*
- * umockdev does not forward mmap of an emulated node: this mmap() stands in
- * for the kernel's mapping of a dumb buffer's MAP_DUMB offset and passes
- * every other mapping to the kernel. It replaces libc's for this program only.
- */
-void *mmap(void *addr, size_t len, int prot, int flags, int fd, off_t off)
-{
-    void *p = fd >= 0 ? fake_drm_mmap(addr, len, prot, flags, off) : NULL;
-    return p ? p : (void *)syscall(SYS_mmap, addr, len, prot, flags, fd, off);
-}
 
 static cs_workspace ws;
 
@@ -627,6 +617,73 @@ static void test_refusals(UMockdevTestbed *tb)
     }
 }
 
+/*
+ * The real celfw with --backend drm on the emulated card: it shows the scene
+ * (the buffer on the CRTC equals the core's rendering), keeps running while
+ * the screen is unplugged and shows it again once it is back, and gives the
+ * CRTC back at SIGTERM. celfw maps the dumb buffers through the preloaded
+ * shim/drm_mmap.c (build/host/tests/drm_mmap.so, next to celfw's tests).
+ */
+static void test_celfw(UMockdevTestbed *tb)
+{
+    char dir[512], shim[600], preload[1200];
+    snprintf(dir, sizeof dir, "%s", celfw_child_path());
+    snprintf(shim, sizeof shim, "%s/tests/drm_mmap.so", dirname(dir));
+    if (access(shim, R_OK) != 0 || access(celfw_child_path(), X_OK) != 0) {
+        CHECK(false, "celfw test: %s or %s missing (make test-linuxhal builds both)", shim, celfw_child_path());
+        return;
+    }
+    rig r;
+    rig_defaults(&r);
+    r.card = fake_drm_add(tb, &r.o);
+    const char *old = getenv("LD_PRELOAD");
+    char *saved = old ? strdup(old) : NULL;
+    snprintf(preload, sizeof preload, "%s%s%s", old ? old : "", old ? " " : "", shim);
+    char pid[24];
+    snprintf(pid, sizeof pid, "%d", (int)getpid());
+    setenv("LD_PRELOAD", preload, 1);
+    setenv("FAKE_DRM_PID", pid, 1);
+    child c;
+    bool ok = spawn(&c, (const char *[]){"--backend", "drm", "--scene", "builtin:demo", "--fps", "30",
+                                         "--duration", "20", "--log-interval", "0.2", NULL}, false);
+    if (saved)
+        setenv("LD_PRELOAD", saved, 1);
+    else
+        unsetenv("LD_PRELOAD");
+    free(saved);
+    CHECK(ok, "spawn celfw");
+    if (!ok) {
+        fake_drm_free(r.card);
+        return;
+    }
+    char line[1024] = "";
+    bool started = wait_line(&c, "celfw: start", 10.0, line, sizeof line);
+    CHECK(started && strstr(line, "backend=drm display=96x64") && strstr(line, "display_state=up"), "start: %s",
+          started ? line : c.log);
+    celfw_scene_build("demo", &r.scene, 0.0f);
+    usleep(300 * 1000); /* a static scene: after two frames nothing is written or flipped */
+    int bad = compare(&r);
+    CHECK(bad == 0, "celfw's frame differs from the core's rendering in %d pixels", bad);
+
+    fake_drm_set_connected(r.card, false);
+    CHECK(wait_line(&c, "display lost: drm: screen lost: connector HDMI-A-1 reports no screen connected", 5.0,
+                    line, sizeof line), "celfw reports the unplugged screen: %s", c.log);
+    CHECK(wait_line(&c, "celfw: status", 5.0, line, sizeof line) && strstr(line, "display=absent"),
+          "celfw runs on without the screen: %s", line);
+    fake_drm_set_connected(r.card, true);
+    CHECK(wait_line(&c, "drm: screen connected: /dev/dri/card0 connector HDMI-A-1, 96x64@60", 5.0, line,
+                    sizeof line), "celfw reconnects: %s", c.log);
+    usleep(300 * 1000);
+    bad = compare(&r);
+    CHECK(bad == 0, "after the replug celfw's frame differs in %d pixels", bad);
+    kill(c.pid, SIGTERM);
+    int rc = wait_exit(&c, 10.0);
+    CHECK(rc == 0 && strstr(c.log, "reason=signal"), "celfw exit %d: %s", rc, c.log);
+    fake_drm_scanout so;
+    CHECK(all_freed(r.card) && !fake_drm_get_scanout(r.card, &so), "celfw left buffers or a lit CRTC");
+    fake_drm_free(r.card);
+}
+
 int main(void)
 {
     UMockdevTestbed *tb = umockdev_testbed_new();
@@ -648,6 +705,7 @@ int main(void)
     test_atomic(tb, true);
     test_atomic(tb, false);
     test_refusals(tb);
+    test_celfw(tb);
     g_object_unref(tb);
     return lx_test_report("test_drm");
 }
