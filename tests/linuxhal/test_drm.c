@@ -550,6 +550,35 @@ static void test_atomic(UMockdevTestbed *tb, bool damage_clips)
     rig_close(&r, true);
 }
 
+/* With no card named, the first card with a connected connector is taken. */
+static void test_scan(UMockdevTestbed *tb)
+{
+    static rig a, b; /* a rig holds a scene: two are too big for the stack */
+    rig_defaults(&a);
+    rig_defaults(&b);
+    a.o.disconnected = true;   /* card0: an HDMI port with nothing plugged in */
+    b.o.index = 1;             /* card1: the screen, with one mode only */
+    b.o.modes[0] = (fake_drm_mode){64, 48, 50, true};
+    b.o.nmodes = 1;
+    a.card = fake_drm_add(tb, &a.o);
+    char err[320];
+    lx_status s = rig_open(&b, tb, err, sizeof err);
+    CHECK(s == LX_OK, "scan: %s: %s", lx_status_str(s), err);
+    if (s == LX_OK) {
+        kms_info info;
+        kms_get_info(b.d, &info);
+        CHECK(!strcmp(info.device, "/dev/dri/card1") && info.width == 64 && info.refresh == 50,
+              "scan chose %s %dx%d@%d", info.device, info.width, info.height, info.refresh);
+        lx_frame_stats st;
+        s = show(&b, "demo", 0.0f, &st);
+        CHECK(s == LX_OK && compare(&b) == 0, "card1 frame: %s", b.d->err);
+        fake_drm_scanout so;
+        CHECK(!fake_drm_get_scanout(a.card, &so), "card0 lit");
+    }
+    rig_close(&b, s == LX_OK);
+    fake_drm_free(a.card);
+}
+
 /* Started with no screen: waiting, then the screen comes. */
 static void test_wait(UMockdevTestbed *tb)
 {
@@ -702,6 +731,7 @@ int main(void)
     test_flip_timeout(tb);
     test_missing(tb);
     test_wait(tb);
+    test_scan(tb);
     test_atomic(tb, true);
     test_atomic(tb, false);
     test_refusals(tb);
