@@ -1,18 +1,18 @@
 # linuxhal.mk - celfw (firmware for Linux boards), its GPIO (HUB75 through
-# libgpiod) and USB (GUD through libusb) backends, and their tests against
-# emulated kernel devices (umockdev, in process).
+# libgpiod), USB (GUD through libusb) and DRM/KMS (libdrm) backends, and their
+# tests against emulated kernel devices (umockdev, in process).
 #
 #   make build/host/celfw     the board program
 #   make test-linuxhal        the emulated-device tests (also part of make test)
 
-LX_PKGS := libgpiod libusb-1.0 liblz4 libsystemd
+LX_PKGS := libgpiod libusb-1.0 liblz4 libsystemd libdrm
 LX_PKG_CFLAGS = $(shell pkg-config --cflags $(LX_PKGS) 2>/dev/null)
 LX_PKG_LIBS = $(shell pkg-config --libs $(LX_PKGS) 2>/dev/null)
 LX_UMOCKDEV_CFLAGS = $(shell pkg-config --cflags umockdev-1.0 2>/dev/null)
 LX_UMOCKDEV_LIBS = $(shell pkg-config --libs umockdev-1.0 2>/dev/null)
-LX_INC := -Ihal/linux -Ihal/gpio -Ihal/usb -Ifirmware/linux
+LX_INC := -Ihal/linux -Ihal/gpio -Ihal/usb -Ihal/drm -Ifirmware/linux
 
-LX_HAL_SRC := $(wildcard hal/linux/*.c hal/gpio/*.c hal/usb/*.c)
+LX_HAL_SRC := $(wildcard hal/linux/*.c hal/gpio/*.c hal/usb/*.c hal/drm/*.c)
 LX_FW_SRC := $(filter-out firmware/linux/celfw.c,$(wildcard firmware/linux/*.c))
 LX_HAL_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(LX_HAL_SRC))
 LX_FW_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(LX_FW_SRC))
@@ -45,11 +45,18 @@ $(HOST)/tests/test_%: $(HOST)/obj/tests/linuxhal/test_%.o $(LX_TEST_SUPPORT) $(L
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(LX_UMOCKDEV_LIBS) $(SODIUM_LIBS) -lm -lpthread
 
-# The tests run the real libgpiod and libusb against emulated device nodes:
-# libumockdev-preload redirects /dev and /sys into the test's own testbed.
+# umockdev does not forward mmap: the emulated DRM card's dumb buffers are
+# mapped by this mmap(), linked into test_drm and preloaded into its celfw.
+$(HOST)/tests/test_drm: $(HOST)/obj/tests/linuxhal/shim/drm_mmap.o
+$(HOST)/tests/drm_mmap.so: tests/linuxhal/shim/drm_mmap.c tests/linuxhal/shim/drm_mmap.h
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) -shared -fPIC -O2 -Wall -Wextra -o $@ $<
+
+# The tests run the real libgpiod, libusb and libdrm against emulated device
+# nodes: libumockdev-preload redirects /dev and /sys into the test's own testbed.
 LX_PRELOAD := umockdev-wrapper
 .PHONY: test-linuxhal
-test-linuxhal: $(LX_TESTS) $(HOST)/celfw
+test-linuxhal: $(LX_TESTS) $(HOST)/celfw $(HOST)/tests/drm_mmap.so
 	$(Q)CELFW=$(HOST)/celfw tests/run.sh -- $(foreach t,$(LX_TESTS),"$(LX_PRELOAD) $(t)")
 
 all: $(HOST)/celfw

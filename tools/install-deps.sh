@@ -8,7 +8,7 @@ set -eu
 PACKAGES="make gcc g++ pkg-config python3 libcjson-dev libpng-dev libcairo2-dev libfreetype-dev libagg-dev
  libexpat1-dev zlib1g-dev fonts-dejavu-core gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
  libfontconfig-dev libharfbuzz-dev libfribidi-dev fonts-noto-core fonts-noto-cjk fonts-hosny-amiri
- libgpiod-dev libusb-1.0-0-dev umockdev libumockdev-dev liblz4-dev
+ libgpiod-dev libusb-1.0-0-dev umockdev libumockdev-dev liblz4-dev libdrm-dev
  librsvg2-bin adwaita-icon-theme breeze-icon-theme clang libclang-rt-14-dev valgrind
  libmosquitto-dev mosquitto mosquitto-clients openssl libsodium-dev
  gcc-riscv64-unknown-elf libsystemd-dev systemd man-db cmake build-essential debhelper dpkg-dev fakeroot lintian appstream

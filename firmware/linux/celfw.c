@@ -52,6 +52,7 @@
 #include "celfw_wall.h"
 #include "gud_host.h"
 #include "hub75.h"
+#include "kms.h"
 #include "lx_display.h"
 #include "lx_scene_source.h"
 
@@ -422,6 +423,9 @@ static int open_display(celfw *fw)
         c->usb.width = c->width;
         c->usb.height = c->height;
         s = gud_open(&fw->disp, &c->usb, &lx_clock_monotonic, backend_log, fw, err, sizeof err);
+        break;
+    case CELFW_DRM:
+        s = kms_open(&fw->disp, &c->drm, &lx_clock_monotonic, backend_log, fw, err, sizeof err);
         break;
     default:
         s = lx_null_open(&fw->disp, c->width, c->height, &lx_clock_monotonic);

@@ -87,8 +87,10 @@ static bool p_backend(celfw_config *c, const char *v, char *err, size_t n)
         c->backend = CELFW_GPIO;
     else if (!strcmp(v, "usb") || !strcmp(v, "gud"))
         c->backend = CELFW_USB;
+    else if (!strcmp(v, "drm") || !strcmp(v, "kms"))
+        c->backend = CELFW_DRM;
     else {
-        snprintf(err, n, "'%s' is not a backend (gpio, usb or null)", v);
+        snprintf(err, n, "'%s' is not a backend (gpio, usb, drm or null)", v);
         return false;
     }
     return true;
@@ -454,14 +456,35 @@ static bool p_mqtt_key(celfw_config *c, const char *v, char *err, size_t n)
     return set_text(c->mqtt.key_file, sizeof c->mqtt.key_file, v, "file name", err, n);
 }
 
+static bool p_drm_device(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return set_text(c->drm.device, sizeof c->drm.device, v, "device path", err, n);
+}
+
+static bool p_mode(celfw_config *c, const char *v, char *err, size_t n)
+{
+    if (!kms_parse_mode(v, &c->drm)) {
+        snprintf(err, n, "'%s' is not a mode WxH or WxH@HZ (width 1..%d, height 1..%d, 1..1000 Hz)", v,
+                 CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
+        return false;
+    }
+    c->drm_mode_set = true;
+    return true;
+}
+
+static bool p_drm_wait(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return parse_bool(v, &c->drm.wait, err, n);
+}
+
 static bool p_bench(celfw_config *c, const char *v, char *err, size_t n)
 {
     return parse_bool(v, &c->bench_gpio, err, n);
 }
 
 static const setting settings[] = {
-    {"backend", "gpio|usb|null", p_backend, "display backend (default null)"},
-    {"size", "WxH", p_size, "render size (null: required; usb: default the device's mode)"},
+    {"backend", "gpio|usb|drm|null", p_backend, "display backend (default null)"},
+    {"size", "WxH", p_size, "render size (null: required; usb, drm: default the device's mode)"},
     {"fps", "N", p_fps, "frames per second (default 30); 0 = unpaced. HUB75 is always unpaced"},
     {"aa", "none|N", p_aa, "anti-aliasing: pixel centres, or N sub-scanlines (default 4)"},
     {"threads", "N", p_threads, "render bands of lines on N threads, 1..64 (default: the cores; "
@@ -501,6 +524,9 @@ static const setting settings[] = {
     {"usb-retries", "N", p_usb_retries, "USB: extra attempts per rectangle (default 2)"},
     {"usb-reconnect-ms", "MS", p_usb_reconnect, "USB: between reconnect attempts (default 500)"},
     {"usb-wait", "yes|no", p_usb_wait, "USB: start even if the display is absent (needs size)"},
+    {"drm-device", "PATH", p_drm_device, "DRM: the card (default the first /dev/dri/cardN with a screen)"},
+    {"mode", "WxH[@HZ]", p_mode, "DRM: the screen mode (default the connector's preferred one)"},
+    {"drm-wait", "yes|no", p_drm_wait, "DRM: start even if no screen is connected (needs mode or size)"},
 };
 
 static const setting *find(const char *name)
@@ -538,6 +564,7 @@ void celfw_config_default(celfw_config *c)
     c->log_interval = 5.0;
     hub75_config_default(&c->hub75);
     gud_config_default(&c->usb);
+    kms_config_default(&c->drm);
 }
 
 static char *trim(char *s)
@@ -730,6 +757,21 @@ bool celfw_config_check(celfw_config *c, char *err, size_t errlen)
     case CELFW_USB:
         if (c->usb.wait && !c->width) {
             snprintf(err, errlen, "usb-wait needs --size WxH (the display may not be there to ask)");
+            return false;
+        }
+        break;
+    case CELFW_DRM:
+        if (c->width && c->drm_mode_set && (c->width != c->drm.width || c->height != c->drm.height)) {
+            snprintf(err, errlen, "size %dx%d differs from mode %dx%d; leave size out", c->width, c->height,
+                     c->drm.width, c->drm.height);
+            return false;
+        }
+        if (c->width && !c->drm_mode_set) { /* the size asks for the mode of that size */
+            c->drm.width = c->width;
+            c->drm.height = c->height;
+        }
+        if (c->drm.wait && !c->drm.width) {
+            snprintf(err, errlen, "drm-wait needs --mode or --size (the screen may not be there to ask)");
             return false;
         }
         break;

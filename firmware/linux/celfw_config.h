@@ -18,14 +18,15 @@
 #include "celscan.h"
 #include "gud_host.h"
 #include "hub75.h"
+#include "kms.h"
 
 #define CELFW_MAX_TRUST 16
 
-typedef enum celfw_backend { CELFW_NULL = 0, CELFW_GPIO, CELFW_USB } celfw_backend;
+typedef enum celfw_backend { CELFW_NULL = 0, CELFW_GPIO, CELFW_USB, CELFW_DRM } celfw_backend;
 
 typedef struct celfw_config {
     celfw_backend backend;
-    int width, height;     /* null: required; usb: 0 = the device's mode; gpio: derived */
+    int width, height;     /* null: required; usb, drm: 0 = the device's mode; gpio: derived */
     double fps;            /* frame pacing; 0 = as fast as the display takes frames */
     bool fps_set;          /* fps was given (HUB75 is rescanned unpaced, so it may not be) */
     cs_aa_mode aa;
@@ -51,6 +52,8 @@ typedef struct celfw_config {
     int view[4];           /* this board's viewport X, Y, W, H of the wall (W = 0: none) */
     hub75_config hub75;
     gud_config usb;
+    kms_config drm;
+    bool drm_mode_set;     /* --mode was given */
     char config_file[256];
 } celfw_config;
 

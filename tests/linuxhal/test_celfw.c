@@ -73,7 +73,16 @@ static void test_config_errors(void)
                    (const char *[]){"--backend", "usb", "--usb-device", "1d50:fffffffffffffffff", NULL}, 2,
                    "'1d50:fffffffffffffffff' is not VID:PID in hex");
     expect_failure("bad backend", (const char *[]){"--backend", "hdmi", NULL}, 2,
-                   "'hdmi' is not a backend (gpio, usb or null)");
+                   "'hdmi' is not a backend (gpio, usb, drm or null)");
+    expect_failure("bad mode", (const char *[]){"--backend", "drm", "--mode", "1280x720@", NULL}, 2,
+                   "'1280x720@' is not a mode WxH or WxH@HZ");
+    expect_failure("size against mode",
+                   (const char *[]){"--backend", "drm", "--size", "640x480", "--mode", "1280x720", NULL}, 2,
+                   "size 640x480 differs from mode 1280x720");
+    expect_failure("drm-wait without a size", (const char *[]){"--backend", "drm", "--drm-wait", "yes", NULL}, 2,
+                   "drm-wait needs --mode or --size");
+    expect_failure("missing drm card", (const char *[]){"--backend", "drm", "--drm-device", "/dev/dri/card9", NULL},
+                   4, "celfw: error drm: /dev/dri/card9: No such file or directory");
     expect_failure("1/32 scan without E",
                    (const char *[]){"--backend", "gpio", "--panel", "64x64", "--pins", "e=none", NULL}, 2,
                    "needs address line E");
@@ -87,6 +96,14 @@ static void test_config_errors(void)
                    3, "input file:/nonexistent/x: No such file or directory");
     expect_failure("bad scene", (const char *[]){"--backend", "null", "--size", "8x8", "--scene", "builtin:nope", NULL},
                    2, "no such built-in scene");
+
+    /* Waiting for a screen that never comes is running, not failing. */
+    child w;
+    spawn(&w, (const char *[]){"--backend", "drm", "--drm-wait", "yes", "--mode", "64x48", "--duration", "0.5",
+                               "--log-interval", "0", NULL}, false);
+    int wrc = wait_exit(&w, 10.0);
+    CHECK(wrc == 0 && strstr(w.log, "drm: no screen yet") && strstr(w.log, "reason=duration") &&
+          strstr(w.log, "display=absent"), "drm-wait with no card: exit %d: %s", wrc, w.log);
 
     char path[] = "/tmp/celfw-test-XXXXXX";
     int fd = mkstemp(path);

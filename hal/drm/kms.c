@@ -1,0 +1,488 @@
+/*
+ * kms.c - showing frames on a DRM/KMS screen: dumb buffers, flips, damage, recovery.
+ *
+ * Two dumb buffers (DRM_IOCTL_MODE_CREATE_DUMB, an FB each, mapped with
+ * MAP_DUMB + mmap) take turns. A frame's lines go into the back buffer as
+ * they are rendered, and the first frame is shown with a mode set, the rest
+ * with page flips whose completion event is awaited before the buffer that
+ * was on screen is written again. A driver that refuses flips gets one mode
+ * set and then a single buffer: lines are written where they are scanned
+ * out and the changed bands are reported with DirtyFB, which is what the
+ * drivers without flips (manual-update panels, virtual GPUs) need to upload
+ * them; a driver without DirtyFB (ENOSYS) is not asked again. A legacy flip
+ * carries no damage, so the kernel counts the whole plane as changed there;
+ * where the driver has atomic modesetting and damage clips, kms_atomic.c
+ * shows the frames instead, and its flips carry the changed bands.
+ *
+ * Which lines a buffer holds is known from a hash per line (lx_damage), so
+ * an unchanged line costs no write to the (write-combined, slow to read)
+ * buffer and a frame equal to the screen costs no flip.
+ */
+#include <errno.h>
+#include <poll.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+
+#include <drm_fourcc.h>
+
+#include "celscan.h"
+#include "cli_num.h"
+#include "kms_priv.h"
+#include "lx_pixel.h"
+
+#define KMS_MAX_CLIPS 64 /* bands per DirtyFB; more are merged (the kernel takes 256) */
+
+void kms_say(kms_dev *k, const char *fmt, ...)
+{
+    if (!k->d.log)
+        return;
+    char msg[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    k->d.log(k->d.log_user, "drm: %s", msg);
+}
+
+void kms_config_default(kms_config *c)
+{
+    memset(c, 0, sizeof *c);
+    c->reconnect_ms = 500;
+    c->probe_ms = 500;
+    c->flip_timeout_ms = 1000;
+}
+
+bool kms_parse_mode(const char *s, kms_config *c)
+{
+    char size[32];
+    const char *at = strchr(s, '@');
+    size_t n = at ? (size_t)(at - s) : strlen(s);
+    if (n == 0 || n >= sizeof size)
+        return false;
+    memcpy(size, s, n);
+    size[n] = 0;
+    int w, h;
+    long hz = 0;
+    if (!cli_size(size, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT, &w, &h))
+        return false;
+    if (at && !cli_int(at + 1, 10, '\0', 1, 1000, &hz))
+        return false;
+    c->width = w;
+    c->height = h;
+    c->refresh = (int)hz;
+    return true;
+}
+
+/* ------------------------------------------------------------ buffers */
+
+static void drop_buffer(kms_dev *k, kms_buf *b)
+{
+    if (b->map)
+        munmap(b->map, b->size);
+    if (b->fb)
+        drmModeRmFB(k->fd, b->fb);
+    if (b->handle) {
+        struct drm_mode_destroy_dumb dd = {.handle = b->handle};
+        drmIoctl(k->fd, DRM_IOCTL_MODE_DESTROY_DUMB, &dd);
+    }
+    b->map = NULL;
+    b->fb = b->handle = 0;
+    lx_damage_invalidate(&b->held, 0, b->held.height);
+}
+
+static lx_status make_buffer(kms_dev *k, kms_buf *b)
+{
+    struct drm_mode_create_dumb cd = {.width = (uint32_t)k->width, .height = (uint32_t)k->height, .bpp = k->bpp};
+    if (drmIoctl(k->fd, DRM_IOCTL_MODE_CREATE_DUMB, &cd) != 0) {
+        snprintf(k->why, sizeof k->why, "creating a %dx%d dumb buffer: %s", k->width, k->height, strerror(errno));
+        return kms_errno_status(errno);
+    }
+    b->handle = cd.handle;
+    size_t row = (size_t)k->width * k->bpp / 8u;
+    if (cd.pitch < row || cd.size < (uint64_t)cd.pitch * (uint64_t)k->height) {
+        snprintf(k->why, sizeof k->why, "the driver gave a dumb buffer of pitch %u, size %llu for %dx%d",
+                 cd.pitch, (unsigned long long)cd.size, k->width, k->height);
+        return LX_ERR_PROTOCOL;
+    }
+    if (k->pitch && cd.pitch != k->pitch) {
+        snprintf(k->why, sizeof k->why, "the two dumb buffers differ in pitch (%u, %u)", k->pitch, cd.pitch);
+        return LX_ERR_PROTOCOL;
+    }
+    k->pitch = cd.pitch;
+    b->size = (size_t)cd.size;
+    uint32_t handles[4] = {b->handle}, pitches[4] = {cd.pitch}, offsets[4] = {0};
+    if (drmModeAddFB2(k->fd, (uint32_t)k->width, (uint32_t)k->height, k->fourcc, handles, pitches, offsets,
+                      &b->fb, 0) != 0) {
+        snprintf(k->why, sizeof k->why, "adding a framebuffer: %s", strerror(errno));
+        b->fb = 0;
+        return kms_errno_status(errno);
+    }
+    struct drm_mode_map_dumb md = {.handle = b->handle};
+    if (drmIoctl(k->fd, DRM_IOCTL_MODE_MAP_DUMB, &md) != 0) {
+        snprintf(k->why, sizeof k->why, "mapping a dumb buffer: %s", strerror(errno));
+        return kms_errno_status(errno);
+    }
+    void *p = mmap(NULL, b->size, PROT_READ | PROT_WRITE, MAP_SHARED, k->fd, (off_t)md.offset);
+    if (p == MAP_FAILED) {
+        snprintf(k->why, sizeof k->why, "mmap of a dumb buffer: %s", strerror(errno));
+        return kms_errno_status(errno);
+    }
+    b->map = p;
+    lx_damage_invalidate(&b->held, 0, k->height);
+    return LX_OK;
+}
+
+/* Frees what the card holds of ours and closes it (after a loss or at close). */
+static void disconnect(kms_dev *k)
+{
+    if (k->fd >= 0) {
+        kms_atomic_release(k);
+        drop_buffer(k, &k->buf[0]);
+        drop_buffer(k, &k->buf[1]);
+        kms_card_close(k);
+    }
+    k->connected = false;
+    k->flip_pending = false;
+    k->front = -1;
+    k->pitch = 0;
+}
+
+/* The per-line state, sized once the first mode fixed the source's size. */
+static bool alloc_lines(kms_dev *k)
+{
+    if (k->line)
+        return true;
+    k->line = malloc((size_t)k->width * 4u); /* XRGB8888, the widest format */
+    k->rgb = calloc((size_t)k->width * 3u, sizeof(float));
+    return k->line && k->rgb && lx_damage_init(&k->buf[0].held, k->height) &&
+           lx_damage_init(&k->buf[1].held, k->height);
+}
+
+/* Opens the card and makes both buffers; the next frame is a full mode set. */
+static lx_status connect_card(kms_dev *k, char *err, size_t n)
+{
+    lx_status s = kms_card_open(k, err, n);
+    if (s != LX_OK)
+        return s;
+    if (!k->width) {
+        k->width = k->mode.hdisplay;
+        k->height = k->mode.vdisplay;
+    }
+    if (!alloc_lines(k)) {
+        snprintf(k->why, sizeof k->why, "out of memory for %d lines", k->height);
+        s = LX_ERR_NOMEM;
+    }
+    for (int i = 0; i < 2 && s == LX_OK; i++)
+        s = make_buffer(k, &k->buf[i]);
+    if (s != LX_OK) {
+        snprintf(err, n, "%.60s: %.190s", k->path, k->why);
+        disconnect(k);
+        return s;
+    }
+    k->flips = true;
+    k->dirty_fb = true;
+    kms_atomic_setup(k);
+    k->connected = true;
+    k->connects++;
+    k->next_probe_ns = 0;
+    return LX_OK;
+}
+
+static void lost(kms_dev *k, const char *during)
+{
+    kms_say(k, "screen lost (%s during %s); retrying every %u ms", k->why, during, k->cfg.reconnect_ms);
+    disconnect(k);
+    k->next_attempt_ns = lx_now(k->d.clock) + (uint64_t)k->cfg.reconnect_ms * 1000000u;
+    k->quiet_failures = 0;
+}
+
+/* ------------------------------------------------------------- showing */
+
+static void on_flip(int fd, unsigned seq, unsigned sec, unsigned usec, void *user)
+{
+    (void)fd, (void)seq, (void)sec, (void)usec;
+    kms_dev *k = user;
+    k->flip_pending = false;
+    k->flips_done++;
+}
+
+/* Waits until the last flip completed, so the old front buffer may be written. */
+static lx_status wait_flip(kms_dev *k)
+{
+    uint64_t deadline = lx_now(k->d.clock) + (uint64_t)k->cfg.flip_timeout_ms * 1000000u;
+    drmEventContext ev = {.version = 2, .page_flip_handler = on_flip};
+    while (k->flip_pending) {
+        /* The event has usually come while the frame rendered: read first, poll only if not. */
+        int r = drmHandleEvent(k->fd, &ev);
+        if (!k->flip_pending)
+            break;
+        if (r != 0 && errno != EAGAIN && errno != EINTR) {
+            snprintf(k->why, sizeof k->why, "reading the flip event: %s", strerror(errno));
+            return kms_errno_status(errno);
+        }
+        uint64_t now = lx_now(k->d.clock);
+        if (now >= deadline) {
+            snprintf(k->why, sizeof k->why, "page flip not completed after %u ms", k->cfg.flip_timeout_ms);
+            k->flip_pending = false; /* the next flip says whether the CRTC is still busy */
+            return LX_ERR_TIMEOUT;
+        }
+        struct pollfd p = {.fd = k->fd, .events = POLLIN};
+        poll(&p, 1, (int)((deadline - now + 999999u) / 1000000u));
+    }
+    return LX_OK;
+}
+
+static lx_status modeset(kms_dev *k, int b)
+{
+    if (drmModeSetCrtc(k->fd, k->crtc_id, k->buf[b].fb, 0, 0, &k->conn_id, 1, &k->mode) != 0) {
+        snprintf(k->why, sizeof k->why, "setting mode %ux%u on connector %s: %s", k->mode.hdisplay,
+                 k->mode.vdisplay, k->conn_name, strerror(errno));
+        return kms_errno_status(errno);
+    }
+    k->modesets++;
+    return LX_OK;
+}
+
+/* Puts buffer b on screen; clips are the bands that changed from the screen. */
+static lx_status show(kms_dev *k, int b, drmModeClip *clips, int nclips)
+{
+    if (k->atomic.on && (k->front < 0 || b != k->front)) {
+        lx_status s = kms_atomic_show(k, b, clips, nclips, k->front < 0);
+        int e = errno;
+        if (s == LX_OK || s == LX_ERR_NO_DEVICE || s == LX_ERR_NOMEM || e == EBUSY)
+            return s;
+        kms_say(k, "the driver refuses an atomic commit (%s): legacy calls from now on", k->why);
+        kms_atomic_release(k);
+    }
+    if (k->front < 0)
+        return modeset(k, b);
+    if (b != k->front) {
+        if (drmModePageFlip(k->fd, k->crtc_id, k->buf[b].fb, DRM_MODE_PAGE_FLIP_EVENT, k) == 0) {
+            k->flip_pending = true;
+            return LX_OK;
+        }
+        int e = errno;
+        snprintf(k->why, sizeof k->why, "page flip: %s", strerror(e));
+        if (kms_errno_status(e) == LX_ERR_NO_DEVICE || e == EBUSY)
+            return kms_errno_status(e);
+        kms_say(k, "the driver refuses page flips (%s): one buffer from now on, with damage clips",
+                strerror(e));
+        k->flips = false;
+        return modeset(k, b);
+    }
+    if (!k->dirty_fb || nclips == 0)
+        return LX_OK;
+    if (drmModeDirtyFB(k->fd, k->buf[b].fb, clips, (uint32_t)nclips) == 0)
+        return LX_OK;
+    int e = errno;
+    if (e == ENOSYS || e == EOPNOTSUPP) {
+        k->dirty_fb = false; /* the buffer is scanned out as it is: nothing to report */
+        return LX_OK;
+    }
+    snprintf(k->why, sizeof k->why, "DirtyFB of %d bands: %s", nclips, strerror(e));
+    return kms_errno_status(e);
+}
+
+/* Extends the damage by line y (bands are full-width; the last absorbs overflow). */
+static void add_damage(drmModeClip *clips, int *n, int y, int width)
+{
+    if (*n && clips[*n - 1].y2 == (uint16_t)y) {
+        clips[*n - 1].y2 = (uint16_t)(y + 1);
+    } else if (*n == KMS_MAX_CLIPS) {
+        clips[*n - 1].y2 = (uint16_t)(y + 1);
+    } else {
+        clips[*n] = (drmModeClip){0, (uint16_t)y, (uint16_t)width, (uint16_t)(y + 1)};
+        (*n)++;
+    }
+}
+
+static lx_status reconnect(kms_dev *k)
+{
+    uint64_t now = lx_now(k->d.clock);
+    if (now < k->next_attempt_ns) {
+        snprintf(k->d.err, sizeof k->d.err, "drm: screen absent (%.200s)", k->why);
+        return LX_ERR_NO_DEVICE;
+    }
+    char err[256];
+    if (connect_card(k, err, sizeof err) != LX_OK) {
+        k->next_attempt_ns = now + (uint64_t)k->cfg.reconnect_ms * 1000000u;
+        if (k->quiet_failures++ % 20 == 0) /* say why now and then, not on every attempt */
+            kms_say(k, "screen not back yet: %s", err);
+        snprintf(k->d.err, sizeof k->d.err, "drm: %.240s", err);
+        return LX_ERR_NO_DEVICE;
+    }
+    kms_say(k, "screen connected: %s connector %s, %dx%d@%u %s", k->path, k->conn_name, k->width, k->height,
+            k->mode.vrefresh, k->bpp == 16 ? "RGB565" : "XRGB8888");
+    return LX_OK;
+}
+
+static lx_status fail(kms_dev *k, lx_status s, const char *during)
+{
+    if (s == LX_ERR_NO_DEVICE) {
+        snprintf(k->d.err, sizeof k->d.err, "drm: screen lost: %.200s", k->why);
+        lost(k, during);
+    } else {
+        snprintf(k->d.err, sizeof k->d.err, "drm: %.240s", k->why);
+    }
+    return s;
+}
+
+static lx_status kms_present(lx_display *d, const lx_source *src, lx_frame_stats *st)
+{
+    kms_dev *k = (kms_dev *)d;
+    lx_status s;
+    if (!k->connected && (s = reconnect(k)) != LX_OK)
+        return s;
+    uint64_t now = lx_now(d->clock);
+    if (now >= k->next_probe_ns) {
+        if ((s = kms_card_probe(k)) != LX_OK)
+            return fail(k, s, "a connector check");
+        k->next_probe_ns = now + (uint64_t)k->cfg.probe_ms * 1000000u;
+    }
+    if (src->width != k->width || src->height != k->height) {
+        snprintf(d->err, sizeof d->err, "drm: source is %dx%d, the screen %dx%d", src->width, src->height,
+                 k->width, k->height);
+        return LX_ERR_CONFIG;
+    }
+    if ((s = wait_flip(k)) != LX_OK)
+        return fail(k, s, "a page flip");
+    int back = k->front < 0 ? 0 : k->flips ? 1 - k->front : k->front;
+    kms_buf *b = &k->buf[back];
+    const kms_buf *f = k->front < 0 ? NULL : &k->buf[k->front];
+    if ((s = src->begin(src->user, 1)) != LX_OK) {
+        snprintf(d->err, sizeof d->err, "drm: the renderer could not start the frame");
+        return s;
+    }
+    size_t row = (size_t)k->width * k->bpp / 8u;
+    drmModeClip clips[KMS_MAX_CLIPS];
+    int nclips = 0;
+    for (int y = 0; y < k->height; y++) {
+        if ((s = src->line(src->user, 0, y, k->rgb)) != LX_OK) {
+            snprintf(d->err, sizeof d->err, "drm: the renderer failed on line %d", y);
+            return s;
+        }
+        st->lines_rendered++;
+        if (k->fourcc == DRM_FORMAT_RGB565)
+            cs_pixfmt_convert(CS_PIX_RGB565_SRGB, k->rgb, k->width, k->line);
+        else
+            lx_line_xrgb8888(k->rgb, k->width, k->line);
+        uint64_t h = lx_line_hash(k->line, row);
+        bool on_screen = f && !lx_damage_changed(&f->held, y, h);
+        if (lx_damage_changed(&b->held, y, h)) {
+            memcpy(b->map + (size_t)y * k->pitch, k->line, row);
+            lx_damage_commit(&b->held, y, h);
+            st->bytes_raw += row;
+            if (b == f)
+                on_screen = false; /* single buffer: written where it is scanned out */
+        }
+        if (!on_screen) {
+            add_damage(clips, &nclips, y, k->width);
+            st->lines_sent++;
+        }
+        if (d->frame_period_ns) {
+            uint64_t due = d->frame_start_ns + (uint64_t)(y + 1) * d->frame_period_ns / (uint64_t)k->height;
+            if (lx_now(d->clock) > due)
+                st->line_misses++;
+        }
+    }
+    if (f && nclips == 0)
+        return LX_OK; /* the screen already shows this frame */
+    st->rects += (uint64_t)nclips;
+    if ((s = show(k, back, clips, nclips)) != LX_OK) {
+        if (s != LX_ERR_NO_DEVICE)
+            st->errors++;
+        return fail(k, s, "a frame");
+    }
+    k->front = back;
+    return LX_OK;
+}
+
+static bool kms_connected(lx_display *d)
+{
+    return ((kms_dev *)d)->connected;
+}
+
+static void kms_close(lx_display *d)
+{
+    kms_dev *k = (kms_dev *)d;
+    if (k->connected && k->flip_pending)
+        wait_flip(k); /* a buffer must not go while the CRTC still flips to it */
+    disconnect(k);
+    lx_damage_free(&k->buf[0].held);
+    lx_damage_free(&k->buf[1].held);
+    free(k->line);
+    free(k->rgb);
+    free(k);
+}
+
+static const lx_display_ops kms_ops = {"drm", 1, kms_present, kms_connected, kms_close};
+
+lx_status kms_open(lx_display **out, const kms_config *c, const lx_clock *clock, lx_log_fn log,
+                   void *log_user, char *err, size_t errlen)
+{
+    if (c->width < 0 || c->height < 0 || c->width > CS_CFG_MAX_WIDTH || c->height > CS_CFG_MAX_HEIGHT ||
+        (c->width == 0) != (c->height == 0) || c->refresh < 0 || (c->refresh && !c->width) ||
+        (c->wait && !c->width)) {
+        snprintf(err, errlen, "drm: mode %dx%d@%d out of range (%dx%d at most; a rate, and waiting for an "
+                 "absent screen, need a size)", c->width, c->height, c->refresh, CS_CFG_MAX_WIDTH,
+                 CS_CFG_MAX_HEIGHT);
+        return LX_ERR_CONFIG;
+    }
+    kms_dev *k = calloc(1, sizeof *k);
+    if (!k)
+        return LX_ERR_NOMEM;
+    k->cfg = *c;
+    k->fd = -1;
+    k->front = -1;
+    k->d.ops = &kms_ops;
+    k->d.clock = clock;
+    k->d.log = log;
+    k->d.log_user = log_user;
+    char why[256];
+    lx_status s = connect_card(k, why, sizeof why);
+    /* Waiting, a card that is absent, busy or broken counts as absent: the
+     * screen may come. A connector without the mode asked for is the user's to fix. */
+    if (s != LX_OK && !(c->wait && s != LX_ERR_CONFIG && s != LX_ERR_NOMEM)) {
+        snprintf(err, errlen, "drm: %s", why);
+        kms_close(&k->d);
+        return s;
+    }
+    if (s != LX_OK) {
+        k->width = c->width;
+        k->height = c->height;
+        if (!alloc_lines(k)) {
+            kms_close(&k->d);
+            return LX_ERR_NOMEM;
+        }
+        snprintf(k->why, sizeof k->why, "%.190s", why);
+        kms_say(k, "no screen yet (%s); waiting", why);
+    }
+    k->d.width = k->width;
+    k->d.height = k->height;
+    *out = &k->d;
+    return LX_OK;
+}
+
+void kms_get_info(lx_display *d, kms_info *info)
+{
+    kms_dev *k = (kms_dev *)d;
+    memset(info, 0, sizeof *info);
+    info->connected = k->connected;
+    snprintf(info->device, sizeof info->device, "%s", k->path);
+    snprintf(info->connector, sizeof info->connector, "%s", k->conn_name);
+    info->connector_id = k->conn_id;
+    info->crtc_id = k->crtc_id;
+    info->width = k->width;
+    info->height = k->height;
+    info->refresh = (int)k->mode.vrefresh;
+    info->fourcc = k->fourcc;
+    info->flips = k->flips;
+    info->atomic = k->atomic.on;
+    info->dirty_fb = k->dirty_fb;
+    info->flips_done = k->flips_done;
+    info->modesets = k->modesets;
+    info->connects = k->connects;
+}
