@@ -37,14 +37,10 @@
 
 void kms_say(kms_dev *k, const char *fmt, ...)
 {
-    if (!k->d.log)
-        return;
-    char msg[400];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    lx_display_vsay(&k->d, "drm", fmt, ap);
     va_end(ap);
-    k->d.log(k->d.log_user, "drm: %s", msg);
 }
 
 void kms_config_default(kms_config *c)

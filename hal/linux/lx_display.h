@@ -18,6 +18,7 @@
 #ifndef LX_DISPLAY_H
 #define LX_DISPLAY_H
 
+#include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -91,6 +92,12 @@ struct lx_display {
     void *log_user;
     char err[256]; /* the last error, for the caller's message */
 };
+
+/*
+ * A backend's message to d's log (none without one), as "WHO: message":
+ * backends wrap it in a printf-style function of their own (lx_display.c).
+ */
+void lx_display_vsay(const lx_display *d, const char *who, const char *fmt, va_list ap);
 
 /* A display that renders every line and throws it away (tests, dry runs). */
 lx_status lx_null_open(lx_display **out, int width, int height, const lx_clock *clock);

@@ -72,14 +72,10 @@ typedef struct gud_host {
 static void say(gud_host *g, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void say(gud_host *g, const char *fmt, ...)
 {
-    if (!g->d.log)
-        return;
-    char msg[400];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    lx_display_vsay(&g->d, "usb", fmt, ap);
     va_end(ap);
-    g->d.log(g->d.log_user, "usb: %s", msg);
 }
 
 void gud_config_default(gud_config *c)
