@@ -569,6 +569,20 @@ typedef struct cs_exact_piece {
     bool hidden;          /* behind opaque pixels: only its height counts (cs_exact.c) */
 } cs_exact_piece;
 
+/* A contour being converted to segments one knot span at a time
+ * (cs_nurbs.c). Private to the core; it lives in the workspace rather than
+ * on the stack, which a 64 KiB board keeps small. */
+typedef struct cs__contour_iter {
+    const cs_point *points;
+    const float *intervals;
+    const cs_affine *to_device;
+    float ymin, ymax;       /* the control points' device y range */
+    int count, degree, j;   /* j: the next knot span to look at */
+    uint16_t region;
+    bool have_basis;        /* basis holds the segment matrix for knots `last` */
+    float basis[4][4], last[8];
+} cs__contour_iter;
+
 /*
  * A prepared frame: what cs_frame_begin computes once and every line only
  * reads. Contents are private to the core.
@@ -582,6 +596,7 @@ typedef struct cs_frame_data {
     float region_T[CS_CFG_MAX_REGIONS][3];
     float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
     float cel_opacity[CS_CFG_MAX_CELS];   /* TRS opacity up the group chain, per frame */
+    cs__contour_iter contour;             /* the contour being converted (preparation only) */
 } cs_frame_data;
 
 /*
