@@ -102,7 +102,7 @@ static int play(uint32_t frames)
                 fw_stream_finish();
             continue;
         }
-        uint32_t ms = (uint32_t)((board_time_us() - start) / 1000u);
+        uint32_t ms = (uint32_t)cm_udiv64(board_time_us() - start, 1000u, 0);
         opts.time = (float)ms / 1000.0f;
         if (fw_stream_commits() == 0 &&
             fw_scenes[job.scene].build(&scene_store, opts.time, &err) != CS_OK)
