@@ -166,16 +166,19 @@ qemu-run: firmware-$(FW_RUN_BOARD) $(if $(STREAM),$(HOST)/celc)
 	$(Q)FW_QEMU="$(FW_QEMU_$(FW_RUN_BOARD))" tools/fw_qemu_run.sh $(BUILD)/$(FW_RUN_BOARD)/celfw.elf \
 		$(if $(STREAM),--stream "$(STREAM)",--scene "$(SCENE)") "$(SIZE)" "$(TIME)" "$(AA)"
 
-# The board demo, the animated scene and the beta stack, streamed, at 480x272
-# with 5 and 16 sub-scanlines; then the built-in jobs.
+# The full demo (rendered in bands), the reduced board demo, the animated
+# scene and the beta stack, streamed, at 480x272 with 5 and 16
+# sub-scanlines; then the built-in jobs.
 FW_INSN := $(BUILD)/$(FW_QEMU_BOARD)/insn
 qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen $(HOST)/celc
 	@mkdir -p $(FW_INSN)/streams
+	$(Q)$(HOST)/celc compile scenes/demo.json -o $(FW_INSN)/streams/demo.cels
 	$(Q)$(HOST)/celc compile scenes/demo-board.json -o $(FW_INSN)/streams/demo-board.cels
 	$(Q)$(HOST)/fw_cels_gen --tracks $(FW_INSN)/streams/tracks.cels
 	$(Q)$(HOST)/celc compile scenes/beta-stack.json -o $(FW_INSN)/streams/beta-stack.cels
 	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/stream \
-		"frames=480x272@0:5,480x272@0:16" $(FW_INSN)/streams/demo-board.cels \
+		"frames=480x272@0:5,480x272@0:16" $(FW_INSN)/streams/demo.cels \
+		$(FW_INSN)/streams/demo-board.cels \
 		$(FW_INSN)/streams/tracks.cels $(FW_INSN)/streams/beta-stack.cels
 	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/builtin
 
