@@ -688,6 +688,8 @@ typedef struct cs_renderer {
     float clip_lo, clip_hi;       /* crossings are clamped to these device x (see cs_line.c) */
     bool record;                  /* the early-out is on: opaque runs are skipped */
     bool grey;                    /* every T of the frame is grey: kept in channel 0 alone */
+    bool rows_only;               /* a viewport: the frame keeps only the pieces, segments and
+                                     contours its rows need (cs_frame.c) */
 } cs_renderer;
 
 /*

@@ -15,10 +15,12 @@
  * through vertices, tangents and cusps alike, whatever rounding the solver
  * does in between.
  *
- * Pieces wholly above or below the rows rendered (the viewport's, or the
- * whole output's) are left out, and so are the segments left without a
- * piece: no line would read them, and the arena holds only what the rows
- * need (one segment more while a contour is converted). A board renders a scene larger than its
+ * With a viewport, pieces wholly above or below its rows are left out, and
+ * so are the segments left without a piece and the contours that lie
+ * wholly outside: no line would read them, and the arena holds only what
+ * the rows need (one segment more while a contour is converted). Without
+ * one, every segment and piece is kept, as the tests of the conversion
+ * expect (a horizontal edge is a segment without pieces). A board renders a scene larger than its
  * arena in bands of rows, each prepared as a viewport (firmware/fw_render.c).
  *
  * Pieces are then ordered by y_top so that each line can pick up the newly
@@ -79,8 +81,8 @@ static void segment_xbounds(cs_segment *s, float x0, float width)
 }
 
 /*
- * Appends the monotone pieces of segment `si`, whose end y is `y_end`, that
- * can meet a row of the window [vy, vy + vh): a piece is active on row y
+ * Appends the monotone pieces of segment `si`, whose end y is `y_end`; with
+ * a viewport only those that can meet a row of it, [vy, vy + vh): a piece is active on row y
  * when y_top < y + 1 and y_bot > y (cs_line.c: update_active), so one wholly
  * above or below the window is never read, and leaving it out changes no
  * pixel. It leaves the arena to what the window needs, which is what lets a
@@ -88,7 +90,8 @@ static void segment_xbounds(cs_segment *s, float x0, float width)
  */
 static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t operand)
 {
-    const float row_lo = (float)r->vy, row_hi = (float)(r->vy + r->vh);
+    const float row_lo = r->rows_only ? (float)r->vy : -CS_CFG_COORD_LIMIT;
+    const float row_hi = r->rows_only ? (float)(r->vy + r->vh) : CS_CFG_COORD_LIMIT;
     cs_frame_data *fd = &r->ws->frame;
     const cs_segment *s = &fd->segments[si];
     float cut[6];
@@ -138,12 +141,13 @@ static void copy_segment(cs_segment *d, const cs_segment *s)
 
 /*
  * The segments of one contour that the rows need, and their pieces. The
- * segment in hand sits in the arena's next free slot and keeps it only if
- * split_segment kept a piece of it, so the arena holds what the window
- * needs plus one segment, never a whole contour it would mostly drop. A
- * segment's last piece ends at the next segment's start (exact parity:
- * the chain of end values closes), so the next segment is made first, in
- * the slot after it, and the last one ends at the first one's start.
+ * segment in hand sits in the arena's next free slot and, with a viewport,
+ * keeps it only if split_segment kept a piece of it, so the arena holds
+ * what the window needs plus one segment, never a whole contour it would
+ * mostly drop. A segment's last piece ends at the next segment's start
+ * (exact parity: the chain of end values closes), so the next segment is
+ * made first, in the slot after it, and the last one ends at the first
+ * one's start.
  */
 static cs_status contour_pieces(cs_renderer *r, cs__contour_iter *it, uint8_t operand)
 {
@@ -153,7 +157,8 @@ static cs_status contour_pieces(cs_renderer *r, cs__contour_iter *it, uint8_t op
      * computed on the curve) has no piece there: it is not converted, so a
      * band costs about what its own contours cost. */
     float margin = 1.0f + (it->ymax - it->ymin) * (1.0f / 256.0f);
-    if (it->ymax + margin < (float)r->vy || it->ymin - margin > (float)(r->vy + r->vh))
+    if (r->rows_only &&
+        (it->ymax + margin < (float)r->vy || it->ymin - margin > (float)(r->vy + r->vh)))
         return CS_OK;
     if (r->segment_count >= CS_CFG_MAX_SEGMENTS)
         return CS_ERR_CAP_SEGMENTS;
@@ -170,12 +175,13 @@ static cs_status contour_pieces(cs_renderer *r, cs__contour_iter *it, uint8_t op
             cs__contour_next(it, next);
         segment_xbounds(&fd->segments[si], (float)r->vx, (float)r->vw);
         cs_status st = split_segment(r, si, more ? cs__segment_y(next, 0.0f) : first_y, operand);
+        bool keep = r->piece_count > pieces || !r->rows_only;
         if (st != CS_OK || !more) {
-            if (st == CS_OK && r->piece_count > pieces)
+            if (st == CS_OK && keep)
                 r->segment_count++;
             return st;
         }
-        if (r->piece_count > pieces)
+        if (keep)
             r->segment_count++; /* the next one is in place already */
         else
             copy_segment(&fd->segments[si], next);
@@ -507,6 +513,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     r->cel_end = cel_end < scene->cel_count ? cel_end : scene->cel_count;
     cs__error(&r->sticky, CS_OK, -1, -1, -1, -1);
     bool win = windowed(opts);
+    r->rows_only = win;
     r->vx = win ? opts->view_x : 0;
     r->vy = win ? opts->view_y : 0;
     r->vw = win ? opts->view_w : opts->width;
@@ -638,6 +645,7 @@ cs_status cs_frame_share(cs_renderer *r, cs_workspace *ws, const cs_renderer *pr
     r->vy = prepared->vy;
     r->vw = prepared->vw;
     r->vh = prepared->vh;
+    r->rows_only = prepared->rows_only;
     r->clip_lo = prepared->clip_lo;
     r->clip_hi = prepared->clip_hi;
     read_frame(ws, &src->frame);
