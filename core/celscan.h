@@ -475,9 +475,13 @@ typedef struct cs_render_opts {
      * of the width x height output is all that is rendered (one board of a video
      * wall). The frame is prepared in the whole output's device coordinates, so
      * every pixel of the window comes out with the bits the whole render gives
-     * it (see cs_line.c for the one condition: --aa N with N a power of two);
+     * it (see cs_line.c for the one condition, for a window narrower than the
+     * output: --aa N with N a power of two);
      * lines are view_w pixels (<= CS_CFG_MAX_WIDTH) while the whole may be up to
      * CS_CFG_MAX_WALL on a side. Line y and the sink's y count from view_y.
+     * The frame holds only the contours, segments and pieces that reach the
+     * window's rows, so a full-width band of rows is also how a small board
+     * renders a scene larger than its segment arena, band by band.
      * view_w = view_h = 0: the whole output. */
     int view_x, view_y, view_w, view_h;
 } cs_render_opts;
