@@ -475,9 +475,13 @@ typedef struct cs_render_opts {
      * of the width x height output is all that is rendered (one board of a video
      * wall). The frame is prepared in the whole output's device coordinates, so
      * every pixel of the window comes out with the bits the whole render gives
-     * it (see cs_line.c for the one condition: --aa N with N a power of two);
+     * it (see cs_line.c for the one condition, for a window narrower than the
+     * output: --aa N with N a power of two);
      * lines are view_w pixels (<= CS_CFG_MAX_WIDTH) while the whole may be up to
      * CS_CFG_MAX_WALL on a side. Line y and the sink's y count from view_y.
+     * The frame holds only the contours, segments and pieces that reach the
+     * window's rows, so a full-width band of rows is also how a small board
+     * renders a scene larger than its segment arena, band by band.
      * view_w = view_h = 0: the whole output. */
     int view_x, view_y, view_w, view_h;
 } cs_render_opts;
@@ -569,6 +573,20 @@ typedef struct cs_exact_piece {
     bool hidden;          /* behind opaque pixels: only its height counts (cs_exact.c) */
 } cs_exact_piece;
 
+/* A contour being converted to segments one knot span at a time
+ * (cs_nurbs.c). Private to the core; it lives in the workspace rather than
+ * on the stack, which a 64 KiB board keeps small. */
+typedef struct cs__contour_iter {
+    const cs_point *points;
+    const float *intervals;
+    const cs_affine *to_device;
+    float ymin, ymax;       /* the control points' device y range */
+    int count, degree, j;   /* j: the next knot span to look at */
+    uint16_t region;
+    bool have_basis;        /* basis holds the segment matrix for knots `last` */
+    float basis[4][4], last[8];
+} cs__contour_iter;
+
 /*
  * A prepared frame: what cs_frame_begin computes once and every line only
  * reads. Contents are private to the core.
@@ -582,6 +600,7 @@ typedef struct cs_frame_data {
     float region_T[CS_CFG_MAX_REGIONS][3];
     float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
     float cel_opacity[CS_CFG_MAX_CELS];   /* TRS opacity up the group chain, per frame */
+    cs__contour_iter contour;             /* the contour being converted (preparation only) */
 } cs_frame_data;
 
 /*
@@ -673,6 +692,8 @@ typedef struct cs_renderer {
     float clip_lo, clip_hi;       /* crossings are clamped to these device x (see cs_line.c) */
     bool record;                  /* the early-out is on: opaque runs are skipped */
     bool grey;                    /* every T of the frame is grey: kept in channel 0 alone */
+    bool rows_only;               /* a viewport: the frame keeps only the pieces, segments and
+                                     contours its rows need (cs_frame.c) */
 } cs_renderer;
 
 /*

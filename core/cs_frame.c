@@ -15,6 +15,14 @@
  * through vertices, tangents and cusps alike, whatever rounding the solver
  * does in between.
  *
+ * With a viewport, pieces wholly above or below its rows are left out, and
+ * so are the segments left without a piece and the contours that lie
+ * wholly outside: no line would read them, and the arena holds only what
+ * the rows need (one segment more while a contour is converted). Without
+ * one, every segment and piece is kept, as the tests of the conversion
+ * expect (a horizontal edge is a segment without pieces). A board renders a scene larger than its
+ * arena in bands of rows, each prepared as a viewport (firmware/fw_render.c).
+ *
  * Pieces are then ordered by y_top so that each line can pick up the newly
  * active ones with a moving index instead of scanning them all.
  *
@@ -72,9 +80,18 @@ static void segment_xbounds(cs_segment *s, float x0, float width)
     s->px_hi = (uint16_t)(b > (int32_t)width ? (int32_t)width : b);
 }
 
-/* Appends the monotone pieces of segment `si`, whose end y is `y_end`. */
+/*
+ * Appends the monotone pieces of segment `si`, whose end y is `y_end`; with
+ * a viewport only those that can meet a row of it, [vy, vy + vh): a piece is active on row y
+ * when y_top < y + 1 and y_bot > y (cs_line.c: update_active), so one wholly
+ * above or below the window is never read, and leaving it out changes no
+ * pixel. It leaves the arena to what the window needs, which is what lets a
+ * small board render a scene larger than its arena in bands of rows.
+ */
 static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t operand)
 {
+    const float row_lo = r->rows_only ? (float)r->vy : -CS_CFG_COORD_LIMIT;
+    const float row_hi = r->rows_only ? (float)(r->vy + r->vh) : CS_CFG_COORD_LIMIT;
     cs_frame_data *fd = &r->ws->frame;
     const cs_segment *s = &fd->segments[si];
     float cut[6];
@@ -85,15 +102,16 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t
     float ya = cs__segment_y(s, 0.0f);
     for (int k = 0; k + 1 < n; k++) {
         float yb = (k + 2 == n) ? y_end : cs__segment_y(s, cut[k + 1]);
-        if (ya != yb) {
+        float top = yb > ya ? ya : yb, bot = yb > ya ? yb : ya;
+        if (ya != yb && bot > row_lo && top < row_hi) {
             if (r->piece_count >= CS_CFG_MAX_PIECES)
                 return CS_ERR_CAP_PIECES;
             cs_piece *pc = &fd->pieces[r->piece_count++];
             pc->u0 = cut[k];
             pc->u1 = cut[k + 1];
             pc->dir = yb > ya ? 1 : -1;
-            pc->y_top = yb > ya ? ya : yb;
-            pc->y_bot = yb > ya ? yb : ya;
+            pc->y_top = top;
+            pc->y_bot = bot;
             pc->segment = (cs_index)si;
             pc->region = s->region;
             pc->operand = operand;
@@ -101,6 +119,73 @@ static cs_status split_segment(cs_renderer *r, uint32_t si, float y_end, uint8_t
         ya = yb;
     }
     return CS_OK;
+}
+
+/* *d = *s field by field: a struct copy of this size would be a memcpy
+ * call, which the freestanding core does not have. */
+static void copy_segment(cs_segment *d, const cs_segment *s)
+{
+    for (int k = 0; k < 4; k++) {
+        d->x[k] = s->x[k];
+        d->y[k] = s->y[k];
+        d->w[k] = s->w[k];
+    }
+    d->ox = s->ox;
+    d->oy = s->oy;
+    d->px_lo = s->px_lo;
+    d->px_hi = s->px_hi;
+    d->region = s->region;
+    d->degree = s->degree;
+    d->rational = s->rational;
+}
+
+/*
+ * The segments of one contour that the rows need, and their pieces. The
+ * segment in hand sits in the arena's next free slot and, with a viewport,
+ * keeps it only if split_segment kept a piece of it, so the arena holds
+ * what the window needs plus one segment, never a whole contour it would
+ * mostly drop. A segment's last piece ends at the next segment's start
+ * (exact parity: the chain of end values closes), so the next segment is
+ * made first, in the slot after it, and the last one ends at the first
+ * one's start.
+ */
+static cs_status contour_pieces(cs_renderer *r, cs__contour_iter *it, uint8_t operand)
+{
+    cs_frame_data *fd = &r->ws->frame;
+    /* A contour whose control points all lie a pixel or more above or below
+     * the rows (and more: a 256th of its height, for the rounding of values
+     * computed on the curve) has no piece there: it is not converted, so a
+     * band costs about what its own contours cost. */
+    float margin = 1.0f + (it->ymax - it->ymin) * (1.0f / 256.0f);
+    if (r->rows_only &&
+        (it->ymax + margin < (float)r->vy || it->ymin - margin > (float)(r->vy + r->vh)))
+        return CS_OK;
+    if (r->segment_count >= CS_CFG_MAX_SEGMENTS)
+        return CS_ERR_CAP_SEGMENTS;
+    if (!cs__contour_next(it, &fd->segments[r->segment_count]))
+        return CS_OK;
+    const float first_y = cs__segment_y(&fd->segments[r->segment_count], 0.0f);
+    for (;;) {
+        uint32_t si = r->segment_count, pieces = r->piece_count;
+        bool more = cs__contour_more(it);
+        if (more && si + 1 >= CS_CFG_MAX_SEGMENTS)
+            return CS_ERR_CAP_SEGMENTS;
+        cs_segment *next = &fd->segments[si + 1];
+        if (more)
+            cs__contour_next(it, next);
+        segment_xbounds(&fd->segments[si], (float)r->vx, (float)r->vw);
+        cs_status st = split_segment(r, si, more ? cs__segment_y(next, 0.0f) : first_y, operand);
+        bool keep = r->piece_count > pieces || !r->rows_only;
+        if (st != CS_OK || !more) {
+            if (st == CS_OK && keep)
+                r->segment_count++;
+            return st;
+        }
+        if (keep)
+            r->segment_count++; /* the next one is in place already */
+        else
+            copy_segment(&fd->segments[si], next);
+    }
 }
 
 /* Stable merge sort of piece indices by y_top, using ws->scratch. */
@@ -428,6 +513,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     r->cel_end = cel_end < scene->cel_count ? cel_end : scene->cel_count;
     cs__error(&r->sticky, CS_OK, -1, -1, -1, -1);
     bool win = windowed(opts);
+    r->rows_only = win;
     r->vx = win ? opts->view_x : 0;
     r->vy = win ? opts->view_y : 0;
     r->vw = win ? opts->view_w : opts->width;
@@ -461,7 +547,6 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         r->behind[k] = scene->has_background ? card * stack[k] : stack[3 + k];
     }
 
-    float view_x = (float)r->vx, view_w = (float)r->vw;
     bool grey = !opts->no_grey && (!cache || cache->grey);
     for (uint32_t ci = r->cel_begin; ci < r->cel_end; ci++) {
         if (cache && ci >= cache->cel_first && ci - cache->cel_first < cache->cel_count)
@@ -515,23 +600,12 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
                 if ((tr = cs__track_find(scene, CS_TRACK_POINTS, ki)) != 0 && tr->key_count &&
                     tr->width - cs__track_lead(tr) == 3u * c->point_count && c->point_count <= CS_CFG_MAX_ANIM_POINTS)
                     pts = sample_points(scene, tr, t, ws->anim_points);
-                uint32_t first = r->segment_count, n;
                 int32_t bad;
-                st = cs__contour_segments(pts,
-                                          &scene->intervals[c->first_point], c->point_count,
-                                          c->degree, &dev, (uint16_t)ri, &fd->segments[first],
-                                          CS_CFG_MAX_SEGMENTS - first, &n, &bad);
-                if (st == CS_OK) {
-                    r->segment_count += n;
-                    /* Without CSG every contour winds together in operand 0. */
-                    uint8_t operand = reg->csg_len ? c->operand : 0;
-                    for (uint32_t i = 0; i < n && st == CS_OK; i++) {
-                        uint32_t next = first + (i + 1) % n;
-                        segment_xbounds(&fd->segments[first + i], view_x, view_w);
-                        st = split_segment(r, first + i, cs__segment_y(&fd->segments[next], 0.0f),
-                                           operand);
-                    }
-                }
+                st = cs__contour_begin(&fd->contour, pts, &scene->intervals[c->first_point],
+                                       c->point_count, c->degree, &dev, (uint16_t)ri, &bad);
+                /* Without CSG every contour winds together in operand 0. */
+                if (st == CS_OK)
+                    st = contour_pieces(r, &fd->contour, reg->csg_len ? c->operand : 0);
                 if (st != CS_OK) {
                     cs__error(err, st, (int32_t)ci, (int32_t)(ri - cel->first_region),
                               (int32_t)k, bad);
@@ -571,6 +645,7 @@ cs_status cs_frame_share(cs_renderer *r, cs_workspace *ws, const cs_renderer *pr
     r->vy = prepared->vy;
     r->vw = prepared->vw;
     r->vh = prepared->vh;
+    r->rows_only = prepared->rows_only;
     r->clip_lo = prepared->clip_lo;
     r->clip_hi = prepared->clip_hi;
     read_frame(ws, &src->frame);

@@ -312,16 +312,24 @@ static inline float cs__solve_level_from(const float *num, const float *den, int
 
 /*
  * Converts one closed periodic NURBS contour to rational polynomial segments
- * in device space, each relative to its own origin (cs_segment; cs_nurbs.c).
- * Control points go through `to_device` first;
- * a transformed NURBS is still a NURBS with the same weights. Fails with
- * CS_ERR_RANGE (and *bad_point set) if a transformed point leaves the
- * coordinate limit, or CS_ERR_CAP_SEGMENTS when `capacity` is too small.
+ * in device space, each relative to its own origin (cs_segment; cs_nurbs.c),
+ * one knot span at a time. Control points go through `to_device` first; a
+ * transformed NURBS is still a NURBS with the same weights.
+ * cs__contour_begin fails with CS_ERR_RANGE (and *bad_point set) if a
+ * transformed point leaves the coordinate limit, and otherwise sets the
+ * control points' device y range, which holds the whole curve (positive
+ * weights: the convex hull property); then cs__contour_next
+ * writes the next segment to *out, or returns false after the last. The
+ * arrays and the map must outlive the iteration.
  */
-cs_status cs__contour_segments(const cs_point *points, const float *intervals, int count,
-                               int degree, const cs_affine *to_device, uint16_t region,
-                               cs_segment *out, uint32_t capacity, uint32_t *written,
-                               int32_t *bad_point);
+/* cs__contour_iter is in celscan.h: the frame keeps it in the workspace
+ * (cs_frame_data), off the stack. */
+cs_status cs__contour_begin(cs__contour_iter *it, const cs_point *points, const float *intervals,
+                            int count, int degree, const cs_affine *to_device, uint16_t region,
+                            int32_t *bad_point);
+bool cs__contour_next(cs__contour_iter *it, cs_segment *out);
+/* Whether cs__contour_next has a segment left to give. */
+bool cs__contour_more(const cs__contour_iter *it);
 
 /* Fewest sub-scanlines for which crossings are interpolated (cs_line.c):
  * below it the extra solves and slopes cost about what they save. */

@@ -14,6 +14,10 @@
  * handles non-uniform and repeated knots alike (0/0 terms are zero, as in
  * the recursion's convention).
  *
+ * Segments come one at a time (cs__contour_next), so that the frame keeps
+ * only those its rows need and never holds a whole contour it will mostly
+ * drop (cs_frame.c).
+ *
  * A zero interval yields no segment, and the validation in cs_scene.c
  * guarantees at most p-1 of them in a row, so neighbouring spans still meet
  * with at least C0 continuity and the contour stays closed.
@@ -78,13 +82,12 @@ static int16_t origin(float v)
     return (int16_t)(i < -32768 ? -32768 : i > 32767 ? 32767 : i);
 }
 
-cs_status cs__contour_segments(const cs_point *points, const float *intervals, int count,
-                               int degree, const cs_affine *to_device, uint16_t region,
-                               cs_segment *out, uint32_t capacity, uint32_t *written,
-                               int32_t *bad_point)
+cs_status cs__contour_begin(cs__contour_iter *it, const cs_point *points, const float *intervals,
+                            int count, int degree, const cs_affine *to_device, uint16_t region,
+                            int32_t *bad_point)
 {
-    *written = 0;
     *bad_point = -1;
+    float ymin = CS_CFG_COORD_LIMIT, ymax = -CS_CFG_COORD_LIMIT;
     for (int i = 0; i < count; i++) {
         float x = points[i].x, y = points[i].y;
         float dx = to_device->a * x + to_device->c * y + to_device->e;
@@ -93,78 +96,103 @@ cs_status cs__contour_segments(const cs_point *points, const float *intervals, i
             *bad_point = i;
             return CS_ERR_RANGE;
         }
+        ymin = cs__minf(ymin, dy);
+        ymax = cs__maxf(ymax, dy);
     }
-    uint32_t n = 0;
-    float basis[4][4], last[8];
-    bool have_basis = false;
-    for (int j = 0; j < count; j++) {
-        float h = intervals[j];
-        if (h <= 0.0f)
-            continue;
-        if (n >= capacity)
-            return CS_ERR_CAP_SEGMENTS;
-        /* Indices stay within [0, 2 count): count >= degree + 1 (cs_scene.c). */
-        float knots[8];
-        knots[degree] = 0.0f;
-        for (int m = 0; m < degree + 1; m++) { /* t(j+m+1) */
-            int at = j + m < count ? j + m : j + m - count;
-            knots[degree + m + 1] = knots[degree + m] + intervals[at];
-        }
-        for (int m = 0; m > -degree; m--) { /* t(j+m-1) */
-            int at = j + m - 1 >= 0 ? j + m - 1 : j + m - 1 + count;
-            knots[degree + m - 1] = knots[degree + m] - intervals[at];
-        }
-        bool same = have_basis;
-        for (int m = 0; m <= 2 * degree + 1 && same; m++)
-            same = knots[m] == last[m];
-        if (!same) {
-            span_basis(degree, knots, h, basis);
-            for (int m = 0; m <= 2 * degree + 1; m++)
-                last[m] = knots[m];
-            have_basis = true;
-        }
-
-        cs_segment *s = &out[n];
-        for (int i = 0; i < 4; i++)
-            s->x[i] = s->y[i] = s->w[i] = 0.0f;
-        /* The segment's control points in device space, and its start,
-         * sum_k basis[k][0] w_k P_k / sum_k basis[k][0] w_k. */
-        float px[4] = {0}, py[4] = {0}, pw[4] = {0}, sx = 0.0f, sy = 0.0f, sw = 0.0f;
-        for (int k = 0; k <= degree; k++) {
-            int at = j - degree + k >= 0 ? j - degree + k : j - degree + k + count;
-            const cs_point *p = &points[at];
-            px[k] = to_device->a * p->x + to_device->c * p->y + to_device->e;
-            py[k] = to_device->b * p->x + to_device->d * p->y + to_device->f;
-            pw[k] = p->w;
-            sx += basis[k][0] * pw[k] * px[k];
-            sy += basis[k][0] * pw[k] * py[k];
-            sw += basis[k][0] * pw[k];
-        }
-        /* The origin: the pixel of the segment's start, which lies on the
-         * curve (a control point may lie far off it). Any origin is exact,
-         * so a start that cannot be formed falls back to the first point. */
-        float ax = px[0], ay = py[0];
-        if (sw > 0.0f && cs__absf(sx / sw) <= CS_CFG_COORD_LIMIT &&
-            cs__absf(sy / sw) <= CS_CFG_COORD_LIMIT) {
-            ax = sx / sw;
-            ay = sy / sw;
-        }
-        s->ox = origin(ax);
-        s->oy = origin(ay);
-        float ox = (float)s->ox, oy = (float)s->oy;
-        for (int k = 0; k <= degree; k++) {
-            float hx = pw[k] * (px[k] - ox), hy = pw[k] * (py[k] - oy);
-            for (int i = 0; i <= degree; i++) {
-                s->x[i] += basis[k][i] * hx;
-                s->y[i] += basis[k][i] * hy;
-                s->w[i] += basis[k][i] * pw[k];
-            }
-        }
-        s->degree = (uint8_t)degree;
-        s->rational = !(s->w[1] == 0.0f && s->w[2] == 0.0f && s->w[3] == 0.0f);
-        s->region = region;
-        n++;
-    }
-    *written = n;
+    it->ymin = ymin;
+    it->ymax = ymax;
+    it->points = points;
+    it->intervals = intervals;
+    it->to_device = to_device;
+    it->count = count;
+    it->degree = degree;
+    it->region = region;
+    it->j = 0;
+    it->have_basis = false;
     return CS_OK;
+}
+
+bool cs__contour_more(const cs__contour_iter *it)
+{
+    for (int j = it->j; j < it->count; j++)
+        if (it->intervals[j] > 0.0f)
+            return true;
+    return false;
+}
+
+bool cs__contour_next(cs__contour_iter *it, cs_segment *s)
+{
+    const int count = it->count, degree = it->degree;
+    const float *intervals = it->intervals;
+    const cs_affine *to_device = it->to_device;
+    int j = it->j;
+    while (j < count && intervals[j] <= 0.0f)
+        j++;
+    if (j >= count) {
+        it->j = count;
+        return false;
+    }
+    it->j = j + 1;
+    float h = intervals[j];
+    /* Indices stay within [0, 2 count): count >= degree + 1 (cs_scene.c). */
+    float knots[8];
+    knots[degree] = 0.0f;
+    for (int m = 0; m < degree + 1; m++) { /* t(j+m+1) */
+        int at = j + m < count ? j + m : j + m - count;
+        knots[degree + m + 1] = knots[degree + m] + intervals[at];
+    }
+    for (int m = 0; m > -degree; m--) { /* t(j+m-1) */
+        int at = j + m - 1 >= 0 ? j + m - 1 : j + m - 1 + count;
+        knots[degree + m - 1] = knots[degree + m] - intervals[at];
+    }
+    bool same = it->have_basis;
+    for (int m = 0; m <= 2 * degree + 1 && same; m++)
+        same = knots[m] == it->last[m];
+    if (!same) {
+        span_basis(degree, knots, h, it->basis);
+        for (int m = 0; m <= 2 * degree + 1; m++)
+            it->last[m] = knots[m];
+        it->have_basis = true;
+    }
+    const float(*basis)[4] = (const float(*)[4])it->basis;
+
+    for (int i = 0; i < 4; i++)
+        s->x[i] = s->y[i] = s->w[i] = 0.0f;
+    /* The segment's control points in device space, and its start,
+     * sum_k basis[k][0] w_k P_k / sum_k basis[k][0] w_k. */
+    float px[4] = {0}, py[4] = {0}, pw[4] = {0}, sx = 0.0f, sy = 0.0f, sw = 0.0f;
+    for (int k = 0; k <= degree; k++) {
+        int at = j - degree + k >= 0 ? j - degree + k : j - degree + k + count;
+        const cs_point *p = &it->points[at];
+        px[k] = to_device->a * p->x + to_device->c * p->y + to_device->e;
+        py[k] = to_device->b * p->x + to_device->d * p->y + to_device->f;
+        pw[k] = p->w;
+        sx += basis[k][0] * pw[k] * px[k];
+        sy += basis[k][0] * pw[k] * py[k];
+        sw += basis[k][0] * pw[k];
+    }
+    /* The origin: the pixel of the segment's start, which lies on the
+     * curve (a control point may lie far off it). Any origin is exact,
+     * so a start that cannot be formed falls back to the first point. */
+    float ax = px[0], ay = py[0];
+    if (sw > 0.0f && cs__absf(sx / sw) <= CS_CFG_COORD_LIMIT &&
+        cs__absf(sy / sw) <= CS_CFG_COORD_LIMIT) {
+        ax = sx / sw;
+        ay = sy / sw;
+    }
+    s->ox = origin(ax);
+    s->oy = origin(ay);
+    float ox = (float)s->ox, oy = (float)s->oy;
+    for (int k = 0; k <= degree; k++) {
+        float hx = pw[k] * (px[k] - ox), hy = pw[k] * (py[k] - oy);
+        for (int i = 0; i <= degree; i++) {
+            s->x[i] += basis[k][i] * hx;
+            s->y[i] += basis[k][i] * hy;
+            s->w[i] += basis[k][i] * pw[k];
+        }
+    }
+    s->degree = (uint8_t)degree;
+    s->rational = !(s->w[1] == 0.0f && s->w[2] == 0.0f && s->w[3] == 0.0f);
+    s->region = it->region;
+    return true;
 }

@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "board_api.h"
+#include "cm_startup.h"
 
 typedef struct out {
     char buf[129];
@@ -47,8 +48,9 @@ static void put_number(out *o, uint64_t v, unsigned base, bool upper, bool negat
     char tmp[24];
     int n = 0;
     do {
-        tmp[n++] = digits[v % base];
-        v /= base;
+        uint32_t digit;
+        v = cm_udiv64(v, base, &digit);
+        tmp[n++] = digits[digit];
     } while (v);
     if (negative)
         width--;

@@ -9,6 +9,20 @@
  * which did rely on old contents would show it, in the qemu test, as a
  * mismatch with the host.
  *
+ * A frame is prepared and rendered in bands of rows when the scene has more
+ * segments or pieces than the board's arena holds (CS_CFG_MAX_SEGMENTS,
+ * CS_CFG_MAX_PIECES): each band is a full-width viewport, prepared with only
+ * the pieces that meet its rows (cs_frame.c), so its lines are the bits the
+ * whole frame gives them. On CS_ERR_CAP_SEGMENTS or CS_ERR_CAP_PIECES the
+ * frame is cut into one band more and the band prepared again, down to one
+ * row per band (FreeType's rasterizer halves a band whose cells overflow;
+ * equal bands of height/k rows waste fewer rows than halving). A frame
+ * starts from one band fewer than the one before needed, so the bands grow
+ * back after a busy scene at the cost of at most one refused trial per
+ * frame. The arena can so be sized for a busy band rather than for the
+ * whole signage demo; a band prepares only the contours that reach its
+ * rows (cs_frame.c), so bands cost little more than one preparation.
+ *
  * The fw_mark_* functions do nothing; a QEMU instruction-count plugin
  * (tools/qemu-insn) watches their addresses to split the count into frame
  * preparation, line rendering and line output.
@@ -64,9 +78,54 @@ static uint32_t crc_line_floats(uint32_t crc, const cs_renderer *r, int width)
     return crc;
 }
 
-static cs_status render_lines(const cs_render_opts *opts)
+/* The bands the last frame was cut into (0: none yet), and the bands and
+ * the busiest band's segments and pieces of the frame being rendered. */
+static int band_count;
+static unsigned frame_bands, most_segments, most_pieces;
+
+/* Rows per band when a frame of `height` rows is cut into `bands`. */
+static int band_rows(int height, int bands)
 {
-    for (int y = 0; y < opts->height; y++) {
+    return (height + bands - 1) / bands;
+}
+
+/*
+ * Prepares the band of rows from y of the frame `opts` asks for (its own
+ * viewport, if any, is not used: the firmware renders whole frames), the
+ * frame cut into *bands equal bands (the last cut at the bottom); while
+ * the arena overflows, into one band more.
+ */
+static cs_status begin_band(const cs_scene *scene, const cs_render_opts *opts, int y, int *bands,
+                            cs_error *err)
+{
+    for (;;) {
+        int rows = band_rows(opts->height, *bands);
+        cs_render_opts o = *opts;
+        o.view_x = 0;
+        o.view_w = opts->width;
+        o.view_y = y;
+        o.view_h = rows < opts->height - y ? rows : opts->height - y;
+        cs_status st = cs_frame_begin(&renderer, &work.ws, scene, &o, err);
+        if ((st != CS_ERR_CAP_SEGMENTS && st != CS_ERR_CAP_PIECES) || rows == 1) {
+            if (st == CS_OK) {
+                frame_bands++;
+                if (renderer.segment_count > most_segments)
+                    most_segments = renderer.segment_count;
+                if (renderer.piece_count > most_pieces)
+                    most_pieces = renderer.piece_count;
+            }
+            return st;
+        }
+        /* The next count that makes the bands shorter (rows never grow). */
+        while (*bands < opts->height && band_rows(opts->height, *bands) == rows)
+            (*bands)++;
+    }
+}
+
+/* Renders rows [y, y + rows) of the band prepared in `renderer`. */
+static cs_status render_lines(const cs_render_opts *opts, int y0, int rows)
+{
+    for (int y = y0; y < y0 + rows; y++) {
         cs_status st = cs_render_line_runs(&renderer, y);
         if (st != CS_OK)
             return st;
@@ -80,6 +139,24 @@ static cs_status render_lines(const cs_render_opts *opts)
             return st;
     }
     return cs_frame_error(&renderer).status;
+}
+
+/* The frame in `bands` bands, the first already prepared; *err says what
+ * a later band's preparation refused. */
+static cs_status render_bands(const cs_scene *scene, const cs_render_opts *opts, int bands,
+                              cs_error *err)
+{
+    cs_status st = CS_OK;
+    for (int y = 0, rows = 0; st == CS_OK && y < opts->height; y += rows) {
+        if (y > 0 && (st = begin_band(scene, opts, y, &bands, err)) != CS_OK)
+            break;
+        rows = band_rows(opts->height, bands);
+        st = render_lines(opts, y, rows < opts->height - y ? rows : opts->height - y);
+        if (st != CS_OK)
+            *err = cs_frame_error(&renderer);
+    }
+    band_count = bands;
+    return st;
 }
 
 void fw_render_init(bool want_float_crc)
@@ -119,8 +196,12 @@ int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *lab
 {
     cs_error err;
     uint64_t t0 = board_time_us();
+    /* One band fewer than the last frame needed: the bands grow back after a
+     * busy scene, at the cost of at most one refused trial per frame. */
+    int bands = band_count > 1 ? band_count - 1 : 1;
+    frame_bands = most_segments = most_pieces = 0;
     fw_mark_frame_begin();
-    cs_status st = cs_frame_begin(&renderer, &work.ws, scene, opts, &err);
+    cs_status st = begin_band(scene, opts, 0, &bands, &err);
     fw_mark_frame_ready();
     if (st != CS_OK) {
         fw_report_error(label, "frame", st, &err);
@@ -129,12 +210,12 @@ int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *lab
     float_crc = 0;
     st = mcu_display_begin(&display, opts->width, opts->height);
     if (st == CS_OK)
-        st = render_lines(opts);
+        st = render_bands(scene, opts, bands, &err);
     uint32_t crc = mcu_display_end(&display);
     fw_mark_frame_end();
     uint64_t t1 = board_time_us();
     if (st != CS_OK) {
-        fw_report_error(label, "render", st, &renderer.sticky);
+        fw_report_error(label, "render", st, &err);
         return 1;
     }
     if (quiet)
@@ -142,8 +223,8 @@ int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *lab
     fw_print("frame crc32 %08X\n", (unsigned)crc);
     if (float_crc_on)
         fw_print("float crc32 %08X\n", (unsigned)float_crc);
-    fw_print("%s segments %u pieces %u render_us %llu%s\n", label,
-             (unsigned)renderer.segment_count, (unsigned)renderer.piece_count,
+    fw_print("%s segments %u pieces %u bands %u render_us %llu%s\n", label, most_segments,
+             most_pieces, frame_bands,
              (unsigned long long)(t1 - t0), display.panel_error ? " panel-error" : "");
     return display.panel_error ? 1 : 0;
 }

@@ -102,7 +102,7 @@ static int play(uint32_t frames)
                 fw_stream_finish();
             continue;
         }
-        uint32_t ms = (uint32_t)((board_time_us() - start) / 1000u);
+        uint32_t ms = (uint32_t)cm_udiv64(board_time_us() - start, 1000u, 0);
         opts.time = (float)ms / 1000.0f;
         if (fw_stream_commits() == 0 &&
             fw_scenes[job.scene].build(&scene_store, opts.time, &err) != CS_OK)
@@ -150,10 +150,14 @@ static int link_check(uint32_t expect)
 /* Deliberate faults, so the test can show that a crash fails the run. */
 static volatile uint32_t crash_sink, crash_dividend = 1000;
 
+/* Every word of each frame is written: a frame (72 bytes) is larger than
+ * the 32-byte MPU guard, and one that wrote only its ends could step over
+ * the guard, as it did once main's own frame changed size. */
 __attribute__((noinline)) static uint32_t dive(uint32_t depth)
 {
     volatile uint32_t frame[16];
-    frame[0] = depth;
+    for (int i = 15; i >= 0; i--)
+        frame[i] = depth;
     if (depth == UINT32_MAX) /* never: keeps the recursion from being infinite to the compiler */
         return 0;
     return dive(depth + 1) + frame[0];

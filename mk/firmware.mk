@@ -43,9 +43,19 @@ FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c f
 # per-line path for speed ($(OPT)). The optimisation level changes no
 # result: -ffp-contract=off and no fast-math keep every float operation as
 # written, so the frames' CRCs are the same either way (qemu-test checks).
+# Frame preparation (cs_frame.c, cs_nurbs.c, cs_paint.c's compile) runs
+# once per band, the messages once per error: -Os there costs 3 % of a
+# frame's instructions and saves 2.4 KB. The line code (FW_LINE_SRC: spans
+# and compositing, the root solver, the pixel output) keeps -O2 but inlines
+# only small functions (FW_LINE_OPT): 4 KB less for several per cent more
+# instructions per frame (firmware/README.md), where all of it at -Os
+# would cost 17 % more.
 FW_OPT = $(OPT)
 FW_COLD_OPT := -Os
+FW_LINE_OPT = $(OPT) -finline-limit=20
+FW_LINE_SRC := core/cs_line.c core/cs_poly.c core/cs_pixfmt.c
 FW_COLD_SRC := core/cs_stream.c core/cs_scene.c core/cs_edit.c core/cs_anim.c \
+               core/cs_frame.c core/cs_nurbs.c core/cs_paint.c core/cs_status.c firmware/fw_render.c \
                firmware/main_mcu.c firmware/fw_stream.c firmware/fw_print.c firmware/fw_args.c \
                firmware/fw_mem.c firmware/scenes/fw_scenes.c \
                $(wildcard firmware/boards/*/board.c firmware/boards/stm32f4/*.c) \
@@ -71,11 +81,12 @@ FW_INC_$(1) := -Icore -Ifirmware -Ifirmware/scenes -Ifirmware/boards -Ifirmware/
 FW_OBJ_$(1) := $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(CORE_SRC) $(FW_COMMON_SRC) $$(BOARD_SRC))
 
 $$(eval $$(call flags_record,fw-$(1),$(ARM_CC) $$(FW_CPU_$(1)) $(OPT) $(FW_COLD_OPT) $(FW_CFLAGS) \
-        $$(FW_INC_$(1)) cold: $(FW_COLD_SRC)))
+        $$(FW_INC_$(1)) cold: $(FW_COLD_SRC) line: $(FW_LINE_OPT) $(FW_LINE_SRC)))
 $(BUILD)/$(1)/obj/%.o: %.c $(FLAGS_DIR)/fw-$(1)
 	@mkdir -p $$(dir $$@)
 	$(Q)$(ARM_CC) $$(FW_CPU_$(1)) $$(FW_OPT) $(FW_CFLAGS) $$(FW_INC_$(1)) -c $$< -o $$@
 $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(FW_COLD_SRC)): FW_OPT := $(FW_COLD_OPT)
+$$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(FW_LINE_SRC)): FW_OPT := $(FW_LINE_OPT)
 
 $(BUILD)/$(1)/celfw.elf: $$(FW_OBJ_$(1)) $$(FW_LD_$(1)) linker/sections.ld
 	$(Q)$(ARM_CC) $$(FW_CPU_$(1)) $(FW_LDFLAGS) -T$$(FW_LD_$(1)) \
@@ -155,16 +166,19 @@ qemu-run: firmware-$(FW_RUN_BOARD) $(if $(STREAM),$(HOST)/celc)
 	$(Q)FW_QEMU="$(FW_QEMU_$(FW_RUN_BOARD))" tools/fw_qemu_run.sh $(BUILD)/$(FW_RUN_BOARD)/celfw.elf \
 		$(if $(STREAM),--stream "$(STREAM)",--scene "$(SCENE)") "$(SIZE)" "$(TIME)" "$(AA)"
 
-# The board demo, the animated scene and the beta stack, streamed, at 480x272
-# with 5 and 16 sub-scanlines; then the built-in jobs.
+# The full demo (rendered in bands), the reduced board demo, the animated
+# scene and the beta stack, streamed, at 480x272 with 5 and 16
+# sub-scanlines; then the built-in jobs.
 FW_INSN := $(BUILD)/$(FW_QEMU_BOARD)/insn
 qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen $(HOST)/celc
 	@mkdir -p $(FW_INSN)/streams
+	$(Q)$(HOST)/celc compile scenes/demo.json -o $(FW_INSN)/streams/demo.cels
 	$(Q)$(HOST)/celc compile scenes/demo-board.json -o $(FW_INSN)/streams/demo-board.cels
 	$(Q)$(HOST)/fw_cels_gen --tracks $(FW_INSN)/streams/tracks.cels
 	$(Q)$(HOST)/celc compile scenes/beta-stack.json -o $(FW_INSN)/streams/beta-stack.cels
 	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/stream \
-		"frames=480x272@0:5,480x272@0:16" $(FW_INSN)/streams/demo-board.cels \
+		"frames=480x272@0:5,480x272@0:16" $(FW_INSN)/streams/demo.cels \
+		$(FW_INSN)/streams/demo-board.cels \
 		$(FW_INSN)/streams/tracks.cels $(FW_INSN)/streams/beta-stack.cels
 	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/builtin
 

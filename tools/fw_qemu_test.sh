@@ -16,7 +16,9 @@
 # 2. Streamed scenes. Test scenes are compiled to cel streams on the host
 #    (FW_CELC, default `build/host/celc compile`)
 #    and sent over the UART in one stream:
-#      the board demo (scenes/demo-board.json), the animated scene with
+#      the full signage demo (scenes/demo.json, FW_DEMO names another; 571
+#      control points, rendered in bands of rows where its 275 segments do
+#      not fit the board's arena at once), the animated scene with
 #      keyframe tracks (tests/fw_tracks_scene.c), the beta-model stack
 #      (scenes/beta-stack.json), then the demo again with one byte damaged
 #      (a CRC error), the tracks scene cut short, the demo whole again, and
@@ -57,6 +59,7 @@ ref=${FW_REF:-$default_ref}
 default_celc="$host/celc compile {json} -o {out}"
 celc=${FW_CELC:-$default_celc}
 celsim=${FW_CELSIM:-$host/celsim}
+demo_json=${FW_DEMO:-scenes/demo.json}
 FRAMES=${FW_FRAMES:-480x272@0:5,480x272@0.5:5,480x272@1.25:5,240x136@0.75:none}
 tmo=${FW_QEMU_TIMEOUT:-120}
 qemu="${FW_QEMU:-qemu-system-arm -M mps2-an386} -display none -monitor none
@@ -181,14 +184,14 @@ gen() { # gen JSON OUT
     cmd=$(echo "$celc" | sed -e "s|{json}|$1|g" -e "s|{out}|$2|g")
     $cmd || bad "could not compile $1 to a cel stream ($cmd)"
 }
-gen scenes/demo-board.json "$s/demo.cels"
+gen "$demo_json" "$s/demo.cels"
 gen scenes/beta-stack.json "$s/beta.cels"
 $host/fw_cels_gen --tracks "$s/tracks.cels" || bad "could not write the tracks scene stream"
 # The stream: pieces in order, with their offsets for the expected errors.
 # The last piece is a patch transaction written here, record by record: it
-# moves the demo's blob (cel 6) and brings it to the front; demo-patched.json
-# is the same edit made to the JSON, for celsim.
-python3 - "$s" scenes/demo-board.json <<'EOF' >"$s/pieces.txt"
+# moves the demo's blob (the cel named so) and brings it to the front;
+# demo-patched.json is the same edit made to the JSON, for celsim.
+python3 - "$s" "$demo_json" <<'EOF' >"$s/pieces.txt"
 import json, struct, sys, zlib
 d, demo_json = sys.argv[1], sys.argv[2]
 demo, tracks, beta = (open("%s/%s.cels" % (d, n), "rb").read() for n in ("demo", "tracks", "beta"))
@@ -197,14 +200,15 @@ damaged[16 + 16 + 10] ^= 0x04       # a byte of the first record's payload: CRC 
 cut = tracks[:16 + 16 + 60]         # stream header, transaction header, part of the body
 def rec(kind, payload):
     return struct.pack("<HI", kind, len(payload)) + payload
+scene = json.load(open(demo_json))
+at_blob = [c.get("name") for c in scene["cels"]].index("blob")
 moved = [1.03366, -0.37622, 0.37622, 1.03366, 190, 200]
-body = rec(0x0300, struct.pack("<I6f", 6, *moved)) + rec(0x0204, struct.pack("<II", 6, 0)) + \
-    rec(0x0001, b"")
+body = rec(0x0300, struct.pack("<I6f", at_blob, *moved)) + \
+    rec(0x0204, struct.pack("<II", at_blob, 0)) + rec(0x0001, b"")
 head = b"CSTX" + bytes([1, 0, 0, 0]) + struct.pack("<I", len(body))
 head += struct.pack("<I", zlib.crc32(head))
 patch = head + body + struct.pack("<I", zlib.crc32(head + body))
-scene = json.load(open(demo_json))
-blob = scene["cels"].pop(6)
+blob = scene["cels"].pop(at_blob)
 assert blob["name"] == "blob"
 blob["transform"] = moved
 scene["cels"].insert(0, blob)
@@ -283,7 +287,7 @@ while read -r f size t aa k ev crc fcrc; do
             "$s/ref/frame$f.rgb565"
     else
         case $scene in
-        demo) json=scenes/demo-board.json cels=$s/demo.cels ;;
+        demo) json=$demo_json cels=$s/demo.cels ;;
         beta) json=scenes/beta-stack.json cels=$s/beta.cels ;;
         *) json=$s/demo-patched.json cels=$s/patched.cels ;;
         esac
@@ -388,9 +392,9 @@ while read -r f t k crc fcrc; do
     1) what="play frame $f: beta stack t=$t"
        cmd="$host/fw_host_ref --cels $s/beta.cels --size 480x272 --time $t --aa 5 --crc --float-crc"
        compare_frame "$what" "" "$crc" "" "$celsim render scenes/beta-stack.json --size 480x272 --time $t --aa 5 --crc" ;;
-    *) what="play frame $f: board demo t=$t"
+    *) what="play frame $f: demo t=$t"
        cmd="$host/fw_host_ref --cels $s/demo.cels --size 480x272 --time $t --aa 5 --crc --float-crc"
-       compare_frame "$what" "" "$crc" "" "$celsim render scenes/demo-board.json --size 480x272 --time $t --aa 5 --crc" ;;
+       compare_frame "$what" "" "$crc" "" "$celsim render $demo_json --size 480x272 --time $t --aa 5 --crc" ;;
     esac
     compare_frame "$what" "" "$crc" "$fcrc" "$cmd"
 done <"$p/frames.txt"

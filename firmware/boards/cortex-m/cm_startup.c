@@ -79,6 +79,22 @@ void cm_startup_c(void)
 }
 
 /* Bytes of stack ever used: the painted words not overwritten, from below. */
+uint64_t cm_udiv64(uint64_t n, uint32_t d, uint32_t *rem)
+{
+    /* Long division in base 2^16: the running remainder stays below d, so
+     * (r << 16) | digit fits in 32 bits. */
+    uint64_t q = 0;
+    uint32_t r = 0;
+    for (int shift = 48; shift >= 0; shift -= 16) {
+        uint32_t cur = (r << 16) | (uint32_t)((n >> shift) & 0xFFFFu);
+        q = (q << 16) | (cur / d);
+        r = cur % d;
+    }
+    if (rem)
+        *rem = r;
+    return q;
+}
+
 uint32_t cm_stack_used(void)
 {
     const volatile uint32_t *p = __stack_bottom;

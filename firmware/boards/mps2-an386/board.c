@@ -127,7 +127,7 @@ uint64_t board_time_us(void)
     uint32_t now = TIMER1_VALUE; /* counts down */
     timer_ticks += (uint32_t)(timer_last - now);
     timer_last = now;
-    return timer_ticks / (BOARD_SYSCLK_HZ / 1000000u);
+    return cm_udiv64(timer_ticks, BOARD_SYSCLK_HZ / 1000000u, 0);
 }
 
 const char *board_cmdline(void)

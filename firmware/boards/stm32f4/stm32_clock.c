@@ -12,6 +12,7 @@
 #include "board.h"
 #include "board_api.h"
 #include "cm_regs.h"
+#include "cm_startup.h"
 
 #define RCC_CR CM_REG(0x40023800u)
 #define RCC_PLLCFGR CM_REG(0x40023804u)
@@ -69,5 +70,5 @@ uint64_t board_time_us(void)
     if (cycles < tick.last)
         cycles += SYST_MAX + 1u;
     tick.last = cycles;
-    return cycles / (BOARD_SYSCLK_HZ / 1000000u);
+    return cm_udiv64(cycles, BOARD_SYSCLK_HZ / 1000000u, 0);
 }
