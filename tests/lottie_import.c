@@ -342,6 +342,30 @@ static void test_parent_and_inout(void)
     lt_warnings_free(&w);
 }
 
+/* A solid layer whose colour is not #rrggbb ("" in starts_transparent.json) is white, as
+ * rlottie draws it (checked against librlottie: an 800 x 800 "" solid renders ffffffff). */
+static void test_solid_colour(void)
+{
+    const char *fmt = HEAD "\"layers\":[{\"ty\":1,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+                           "\"ks\":{},\"sw\":100,\"sh\":100,\"sc\":\"%s\"}]}";
+    const char *cases[][2] = {{"", "white"}, {"#ff0000", "red"}, {"red", "white"}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[512], err[256];
+        snprintf(text, sizeof text, fmt, cases[i][0]);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        const cJSON *pig = path(scene, "cels.0.regions.0.paint.pigment");
+        bool white = !strcmp(cases[i][1], "white");
+        CHECK(pig && cJSON_GetArraySize(pig) == 3 &&
+                  cJSON_GetArrayItem(pig, 0)->valuedouble == 1 &&
+                  cJSON_GetArrayItem(pig, 1)->valuedouble == (white ? 1 : 0) &&
+                  cJSON_GetArrayItem(pig, 2)->valuedouble == (white ? 1 : 0),
+              "solid \"%s\" is %s", cases[i][0], cases[i][1]);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
 static void test_warnings_once(void)
 {
     const char *text = HEAD "\"layers\":["
@@ -463,6 +487,7 @@ int main(int argc, char **argv)
     TL_RUN(test_track_matte);
     TL_RUN(test_mask_modes);
     TL_RUN(test_parent_and_inout);
+    TL_RUN(test_solid_colour);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);
     return tl_summary(argv[0]);

@@ -718,7 +718,8 @@ int lt_solid(lt_ctx *c, const cJSON *layer, const lt_time *tm, cJSON *regions)
     if (lt_num(c, layer, "sw", 0, 1e6, 0, &w) || lt_num(c, layer, "sh", 0, 1e6, 0, &h))
         return -1;
     const cJSON *sc = get(layer, "sc");
-    double rgb[3] = {0, 0, 0};
+    /* A colour that is not #rrggbb (some files have "") is white, as rlottie reads it. */
+    double rgb[3] = {1, 1, 1};
     if (cJSON_IsString(sc)) {
         unsigned r, g, b;
         if (sscanf(sc->valuestring, "#%2x%2x%2x", &r, &g, &b) == 3) {
