@@ -112,6 +112,7 @@ static double now(void)
 }
 
 static cs_workspace *ws;
+static cs_status render_err; /* the last frame the core could not render, or CS_OK */
 
 /* The core's frame at time t, W x H, as 8-bit sRGB RGB. */
 static int render_cs(const cs_scene *sc, int W, int H, double t, uint8_t *rgb)
@@ -120,12 +121,12 @@ static int render_cs(const cs_scene *sc, int W, int H, double t, uint8_t *rgb)
     cs_render_opts o = cs_render_defaults(W, H);
     o.time = (float)t;
     cs_error e;
-    if (cs_frame_begin(&r, ws, sc, &o, &e) != CS_OK)
-        return -1;
-    for (int y = 0; y < H; y++)
-        if (cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, rgb + (size_t)3 * W * y) != CS_OK)
-            return -1;
-    return 0;
+    cs_status st = cs_frame_begin(&r, ws, sc, &o, &e);
+    for (int y = 0; y < H && st == CS_OK; y++)
+        st = cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, rgb + (size_t)3 * W * y);
+    if (st != CS_OK)
+        render_err = st;
+    return st == CS_OK ? 0 : -1;
 }
 
 /* rlottie's frame n over white, as 8-bit sRGB RGB. */
@@ -329,6 +330,7 @@ int main(int argc, char **argv)
         uint32_t *buf = malloc((size_t)4 * W * H);
         int ok = 0, nf = frames < (int)total ? frames : (int)total;
         double worst = 99;
+        render_err = CS_OK;
         for (int k = 0; k < nf; k++) {
             size_t n = nf > 1 ? (size_t)llround((double)k * (double)(total - 1) / (nf - 1)) : 0;
             render_rl(a, n, W, H, buf, c1);
@@ -359,6 +361,8 @@ int main(int argc, char **argv)
                name, ok, nf, worst, w.n, len, stream, why);
         for (int i = 0; i < w.n; i++)
             printf("    warning: %s\n", w.text[i]);
+        if (render_err != CS_OK)
+            printf("    celscan could not render a frame: %s\n", cs_status_str(render_err));
         double s1c = 0, s1r = 0, s2c = 0, s2r = 0;
         if (do_speed) {
             speed(sc, a, fr, total / 2, 480, 272, &s1c, &s1r);
