@@ -342,6 +342,46 @@ static void test_parent_and_inout(void)
     lt_warnings_free(&w);
 }
 
+/* A precomp layer over a composition of one layer folds into that layer's TRS track (no
+ * group cel) where its scale is uniform; a non-uniform one keeps the group. Either way the
+ * 40 x 20 rectangle shows at the precomp's scale, whatever the precomp's turn. */
+static void test_precomp_fold(void)
+{
+    const char *fmt = "{\"v\":\"5.5.2\",\"fr\":30,\"ip\":0,\"op\":60,\"w\":100,\"h\":100,"
+        "\"assets\":[{\"id\":\"c\",\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+        "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]}}," RECT_SHAPES "}]}],"
+        "\"layers\":[{\"ty\":0,\"refId\":\"c\",\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,\"w\":100,"
+        "\"h\":100,\"ks\":{\"a\":{\"a\":0,\"k\":[50,50]},\"p\":{\"a\":0,\"k\":[50,50]},"
+        "\"s\":{\"a\":0,\"k\":[50,%d]},\"o\":{\"a\":0,\"k\":100},"
+        "\"r\":{\"a\":1,\"k\":[{\"t\":0,\"s\":[0],\"o\":{\"x\":[0.4],\"y\":[0]},"
+        "\"i\":{\"x\":[0.6],\"y\":[1]}},{\"t\":60,\"s\":[90]}]}}}]}";
+    for (int uniform = 1; uniform >= 0; uniform--) {
+        char text[2048], err[256];
+        snprintf(text, sizeof text, fmt, uniform ? 50 : 100);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            return;
+        int cels = cJSON_GetArraySize(path(scene, "cels"));
+        CHECK(cels == (uniform ? 1 : 2), "%s scale: %d cels", uniform ? "uniform" : "non-uniform",
+              cels);
+        double want = uniform ? 20 * 10 : 20 * 20;
+        for (float t = 0; t < 2; t += 0.5f) {
+            double a = red_area(scene, t);
+            CHECK(fabs(a - want) < 1.5, "%s scale, t = %.1f: red area %.2f, want %.0f",
+                  uniform ? "uniform" : "non-uniform", t, a, want);
+        }
+        if (uniform) {
+            /* The precomp's eased turn is the cel's, on the cel's own cubic keys. */
+            const cJSON *keys = path(scene, "cels.0.animate.trs.keys");
+            CHECK(cJSON_GetArraySize(keys) == 2, "the turn is 2 keys (%d)",
+                  cJSON_GetArraySize(keys));
+        }
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
 /* A solid layer whose colour is not #rrggbb ("" in starts_transparent.json) is white, as
  * rlottie draws it (checked against librlottie: an 800 x 800 "" solid renders ffffffff). */
 static void test_solid_colour(void)
@@ -488,6 +528,7 @@ int main(int argc, char **argv)
     TL_RUN(test_mask_modes);
     TL_RUN(test_parent_and_inout);
     TL_RUN(test_solid_colour);
+    TL_RUN(test_precomp_fold);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);
     return tl_summary(argv[0]);

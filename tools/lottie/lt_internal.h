@@ -134,6 +134,8 @@ typedef struct lt_matte_ctx {
     sv_affine *xf;
 } lt_matte_ctx;
 
+struct lt_fold; /* a precomp layer folded into its composition's one layer (lt_layer.c) */
+
 struct lt_ctx {
     const cJSON *root;
     const cJSON *assets;
@@ -149,6 +151,7 @@ struct lt_ctx {
     cJSON *cels;            /* the scene's "cels", front to back */
     int depth;
     const lt_matte_ctx *matte; /* the matte of the precomp being read, or NULL */
+    const struct lt_fold *fold; /* the precomp layer being folded, or NULL */
 };
 
 /* Records an error (the first one wins); returns -1. */

@@ -91,6 +91,43 @@ static void free_layer_xf(layer_xf *x)
 }
 
 /*
+ * A precomp layer folded into the one layer its composition draws: instead
+ * of a group cel of its own, its transform, opacity and in / out points
+ * compose onto that layer's TRS track, sample by sample. Taken only where
+ * the precomp's transform is a similarity at every sample (uniform scale,
+ * no skew), since then P . T(p) R(r) K S(s) T(-a), K the skew, is
+ * T(P(p)) R(r + rP) K S(s sP) T(-a) again, one TRS key per sample. Files
+ * of many one-layer precomps (1667-firework.json: 104 of them) would
+ * otherwise take a group cel each, beyond the store's cels.
+ */
+struct lt_fold {
+    const layer_xf *x;      /* the precomp layer's transform */
+    const lt_time *tm;      /* its time (the composition it sits in) */
+    const double *visible;  /* its in / out points at each sample */
+    int depth;              /* c->depth of the composition folded into it */
+    int group;              /* the cel its group cel would have sat in */
+};
+
+/* Composes the fold's transform and opacity at sample n onto a TRS sample v (scale and
+ * opacity in percent, as in add_cel). */
+static void fold_sample(const struct lt_fold *fd, int n, double *v)
+{
+    double f = fd->tm->frame[n], a[2], p[2], s[2], r, o;
+    lt_prop_eval(&fd->x->a, f, a);
+    lt_prop_eval(&fd->x->p, f, p);
+    lt_prop_eval(&fd->x->s, f, s);
+    lt_prop_eval(&fd->x->r, f, &r);
+    lt_prop_eval(&fd->x->o, f, &o);
+    double k = s[0] / 100, d = M_PI / 180, cr = cos(r * d), sr = sin(r * d);
+    double dx = v[0] - a[0], dy = v[1] - a[1];
+    v[0] = p[0] + k * (cr * dx - sr * dy);
+    v[1] = p[1] + k * (sr * dx + cr * dy);
+    v[4] *= k, v[5] *= k;
+    v[6] += r;
+    v[9] *= fmin(fmax(o, 0), 100) / 100 * fd->visible[n];
+}
+
+/*
  * Appends a cel: regions (NULL: a group), the layer's transform and/or
  * opacity times visibility as a TRS track or a static transform, and its
  * parent cel. Returns the cel's index.
@@ -110,6 +147,18 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
     for (int k = 0; k < 7; k++)
         if (transform || k == 4)
             lt_signal_note_prop(&sg, ps[k], tm->f0, tm->fscale);
+    /* The folded precomp's layer: its own TRS with the precomp's after it. */
+    const struct lt_fold *fd = c->fold && c->depth == c->fold->depth && parent == c->fold->group &&
+                                       transform ? c->fold : NULL;
+    if (fd) {
+        const layer_xf *fx = fd->x;
+        const lt_prop *fp[5] = {&fx->a, &fx->p, &fx->s, &fx->r, &fx->o};
+        for (int k = 0; k < 5; k++)
+            lt_signal_note_prop(&sg, fp[k], fd->tm->f0, fd->tm->fscale);
+        for (int n = 1; n < N; n++)
+            if (fd->visible[n] != fd->visible[n - 1])
+                lt_signal_break(&sg, n);
+    }
     for (int n = 0; n < N; n++) {
         double f = tm->frame[n], *v = sg.v + 10 * (size_t)n;
         double a[2], p[2], s[2], r, o, sk, sa;
@@ -129,6 +178,8 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
             v[4] = v[5] = 100;
         }
         v[9] = (opacity ? fmin(fmax(o, 0), 100) : 100) * (visible ? visible[n] : 1);
+        if (fd)
+            fold_sample(fd, n, v);
     }
     /* Visibility steps on whole frames: breaks there make them holds. */
     if (visible)
@@ -278,6 +329,39 @@ static int add_content(lt_ctx *c, const char *name, cJSON *regions, const layer_
     free(run_of);
     cJSON_Delete(regions);
     return add_cel(c, name, NULL, x, own_xf, true, visible, tm, group) == holder ? 0 : -1;
+}
+
+/* Whether a precomp layer (transform x, at the samples of tm) folds into its composition
+ * `layers`: they draw one shape or solid layer, with no parenting or track mattes among
+ * them (null layers aside), and the precomp's scale is uniform and unskewed throughout. */
+static bool foldable(const cJSON *layers, const layer_xf *x, const lt_time *tm)
+{
+    int drawn = 0;
+    const cJSON *l;
+    cJSON_ArrayForEach(l, layers)
+    {
+        if (!cJSON_IsObject(l))
+            return false;
+        const cJSON *ty = get(l, "ty"), *hd = get(l, "hd"), *td = get(l, "td"), *tt = get(l, "tt");
+        if (get(l, "parent") || (tt && !(cJSON_IsNumber(tt) && tt->valuedouble == 0)) ||
+            (td && !(cJSON_IsNumber(td) && td->valuedouble == 0)) || (ty && !cJSON_IsNumber(ty)))
+            return false;
+        if (cJSON_IsTrue(hd))
+            continue;
+        int t = ty ? (int)ty->valuedouble : 4;
+        if (t == 4 || t == 1)
+            drawn++;
+        else if (t != 3)
+            return false;
+    }
+    for (int n = 0; n < tm->nframes && drawn == 1; n++) {
+        double s[2], sk;
+        lt_prop_eval(&x->s, tm->frame[n], s);
+        lt_prop_eval(&x->sk, tm->frame[n], &sk);
+        if (s[0] != s[1] || sk != 0)
+            return false;
+    }
+    return drawn == 1;
 }
 
 static const cJSON *find_asset(lt_ctx *c, const char *id)
@@ -647,12 +731,17 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
                     break;
                 }
             }
-            int g = add_cel(c, name, NULL, &X[i], own_xf, true, visible, tm, group);
+            /* Folded into its one layer, or a group cel over its layers. */
+            bool fold = own_xf && !inner.shapes && !c->fold && ttv == 0 &&
+                        foldable(get(asset, "layers"), &X[i], tm);
+            struct lt_fold fd = {&X[i], tm, visible, c->depth + 1, group};
+            int g = fold ? group : add_cel(c, name, NULL, &X[i], own_xf, true, visible, tm, group);
             /* The composition's own frames at each sample. */
-            double *fr = g < 0 ? NULL : malloc((size_t)tm->nframes * sizeof *fr);
+            bool failed = !fold && g < 0;
+            double *fr = failed ? NULL : malloc((size_t)tm->nframes * sizeof *fr);
             if (!fr) {
                 free(inner.xf);
-                rc = g < 0 ? -1 : lt_fail(c, "out of memory");
+                rc = failed ? -1 : lt_fail(c, "out of memory");
                 break;
             }
             lt_prop remap;
@@ -671,8 +760,10 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             lt_time sub = {tm->nframes, fr, (tm->f0 - st) / (sr != 0 ? sr : 1),
                            tm->fscale / (sr != 0 ? sr : 1), NULL};
             c->matte = inner.shapes ? &inner : NULL;
+            c->fold = fold ? &fd : NULL;
             if (rc == 0)
                 rc = lt_layers(c, get(asset, "layers"), &sub, g);
+            c->fold = NULL;
             c->matte = outer;
             free(inner.xf);
             free(fr);
