@@ -103,10 +103,13 @@ DEMO_TARGETS += $(LOTTIE_DEMO)/spinner.json $(LOTTIE_DEMO_FRAMES)
 # lottie-conformance's "fits a board" column) and scenes/groups.json (cel groups, TRS, cubic
 # and hold easing) and scenes/lottie/matte_repeat.json (a repeater under a track matte, made for
 # this check) streamed to the mps2-an386 firmware under QEMU, frame CRCs against celsim's
-# (tools/lottie/qemu_check.sh, about 17 s; in `make test`).
+# (tools/lottie/qemu_check.sh, about 20 s; in `make test`). Scenes the host takes but the
+# board cannot hold are refused there, naming the capacity: bounching_ball.json (66 keys,
+# the board holds 64) and scenes/lottie/twenty_layers.json (20 cels, the board holds 16).
 LOTTIE_QEMU_FILES := mask.json movie_loading.json spin__lil_loader_v2.json \
         gradient_sleepy_loader.json loading_animation.json scene:scenes/groups.json \
-        lottie:scenes/lottie/matte_repeat.json
+        lottie:scenes/lottie/matte_repeat.json too-many-keys:bounching_ball.json \
+        too-many-cels:lottie:scenes/lottie/twenty_layers.json
 .PHONY: lottie-qemu
 lottie-qemu: firmware-mps2-an386 $(HOST)/celc $(HOST)/celsim
 	$(Q)tools/lottie/qemu_check.sh $(HOST)/celc $(HOST)/celsim $(BUILD)/mps2-an386/celfw.elf \
