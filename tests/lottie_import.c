@@ -12,6 +12,9 @@
  * give one warning each per file.
  */
 #include <math.h>
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -382,6 +385,46 @@ static void test_precomp_fold(void)
     }
 }
 
+/* Polystars as Debian's librlottie draws them (checked against it with stars turned 30
+ * degrees and 0..184, rounded, with 5.5 points, and a rounded hexagon: all above 36 dB):
+ * turned by twice their rotation, starting from the top outer vertex; roundness makes the
+ * sides cubics through the same vertices; an animated point count is drawn in whole points
+ * with sharp corners, warned. */
+static void test_polystar(void)
+{
+    const char *fmt = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+        "\"ks\":{},\"shapes\":[{\"ty\":\"gr\",\"it\":[{\"ty\":\"sr\",\"sy\":1,\"d\":1,"
+        "\"pt\":%s,\"p\":{\"a\":0,\"k\":[50,50]},\"r\":{\"a\":0,\"k\":30},"
+        "\"ir\":{\"a\":0,\"k\":20},\"or\":{\"a\":0,\"k\":40},\"is\":{\"a\":0,\"k\":%d},"
+        "\"os\":{\"a\":0,\"k\":%d}},{\"ty\":\"fl\",\"c\":{\"a\":0,\"k\":[1,0,0,1]},"
+        "\"o\":{\"a\":0,\"k\":100}},{\"ty\":\"tr\"}]}]}]}";
+    const char *five = "{\"a\":0,\"k\":5}";
+    const char *grows = "{\"a\":1,\"k\":[{\"t\":0,\"s\":[5]},{\"t\":60,\"s\":[8]}]}";
+    struct {
+        const char *pt;
+        int is, os, degree, warnings;
+    } cases[] = {{five, 0, 0, 1, 0}, {five, 30, 70, 3, 0}, {grows, 30, 70, 1, 1}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[2048], err[256];
+        snprintf(text, sizeof text, fmt, cases[i].pt, cases[i].is, cases[i].os);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        const cJSON *ct = path(scene, "cels.0.regions.0.contours.0");
+        const cJSON *p0 = path(ct, "points.0"), *deg = path(ct, "degree");
+        /* The first vertex: the outer radius at 2 x 30 degrees from the top, clockwise. */
+        double want_x = 50 + 40 * cos((60 - 90) * M_PI / 180);
+        double want_y = 50 + 40 * sin((60 - 90) * M_PI / 180);
+        CHECK(p0 && fabs(cJSON_GetArrayItem(p0, 0)->valuedouble - want_x) < 1e-3 &&
+                  fabs(cJSON_GetArrayItem(p0, 1)->valuedouble - want_y) < 1e-3,
+              "case %zu: starts at (%.3f, %.3f)", i, want_x, want_y);
+        CHECK(deg && deg->valueint == cases[i].degree, "case %zu: sides of degree %d (%d)", i,
+              cases[i].degree, deg ? deg->valueint : -1);
+        CHECK(w.n == cases[i].warnings, "case %zu: %d warnings (%d)", i, cases[i].warnings, w.n);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
 /* A solid layer whose colour is not #rrggbb ("" in starts_transparent.json) is white, as
  * rlottie draws it (checked against librlottie: an 800 x 800 "" solid renders ffffffff). */
 static void test_solid_colour(void)
@@ -529,6 +572,7 @@ int main(int argc, char **argv)
     TL_RUN(test_parent_and_inout);
     TL_RUN(test_solid_colour);
     TL_RUN(test_precomp_fold);
+    TL_RUN(test_polystar);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);
     return tl_summary(argv[0]);

@@ -121,7 +121,7 @@ cJSON *lt_signal_track(const lt_signal *s, double fr,
 
 typedef enum lt_feature {
     LT_F_EXPRESSION, LT_F_EFFECT, LT_F_TEXT, LT_F_IMAGE, LT_F_MERGE, LT_F_3D, LT_F_REPEATER,
-    LT_F_ROUND, LT_F_MATTE, LT_F_MASK, LT_F_AUTO_ORIENT, LT_F_STAR_ROUND,
+    LT_F_ROUND, LT_F_MATTE, LT_F_MASK, LT_F_AUTO_ORIENT, LT_F_STAR_POINTS,
     LT_F_STROKE_ANIM, LT_F_GRADIENT, LT_F_BLEND, LT_F_OTHER, LT_F_COUNT_
 } lt_feature;
 
