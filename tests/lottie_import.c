@@ -385,6 +385,46 @@ static void test_precomp_fold(void)
     }
 }
 
+/* A mask on a precomp layer (one add or subtract mask at full opacity) mattes the
+ * composition's layers: the 40 x 20 rectangle (x 30..70) under a mask over x 0..40 shows
+ * 10 x 20 of it, or 30 x 20 subtracted; two masks stay warned and drawn unmasked. */
+static void test_precomp_mask(void)
+{
+    const char *fmt = "{\"v\":\"5.5.2\",\"fr\":30,\"ip\":0,\"op\":60,\"w\":100,\"h\":100,"
+        "\"assets\":[{\"id\":\"c\",\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+        "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]}}," RECT_SHAPES "}]}],"
+        "\"layers\":[{\"ty\":0,\"refId\":\"c\",\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,\"w\":100,"
+        "\"h\":100,\"ks\":{},\"masksProperties\":[%s]}]}";
+    const char *mask = "{\"mode\":\"%s\",\"inv\":false,\"o\":{\"a\":0,\"k\":100},"
+        "\"pt\":{\"a\":0,\"k\":{\"c\":true,\"v\":[[0,0],[40,0],[40,100],[0,100]],"
+        "\"i\":[[0,0],[0,0],[0,0],[0,0]],\"o\":[[0,0],[0,0],[0,0],[0,0]]}}}";
+    struct {
+        const char *modes;
+        double area;
+        int warnings;
+    } cases[] = {{"a", 200, 0}, {"s", 600, 0}, {"aa", 800, 1}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char masks[1024] = "", one[512], text[4096], err[256];
+        for (const char *m = cases[i].modes; *m; m++) {
+            snprintf(one, sizeof one, mask, (char[]){*m, 0});
+            snprintf(masks + strlen(masks), sizeof masks - strlen(masks), "%s%s",
+                     m == cases[i].modes ? "" : ",", one);
+        }
+        snprintf(text, sizeof text, fmt, masks);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            continue;
+        double a = red_area(scene, 0.5f);
+        CHECK(fabs(a - cases[i].area) < 1.5, "masks \"%s\": red area %.2f, want %.0f",
+              cases[i].modes, a, cases[i].area);
+        CHECK(w.n == cases[i].warnings, "masks \"%s\": %d warnings (%d)", cases[i].modes,
+              cases[i].warnings, w.n);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
 /* Polystars as Debian's librlottie draws them (checked against it with stars turned 30
  * degrees and 0..184, rounded, with 5.5 points, and a rounded hexagon: all above 36 dB):
  * turned by twice their rotation, starting from the top outer vertex; roundness makes the
@@ -573,6 +613,7 @@ int main(int argc, char **argv)
     TL_RUN(test_solid_colour);
     TL_RUN(test_precomp_fold);
     TL_RUN(test_polystar);
+    TL_RUN(test_precomp_mask);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);
     return tl_summary(argv[0]);

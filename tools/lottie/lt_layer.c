@@ -364,6 +364,47 @@ static bool foldable(const cJSON *layers, const layer_xf *x, const lt_time *tm)
     return drawn == 1;
 }
 
+/* Whether a precomp layer's masks are one add or subtract mask (inverted or not) whose
+ * opacity is 100 and expansion 0: returns the matte type it is (1 alpha, 2 inverted) with
+ * *src the shapes of an opaque fill of its path, else 0. */
+static int precomp_mask(const cJSON *masks, cJSON **src)
+{
+    const cJSON *m = cJSON_GetArrayItem(masks, 0), *mode = get(m, "mode"), *pt = get(m, "pt");
+    const cJSON *o = get(m, "o"), *x = get(m, "x");
+    if (cJSON_GetArraySize(masks) != 1 || !cJSON_IsString(mode) || !cJSON_IsObject(pt))
+        return 0;
+    const cJSON *oa = get(o, "a"), *ok = get(o, "k"), *xa = get(x, "a"), *xk = get(x, "k");
+    if ((o && !(cJSON_IsNumber(oa) && oa->valuedouble == 0 && cJSON_IsNumber(ok) &&
+                ok->valuedouble == 100)) ||
+        (x && !(cJSON_IsNumber(xa) && xa->valuedouble == 0 && cJSON_IsNumber(xk) &&
+                xk->valuedouble == 0)))
+        return 0;
+    int tt = !strcmp(mode->valuestring, "a") ? 1 : !strcmp(mode->valuestring, "s") ? 2 : 0;
+    if (tt && cJSON_IsTrue(get(m, "inv")))
+        tt = 3 - tt;
+    if (!tt)
+        return 0;
+    cJSON *shapes = cJSON_CreateArray(), *gr = cJSON_CreateObject(), *it = cJSON_CreateArray();
+    cJSON *sh = cJSON_CreateObject(), *fl = cJSON_CreateObject(), *tr = cJSON_CreateObject();
+    cJSON_AddStringToObject(sh, "ty", "sh");
+    cJSON_AddItemToObject(sh, "ks", cJSON_Duplicate(pt, 1));
+    cJSON_AddStringToObject(fl, "ty", "fl");
+    cJSON *col = cJSON_AddObjectToObject(fl, "c"), *op = cJSON_AddObjectToObject(fl, "o");
+    cJSON_AddNumberToObject(col, "a", 0);
+    cJSON_AddItemToObject(col, "k", cJSON_CreateDoubleArray((const double[]){0, 0, 0, 1}, 4));
+    cJSON_AddNumberToObject(op, "a", 0);
+    cJSON_AddNumberToObject(op, "k", 100);
+    cJSON_AddStringToObject(tr, "ty", "tr");
+    cJSON_AddItemToArray(it, sh);
+    cJSON_AddItemToArray(it, fl);
+    cJSON_AddItemToArray(it, tr);
+    cJSON_AddStringToObject(gr, "ty", "gr");
+    cJSON_AddItemToObject(gr, "it", it);
+    cJSON_AddItemToArray(shapes, gr);
+    *src = shapes;
+    return tt;
+}
+
 static const cJSON *find_asset(lt_ctx *c, const char *id)
 {
     const cJSON *a;
@@ -707,8 +748,6 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
                 lt_warn(c, LT_F_OTHER, "a precomp layer names no composition with layers");
                 continue;
             }
-            if (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)
-                lt_warn(c, LT_F_MASK, "masks on precomp layers are not supported");
             /* The matte its layers take: its own, or the one it is in, carried into its
              * space (one level: a matted precomp within a matted precomp is warned). */
             lt_matte_ctx inner = {NULL, 0, NULL};
@@ -731,6 +770,23 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
                     break;
                 }
             }
+            /* A mask on the precomp: one add or subtract mask at full opacity is a matte
+             * of its layers, the mask's path an opaque source in the precomp's space. */
+            cJSON *mask_src = NULL;
+            if (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0) {
+                int mtt = inner.shapes ? 0 : precomp_mask(masks, &mask_src);
+                sv_affine *id = mtt ? malloc((size_t)tm->nframes * sizeof *id) : NULL;
+                if (id) {
+                    for (int k = 0; k < tm->nframes; k++)
+                        id[k] = sv_affine_identity();
+                    inner = (lt_matte_ctx){mask_src, mtt, id};
+                } else {
+                    cJSON_Delete(mask_src);
+                    mask_src = NULL;
+                    lt_warn(c, LT_F_MASK, "masks on precomp layers are drawn only as one add or "
+                            "subtract mask at full opacity, not under a track matte");
+                }
+            }
             /* Folded into its one layer, or a group cel over its layers. */
             bool fold = own_xf && !inner.shapes && !c->fold && ttv == 0 &&
                         foldable(get(asset, "layers"), &X[i], tm);
@@ -741,6 +797,7 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             double *fr = failed ? NULL : malloc((size_t)tm->nframes * sizeof *fr);
             if (!fr) {
                 free(inner.xf);
+                cJSON_Delete(mask_src);
                 rc = failed ? -1 : lt_fail(c, "out of memory");
                 break;
             }
@@ -766,6 +823,7 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             c->fold = NULL;
             c->matte = outer;
             free(inner.xf);
+            cJSON_Delete(mask_src);
             free(fr);
         } else if (t == 3) {
             /* A null layer draws nothing; as a parent it is a group already. */
