@@ -48,7 +48,7 @@
  * 3 per point). The host's store is sized for imported animation (a Lottie
  * stroke whose outline moves is a points track per outline piece, keyed
  * often): about 33 MB of keys (ondas.json, 7 s of four stroked waves, takes
- * 176,498 keys and 6.3 million floats); boards set their own. A scene store
+ * 176,498 keys and 7,008,365 floats); boards set their own. A scene store
  * this size lives on the heap or in static memory, never on a stack.
  */
 #ifndef CS_CFG_MAX_TRACKS
