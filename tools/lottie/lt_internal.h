@@ -34,7 +34,7 @@
 #define LT_MAX_COPIES 1000      /* copies of one repeater */
 #define LT_MAX_ITEMS 100000     /* shape items of a layer, repeated copies included */
 #define LT_MAX_WORK 2e7         /* floats sampled over the whole import (the conformance
-                                   set's largest needs 6.2e6) */
+                                   set's largest needs 6.6e6) */
 #define LT_MAX_DIMS 4
 
 /* One keyframe of a property: value s at frame t, easing to the next. */
