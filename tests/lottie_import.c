@@ -465,6 +465,32 @@ static void test_polystar(void)
     }
 }
 
+/* In and out points are whole frames, rounded, as rlottie keeps them: a layer with ip 9.6
+ * or 10.4 shows from frame 10 (not 9, and not only from 11), one with op 20.4 until 19. */
+static void test_inout_rounded(void)
+{
+    const char *fmt = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":%s,\"op\":20.4,\"st\":0,"
+                           "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]}}," RECT_SHAPES "}]}";
+    const char *ips[] = {"9.6", "10.4"};
+    for (int i = 0; i < 2; i++) {
+        char text[2048], err[256];
+        snprintf(text, sizeof text, fmt, ips[i]);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            continue;
+        const int frames[] = {9, 10, 19, 20};
+        const bool shown[] = {false, true, true, false};
+        for (int k = 0; k < 4; k++) {
+            double a = red_area(scene, frames[k] / 30.0f);
+            CHECK(shown[k] ? fabs(a - 800) < 1.5 : a < 0.5, "ip %s: frame %d %s (red area %.1f)",
+                  ips[i], frames[k], shown[k] ? "shown" : "hidden", a);
+        }
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
 /* A solid layer whose colour is not #rrggbb ("" in starts_transparent.json) is white, as
  * rlottie draws it (checked against librlottie: an 800 x 800 "" solid renders ffffffff). */
 static void test_solid_colour(void)
@@ -611,6 +637,7 @@ int main(int argc, char **argv)
     TL_RUN(test_mask_modes);
     TL_RUN(test_parent_and_inout);
     TL_RUN(test_solid_colour);
+    TL_RUN(test_inout_rounded);
     TL_RUN(test_precomp_fold);
     TL_RUN(test_polystar);
     TL_RUN(test_precomp_mask);

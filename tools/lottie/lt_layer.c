@@ -521,6 +521,7 @@ static int matte_source_ok(lt_ctx *c, const layer_info *L, const layer_xf *X, in
     if (lt_num(c, sj, "ty", 0, 100, 4, &ty) || lt_num(c, sj, "ip", -1e7, 1e7, -1e7, ip) ||
         lt_num(c, sj, "op", -1e7, 1e7, 1e7, op))
         return -1;
+    *ip = round(*ip), *op = round(*op); /* whole frames, as a layer's own (lt_layers) */
     const cJSON *masks = get(sj, "masksProperties");
     if ((int)ty != 4 || (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)) {
         lt_warn(c, LT_F_MATTE, "a track matte whose source is not a shape layer, or has masks, is "
@@ -693,6 +694,9 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             rc = -1;
             break;
         }
+        /* rlottie keeps a layer's in and out points as whole frames, rounded
+         * (1667-firework.json's layers start at 4.00000016: shown from frame 4). */
+        ip = round(ip), op = round(op);
         warn_unsupported(c, lj);
         const cJSON *ttj = get(lj, "tt");
         int ttv = cJSON_IsNumber(ttj) ? (int)ttj->valuedouble : 0;
