@@ -17,9 +17,17 @@
 #include CS_CFG_FILE
 #endif
 
-/* Scene store: how much a committed scene may hold. */
+/*
+ * Scene store: how much a committed scene may hold. These defaults are the
+ * host's (celsim, celc, the tests), sized for imported animation: Lottie
+ * files of 200-odd layers and precomp copies (1643-exploding-star.json
+ * needs 248 cels; a cel's parent is one byte, so 254 is the most), and
+ * stroked outlines that move (ondas.json: 20,712 control points). Boards set
+ * their own (firmware/boards/cs_config_480x272.h: 16 cels) and refuse a
+ * scene beyond them with the CS_ERR_CAP_* status naming the capacity.
+ */
 #ifndef CS_CFG_MAX_CELS
-#define CS_CFG_MAX_CELS 64
+#define CS_CFG_MAX_CELS 254
 #endif
 #ifndef CS_CFG_MAX_REGIONS
 #define CS_CFG_MAX_REGIONS 1024
@@ -27,9 +35,11 @@
 #ifndef CS_CFG_MAX_CONTOURS
 #define CS_CFG_MAX_CONTOURS 2048
 #endif
-/* Control points over all contours of a scene (each also carries one knot interval). */
+/* Control points over all contours of a scene (each also carries one knot
+ * interval). A frame's segments default to as many, and its pieces to twice
+ * that, which cs_crossing numbers in 16 bits: 32768 is the most. */
 #ifndef CS_CFG_MAX_POINTS
-#define CS_CFG_MAX_POINTS 16384
+#define CS_CFG_MAX_POINTS 32768
 #endif
 
 /*
@@ -37,16 +47,18 @@
  * all keys together (a transform key takes 6, a paint 7, a control-point key
  * 3 per point). The host's store is sized for imported animation (a Lottie
  * stroke whose outline moves is a points track per outline piece, keyed
- * often): about 4.5 MB of keys; boards set their own.
+ * often): about 33 MB of keys (ondas.json, 7 s of four stroked waves, takes
+ * 176,498 keys and 7,008,365 floats); boards set their own. A scene store
+ * this size lives on the heap or in static memory, never on a stack.
  */
 #ifndef CS_CFG_MAX_TRACKS
 #define CS_CFG_MAX_TRACKS 4096
 #endif
 #ifndef CS_CFG_MAX_KEYS
-#define CS_CFG_MAX_KEYS 65536
+#define CS_CFG_MAX_KEYS (256 * 1024)
 #endif
 #ifndef CS_CFG_MAX_KEY_VALUES
-#define CS_CFG_MAX_KEY_VALUES (1024 * 1024)
+#define CS_CFG_MAX_KEY_VALUES (8 * 1024 * 1024)
 #endif
 /*
  * TRS transform tracks, cubic Bezier easing and cel groups (imported Lottie
@@ -72,7 +84,7 @@
  * bounds how long a header can claim the input.
  */
 #ifndef CS_CFG_STREAM_MAX_TXN
-#define CS_CFG_STREAM_MAX_TXN (16u * 1024u * 1024u)
+#define CS_CFG_STREAM_MAX_TXN (64u * 1024u * 1024u)
 #endif
 
 /* Workspace: per-frame segment arena and per-line buffers. */

@@ -12,6 +12,9 @@
  * give one warning each per file.
  */
 #include <math.h>
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -342,6 +345,176 @@ static void test_parent_and_inout(void)
     lt_warnings_free(&w);
 }
 
+/* A precomp layer over a composition of one layer folds into that layer's TRS track (no
+ * group cel) where its scale is uniform; a non-uniform one keeps the group. Either way the
+ * 40 x 20 rectangle shows at the precomp's scale, whatever the precomp's turn. */
+static void test_precomp_fold(void)
+{
+    const char *fmt = "{\"v\":\"5.5.2\",\"fr\":30,\"ip\":0,\"op\":60,\"w\":100,\"h\":100,"
+        "\"assets\":[{\"id\":\"c\",\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+        "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]}}," RECT_SHAPES "}]}],"
+        "\"layers\":[{\"ty\":0,\"refId\":\"c\",\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,\"w\":100,"
+        "\"h\":100,\"ks\":{\"a\":{\"a\":0,\"k\":[50,50]},\"p\":{\"a\":0,\"k\":[50,50]},"
+        "\"s\":{\"a\":0,\"k\":[50,%d]},\"o\":{\"a\":0,\"k\":100},"
+        "\"r\":{\"a\":1,\"k\":[{\"t\":0,\"s\":[0],\"o\":{\"x\":[0.4],\"y\":[0]},"
+        "\"i\":{\"x\":[0.6],\"y\":[1]}},{\"t\":60,\"s\":[90]}]}}}]}";
+    for (int uniform = 1; uniform >= 0; uniform--) {
+        char text[2048], err[256];
+        snprintf(text, sizeof text, fmt, uniform ? 50 : 100);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            return;
+        int cels = cJSON_GetArraySize(path(scene, "cels"));
+        CHECK(cels == (uniform ? 1 : 2), "%s scale: %d cels", uniform ? "uniform" : "non-uniform",
+              cels);
+        double want = uniform ? 20 * 10 : 20 * 20;
+        for (float t = 0; t < 2; t += 0.5f) {
+            double a = red_area(scene, t);
+            CHECK(fabs(a - want) < 1.5, "%s scale, t = %.1f: red area %.2f, want %.0f",
+                  uniform ? "uniform" : "non-uniform", t, a, want);
+        }
+        if (uniform) {
+            /* The precomp's eased turn is the cel's, on the cel's own cubic keys. */
+            const cJSON *keys = path(scene, "cels.0.animate.trs.keys");
+            CHECK(cJSON_GetArraySize(keys) == 2, "the turn is 2 keys (%d)",
+                  cJSON_GetArraySize(keys));
+        }
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
+/* A mask on a precomp layer (one add or subtract mask at full opacity) mattes the
+ * composition's layers: the 40 x 20 rectangle (x 30..70) under a mask over x 0..40 shows
+ * 10 x 20 of it, or 30 x 20 subtracted; two masks stay warned and drawn unmasked. */
+static void test_precomp_mask(void)
+{
+    const char *fmt = "{\"v\":\"5.5.2\",\"fr\":30,\"ip\":0,\"op\":60,\"w\":100,\"h\":100,"
+        "\"assets\":[{\"id\":\"c\",\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+        "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]}}," RECT_SHAPES "}]}],"
+        "\"layers\":[{\"ty\":0,\"refId\":\"c\",\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,\"w\":100,"
+        "\"h\":100,\"ks\":{},\"masksProperties\":[%s]}]}";
+    const char *mask = "{\"mode\":\"%s\",\"inv\":false,\"o\":{\"a\":0,\"k\":100},"
+        "\"pt\":{\"a\":0,\"k\":{\"c\":true,\"v\":[[0,0],[40,0],[40,100],[0,100]],"
+        "\"i\":[[0,0],[0,0],[0,0],[0,0]],\"o\":[[0,0],[0,0],[0,0],[0,0]]}}}";
+    struct {
+        const char *modes;
+        double area;
+        int warnings;
+    } cases[] = {{"a", 200, 0}, {"s", 600, 0}, {"aa", 800, 1}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char masks[1024] = "", one[512], text[4096], err[256];
+        for (const char *m = cases[i].modes; *m; m++) {
+            snprintf(one, sizeof one, mask, (char[]){*m, 0});
+            snprintf(masks + strlen(masks), sizeof masks - strlen(masks), "%s%s",
+                     m == cases[i].modes ? "" : ",", one);
+        }
+        snprintf(text, sizeof text, fmt, masks);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            continue;
+        double a = red_area(scene, 0.5f);
+        CHECK(fabs(a - cases[i].area) < 1.5, "masks \"%s\": red area %.2f, want %.0f",
+              cases[i].modes, a, cases[i].area);
+        CHECK(w.n == cases[i].warnings, "masks \"%s\": %d warnings (%d)", cases[i].modes,
+              cases[i].warnings, w.n);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
+/* Polystars as Debian's librlottie draws them (checked against it with stars turned 30
+ * degrees and 0..184, rounded, with 5.5 points, and a rounded hexagon: all above 36 dB):
+ * turned by twice their rotation, starting from the top outer vertex; roundness makes the
+ * sides cubics through the same vertices; an animated point count is drawn in whole points
+ * with sharp corners, warned. */
+static void test_polystar(void)
+{
+    const char *fmt = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+        "\"ks\":{},\"shapes\":[{\"ty\":\"gr\",\"it\":[{\"ty\":\"sr\",\"sy\":1,\"d\":1,"
+        "\"pt\":%s,\"p\":{\"a\":0,\"k\":[50,50]},\"r\":{\"a\":0,\"k\":30},"
+        "\"ir\":{\"a\":0,\"k\":20},\"or\":{\"a\":0,\"k\":40},\"is\":{\"a\":0,\"k\":%d},"
+        "\"os\":{\"a\":0,\"k\":%d}},{\"ty\":\"fl\",\"c\":{\"a\":0,\"k\":[1,0,0,1]},"
+        "\"o\":{\"a\":0,\"k\":100}},{\"ty\":\"tr\"}]}]}]}";
+    const char *five = "{\"a\":0,\"k\":5}";
+    const char *grows = "{\"a\":1,\"k\":[{\"t\":0,\"s\":[5]},{\"t\":60,\"s\":[8]}]}";
+    struct {
+        const char *pt;
+        int is, os, degree, warnings;
+    } cases[] = {{five, 0, 0, 1, 0}, {five, 30, 70, 3, 0}, {grows, 30, 70, 1, 1}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[2048], err[256];
+        snprintf(text, sizeof text, fmt, cases[i].pt, cases[i].is, cases[i].os);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        const cJSON *ct = path(scene, "cels.0.regions.0.contours.0");
+        const cJSON *p0 = path(ct, "points.0"), *deg = path(ct, "degree");
+        /* The first vertex: the outer radius at 2 x 30 degrees from the top, clockwise. */
+        double want_x = 50 + 40 * cos((60 - 90) * M_PI / 180);
+        double want_y = 50 + 40 * sin((60 - 90) * M_PI / 180);
+        CHECK(p0 && fabs(cJSON_GetArrayItem(p0, 0)->valuedouble - want_x) < 1e-3 &&
+                  fabs(cJSON_GetArrayItem(p0, 1)->valuedouble - want_y) < 1e-3,
+              "case %zu: starts at (%.3f, %.3f)", i, want_x, want_y);
+        CHECK(deg && deg->valueint == cases[i].degree, "case %zu: sides of degree %d (%d)", i,
+              cases[i].degree, deg ? deg->valueint : -1);
+        CHECK(w.n == cases[i].warnings, "case %zu: %d warnings (%d)", i, cases[i].warnings, w.n);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
+/* In and out points are whole frames, rounded, as rlottie keeps them: a layer with ip 9.6
+ * or 10.4 shows from frame 10 (not 9, and not only from 11), one with op 20.4 until 19. */
+static void test_inout_rounded(void)
+{
+    const char *fmt = HEAD "\"layers\":[{\"ty\":4,\"ind\":1,\"ip\":%s,\"op\":20.4,\"st\":0,"
+                           "\"ks\":{\"p\":{\"a\":0,\"k\":[50,50]}}," RECT_SHAPES "}]}";
+    const char *ips[] = {"9.6", "10.4"};
+    for (int i = 0; i < 2; i++) {
+        char text[2048], err[256];
+        snprintf(text, sizeof text, fmt, ips[i]);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        if (!CHECK(scene != NULL, "import: %s", err))
+            continue;
+        const int frames[] = {9, 10, 19, 20};
+        const bool shown[] = {false, true, true, false};
+        for (int k = 0; k < 4; k++) {
+            double a = red_area(scene, frames[k] / 30.0f);
+            CHECK(shown[k] ? fabs(a - 800) < 1.5 : a < 0.5, "ip %s: frame %d %s (red area %.1f)",
+                  ips[i], frames[k], shown[k] ? "shown" : "hidden", a);
+        }
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
+/* A solid layer whose colour is not #rrggbb ("" in starts_transparent.json) is white, as
+ * rlottie draws it (checked against librlottie: an 800 x 800 "" solid renders ffffffff). */
+static void test_solid_colour(void)
+{
+    const char *fmt = HEAD "\"layers\":[{\"ty\":1,\"ind\":1,\"ip\":0,\"op\":60,\"st\":0,"
+                           "\"ks\":{},\"sw\":100,\"sh\":100,\"sc\":\"%s\"}]}";
+    const char *cases[][2] = {{"", "white"}, {"#ff0000", "red"}, {"red", "white"}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[512], err[256];
+        snprintf(text, sizeof text, fmt, cases[i][0]);
+        lt_warnings w = {0, NULL};
+        cJSON *scene = import(text, &w, err, sizeof err, NULL);
+        const cJSON *pig = path(scene, "cels.0.regions.0.paint.pigment");
+        bool white = !strcmp(cases[i][1], "white");
+        CHECK(pig && cJSON_GetArraySize(pig) == 3 &&
+                  cJSON_GetArrayItem(pig, 0)->valuedouble == 1 &&
+                  cJSON_GetArrayItem(pig, 1)->valuedouble == (white ? 1 : 0) &&
+                  cJSON_GetArrayItem(pig, 2)->valuedouble == (white ? 1 : 0),
+              "solid \"%s\" is %s", cases[i][0], cases[i][1]);
+        cJSON_Delete(scene);
+        lt_warnings_free(&w);
+    }
+}
+
 static void test_warnings_once(void)
 {
     const char *text = HEAD "\"layers\":["
@@ -463,6 +636,11 @@ int main(int argc, char **argv)
     TL_RUN(test_track_matte);
     TL_RUN(test_mask_modes);
     TL_RUN(test_parent_and_inout);
+    TL_RUN(test_solid_colour);
+    TL_RUN(test_inout_rounded);
+    TL_RUN(test_precomp_fold);
+    TL_RUN(test_polystar);
+    TL_RUN(test_precomp_mask);
     TL_RUN(test_warnings_once);
     TL_RUN(test_hostile);
     return tl_summary(argv[0]);

@@ -163,7 +163,7 @@ static int compare(rig *r)
 
 static void test_frames(UMockdevTestbed *tb)
 {
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     char err[320];
     lx_status s = rig_open(&r, tb, err, sizeof err);
@@ -232,7 +232,7 @@ static void test_modes(UMockdevTestbed *tb)
         {"100x100", LX_ERR_CONFIG, 0, 0, 0, "no mode 100x100"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        rig r;
+        static rig r; /* holds a scene store: too big for a stack */
         rig_defaults(&r);
         CHECK(kms_parse_mode(cases[i].spec, &r.cfg), "parse %s", cases[i].spec);
         char err[320];
@@ -265,7 +265,7 @@ static void test_modes(UMockdevTestbed *tb)
 /* RGB565 when the driver prefers 16-bit dumb buffers, or when the plane takes nothing else. */
 static void test_rgb565(UMockdevTestbed *tb, bool plane_only)
 {
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     if (plane_only)
         r.o.plane_formats[0] = DRM_FORMAT_RGB565;
@@ -307,7 +307,7 @@ static int diff_bands(const uint8_t *a, const uint8_t *b, int w, int h, int *y)
 
 static void test_no_flips(UMockdevTestbed *tb, bool dirty)
 {
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.o.no_flip = true;
     r.o.no_dirty = !dirty;
@@ -355,7 +355,7 @@ static void test_no_flips(UMockdevTestbed *tb, bool dirty)
 
 static void test_unplug(UMockdevTestbed *tb)
 {
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     char err[320];
     lx_status s = rig_open(&r, tb, err, sizeof err);
@@ -418,7 +418,7 @@ static void test_unplug(UMockdevTestbed *tb)
 /* Gone after the connector check (checked once a minute here): the flip's ENODEV is a loss too. */
 static void test_gone_at_flip(UMockdevTestbed *tb)
 {
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.cfg.probe_ms = 60000;
     char err[320];
@@ -444,7 +444,7 @@ static void test_gone_at_flip(UMockdevTestbed *tb)
 
 static void test_flip_timeout(UMockdevTestbed *tb)
 {
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.cfg.flip_timeout_ms = 50;
     char err[320];
@@ -481,7 +481,7 @@ static void test_missing(UMockdevTestbed *tb)
     s = kms_open(&d, &c, &lx_clock_monotonic, logger, NULL, err, sizeof err);
     CHECK(s == LX_ERR_NO_DEVICE && strstr(err, "/dev/dri/card5"), "named card absent: %s: %s", lx_status_str(s),
           err);
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.o.disconnected = true;
     s = rig_open(&r, tb, err, sizeof err);
@@ -493,7 +493,7 @@ static void test_missing(UMockdevTestbed *tb)
 /* A driver with atomic modesetting: flips are commits whose FB_DAMAGE_CLIPS are the changed bands. */
 static void test_atomic(UMockdevTestbed *tb, bool damage_clips)
 {
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.o.atomic = true;
     r.o.damage_clips = damage_clips;
@@ -582,7 +582,7 @@ static void test_scan(UMockdevTestbed *tb)
 /* Started with no screen: waiting, then the screen comes. */
 static void test_wait(UMockdevTestbed *tb)
 {
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.o.disconnected = true;
     r.cfg.wait = true;
@@ -627,7 +627,7 @@ static void test_refusals(UMockdevTestbed *tb)
          LX_ERR_NO_DEVICE, "the primary plane takes neither XRGB8888 nor RGB565 (it takes NV12)", 0},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        rig r;
+        static rig r; /* holds a scene store: too big for a stack */
         rig_defaults(&r);
         r.o = cases[i].o;
         char err[320];
@@ -662,7 +662,7 @@ static void test_celfw(UMockdevTestbed *tb)
         CHECK(false, "celfw test: %s or %s missing (make test-linuxhal builds both)", shim, celfw_child_path());
         return;
     }
-    rig r;
+    static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.card = fake_drm_add(tb, &r.o);
     const char *old = getenv("LD_PRELOAD");

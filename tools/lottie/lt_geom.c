@@ -115,6 +115,79 @@ void lt_path_build(const double *vals, int n, sv_path *out)
         sv_path_close(out);
 }
 
+/*
+ * A star, or a polygon with roundness, as rlottie builds it (VPath::addPolystar,
+ * addPolygon): with roundness each side is a cubic whose handles lie along the tangents
+ * of the circles through its ends, as long as the vertex's radius times its roundness
+ * times 0.47829 / 0.28 over the point count (a star) or times 0.25 (a polygon, outer
+ * roundness only); without, a line. A star's fractional point count gives a partial
+ * point between the last and the first, as there.
+ */
+static void rlottie_polystar(const sh_path *p, const double *pv, double npt, double rot, double ir,
+                           double orr, double is, double os, sv_path *out)
+{
+    double dir = p->reversed ? -1 : 1, cx = pv[0], cy = pv[1];
+    double cur = (rot - 90) * M_PI / 180, x, y, x0, y0;
+    if (p->star == 2) {
+        int n = (int)floor(npt);
+        double per = 2 * M_PI / n;
+        x0 = x = orr * cos(cur), y0 = y = orr * sin(cur);
+        cur += per * dir;
+        sv_path_move(out, x + cx, y + cy);
+        for (int i = 0; i < n; i++) {
+            double px = x, py = y;
+            x = i == n - 1 ? x0 : orr * cos(cur), y = i == n - 1 ? y0 : orr * sin(cur);
+            double t1 = atan2(py, px) - M_PI / 2 * dir, t2 = atan2(y, x) - M_PI / 2 * dir;
+            double k = orr * os * 0.25;
+            sv_path_cubic(out, px - k * cos(t1) + cx, py - k * sin(t1) + cy,
+                          x + k * cos(t2) + cx, y + k * sin(t2) + cy, x + cx, y + cy);
+            cur += per * dir;
+        }
+        sv_path_close(out);
+        return;
+    }
+    const double magic = 0.47829 / 0.28;
+    double per = 2 * M_PI / npt, half = per / 2, partial = npt - floor(npt), pr = 0;
+    int m = (int)ceil(npt) * 2;
+    if (partial != 0) {
+        cur += half * (1 - partial) * dir;
+        pr = ir + partial * (orr - ir);
+        x = pr * cos(cur), y = pr * sin(cur);
+        cur += per * partial / 2 * dir;
+    } else {
+        x = orr * cos(cur), y = orr * sin(cur);
+        cur += half * dir;
+    }
+    x0 = x, y0 = y;
+    sv_path_move(out, x + cx, y + cy);
+    bool outer = false; /* the side ends on an outer vertex */
+    for (int i = 0; i < m; i++) {
+        double radius = outer ? orr : ir, dth = half;
+        if (pr != 0 && i == m - 2)
+            dth = per * partial / 2;
+        if (pr != 0 && i == m - 1)
+            radius = pr;
+        double px = x, py = y;
+        x = radius * cos(cur), y = radius * sin(cur);
+        if (i == m - 1)
+            x = x0, y = y0; /* the start, exactly: no sliver of a closing side */
+        double t1 = atan2(py, px) - M_PI / 2 * dir, t2 = atan2(y, x) - M_PI / 2 * dir;
+        double k1 = (outer ? ir * is : orr * os) * magic / npt;
+        double k2 = (outer ? orr * os : ir * is) * magic / npt;
+        if (partial != 0 && (i == 0 || i == m - 1))
+            k1 *= partial, k2 *= partial;
+        if (is == 0 && os == 0) {
+            if (i < m - 1) /* the last side is the close */
+                sv_path_line(out, x + cx, y + cy);
+        } else
+            sv_path_cubic(out, px - k1 * cos(t1) + cx, py - k1 * sin(t1) + cy, x + k2 * cos(t2) + cx,
+                      y + k2 * sin(t2) + cy, x + cx, y + cy);
+        cur += dth * dir;
+        outer = !outer;
+    }
+    sv_path_close(out);
+}
+
 /* A path item at frame f in its group's space. */
 static void build_path(const sh_path *p, double f, sv_path *out)
 {
@@ -190,21 +263,30 @@ static void build_path(const sh_path *p, double f, sv_path *out)
         sv_path_close(out);
         return;
     }
-    /* Polystar: from the top (rotation 0), clockwise. */
-    double npt, rot, ir, orr;
+    /* Polystar: from the top (rotation 0), clockwise unless reversed. */
+    double npt, rot, ir, orr, is, os;
     lt_prop_eval(&p->pt, f, &npt);
     lt_prop_eval(&p->r, f, &rot);
     lt_prop_eval(&p->ir, f, &ir);
     lt_prop_eval(&p->or_, f, &orr);
+    lt_prop_eval(&p->is, f, &is);
+    lt_prop_eval(&p->os, f, &os);
     int n = (int)floor(npt);
     if (n < 2 || n > 1000)
         return;
-    int m = p->star == 1 ? 2 * n : n;
-    for (int i = 0; i < m; i++) {
-        int k = p->reversed ? (m - i) % m : i;
-        double ang = (rot - 90) * M_PI / 180 + 2 * M_PI * k / m;
-        double rad = p->star == 1 && k % 2 ? ir : orr;
-        double x = pv[0] + rad * cos(ang), y = pv[1] + rad * sin(ang);
+    if (p->whole)
+        npt = n, is = os = 0;
+    /* rlottie turns a polystar by twice its rotation (Debian's librlottie, checked with
+     * stars at 30 degrees and turning 0..184: 2r matches, r does not). */
+    rot *= 2;
+    if (p->star == 1 || os != 0) {
+        rlottie_polystar(p, pv, npt, rot, ir, orr, is / 100, os / 100, out);
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        int k = p->reversed ? (n - i) % n : i;
+        double ang = (rot - 90) * M_PI / 180 + 2 * M_PI * k / n;
+        double x = pv[0] + orr * cos(ang), y = pv[1] + orr * sin(ang);
         if (i == 0)
             sv_path_move(out, x, y);
         else

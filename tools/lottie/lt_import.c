@@ -31,7 +31,7 @@ int lt_fail(lt_ctx *c, const char *fmt, ...)
 
 static const char *const feature_names[LT_F_COUNT_] = {
     "expressions", "effects", "text", "images", "merge paths", "3D layers", "repeaters",
-    "round corners", "track mattes", "masks", "auto-orient", "polystar roundness",
+    "round corners", "track mattes", "masks", "auto-orient", "polystar points",
     "animated outlines", "gradients", "blend modes", "other"};
 
 void lt_warn(lt_ctx *c, lt_feature f, const char *fmt, ...)

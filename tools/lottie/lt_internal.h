@@ -34,7 +34,7 @@
 #define LT_MAX_COPIES 1000      /* copies of one repeater */
 #define LT_MAX_ITEMS 100000     /* shape items of a layer, repeated copies included */
 #define LT_MAX_WORK 2e7         /* floats sampled over the whole import (the conformance
-                                   set's largest needs 6.2e6) */
+                                   set's largest needs 6.6e6) */
 #define LT_MAX_DIMS 4
 
 /* One keyframe of a property: value s at frame t, easing to the next. */
@@ -121,7 +121,7 @@ cJSON *lt_signal_track(const lt_signal *s, double fr,
 
 typedef enum lt_feature {
     LT_F_EXPRESSION, LT_F_EFFECT, LT_F_TEXT, LT_F_IMAGE, LT_F_MERGE, LT_F_3D, LT_F_REPEATER,
-    LT_F_ROUND, LT_F_MATTE, LT_F_MASK, LT_F_AUTO_ORIENT, LT_F_STAR_ROUND,
+    LT_F_ROUND, LT_F_MATTE, LT_F_MASK, LT_F_AUTO_ORIENT, LT_F_STAR_POINTS,
     LT_F_STROKE_ANIM, LT_F_GRADIENT, LT_F_BLEND, LT_F_OTHER, LT_F_COUNT_
 } lt_feature;
 
@@ -133,6 +133,8 @@ typedef struct lt_matte_ctx {
     int tt;
     sv_affine *xf;
 } lt_matte_ctx;
+
+struct lt_fold; /* a precomp layer folded into its composition's one layer (lt_layer.c) */
 
 struct lt_ctx {
     const cJSON *root;
@@ -149,6 +151,7 @@ struct lt_ctx {
     cJSON *cels;            /* the scene's "cels", front to back */
     int depth;
     const lt_matte_ctx *matte; /* the matte of the precomp being read, or NULL */
+    const struct lt_fold *fold; /* the precomp layer being folded, or NULL */
 };
 
 /* Records an error (the first one wins); returns -1. */

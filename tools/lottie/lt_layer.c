@@ -91,6 +91,43 @@ static void free_layer_xf(layer_xf *x)
 }
 
 /*
+ * A precomp layer folded into the one layer its composition draws: instead
+ * of a group cel of its own, its transform, opacity and in / out points
+ * compose onto that layer's TRS track, sample by sample. Taken only where
+ * the precomp's transform is a similarity at every sample (uniform scale,
+ * no skew), since then P . T(p) R(r) K S(s) T(-a), K the skew, is
+ * T(P(p)) R(r + rP) K S(s sP) T(-a) again, one TRS key per sample. Files
+ * of many one-layer precomps (1667-firework.json: 104 of them) would
+ * otherwise take a group cel each, beyond the store's cels.
+ */
+struct lt_fold {
+    const layer_xf *x;      /* the precomp layer's transform */
+    const lt_time *tm;      /* its time (the composition it sits in) */
+    const double *visible;  /* its in / out points at each sample */
+    int depth;              /* c->depth of the composition folded into it */
+    int group;              /* the cel its group cel would have sat in */
+};
+
+/* Composes the fold's transform and opacity at sample n onto a TRS sample v (scale and
+ * opacity in percent, as in add_cel). */
+static void fold_sample(const struct lt_fold *fd, int n, double *v)
+{
+    double f = fd->tm->frame[n], a[2], p[2], s[2], r, o;
+    lt_prop_eval(&fd->x->a, f, a);
+    lt_prop_eval(&fd->x->p, f, p);
+    lt_prop_eval(&fd->x->s, f, s);
+    lt_prop_eval(&fd->x->r, f, &r);
+    lt_prop_eval(&fd->x->o, f, &o);
+    double k = s[0] / 100, d = M_PI / 180, cr = cos(r * d), sr = sin(r * d);
+    double dx = v[0] - a[0], dy = v[1] - a[1];
+    v[0] = p[0] + k * (cr * dx - sr * dy);
+    v[1] = p[1] + k * (sr * dx + cr * dy);
+    v[4] *= k, v[5] *= k;
+    v[6] += r;
+    v[9] *= fmin(fmax(o, 0), 100) / 100 * fd->visible[n];
+}
+
+/*
  * Appends a cel: regions (NULL: a group), the layer's transform and/or
  * opacity times visibility as a TRS track or a static transform, and its
  * parent cel. Returns the cel's index.
@@ -110,6 +147,18 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
     for (int k = 0; k < 7; k++)
         if (transform || k == 4)
             lt_signal_note_prop(&sg, ps[k], tm->f0, tm->fscale);
+    /* The folded precomp's layer: its own TRS with the precomp's after it. */
+    const struct lt_fold *fd = c->fold && c->depth == c->fold->depth && parent == c->fold->group &&
+                                       transform ? c->fold : NULL;
+    if (fd) {
+        const layer_xf *fx = fd->x;
+        const lt_prop *fp[5] = {&fx->a, &fx->p, &fx->s, &fx->r, &fx->o};
+        for (int k = 0; k < 5; k++)
+            lt_signal_note_prop(&sg, fp[k], fd->tm->f0, fd->tm->fscale);
+        for (int n = 1; n < N; n++)
+            if (fd->visible[n] != fd->visible[n - 1])
+                lt_signal_break(&sg, n);
+    }
     for (int n = 0; n < N; n++) {
         double f = tm->frame[n], *v = sg.v + 10 * (size_t)n;
         double a[2], p[2], s[2], r, o, sk, sa;
@@ -129,6 +178,8 @@ static int add_cel(lt_ctx *c, const char *name, cJSON *regions, const layer_xf *
             v[4] = v[5] = 100;
         }
         v[9] = (opacity ? fmin(fmax(o, 0), 100) : 100) * (visible ? visible[n] : 1);
+        if (fd)
+            fold_sample(fd, n, v);
     }
     /* Visibility steps on whole frames: breaks there make them holds. */
     if (visible)
@@ -280,6 +331,80 @@ static int add_content(lt_ctx *c, const char *name, cJSON *regions, const layer_
     return add_cel(c, name, NULL, x, own_xf, true, visible, tm, group) == holder ? 0 : -1;
 }
 
+/* Whether a precomp layer (transform x, at the samples of tm) folds into its composition
+ * `layers`: they draw one shape or solid layer, with no parenting or track mattes among
+ * them (null layers aside), and the precomp's scale is uniform and unskewed throughout. */
+static bool foldable(const cJSON *layers, const layer_xf *x, const lt_time *tm)
+{
+    int drawn = 0;
+    const cJSON *l;
+    cJSON_ArrayForEach(l, layers)
+    {
+        if (!cJSON_IsObject(l))
+            return false;
+        const cJSON *ty = get(l, "ty"), *hd = get(l, "hd"), *td = get(l, "td"), *tt = get(l, "tt");
+        if (get(l, "parent") || (tt && !(cJSON_IsNumber(tt) && tt->valuedouble == 0)) ||
+            (td && !(cJSON_IsNumber(td) && td->valuedouble == 0)) || (ty && !cJSON_IsNumber(ty)))
+            return false;
+        if (cJSON_IsTrue(hd))
+            continue;
+        int t = ty ? (int)ty->valuedouble : 4;
+        if (t == 4 || t == 1)
+            drawn++;
+        else if (t != 3)
+            return false;
+    }
+    for (int n = 0; n < tm->nframes && drawn == 1; n++) {
+        double s[2], sk;
+        lt_prop_eval(&x->s, tm->frame[n], s);
+        lt_prop_eval(&x->sk, tm->frame[n], &sk);
+        if (s[0] != s[1] || sk != 0)
+            return false;
+    }
+    return drawn == 1;
+}
+
+/* Whether a precomp layer's masks are one add or subtract mask (inverted or not) whose
+ * opacity is 100 and expansion 0: returns the matte type it is (1 alpha, 2 inverted) with
+ * *src the shapes of an opaque fill of its path, else 0. */
+static int precomp_mask(const cJSON *masks, cJSON **src)
+{
+    const cJSON *m = cJSON_GetArrayItem(masks, 0), *mode = get(m, "mode"), *pt = get(m, "pt");
+    const cJSON *o = get(m, "o"), *x = get(m, "x");
+    if (cJSON_GetArraySize(masks) != 1 || !cJSON_IsString(mode) || !cJSON_IsObject(pt))
+        return 0;
+    const cJSON *oa = get(o, "a"), *ok = get(o, "k"), *xa = get(x, "a"), *xk = get(x, "k");
+    if ((o && !(cJSON_IsNumber(oa) && oa->valuedouble == 0 && cJSON_IsNumber(ok) &&
+                ok->valuedouble == 100)) ||
+        (x && !(cJSON_IsNumber(xa) && xa->valuedouble == 0 && cJSON_IsNumber(xk) &&
+                xk->valuedouble == 0)))
+        return 0;
+    int tt = !strcmp(mode->valuestring, "a") ? 1 : !strcmp(mode->valuestring, "s") ? 2 : 0;
+    if (tt && cJSON_IsTrue(get(m, "inv")))
+        tt = 3 - tt;
+    if (!tt)
+        return 0;
+    cJSON *shapes = cJSON_CreateArray(), *gr = cJSON_CreateObject(), *it = cJSON_CreateArray();
+    cJSON *sh = cJSON_CreateObject(), *fl = cJSON_CreateObject(), *tr = cJSON_CreateObject();
+    cJSON_AddStringToObject(sh, "ty", "sh");
+    cJSON_AddItemToObject(sh, "ks", cJSON_Duplicate(pt, 1));
+    cJSON_AddStringToObject(fl, "ty", "fl");
+    cJSON *col = cJSON_AddObjectToObject(fl, "c"), *op = cJSON_AddObjectToObject(fl, "o");
+    cJSON_AddNumberToObject(col, "a", 0);
+    cJSON_AddItemToObject(col, "k", cJSON_CreateDoubleArray((const double[]){0, 0, 0, 1}, 4));
+    cJSON_AddNumberToObject(op, "a", 0);
+    cJSON_AddNumberToObject(op, "k", 100);
+    cJSON_AddStringToObject(tr, "ty", "tr");
+    cJSON_AddItemToArray(it, sh);
+    cJSON_AddItemToArray(it, fl);
+    cJSON_AddItemToArray(it, tr);
+    cJSON_AddStringToObject(gr, "ty", "gr");
+    cJSON_AddItemToObject(gr, "it", it);
+    cJSON_AddItemToArray(shapes, gr);
+    *src = shapes;
+    return tt;
+}
+
 static const cJSON *find_asset(lt_ctx *c, const char *id)
 {
     const cJSON *a;
@@ -396,6 +521,7 @@ static int matte_source_ok(lt_ctx *c, const layer_info *L, const layer_xf *X, in
     if (lt_num(c, sj, "ty", 0, 100, 4, &ty) || lt_num(c, sj, "ip", -1e7, 1e7, -1e7, ip) ||
         lt_num(c, sj, "op", -1e7, 1e7, 1e7, op))
         return -1;
+    *ip = round(*ip), *op = round(*op); /* whole frames, as a layer's own (lt_layers) */
     const cJSON *masks = get(sj, "masksProperties");
     if ((int)ty != 4 || (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)) {
         lt_warn(c, LT_F_MATTE, "a track matte whose source is not a shape layer, or has masks, is "
@@ -568,6 +694,9 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             rc = -1;
             break;
         }
+        /* rlottie keeps a layer's in and out points as whole frames, rounded
+         * (1667-firework.json's layers start at 4.00000016: shown from frame 4). */
+        ip = round(ip), op = round(op);
         warn_unsupported(c, lj);
         const cJSON *ttj = get(lj, "tt");
         int ttv = cJSON_IsNumber(ttj) ? (int)ttj->valuedouble : 0;
@@ -623,8 +752,6 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
                 lt_warn(c, LT_F_OTHER, "a precomp layer names no composition with layers");
                 continue;
             }
-            if (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0)
-                lt_warn(c, LT_F_MASK, "masks on precomp layers are not supported");
             /* The matte its layers take: its own, or the one it is in, carried into its
              * space (one level: a matted precomp within a matted precomp is warned). */
             lt_matte_ctx inner = {NULL, 0, NULL};
@@ -647,12 +774,35 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
                     break;
                 }
             }
-            int g = add_cel(c, name, NULL, &X[i], own_xf, true, visible, tm, group);
+            /* A mask on the precomp: one add or subtract mask at full opacity is a matte
+             * of its layers, the mask's path an opaque source in the precomp's space. */
+            cJSON *mask_src = NULL;
+            if (cJSON_IsArray(masks) && cJSON_GetArraySize(masks) > 0) {
+                int mtt = inner.shapes ? 0 : precomp_mask(masks, &mask_src);
+                sv_affine *id = mtt ? malloc((size_t)tm->nframes * sizeof *id) : NULL;
+                if (id) {
+                    for (int k = 0; k < tm->nframes; k++)
+                        id[k] = sv_affine_identity();
+                    inner = (lt_matte_ctx){mask_src, mtt, id};
+                } else {
+                    cJSON_Delete(mask_src);
+                    mask_src = NULL;
+                    lt_warn(c, LT_F_MASK, "masks on precomp layers are drawn only as one add or "
+                            "subtract mask at full opacity, not under a track matte");
+                }
+            }
+            /* Folded into its one layer, or a group cel over its layers. */
+            bool fold = own_xf && !inner.shapes && !c->fold && ttv == 0 &&
+                        foldable(get(asset, "layers"), &X[i], tm);
+            struct lt_fold fd = {&X[i], tm, visible, c->depth + 1, group};
+            int g = fold ? group : add_cel(c, name, NULL, &X[i], own_xf, true, visible, tm, group);
             /* The composition's own frames at each sample. */
-            double *fr = g < 0 ? NULL : malloc((size_t)tm->nframes * sizeof *fr);
+            bool failed = !fold && g < 0;
+            double *fr = failed ? NULL : malloc((size_t)tm->nframes * sizeof *fr);
             if (!fr) {
                 free(inner.xf);
-                rc = g < 0 ? -1 : lt_fail(c, "out of memory");
+                cJSON_Delete(mask_src);
+                rc = failed ? -1 : lt_fail(c, "out of memory");
                 break;
             }
             lt_prop remap;
@@ -671,10 +821,13 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
             lt_time sub = {tm->nframes, fr, (tm->f0 - st) / (sr != 0 ? sr : 1),
                            tm->fscale / (sr != 0 ? sr : 1), NULL};
             c->matte = inner.shapes ? &inner : NULL;
+            c->fold = fold ? &fd : NULL;
             if (rc == 0)
                 rc = lt_layers(c, get(asset, "layers"), &sub, g);
+            c->fold = NULL;
             c->matte = outer;
             free(inner.xf);
+            cJSON_Delete(mask_src);
             free(fr);
         } else if (t == 3) {
             /* A null layer draws nothing; as a parent it is a group already. */

@@ -119,19 +119,18 @@ static int parse_shape(lt_ctx *c, const cJSON *it, const char *ty, sh_node *node
              lt_prop_parse(c, get(it, "pt"), 1, (const double[]){5}, "polystar points", &p->pt) ||
              lt_prop_parse(c, get(it, "ir"), 1, d_zero, "polystar inner radius", &p->ir) ||
              lt_prop_parse(c, get(it, "or"), 1, d_zero, "polystar outer radius", &p->or_);
-        double is = 0, os = 0;
-        lt_prop q;
         /* A refused property holds nothing (lt_prop_parse frees it). */
-        if (lt_prop_parse(c, get(it, "is"), 1, d_zero, "polystar roundness", &q) == 0) {
-            lt_prop_eval(&q, 0, &is);
-            lt_prop_free(&q);
-        }
-        if (lt_prop_parse(c, get(it, "os"), 1, d_zero, "polystar roundness", &q) == 0) {
-            lt_prop_eval(&q, 0, &os);
-            lt_prop_free(&q);
-        }
-        if (is != 0 || os != 0)
-            lt_warn(c, LT_F_STAR_ROUND, "polystar roundness is drawn as sharp corners");
+        if (rc == 0)
+            rc = lt_prop_parse(c, get(it, "is"), 1, d_zero, "polystar inner roundness", &p->is) ||
+                 lt_prop_parse(c, get(it, "os"), 1, d_zero, "polystar outer roundness", &p->os);
+        /* rlottie grows a partial point as the count passes between whole ones, and rounds
+         * the sides into cubics; a stroke's outline then changes its layout every frame
+         * (polystar_anim.json's took 18.7 M key values), so a polystar whose count is
+         * animated is drawn in whole points with sharp corners. */
+        p->whole = lt_prop_animated(&p->pt);
+        if (rc == 0 && p->whole)
+            lt_warn(c, LT_F_STAR_POINTS, "a polystar whose point count is animated is drawn in "
+                    "whole points with sharp corners (rlottie grows a partial point and rounds)");
     }
     if (rc)
         return -1;
@@ -386,6 +385,7 @@ static void tree_free(sh_tree *t)
         sh_path *p = t->paths[i];
         lt_prop_free(&p->k), lt_prop_free(&p->p), lt_prop_free(&p->s), lt_prop_free(&p->r);
         lt_prop_free(&p->pt), lt_prop_free(&p->ir), lt_prop_free(&p->or_);
+        lt_prop_free(&p->is), lt_prop_free(&p->os);
         free(p);
     }
     for (int i = 0; i < t->ntrims; i++) {
@@ -613,8 +613,8 @@ static int emit_region(lt_ctx *c, const sh_style *s, const lt_time *tm, cJSON *r
         lt_signal_init(&geo[i], N, 3 * first[i].count, 0.01);
         for (const sh_path *const *p = (const sh_path *const *)s->paths;
              p < (const sh_path *const *)s->paths + s->npaths; p++) {
-            const lt_prop *ps[8] = {&(*p)->k, &(*p)->p, &(*p)->s, &(*p)->r,
-                                    &(*p)->pt, &(*p)->ir, &(*p)->or_, NULL};
+            const lt_prop *ps[10] = {&(*p)->k,  &(*p)->p,   &(*p)->s,  &(*p)->r,  &(*p)->pt,
+                                     &(*p)->ir, &(*p)->or_, &(*p)->is, &(*p)->os, NULL};
             for (int k = 0; ps[k]; k++)
                 lt_signal_note_prop(&geo[i], ps[k], tm->f0, tm->fscale);
             note_node_chain(&geo[i], (*p)->node, tm);
@@ -718,7 +718,8 @@ int lt_solid(lt_ctx *c, const cJSON *layer, const lt_time *tm, cJSON *regions)
     if (lt_num(c, layer, "sw", 0, 1e6, 0, &w) || lt_num(c, layer, "sh", 0, 1e6, 0, &h))
         return -1;
     const cJSON *sc = get(layer, "sc");
-    double rgb[3] = {0, 0, 0};
+    /* A colour that is not #rrggbb (some files have "") is white, as rlottie reads it. */
+    double rgb[3] = {1, 1, 1};
     if (cJSON_IsString(sc)) {
         unsigned r, g, b;
         if (sscanf(sc->valuestring, "#%2x%2x%2x", &r, &g, &b) == 3) {

@@ -33,8 +33,9 @@ typedef struct sh_path {
     bool reversed;
     int nverts;
     lt_prop k, p, s, r;             /* sh: k; el: p s; rc: p s r; sr: p r (rotation) */
-    lt_prop pt, ir, or_;            /* sr */
+    lt_prop pt, ir, or_, is, os;    /* sr: points, radii, roundness (percent) */
     int star;                       /* sr: 1 star, 2 polygon */
+    bool whole;                     /* sr: the point count floored (it is animated) */
     sh_node *node;
     int ntrims;
     sh_trim *trims[8];
