@@ -15,7 +15,13 @@
  * came out; tl_note() adds context lines (the first few offending pixels)
  * without counting anything.
  *
- * Everything is static: each test program includes this once.
+ * It is the one harness of every C test program (tests/, tests/linuxhal/):
+ * tests/README.md says how to use it and where a new test goes.
+ *
+ * Everything is static: a test program in one file includes this once. A
+ * program whose checks are spread over several files (test_svg) defines
+ * TL_SHARED before including it in each of them, and TL_MAIN as well in the
+ * file with main(): they then count into one pair of counters.
  */
 #ifndef CELSCAN_TESTLIB_H
 #define CELSCAN_TESTLIB_H
@@ -25,8 +31,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(TL_SHARED)
+extern int tl_passed, tl_failed;
+extern const char *tl_current;
+#if defined(TL_MAIN)
+int tl_passed, tl_failed;
+const char *tl_current = "";
+#endif
+#else
 static int tl_passed, tl_failed;
 static const char *tl_current = "";
+#endif
 
 #if defined(__GNUC__)
 #define TL_PRINTF(a, b) __attribute__((format(printf, a, b)))
@@ -44,7 +59,10 @@ static TL_PRINTF(4, 5) TL_UNUSED int tl_check(int ok, const char *file, int line
         return 1;
     }
     tl_failed++;
-    printf("%s:%d: FAIL [%s] ", file, line, tl_current);
+    if (tl_current[0])
+        printf("%s:%d: FAIL [%s] ", file, line, tl_current);
+    else
+        printf("%s:%d: FAIL ", file, line);
     va_list ap;
     va_start(ap, fmt);
     vprintf(fmt, ap);
