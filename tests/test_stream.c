@@ -30,21 +30,9 @@
 #include "celscan.h"
 #include "cs_wire.h"
 #include "scene_equal.h"
+#include "testlib.h"
 
-static int passed, failed;
 static const double PI = 3.14159265358979323846;
-
-#define CHECK(cond, ...)                                                                          \
-    do {                                                                                          \
-        if (cond) {                                                                               \
-            passed++;                                                                             \
-        } else {                                                                                  \
-            failed++;                                                                             \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                                  \
-            fprintf(stderr, __VA_ARGS__);                                                         \
-            fputc('\n', stderr);                                                                  \
-        }                                                                                         \
-    } while (0)
 
 /* A check that runs thousands of times counts once, and reports its first failure. */
 typedef struct {
@@ -72,15 +60,7 @@ static uint32_t rnd(void)
     return rng_state;
 }
 
-static cs_scene *new_scene(void)
-{
-    cs_scene *s = calloc(1, sizeof *s);
-    if (!s) {
-        fprintf(stderr, "out of memory\n");
-        exit(2);
-    }
-    return s;
-}
+static cs_scene *new_scene(void) { return tl_calloc(1, sizeof(cs_scene)); }
 
 /* ------------------------------------------------------------ comparison */
 
@@ -2659,38 +2639,35 @@ int main(int argc, char **argv)
         return write_seeds(argv[2]);
     store_a = new_scene();
     store_b = new_scene();
-    ws = malloc(sizeof *ws);
-    if (!ws)
-        return 2;
+    ws = tl_calloc(1, sizeof *ws);
     printf("test_stream: sizeof(cs_stream) = %zu bytes (decoder state, apart from the two "
            "scene stores of %zu bytes each)\n",
            sizeof(cs_stream), sizeof(cs_scene));
-    test_crc_and_lights_order();
-    test_copy();
-    test_roundtrip();
-    test_roundtrip_beta();
-    test_roundtrip_groups();
-    test_truncation();
-    test_bitflips();
-    test_crafted();
-    test_crafted_beta();
-    test_random_and_resync();
-    test_valid_then_damaged();
-    test_busy();
-    test_gap();
-    test_refuse();
-    test_epoch();
-    test_patches();
-    test_reader();
-    test_edit_ops();
-    test_edit_ops_beta();
-    test_patch_beta();
-    test_track_validation();
-    test_sampling();
-    test_centroid();
+    TL_RUN(test_crc_and_lights_order);
+    TL_RUN(test_copy);
+    TL_RUN(test_roundtrip);
+    TL_RUN(test_roundtrip_beta);
+    TL_RUN(test_roundtrip_groups);
+    TL_RUN(test_truncation);
+    TL_RUN(test_bitflips);
+    TL_RUN(test_crafted);
+    TL_RUN(test_crafted_beta);
+    TL_RUN(test_random_and_resync);
+    TL_RUN(test_valid_then_damaged);
+    TL_RUN(test_busy);
+    TL_RUN(test_gap);
+    TL_RUN(test_refuse);
+    TL_RUN(test_epoch);
+    TL_RUN(test_patches);
+    TL_RUN(test_reader);
+    TL_RUN(test_edit_ops);
+    TL_RUN(test_edit_ops_beta);
+    TL_RUN(test_patch_beta);
+    TL_RUN(test_track_validation);
+    TL_RUN(test_sampling);
+    TL_RUN(test_centroid);
     free(store_a);
     free(store_b);
     free(ws);
-    printf("test_stream: %d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return tl_summary("test_stream");
 }
