@@ -27,11 +27,6 @@ struct celfw_stream {
     void *check_user;
 };
 
-bool celfw_stream_available(void)
-{
-    return true;
-}
-
 void celfw_stream_set_check(celfw_stream *s, celfw_stream_check check, void *user)
 {
     s->check = check;
