@@ -18,9 +18,10 @@
  * goes through FT_Outline_Decompose, NURBS contours and the core. FreeType's
  * own anti-aliasing rasterizer is a second, coarser opinion.
  *
- * Bars (coverage, 0..1, per pixel): the core's vertical anti-aliasing uses
- * 64 sub-scanlines (CS_AA_EXACT until exact area lands), so a horizontal
- * edge may be off by 1/128; the reference by 1/512; the stroke outline may
+ * Bars (coverage, 0..1, per pixel): the core renders exact area
+ * (CS_AA_EXACT, within 1/255 of the true coverage; the bar was set when it
+ * was 64 sub-scanlines, where a horizontal edge may be off by 1/128); the
+ * reference by 1/512; the stroke outline may
  * move an edge by 0.01 px, i.e. up to 0.014 of a pixel. The maximum bar is
  * their sum rounded up, 0.03; the mean over edge pixels must stay below
  * 0.004 and the total area within 0.1%.
