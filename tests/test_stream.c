@@ -1953,6 +1953,31 @@ static void test_epoch(void)
     free(t);
 }
 
+/* cs_stream_error_text: the line every program prints, written out here by
+ * hand; offsets beyond 32 bits; cut to the buffer, with the length needed. */
+static void test_error_text(void)
+{
+    cs_stream_error e = {CS_ERR_WEIGHT, 40, 52, {CS_ERR_WEIGHT, 2, 0, 1, -1}, "weight must be > 0"};
+    char buf[200];
+    size_t n = cs_stream_error_text(&e, 1000, buf, sizeof buf);
+    const char *want = "weight must be > 0 (cel 2, region 0, contour 1) (transaction at byte 1040 dropped)";
+    CHECK(strcmp(buf, want) == 0 && n == strlen(want), "validation error: '%s' (%zu)", buf, n);
+    cs_stream_error s = {CS_ERR_STREAM_SYNC, 18446744073709551610u, 7, {CS_OK, -1, -1, -1, -1},
+                         "no transaction header here"};
+    n = cs_stream_error_text(&s, 5, buf, sizeof buf);
+    size_t whole = strlen(want);
+    want = "bytes outside any transaction were skipped: no transaction header here (skipping from "
+           "byte 18446744073709551615)";
+    CHECK(strcmp(buf, want) == 0 && n == strlen(want), "skipped bytes: '%s' (%zu)", buf, n);
+    char small[8];
+    memset(small, 'x', sizeof small);
+    n = cs_stream_error_text(&e, 0, small, sizeof small);
+    CHECK(memcmp(small, "weight ", 8) == 0 && n > sizeof small, "cut to 8 bytes: '%.8s' (%zu)",
+          small, n);
+    n = cs_stream_error_text(&e, 1000, NULL, 0);
+    CHECK(n == whole, "size query: %zu, want %zu", n, whole);
+}
+
 /* The host reader: a file with a good scene and a damaged patch. */
 static void test_reader(void)
 {
@@ -2659,6 +2684,7 @@ int main(int argc, char **argv)
     TL_RUN(test_refuse);
     TL_RUN(test_epoch);
     TL_RUN(test_patches);
+    TL_RUN(test_error_text);
     TL_RUN(test_reader);
     TL_RUN(test_edit_ops);
     TL_RUN(test_edit_ops_beta);
