@@ -116,7 +116,7 @@ $(HOST)/obj/%.o: %.c $(FLAGS_DIR)/host-obj
 # cel stream reader (tools/cels_read.c, over the core's decoder) and the
 # typed-number reader all host programs share (tools/cli_num.c) over libcelscan.
 CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c)) tools/cels_read.c \
-        tools/cli_num.c
+        tools/cli.c tools/cli_num.c
 CELSIM_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELSIM_SRC))
 
 $(HOST)/celsim: $(CELSIM_OBJ) $(HOST)/libcelscan.a
