@@ -23,7 +23,7 @@
 #include <time.h>
 
 #include "celscan.h"
-
+#include "shapes.h"
 #include "testlib.h"
 
 static cs_scene g_scene;
@@ -32,45 +32,6 @@ static cs_workspace g_ws;
 /* ------------------------------------------------------------ building */
 
 static const cs_affine identity = {1, 0, 0, 1, 0, 0};
-
-static void add_rect(cs_scene *s, double x0, double y0, double x1, double y1)
-{
-    cs_point p[4] = {{(float)x0, (float)y0, 1}, {(float)x1, (float)y0, 1},
-                     {(float)x1, (float)y1, 1}, {(float)x0, (float)y1, 1}};
-    cs_error e;
-    cs_status st = cs_scene_add_contour(s, 1, 4, p, NULL, &e);
-    if (st != CS_OK) {
-        printf("add_rect: %s\n", cs_status_str(st));
-        exit(2);
-    }
-}
-
-static void add_polygon(cs_scene *s, const double *xy, int n)
-{
-    cs_point p[16];
-    for (int i = 0; i < n; i++)
-        p[i] = (cs_point){(float)xy[2 * i], (float)xy[2 * i + 1], 1};
-    cs_error e;
-    if (cs_scene_add_contour(s, 1, n, p, NULL, &e) != CS_OK)
-        exit(2);
-}
-
-/* The exact rational quadratic circle of DESIGN.md. */
-static void add_circle(cs_scene *s, double cx, double cy, double r)
-{
-    const double h = sqrt(0.5);
-    const double ux[8] = {1, 1, 0, -1, -1, -1, 0, 1}, uy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
-    cs_point p[8];
-    float iv[8];
-    for (int i = 0; i < 8; i++) {
-        p[i] = (cs_point){(float)(cx + r * ux[i]), (float)(cy + r * uy[i]),
-                          (float)((i & 1) ? h : 1.0)};
-        iv[i] = (i & 1) ? 0.0f : 1.0f;
-    }
-    cs_error e;
-    if (cs_scene_add_contour(s, 2, 8, p, iv, &e) != CS_OK)
-        exit(2);
-}
 
 static cs_paint paint(double pr, double pg, double pb, double mr, double mg, double mb,
                       double beta)
@@ -261,16 +222,16 @@ static void test_closed_form(void)
         }
         add_cel(s, NULL, f, b);
         add_region(s, paint(pa[0], pa[1], pa[2], ma[0], ma[1], ma[2], ba));
-        add_rect(s, ra[0], ra[1], ra[2], ra[3]);
+        TL_MUST(ts_add_rect(s, ra[0], ra[1], ra[2], ra[3]));
         add_region(s, paint(pb[0], pb[1], pb[2], mb[0], mb[1], mb[2], bb));
-        add_rect(s, rb[0], rb[1], rb[2], rb[3]);
+        TL_MUST(ts_add_rect(s, rb[0], rb[1], rb[2], rb[3]));
         add_cel(s, NULL, NULL, NULL); /* front = stack front, back = black */
         add_region(s, paint(pcirc[0], pcirc[1], pcirc[2], mcirc[0], mcirc[1], mcirc[2], bcirc));
-        add_circle(s, ccx, ccy, crad);
+        TL_MUST(ts_add_circle(s, ccx, ccy, crad));
         float b2[3] = {(float)B2[0], (float)B2[1], (float)B2[2]};
         add_cel(s, NULL, NULL, b2);
         add_region(s, paint(pr[0], pr[1], pr[2], mr[0], mr[1], mr[2], br));
-        add_rect(s, rc[0], rc[1], rc[2], rc[3]);
+        TL_MUST(ts_add_rect(s, rc[0], rc[1], rc[2], rc[3]));
         /* Stack lights set after the cels: cel 1 and 2 must still follow. */
         float fs[3] = {(float)Fs[0], (float)Fs[1], (float)Fs[2]};
         float bs[3] = {(float)Bs[0], (float)Bs[1], (float)Bs[2]};
@@ -342,7 +303,7 @@ static void test_alpha_over(void)
     for (int i = 0; i < 3; i++) {
         add_cel(s, NULL, NULL, NULL);
         add_region(s, paint(col[i][0], col[i][1], col[i][2], 1, 1, 1, alpha[i]));
-        add_rect(s, rects[i][0], rects[i][1], rects[i][2], rects[i][3]);
+        TL_MUST(ts_add_rect(s, rects[i][0], rects[i][1], rects[i][2], rects[i][3]));
     }
     cs_render_opts o = opts_n(48, 48, 16);
     CHECK(render(s, &o, NULL, img_a) == CS_OK, "render");
@@ -382,10 +343,10 @@ static void matte_case(const char *name, cs_paint front, const float *back_light
     cs_scene_set_lights(s, fs, bs);
     add_cel(s, NULL, NULL, back_light);
     add_region(s, front);
-    add_rect(s, 4, 4, 20, 28);
+    TL_MUST(ts_add_rect(s, 4, 4, 20, 28));
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.8, 0.1, 0.05, 0, 0, 0, 1)); /* opaque red, right half */
-    add_rect(s, 16, 0, 32, 32);
+    TL_MUST(ts_add_rect(s, 16, 0, 32, 32));
     cs_render_opts o = opts_n(32, 32, 4);
     CHECK(render(s, &o, NULL, img_a) == CS_OK, "%s: render", name);
     const double L[3] = {0.2 * 0.9, 0.4 * 0.95, 0.6};
@@ -541,7 +502,7 @@ static void test_gradients(void)
             add_cel(s, &A, NULL, NULL);
             /* medium [0.5, 0.6, 0.7] so that a beta function shows */
             add_region(s, paint(0.5, 0.5, 0.5, 0.5, 0.6, 0.7, 1));
-            add_rect(s, -200, -200, 300, 300); /* covers everything */
+            TL_MUST(ts_add_rect(s, -200, -200, 300, 300)); /* covers everything */
             cs_paint_func fn;
             cs_error err;
             int field = CS_FIELD_PIGMENT;
@@ -630,10 +591,10 @@ static void build_busy_scene(cs_scene *s)
     /* Front: a translucent disc and a gradient gel. */
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.9, 0.8, 0.1, 0.6, 0.6, 0.9, 0.4));
-    add_circle(s, 30, 30, 14);
+    TL_MUST(ts_add_circle(s, 30, 30, 14));
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.2, 0.2, 0.2, 1, 1, 1, 0));
-    add_rect(s, 40, 4, 90, 60);
+    TL_MUST(ts_add_rect(s, 40, 4, 90, 60));
     const double g[4] = {40, 0, 90, 0};
     const double off[2] = {0, 1};
     const double v[2][3] = {{1, 0.3, 0.3}, {0.3, 0.3, 1}};
@@ -644,32 +605,32 @@ static void build_busy_scene(cs_scene *s)
      * full-width band that hides everything behind it on its lines. */
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.1, 0.6, 0.2, 0, 0, 0, 1));
-    add_rect(s, 10.3, 10.6, 70.2, 40.4);
+    TL_MUST(ts_add_rect(s, 10.3, 10.6, 70.2, 40.4));
     add_region(s, paint(0.7, 0.2, 0.2, 0, 0, 0, 1));
-    add_rect(s, 0, 44, 96, 52);
+    TL_MUST(ts_add_rect(s, 0, 44, 96, 52));
     /* Two opaque regions of one cel meeting at a slanted edge: their
      * coverages on the seam pixels sum to 1 only up to rounding. */
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.9, 0.3, 0.3, 0, 0, 0, 1));
     const double left[8] = {72.1, 2.3, 80.37, 2.3, 84.71, 62.2, 72.1, 62.2};
-    add_polygon(s, left, 4);
+    TL_MUST(ts_add_polygon(s, left, 4));
     add_region(s, paint(0.3, 0.3, 0.9, 0, 0, 0, 1));
     const double right[8] = {80.37, 2.3, 95.3, 2.3, 95.3, 62.2, 84.71, 62.2};
-    add_polygon(s, right, 4);
+    TL_MUST(ts_add_polygon(s, right, 4));
     /* Just behind the card, poking out of it by under a pixel on each side:
      * hidden only where the card is, so its bounds must be honest. */
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.9, 0.9, 0.1, 0.2, 0.2, 0.2, 0.8));
-    add_rect(s, 9.9, 12.2, 70.6, 38.3);
+    TL_MUST(ts_add_rect(s, 9.9, 12.2, 70.6, 38.3));
     /* Behind: many cels the early-out should skip in places. */
     for (int i = 0; i < 12; i++) {
         add_cel(s, NULL, NULL, NULL);
         add_region(s, paint(0.1 * (i % 10), 0.5, 0.9 - 0.05 * i, 0.8, 0.7, 0.6, 0.5 + 0.04 * i));
-        add_circle(s, 8 + 7 * i, 20 + (i % 3) * 12, 9 + (i % 4));
+        TL_MUST(ts_add_circle(s, 8 + 7 * i, 20 + (i % 3) * 12, 9 + (i % 4)));
     }
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.4, 0.4, 0.4, 0, 0, 0, 1)); /* opaque back wall */
-    add_rect(s, 0, 0, 96, 64);
+    TL_MUST(ts_add_rect(s, 0, 0, 96, 64));
 }
 
 static void test_early_out_exact(void)
@@ -864,10 +825,10 @@ static void test_grey_path(void)
     cs_scene_set_background(&g_scene, card);
     add_cel(&g_scene, NULL, NULL, NULL);
     add_region(&g_scene, paint(0.2, 0.6, 0.9, 0.9, 0.5, 0.2, 1));
-    add_rect(&g_scene, 4, 4, 30, 28);
+    TL_MUST(ts_add_rect(&g_scene, 4, 4, 30, 28));
     add_cel(&g_scene, NULL, NULL, NULL);
     add_region(&g_scene, paint(0.9, 0.9, 0.1, 1, 1, 1, 0));
-    add_circle(&g_scene, 20, 16, 12);
+    TL_MUST(ts_add_circle(&g_scene, 20, 16, 12));
     o = opts_n(64, 32, 5);
     CHECK(frame_grey(&g_scene, &o, NULL), "opaque paint with a coloured medium: grey");
     add_cel(&g_scene, NULL, NULL, NULL);
@@ -877,7 +838,7 @@ static void test_grey_path(void)
     const double ramp[2][3] = {{0, 0, 0}, {1, 1, 1}};
     cs_paint_func fn = make_func(CS_FUNC_LINEAR, CS_SPREAD_PAD, g, 4, 2, off, ramp);
     CHECK(cs_scene_set_region_func(&g_scene, CS_FIELD_BETA, &fn, &e) == CS_OK, "beta ramp");
-    add_rect(&g_scene, 0, 8, 64, 24);
+    TL_MUST(ts_add_rect(&g_scene, 0, 8, 64, 24));
     CHECK(!frame_grey(&g_scene, &o, NULL), "functional beta over a coloured medium: three channels");
     CHECK(same_bits_both_paths(&g_scene, o, NULL), "functional beta: the paths differ");
     /* A grey medium gradient is grey; one coloured stop is not. */
@@ -1013,9 +974,9 @@ static void celscan_coverage(const shape *sh, int ns, const int *rpn, int len, i
     }
     for (int i = 0; i < ns; i++) {
         if (sh[i].kind == 0)
-            add_circle(s, sh[i].cx, sh[i].cy, sh[i].r);
+            TL_MUST(ts_add_circle(s, sh[i].cx, sh[i].cy, sh[i].r));
         else
-            add_polygon(s, sh[i].xy, sh[i].n);
+            TL_MUST(ts_add_polygon(s, sh[i].xy, sh[i].n));
         cs_scene_set_contour_operand(s, sh[i].operand, &e);
     }
     cs_render_opts o = opts_n(w, h, 64);
@@ -1105,7 +1066,7 @@ static void test_csg(void)
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(1, 1, 1, 0, 0, 0, 1));
     cs_error e;
-    add_circle(s, 24, 28, 15.5);
+    TL_MUST(ts_add_circle(s, 24, 28, 15.5));
     cs_scene_set_contour_operand(s, 3, &e);
     cs_render_opts o = opts_n(64, 64, 64);
     render(s, &o, NULL, img_c);
@@ -1141,7 +1102,7 @@ static void test_csg_validation(void)
     CHECK(s->regions[0].csg_len == 0, "rejected programs leave the region unchanged");
     CHECK(cs_scene_set_region_csg(s, good, 3, &e) == CS_OK, "good program");
     CHECK(cs_scene_set_contour_operand(s, 1, &e) == CS_ERR_STATE, "operand before a contour");
-    add_rect(s, 1, 1, 5, 5);
+    TL_MUST(ts_add_rect(s, 1, 1, 5, 5));
     CHECK(cs_scene_set_contour_operand(s, -1, &e) == CS_ERR_CSG, "negative operand");
     CHECK(cs_scene_set_contour_operand(s, CS_CFG_MAX_OPERANDS, &e) == CS_ERR_CSG,
           "operand too large");
@@ -1359,10 +1320,10 @@ static void test_srgb_blend(void)
     cs_scene_set_background(s, blue);
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(1, 0, 0, 1, 1, 1, 0.5));
-    add_rect(s, 0, 0, 8.5, 16);
+    TL_MUST(ts_add_rect(s, 0, 0, 8.5, 16));
     /* a gradient too: stops interpolate in sRGB */
     add_region(s, paint(1, 1, 1, 1, 1, 1, 1));
-    add_rect(s, 8.5, 0, 16, 16);
+    TL_MUST(ts_add_rect(s, 8.5, 0, 16, 16));
     const double g[4] = {8.5, 0, 16, 0}, off[2] = {0, 1};
     const double v[2][3] = {{srgb_inv(0.2), srgb_inv(0.2), srgb_inv(0.2)},
                             {srgb_inv(0.8), srgb_inv(0.8), srgb_inv(0.8)}};
@@ -1397,7 +1358,7 @@ static void test_defaults(void)
     cs_scene_init(s, 8, 8);
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5));
-    add_rect(s, 0, 0, 8, 8);
+    TL_MUST(ts_add_rect(s, 0, 0, 8, 8));
     float f[3] = {0.4f, 0.8f, 1.6f}, b[3] = {0.3f, 0.2f, 0.1f};
     cs_scene_set_lights(s, f, b);
     cs_render_opts o = opts_n(8, 8, 1);

@@ -30,6 +30,7 @@
 #include "celscan.h"
 #include "cs_wire.h"
 #include "scene_equal.h"
+#include "shapes.h"
 #include "testlib.h"
 
 static const double PI = 3.14159265358979323846;
@@ -105,20 +106,6 @@ static bool renders_equal(const cs_scene *a, const cs_scene *b)
 
 /* ---------------------------------------------------------------- scenes */
 
-static const float R2 = 0.70710678f;
-
-static void add_circle(cs_scene *s, float cx, float cy, float r)
-{
-    cs_point p[8] = {{cx + r, cy, 1},          {cx + r, cy + r, R2}, {cx, cy + r, 1},
-                     {cx - r, cy + r, R2},     {cx - r, cy, 1},      {cx - r, cy - r, R2},
-                     {cx, cy - r, 1},          {cx + r, cy - r, R2}};
-    float iv[8] = {1, 0, 1, 0, 1, 0, 1, 0};
-    cs_error e;
-    cs_status st = cs_scene_add_contour(s, 2, 8, p, iv, &e);
-    if (st != CS_OK)
-        fprintf(stderr, "add_circle: %s\n", cs_status_str(st));
-}
-
 static cs_paint paint_of(float r, float g, float b, float beta)
 {
     cs_paint p = {{r, g, b}, {1, 1, 1}, beta};
@@ -143,7 +130,7 @@ static void build_demo(cs_scene *s)
     cs_scene_add_cel(s, &id, NULL, NULL, &e); /* cel 0: a disc, animated transform */
     cs_paint red = paint_of(0.9f, 0.2f, 0.2f, 1.0f);
     cs_scene_add_region(s, CS_FILL_NONZERO, &red, &e);
-    add_circle(s, 20, 20, 12);
+    TL_MUST(ts_add_circle(s, 20, 20, 12));
 
     cs_affine rot = {0.8f, 0.6f, -0.6f, 0.8f, 50, 8};
     const float cel_front[3] = {0.9f, 0.95f, 1.0f};
@@ -245,7 +232,7 @@ static void build_beta(cs_scene *s)
     const float rad_s[2][4] = {{0, 1, 1, 1}, {1, 0.2f, 0.2f, 0.2f}};
     f = make_func(CS_FUNC_RADIAL, CS_SPREAD_PAD, rad_g, 2, 1, rad_s);
     cs_scene_set_region_func(s, CS_FIELD_BETA, &f, &e);
-    add_circle(s, 30, 20, 18);
+    TL_MUST(ts_add_circle(s, 30, 20, 18));
 
     cs_paint gel = {{0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}, 0.3f};
     cs_scene_add_region(s, CS_FILL_EVENODD, &gel, &e);
@@ -262,14 +249,14 @@ static void build_beta(cs_scene *s)
     cs_scene_add_region(s, CS_FILL_EVENODD, &ink, &e);
     const int rpn[5] = {0, 1, CS_CSG_DIFFERENCE, 2, CS_CSG_UNION};
     cs_scene_set_region_csg(s, rpn, 5, &e);
-    add_circle(s, 60, 20, 14); /* operand 0: a ring of two circles */
+    TL_MUST(ts_add_circle(s, 60, 20, 14)); /* operand 0: a ring of two circles */
     cs_scene_set_contour_operand(s, 0, &e);
-    add_circle(s, 60, 20, 8);
+    TL_MUST(ts_add_circle(s, 60, 20, 8));
     cs_scene_set_contour_operand(s, 0, &e);
     cs_point bar[4] = {{40, 17, 1}, {80, 17, 1}, {80, 23, 1}, {40, 23, 1}};
     cs_scene_add_contour(s, 1, 4, bar, NULL, &e); /* operand 1: the bar */
     cs_scene_set_contour_operand(s, 1, &e);
-    add_circle(s, 15, 50, 9); /* operand 2: a disc */
+    TL_MUST(ts_add_circle(s, 15, 50, 9)); /* operand 2: a disc */
     cs_scene_set_contour_operand(s, 2, &e);
     /* every field a function, on a region with no CSG */
     cs_paint any = paint_of(0, 0, 0, 0.5f);
@@ -579,7 +566,7 @@ static void truncation(void (*build)(cs_scene *), const char *name)
     cs_scene_add_cel(first, &id, NULL, NULL, &e);
     cs_paint p = paint_of(1, 1, 1, 1);
     cs_scene_add_region(first, CS_FILL_NONZERO, &p, &e);
-    add_circle(first, 30, 30, 10);
+    TL_MUST(ts_add_circle(first, 30, 30, 10));
     cels_buf g;
     encode(first, &g, true);
     size_t second = g.len;
@@ -622,7 +609,7 @@ static void bitflips(void (*build)(cs_scene *), const char *name)
     cs_scene_add_cel(first, &id, NULL, NULL, &e);
     cs_paint p = paint_of(1, 0.5f, 0.25f, 1);
     cs_scene_add_region(first, CS_FILL_NONZERO, &p, &e);
-    add_circle(first, 30, 30, 10);
+    TL_MUST(ts_add_circle(first, 30, 30, 10));
     cels_buf g;
     encode(first, &g, true);
     size_t second = g.len;
@@ -2167,10 +2154,10 @@ static void build_three(cs_scene *s, const int *order, int n)
         cs_scene_add_cel(s, &m, NULL, NULL, &e);
         cs_paint p = paint_of(0.3f * (float)k, 0.5f, 1.0f - 0.3f * (float)k, 0.5f + 0.2f * (float)k);
         cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e);
-        add_circle(s, 20, 20, 8 + 2 * (float)k);
+        TL_MUST(ts_add_circle(s, 20, 20, 8 + 2 * (float)k));
         cs_scene_add_region(s, CS_FILL_EVENODD, &p, &e);
-        add_circle(s, 30, 30, 5);
-        add_circle(s, 30, 30, 3);
+        TL_MUST(ts_add_circle(s, 30, 30, 5));
+        TL_MUST(ts_add_circle(s, 30, 30, 3));
     }
     for (int i = 0; i < n; i++) {
         int k = order[i];
@@ -2265,7 +2252,7 @@ static void build_three_beta(cs_scene *s, const int *order, int n)
             f = make_func(CS_FUNC_RADIAL, 0, rg, 2, 1, rs);
             cs_scene_set_region_func(s, CS_FIELD_BETA, &f, &e);
         }
-        add_circle(s, 20, 20, 8 + 2 * fk);
+        TL_MUST(ts_add_circle(s, 20, 20, 8 + 2 * fk));
         cs_scene_add_region(s, CS_FILL_EVENODD, &p, &e);
         const float mg[6] = {20, 20, 20, 0, 0, 20};
         const float ms[4][4] = {{0, 1, 0, 0}, {0, 0, fk / 2, 0}, {0, 0, 0, 1}, {0, 1, 1, 1}};
@@ -2273,9 +2260,9 @@ static void build_three_beta(cs_scene *s, const int *order, int n)
         cs_scene_set_region_func(s, CS_FIELD_MEDIUM, &f, &e);
         const int rpn[3] = {0, 1, k == 2 ? CS_CSG_XOR : CS_CSG_DIFFERENCE};
         cs_scene_set_region_csg(s, rpn, 3, &e);
-        add_circle(s, 30, 30, 9);
+        TL_MUST(ts_add_circle(s, 30, 30, 9));
         cs_scene_set_contour_operand(s, 0, &e);
-        add_circle(s, 34, 30, 5);
+        TL_MUST(ts_add_circle(s, 34, 30, 5));
         cs_scene_set_contour_operand(s, 1, &e);
     }
     for (int i = 0; i < n; i++) {
@@ -2331,7 +2318,7 @@ static void test_edit_ops_beta(void)
                   cs_status_str(fs), s->func_count);
             break;
         }
-        add_circle(s, 20, 20, 8);
+        TL_MUST(ts_add_circle(s, 20, 20, 8));
     }
     CHECK(s->func_count <= 8, "after %d remove/add rounds: %u functions in use",
           3 * CS_CFG_MAX_FUNCS, s->func_count);
@@ -2423,7 +2410,7 @@ static void test_track_validation(void)
     cs_scene_add_cel(s, &id, NULL, NULL, &e);
     cs_paint p = paint_of(1, 1, 1, 1);
     cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e);
-    add_circle(s, 5, 5, 2);
+    TL_MUST(ts_add_circle(s, 5, 5, 2));
     CHECK(cs_scene_add_track(s, CS_TRACK_TRANSFORM, 1, CS_EASE_LINEAR, &e) == CS_ERR_INDEX,
           "track on a missing cel");
     CHECK(cs_scene_add_track(s, (cs_track_kind)9, 0, CS_EASE_LINEAR, &e) == CS_ERR_TRACK,
@@ -2475,7 +2462,7 @@ static void test_centroid(void)
     cs_scene_add_cel(s, &id, NULL, NULL, &e);
     cs_paint white = paint_of(1, 1, 1, 1);
     cs_scene_add_region(s, CS_FILL_NONZERO, &white, &e);
-    add_circle(s, 0, 0, 12);
+    TL_MUST(ts_add_circle(s, 0, 0, 12));
     const double e0 = 30.3, f0 = 40.7, e1 = 161.9, f1 = 57.2, ta = 0.5, tb = 2.5;
     for (int ease = 0; ease < 2; ease++) {
         cs_scene_add_track(s, CS_TRACK_TRANSFORM, 0, (cs_ease)ease, &e);

@@ -139,6 +139,20 @@ static TL_UNUSED const char *tl_status_name(int s)
     return "(unknown status)";
 }
 
+/* A set-up call the test cannot go on without (status 0, CS_OK): on any
+ * other status the program ends (exit 2, which tests/run.sh counts as a
+ * failure) naming the call and the status. */
+#define TL_MUST(call) tl_must((int)(call), #call, __FILE__, __LINE__)
+
+static TL_UNUSED void tl_must(int status, const char *call, const char *file, int line)
+{
+    if (status == 0)
+        return;
+    printf("%s:%d: FAIL %s: status %s (%d)\n", file, line, call, tl_status_name(status), status);
+    fflush(stdout);
+    exit(2);
+}
+
 #define TL_RUN(fn)                                                                                \
     do {                                                                                          \
         tl_current = #fn;                                                                         \
