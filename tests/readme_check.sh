@@ -1,0 +1,32 @@
+#!/bin/sh
+# readme_check.sh - tests/README.md lists every test file, and only files that exist.
+#
+#   sh tests/readme_check.sh
+#
+# A test file is any .c, .h, .sh or .py under tests/ (programs, helpers,
+# emulated devices, references): the README must name it in backquotes by its
+# path from tests/ (`linuxhal/test_drm.c`), so a newcomer finds every test and
+# what it holds to account. A name the README gives in backquotes with one of
+# those endings must exist, in tests/ or from the top of the tree. One check
+# per file; the last line is `readme_check: N passed, M failed`.
+cd "$(dirname "$0")" || exit 2
+pass=0
+fail=0
+for f in $(find . -type f \( -name '*.c' -o -name '*.h' -o -name '*.sh' -o -name '*.py' \) | sed 's|^\./||' | sort); do
+    if grep -qF "\`$f\`" README.md; then
+        pass=$((pass + 1))
+    else
+        echo "readme_check: FAIL tests/$f is not in tests/README.md (add a row: what it checks, how it runs)"
+        fail=$((fail + 1))
+    fi
+done
+for f in $(grep -oE '`[A-Za-z0-9_./-]+\.(c|h|sh|py)`' README.md | tr -d '`' | sort -u); do
+    if [ -e "$f" ] || [ -e "../$f" ]; then
+        pass=$((pass + 1))
+    else
+        echo "readme_check: FAIL tests/README.md names $f, which is not in tests/ or the tree"
+        fail=$((fail + 1))
+    fi
+done
+echo "readme_check: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
