@@ -9,24 +9,21 @@
 # what it holds to account. A name the README gives in backquotes with one of
 # those endings must exist, in tests/ or from the top of the tree. One check
 # per file; the last line is `readme_check: N passed, M failed`.
+TL_NAME=readme_check
+. "$(dirname "$0")/testlib.sh"
 cd "$(dirname "$0")" || exit 2
-pass=0
-fail=0
 for f in $(find . -type f \( -name '*.c' -o -name '*.h' -o -name '*.sh' -o -name '*.py' \) | sed 's|^\./||' | sort); do
     if grep -qF "\`$f\`" README.md; then
-        pass=$((pass + 1))
+        ok
     else
-        echo "readme_check: FAIL tests/$f is not in tests/README.md (add a row: what it checks, how it runs)"
-        fail=$((fail + 1))
+        bad "tests/$f is not in tests/README.md (add a row: what it checks, how it runs)"
     fi
 done
 for f in $(grep -oE '`[A-Za-z0-9_./-]+\.(c|h|sh|py)`' README.md | tr -d '`' | sort -u); do
     if [ -e "$f" ] || [ -e "../$f" ]; then
-        pass=$((pass + 1))
+        ok
     else
-        echo "readme_check: FAIL tests/README.md names $f, which is not in tests/ or the tree"
-        fail=$((fail + 1))
+        bad "tests/README.md names $f, which is not in tests/ or the tree"
     fi
 done
-echo "readme_check: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+tl_summary
