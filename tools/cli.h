@@ -1,6 +1,6 @@
 /*
  * cli.h - the part of main() that the host programs with subcommands share
- * (celsim, celc): the help text on -h, --help or help (to standard output,
+ * (celsim, celc, svgimport): the help text on -h, --help or help (to standard output,
  * exit 0) and without a command (to standard error, exit 2), the dispatch
  * to a command's own main, an unknown command named, and usage errors as
  * one line "PROGRAM: message" with exit status 2.
