@@ -76,7 +76,8 @@ static cs_status render(const cs_scene *s, int w, int h, float t, cs_aa_mode aa,
                         float *out)
 {
     cs_renderer r;
-    cs_render_opts o = {w, h, aa, sub, t, CS_BLEND_LINEAR, false};
+    cs_render_opts o = {.width = w, .height = h, .aa = aa, .subscanlines = sub, .time = t,
+                        .blend = CS_BLEND_LINEAR};
     cs_error err;
     cs_status st = cs_frame_begin(&r, ws, s, &o, &err);
     if (st != CS_OK)
