@@ -151,8 +151,9 @@ $(DEMO)/frame-%.png: scenes/demo.json $(HOST)/celsim
 #                    AddressSanitizer + UBSan (+ float-cast-overflow) into build/asan/
 #                    and run them
 # Tests of the parts in mk/*.mk are built by their fragments, not here.
-FRAGMENT_TESTS := tests/test_mcu_display.c tests/test_stream.c tests/test_exact.c \
-        tests/test_beta.c tests/test_cache.c tests/test_csg.c tests/test_paint_json.c tests/test_scenes.c tests/test_bands.c \
+FRAGMENT_TESTS := tests/test_cache.c tests/test_csg.c \
+        tests/test_mcu_display.c tests/test_stream.c tests/test_exact.c \
+        tests/test_beta.c tests/test_paint_json.c tests/test_scenes.c tests/test_bands.c \
         $(wildcard tests/test_svg*.c)
 TEST_SRC := $(filter-out $(FRAGMENT_TESTS),$(sort $(wildcard tests/test_*.c)))
 TEST_REF_SRC := $(sort $(wildcard tests/ref/*.c))
