@@ -19,10 +19,9 @@
  * 16 KiB scene store; with --speed, median render times at 480x272 and
  * 1920x1080 of both renderers. The last line is
  *   lottie_conf: N passed, M failed
- * (tests/testlib.h) counting two kinds of check: the frames' pass rate
- * against --floor (default 0.9), and each file accepted (a refused file the
- * inventory marks mappable fails); the exit status is non-zero if any fails.
- * --dump writes each compared frame as DIR/FILE-NNN.png, rlottie
+ * counting two kinds of check: the frames' pass rate against --floor
+ * (default 0.9), and each file accepted (a refused file the inventory marks
+ * mappable fails); the exit status is non-zero if any fails. --dump writes each compared frame as DIR/FILE-NNN.png, rlottie
  * on the left and celscan on the right.
  */
 #include <math.h>
