@@ -46,7 +46,7 @@
 
 enum { EXIT_LOAD = 1, EXIT_USAGE = 2, EXIT_DEGRADED = 3 };
 
-/* Default vertical anti-aliasing until exact-area coverage is the default. */
+/* The default vertical anti-aliasing, cs_render_defaults' (16 sub-scanlines). */
 #define DEFAULT_SUBSCANLINES 16
 #define MAX_REPEAT 1000000
 
