@@ -116,7 +116,7 @@ $(HOST)/obj/%.o: %.c $(FLAGS_DIR)/host-obj
 # cel stream reader (tools/cels_read.c, over the core's decoder) and the
 # typed-number reader all host programs share (tools/cli_num.c) over libcelscan.
 CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c)) tools/cels_read.c \
-        tools/cli_num.c
+        tools/cli.c tools/cli_num.c
 CELSIM_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELSIM_SRC))
 
 $(HOST)/celsim: $(CELSIM_OBJ) $(HOST)/libcelscan.a
@@ -151,7 +151,8 @@ $(DEMO)/frame-%.png: scenes/demo.json $(HOST)/celsim
 #                    AddressSanitizer + UBSan (+ float-cast-overflow) into build/asan/
 #                    and run them
 # Tests of the parts in mk/*.mk are built by their fragments, not here.
-FRAGMENT_TESTS := tests/test_mcu_display.c tests/test_stream.c tests/test_exact.c \
+FRAGMENT_TESTS := tests/test_cache.c tests/test_csg.c \
+        tests/test_mcu_display.c tests/test_stream.c tests/test_exact.c \
         tests/test_beta.c tests/test_paint_json.c tests/test_scenes.c tests/test_bands.c \
         tests/test_rx_ring.c \
         $(wildcard tests/test_svg*.c)
@@ -173,7 +174,12 @@ HOST_TEST_REF_OBJ := $(patsubst tests/%.c,$(HOST)/tests/%.o,$(TEST_REF_SRC))
 ASAN_TEST_REF_OBJ := $(patsubst tests/%.c,$(ASAN)/tests/%.o,$(TEST_REF_SRC))
 ASAN_CORE_OBJ := $(patsubst core/%.c,$(ASAN)/core/%.o,$(CORE_SRC))
 
-.PHONY: test-unit test-asan
+# tests/README.md lists every test file (tests/readme_check.sh).
+.PHONY: test-unit test-asan test-readme
+test-readme:
+	$(Q)sh tests/readme_check.sh
+TEST_CMDS += "sh tests/readme_check.sh"
+
 .SECONDARY: $(patsubst %,%.o,$(HOST_TESTS) $(ASAN_TESTS)) $(HOST_TEST_REF_OBJ) $(ASAN_TEST_REF_OBJ)
 test-unit: $(HOST_TESTS)
 	$(Q)sh tests/run.sh $(HOST_TESTS)

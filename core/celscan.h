@@ -968,6 +968,16 @@ const cs_scene *cs_stream_scene(const cs_stream *s);
 /* The error behind the last CS_STREAM_ERROR. */
 const cs_stream_error *cs_stream_last_error(const cs_stream *s);
 
+/*
+ * A decoder error as one line of text, the way every program reports it:
+ *   <status>[: <explanation>][ (cel c, region r, contour k, item i)]
+ *       (transaction at byte N dropped)      or      (skipping from byte N)
+ * where N is base + e->offset (base: bytes before the decoder started). The
+ * fault's own offset (base + e->at) is left to the caller's prefix. The text
+ * is cut to fit len bytes, NUL included; returns the length it needed.
+ */
+size_t cs_stream_error_text(const cs_stream_error *e, uint64_t base, char *buf, size_t len);
+
 /* ----------------------------------------------------------------- misc */
 
 /* CRC-32 (IEEE 802.3, reflected, as zlib). Start with crc = 0. */

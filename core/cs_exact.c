@@ -85,8 +85,8 @@
  *    right of it adds nothing.
  *
  * The result lands in the same area/cover accumulators the sub-scanline
- * code uses, so render_region's fold, the within-cel coverage budget and
- * the compositing are shared by every AA mode. Line state is the region's
+ * code uses, so the fold (cs_line.c, fold_region), the within-cel coverage
+ * budget and the compositing are shared by every AA mode. Line state is the region's
  * active pieces plus the O(width) accumulators; memory is fixed.
  */
 #include "cs_runs.h"
@@ -1327,9 +1327,9 @@ static float next_cut(const exact_ctx *cx, const uint32_t *cl, uint32_t nc, floa
 }
 /*
  * The pieces cl[0..nc) of one cluster, band by band down the row. No
- * curve passes between two clusters (see cluster_closed), so the winding
- * to the right of this one is the same at every height: any band's arcs
- * give it.
+ * curve passes between two clusters (see the loop over them in
+ * cs__exact_region), so the winding to the right of this one is the same
+ * at every height: any band's arcs give it.
  */
 static bool run_cluster(exact_ctx *cx, uint32_t *cl, uint32_t nc, int32_t *w, bool inside)
 {

@@ -495,7 +495,7 @@ void cs__pixfmt_runs(cs_pixfmt fmt, const float *rgb, const uint16_t *run_end, u
 /*
  * Exact-area coverage of `region` on pixel row y (cs_exact.c), from its
  * active pieces act[0..n): adds to ws->area / ws->cover what the
- * sub-scanline code adds for its spans, so render_region folds both alike.
+ * sub-scanline code adds for its spans, so fold_region folds both alike.
  * [*lo, *hi) grows to every accumulator entry written. Returns
  * CS_ERR_CAP_CROSSINGS, adding nothing, if n exceeds CS_CFG_MAX_CROSSINGS,
  * or, with the row still added, if it needed more than

@@ -3,6 +3,9 @@
  *
  * The strings are what users read in celsim's and the firmware's error
  * messages, so they say what was expected, not just that something failed.
+ * cs_stream_error_text puts a decoder error in the one line that celsim,
+ * celc, celfw and the MCU firmware print (no libc here, so it formats its
+ * numbers itself).
  * The CRC is the one the cel stream and the frame checks use (IEEE 802.3,
  * as zlib); a 16-entry table keeps it small enough for any MCU.
  */
@@ -59,6 +62,93 @@ const char *cs_status_str(cs_status status)
     if ((unsigned)status >= (unsigned)CS_ERR_COUNT_ || !status_text[status])
         return "unknown status";
     return status_text[status];
+}
+
+/* Error text is a cold path on boards whose flash is nearly full: compiled
+ * for size, whatever the optimisation level of the rest. */
+#if defined(__GNUC__)
+#define TEXT_COLD __attribute__((cold))
+#else
+#define TEXT_COLD
+#endif
+
+/* Text into buf[0..len), counting what did not fit as well. */
+typedef struct text_out {
+    char *buf;
+    size_t len, n;
+} text_out;
+
+static TEXT_COLD void put_char(text_out *t, char c)
+{
+    if (t->n + 1 < t->len)
+        t->buf[t->n] = c;
+    t->n++;
+}
+
+static TEXT_COLD void put_str(text_out *t, const char *s)
+{
+    while (*s)
+        put_char(t, *s++);
+}
+
+/* Decimal by subtracting powers of ten, made by multiplying: a 64-bit
+ * division would call a libgcc helper on 32-bit targets (check-core
+ * forbids it), and a table of them would cost flash the boards lack. */
+static TEXT_COLD void put_u64(text_out *t, uint64_t v)
+{
+    int top = 0; /* v has top + 1 digits */
+    for (uint64_t p = 10u; top < 19 && p <= v; p *= 10u)
+        top++;
+    for (int i = top; i >= 0; i--) {
+        uint64_t p = 1u;
+        for (int k = 0; k < i; k++)
+            p *= 10u;
+        char c = '0';
+        while (v >= p) {
+            v -= p;
+            c++;
+        }
+        put_char(t, c);
+    }
+}
+
+static TEXT_COLD bool same_text(const char *a, const char *b)
+{
+    while (*a && *a == *b) {
+        a++;
+        b++;
+    }
+    return *a == *b;
+}
+
+TEXT_COLD size_t cs_stream_error_text(const cs_stream_error *e, uint64_t base, char *buf,
+                                      size_t len)
+{
+    text_out t = {buf, len, 0};
+    const char *status = cs_status_str(e->status);
+    put_str(&t, status);
+    if (e->what && !same_text(e->what, status)) {
+        put_str(&t, ": ");
+        put_str(&t, e->what);
+    }
+    if (e->where.cel >= 0) {
+        static const char *const label[4] = {" (cel ", ", region ", ", contour ", ", item "};
+        const int32_t at[4] = {e->where.cel, e->where.region, e->where.contour, e->where.item};
+        for (int i = 0; i < 4; i++) {
+            if (at[i] >= 0) {
+                put_str(&t, label[i]);
+                put_u64(&t, (uint64_t)at[i]);
+            }
+        }
+        put_str(&t, ")");
+    }
+    bool sync = e->status == CS_ERR_STREAM_SYNC;
+    put_str(&t, sync ? " (skipping from byte " : " (transaction at byte ");
+    put_u64(&t, base + e->offset);
+    put_str(&t, sync ? ")" : " dropped)");
+    if (len > 0)
+        buf[t.n < len ? t.n : len - 1] = '\0';
+    return t.n;
 }
 
 uint32_t cs_crc32(uint32_t crc, const void *data, size_t len)

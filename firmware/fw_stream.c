@@ -170,34 +170,14 @@ static void adopt_commit(void)
              (unsigned)s->track_count);
 }
 
-/* The host reader's one-line message (tools/cels_read.c), offsets made
+/* The host reader's one-line message (cels_format_error), offsets made
  * absolute. */
 static void report(const cs_stream_error *e)
 {
+    char text[256];
     errors++;
-    fw_print("stream error: byte %llu: %s", (unsigned long long)(base + e->at),
-             cs_status_str(e->status));
-    const char *a = e->what, *b = cs_status_str(e->status);
-    while (*a && *a == *b) {
-        a++;
-        b++;
-    }
-    if (*a || *b)
-        fw_print(": %s", e->what);
-    if (e->where.cel >= 0) {
-        fw_print(" (cel %d", (int)e->where.cel);
-        if (e->where.region >= 0)
-            fw_print(", region %d", (int)e->where.region);
-        if (e->where.contour >= 0)
-            fw_print(", contour %d", (int)e->where.contour);
-        if (e->where.item >= 0)
-            fw_print(", item %d", (int)e->where.item);
-        fw_print(")");
-    }
-    if (e->status == CS_ERR_STREAM_SYNC)
-        fw_print(" (skipping from byte %llu)\n", (unsigned long long)(base + e->offset));
-    else
-        fw_print(" (transaction at byte %llu dropped)\n", (unsigned long long)(base + e->offset));
+    cs_stream_error_text(e, base, text, sizeof text);
+    fw_print("stream error: byte %llu: %s\n", (unsigned long long)(base + e->at), text);
 }
 
 static int handle(cs_stream_event ev)

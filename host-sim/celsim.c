@@ -28,7 +28,6 @@
  */
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,6 +35,7 @@
 
 #include "cels_read.h"
 #include "celscan.h"
+#include "cli.h"
 #include "cli_num.h"
 #include "clock.h"
 #include "display.h"
@@ -46,7 +46,7 @@
 
 enum { EXIT_LOAD = 1, EXIT_USAGE = 2, EXIT_DEGRADED = 3 };
 
-/* Default vertical anti-aliasing until exact-area coverage is the default. */
+/* The default vertical anti-aliasing, cs_render_defaults' (16 sub-scanlines). */
 #define DEFAULT_SUBSCANLINES 16
 #define MAX_REPEAT 1000000
 
@@ -98,20 +98,6 @@ typedef struct options {
 
 /* ------------------------------------------------------- command line */
 
-#if defined(__GNUC__)
-__attribute__((format(printf, 1, 2)))
-#endif
-static int usage_error(const char *fmt, ...)
-{
-    va_list ap;
-    fputs("celsim: ", stderr);
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fputc('\n', stderr);
-    return EXIT_USAGE;
-}
-
 /* The value of an option given as "--opt value" or "--opt=value". */
 static const char *option_value(int argc, char **argv, int *i, const char *arg, const char *name)
 {
@@ -134,7 +120,7 @@ static int parse_render_args(int argc, char **argv, options *o)
 {
     *o = (options){.aa = CS_AA_SUBSCAN, .subscanlines = DEFAULT_SUBSCANLINES,
                    .blend = CS_BLEND_SCENE, .threads = bands_cores()};
-    for (int i = 2; i < argc; i++) {
+    for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v;
         static const char *const valued[] = {"-o",       "--output",   "--size",    "--time",
@@ -147,33 +133,33 @@ static int parse_render_args(int argc, char **argv, options *o)
         if (name != NULL) {
             v = option_value(argc, argv, &i, a, name);
             if (v == NULL)
-                return usage_error("%s needs a value (see celsim --help)", name);
+                return cli_usage_error("%s needs a value (see celsim --help)", name);
         } else {
             v = NULL;
         }
 
         if (name && (strcmp(name, "-o") == 0 || strcmp(name, "--output") == 0)) {
             if (v[0] == '\0')
-                return usage_error("%s expects a file name", name);
+                return cli_usage_error("%s expects a file name", name);
             o->out = v;
         } else if (name && strcmp(name, "--size") == 0) {
             if (!cli_size(v, 1000000, 1000000, &o->width, &o->height))
-                return usage_error("--size expects WxH, got '%s'", v);
+                return cli_usage_error("--size expects WxH, got '%s'", v);
             if (o->width > CS_CFG_MAX_WALL || o->height > CS_CFG_MAX_WALL)
-                return usage_error("--size %s is beyond the configured maximum %dx%d", v,
+                return cli_usage_error("--size %s is beyond the configured maximum %dx%d", v,
                                    CS_CFG_MAX_WALL, CS_CFG_MAX_WALL);
         } else if (name && strcmp(name, "--viewport") == 0) {
             if (!cli_viewport(v, &o->view[0], &o->view[1], &o->view[2], &o->view[3]))
-                return usage_error("--viewport expects X,Y,W,H (whole pixels, W and H at "
+                return cli_usage_error("--viewport expects X,Y,W,H (whole pixels, W and H at "
                                    "least 1), got '%s'", v);
         } else if (name && strcmp(name, "--time") == 0) {
             double t;
             if (!cli_real(v, '\0', -1e9, 1e9, &t))
-                return usage_error("--time expects seconds (a number), got '%s'", v);
+                return cli_usage_error("--time expects seconds (a number), got '%s'", v);
             o->time = (float)t;
         } else if (name && strcmp(name, "--aa") == 0) {
             if (!cli_aa(v, &o->aa, &o->subscanlines)) {
-                return usage_error("--aa expects none, exact or a number of sub-scanlines "
+                return cli_usage_error("--aa expects none, exact or a number of sub-scanlines "
                                    "1..%d, got '%s'",
                                    CS_CFG_MAX_SUBSCANLINES, v);
             }
@@ -183,11 +169,11 @@ static int parse_render_args(int argc, char **argv, options *o)
             else if (strcmp(v, "linear") == 0)
                 o->linear = true;
             else
-                return usage_error("--encoding expects srgb or linear, got '%s'", v);
+                return cli_usage_error("--encoding expects srgb or linear, got '%s'", v);
         } else if (name && strcmp(name, "--repeat") == 0) {
             long n;
             if (!cli_int(v, 10, '\0', 1, MAX_REPEAT, &n))
-                return usage_error("--repeat expects a count 1..%d, got '%s'", MAX_REPEAT, v);
+                return cli_usage_error("--repeat expects a count 1..%d, got '%s'", MAX_REPEAT, v);
             o->repeat = (int)n;
         } else if (name && strcmp(name, "--blend") == 0) {
             if (strcmp(v, "linear") == 0)
@@ -195,11 +181,11 @@ static int parse_render_args(int argc, char **argv, options *o)
             else if (strcmp(v, "srgb") == 0)
                 o->blend = CS_BLEND_SRGB;
             else
-                return usage_error("--blend expects linear or srgb, got '%s'", v);
+                return cli_usage_error("--blend expects linear or srgb, got '%s'", v);
         } else if (name && strcmp(name, "--threads") == 0) {
             long n;
             if (!cli_int(v, 10, '\0', 1, BANDS_MAX_THREADS, &n))
-                return usage_error("--threads expects a count 1..%d, got '%s'", BANDS_MAX_THREADS, v);
+                return cli_usage_error("--threads expects a count 1..%d, got '%s'", BANDS_MAX_THREADS, v);
             o->threads = (int)n;
         } else if (strcmp(a, "--crc") == 0) {
             o->crc = true;
@@ -207,24 +193,24 @@ static int parse_render_args(int argc, char **argv, options *o)
             fputs(usage_text, stdout);
             exit(0);
         } else if (a[0] == '-' && a[1] != '\0') {
-            return usage_error("unknown option '%s' (see celsim --help)", a);
+            return cli_usage_error("unknown option '%s' (see celsim --help)", a);
         } else if (o->scene == NULL) {
             o->scene = a;
         } else {
-            return usage_error("unexpected argument '%s': one SCENE per run", a);
+            return cli_usage_error("unexpected argument '%s': one SCENE per run", a);
         }
     }
     if (o->scene == NULL)
-        return usage_error("render needs a SCENE file (see celsim --help)");
+        return cli_usage_error("render needs a SCENE file (see celsim --help)");
     if (o->out == NULL && !o->crc && o->repeat == 0)
-        return usage_error("render needs -o OUT.png (or --crc or --repeat)");
+        return cli_usage_error("render needs -o OUT.png (or --crc or --repeat)");
     /* A line is at most CS_CFG_MAX_WIDTH pixels; only a viewport's whole may be wider. */
     if (o->view[2] == 0 && (o->width > CS_CFG_MAX_WIDTH || o->height > CS_CFG_MAX_HEIGHT))
-        return usage_error("--size %dx%d is beyond the configured maximum %dx%d (a wider wall "
+        return cli_usage_error("--size %dx%d is beyond the configured maximum %dx%d (a wider wall "
                            "needs --viewport)", o->width, o->height, CS_CFG_MAX_WIDTH,
                            CS_CFG_MAX_HEIGHT);
     if (o->view[2] > 0 && (o->view[2] > CS_CFG_MAX_WIDTH || o->view[3] > CS_CFG_MAX_HEIGHT))
-        return usage_error("--viewport %dx%d is beyond the configured maximum %dx%d",
+        return cli_usage_error("--viewport %dx%d is beyond the configured maximum %dx%d",
                            o->view[2], o->view[3], CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
     return 0;
 }
@@ -491,20 +477,9 @@ static int render(const options *o, sim_state *s)
     return status;
 }
 
-int main(int argc, char **argv)
+/* celsim render ...: argv[0] is "render". */
+static int render_main(int argc, char **argv)
 {
-    if (argc < 2) {
-        fputs(usage_text, stderr);
-        return EXIT_USAGE;
-    }
-    const char *cmd = argv[1];
-    if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
-        fputs(usage_text, stdout);
-        return 0;
-    }
-    if (strcmp(cmd, "render") != 0)
-        return usage_error("unknown command '%s' (see celsim --help)", cmd);
-
     options o;
     int status = parse_render_args(argc, argv, &o);
     if (status != 0)
@@ -526,4 +501,11 @@ int main(int argc, char **argv)
         return EXIT_LOAD;
     }
     return status;
+}
+
+int main(int argc, char **argv)
+{
+    static const cli_command commands[] = {{"render", render_main}};
+    static const cli_program celsim = {"celsim", usage_text, "see celsim --help", commands, 1};
+    return cli_main(&celsim, argc, argv);
 }

@@ -1,6 +1,7 @@
 # mk/beta.mk - the beta colour model: tests and the cache benchmark.
 #
-#   make test-beta        closed-form beta model, mattes, gradients, cache, CSG, dithering
+#   make test-beta        closed-form beta model, mattes, gradients, dithering (test_beta),
+#                         the cache (test_cache) and CSG (test_csg)
 #   make test-beta-asan   the same under AddressSanitizer + UBSan
 #   make bench-cache      pre-combination benchmark (static background, moving front)
 #
@@ -10,24 +11,28 @@
 BETA_CFLAGS := -std=c11 -O2 -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -D_POSIX_C_SOURCE=200809L -MMD -MP
 $(eval $(call flags_record,beta,$(CC) $(BETA_CFLAGS) $(SAN_FLAGS)))
 
-$(HOST)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
-	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(BETA_CFLAGS) tests/test_beta.c $(CORE_SRC) -lm -o $@
+BETA_TESTS := test_beta test_cache test_csg
+BETA_HOST := $(addprefix $(HOST)/,$(BETA_TESTS))
+BETA_ASAN := $(addprefix $(ASAN)/,$(BETA_TESTS))
 
-$(ASAN)/test_beta: tests/test_beta.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
+$(BETA_HOST): $(HOST)/%: tests/%.c tests/beta_common.h $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(BETA_CFLAGS) -O1 $(SAN_FLAGS) tests/test_beta.c $(CORE_SRC) -lm -o $@
+	$(Q)$(CC) $(BETA_CFLAGS) $< $(CORE_SRC) -lm -o $@
+
+$(BETA_ASAN): $(ASAN)/%: tests/%.c tests/beta_common.h $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(BETA_CFLAGS) -O1 $(SAN_FLAGS) $< $(CORE_SRC) -lm -o $@
 
 $(HOST)/bench_cache_anim: bench/cache_anim.c tools/cli_num.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(BETA_CFLAGS) -Itools bench/cache_anim.c tools/cli_num.c $(CORE_SRC) -lm -o $@
 
 .PHONY: test-beta test-beta-asan bench-cache
-test-beta: $(HOST)/test_beta
-	$(Q)$(HOST)/test_beta
+test-beta: $(BETA_HOST)
+	$(Q)sh tests/run.sh $(BETA_HOST)
 
-test-beta-asan: $(ASAN)/test_beta
-	$(Q)ASAN_OPTIONS=detect_leaks=1 $(ASAN)/test_beta
+test-beta-asan: $(BETA_ASAN)
+	$(Q)ASAN_OPTIONS=detect_leaks=1 sh tests/run.sh $(BETA_ASAN)
 
 bench-cache: $(HOST)/bench_cache_anim
 	$(Q)$(HOST)/bench_cache_anim

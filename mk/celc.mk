@@ -12,7 +12,7 @@
 # celc import / celc text are the SVG and text importer (tools/celc_import.c
 # over tools/svg/, built by mk/svg.mk into libsvgimport.a).
 CELC_SRC := tools/celc.c tools/cels_write.c host-sim/scene_json.c host-sim/paint_json.c \
-        tools/celc_import.c tools/cli_num.c tools/cels_sign.c tools/celc_publish.c
+        tools/celc_import.c tools/cli.c tools/cli_num.c tools/cels_sign.c tools/celc_publish.c
 CELC_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELC_SRC))
 $(HOST)/obj/tools/celc.o: HOST_CFLAGS += -Itools
 

@@ -33,8 +33,8 @@ $(SVG_TEST_OBJ): PKG_CFLAGS += $(SVG_CFLAGS)
 $(HOST)/libsvgimport.a: $(SVG_LIB_OBJ)
 	$(Q)rm -f $@ && ar rcs $@ $^
 
-$(HOST)/svgimport: $(HOST)/obj/tools/svg/svgimport_main.o $(SVG_CELC_OBJ) $(HOST)/obj/tools/cels_write.o \
-        $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
+$(HOST)/svgimport: $(HOST)/obj/tools/svg/svgimport_main.o $(SVG_CELC_OBJ) $(HOST)/obj/tools/cli.o \
+        $(HOST)/obj/tools/cels_write.o $(HOST)/libsvgimport.a $(HOST)/libcelscan.a
 	$(Q)$(CC) -o $@ $^ $(SVG_LIBS)
 
 $(HOST)/tests/test_svg: $(SVG_TEST_OBJ) $(SVG_TEST_LOADER) $(HOST)/libsvgimport.a \

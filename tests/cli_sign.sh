@@ -13,15 +13,10 @@
 #     with exit 1 and no output file; bad command lines exit 2.
 # Last line: `cli_sign: N passed, M failed`.
 set -u
+TL_NAME=cli_sign
+. "$(dirname "$0")/testlib.sh"
 host=$1 out=$2
 celc=$host/celc celsim=$host/celsim
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL cli_sign: $*"; }
-check() { # check DESCRIPTION COMMAND...: passes if the command succeeds
-    d=$1; shift
-    if "$@"; then ok; else bad "$d"; fi
-}
 rm -rf "$out" && mkdir -p "$out"
 size() { wc -c <"$1" | tr -d ' '; }
 mode() { stat -c %a "$1"; }
@@ -89,5 +84,4 @@ check "keygen without -o is a usage error" [ $? -eq 2 ]
 "$celc" compile scenes/motion.json -o "$out/x.cels" --sign 2>/dev/null
 check "--sign without a key is a usage error" [ $? -eq 2 ]
 
-echo "cli_sign: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+tl_summary

@@ -15,15 +15,10 @@
 # Byte offsets are computed here from the file sizes, independently of the decoder.
 # Last line: `cli_stream: N passed, M failed`.
 set -u
+TL_NAME=cli_stream
+. "$(dirname "$0")/testlib.sh"
 host=$1 out=$2
 celc=$host/celc celsim=$host/celsim
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL cli_stream: $*"; }
-check() { # check DESCRIPTION COMMAND...: passes if the command succeeds
-    d=$1; shift
-    if "$@"; then ok; else bad "$d"; fi
-}
 rm -rf "$out" && mkdir -p "$out"
 
 size() { wc -c <"$1" | tr -d ' '; }
@@ -209,5 +204,4 @@ done
 rc=$?
 check "celsim --threads 0 is a usage error (exit $rc)" sh -c "[ $rc -eq 2 ] && grep -q 'threads expects a count 1..64' '$out/bad.err'"
 
-echo "cli_stream: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+tl_summary

@@ -12,40 +12,38 @@
 # a viewport that does not fit and a display of another size are refused
 # with status 2 and the reason; --clock at:S shows S less the scene's epoch,
 # and a malformed S is refused. Last line: "cli_viewport: N passed, M failed".
+TL_NAME=cli_viewport
+. "$(dirname "$0")/testlib.sh"
 bin=$1/celsim
 fw=$1/celfw
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-ko() { fail=$((fail + 1)); echo "cli_viewport: FAIL $*"; }
 crc() { "$bin" render "$@" --crc 2>&1; }
 
 for aa in none 16 exact; do
     whole=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa)
     full=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa --viewport 0,0,641,363)
     tile=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa --viewport 213,0,214,363)
-    [ -n "$whole" ] && [ "$whole" = "$full" ] && ok || ko "--aa $aa: whole '$whole', full viewport '$full'"
+    [ -n "$whole" ] && [ "$whole" = "$full" ] && ok || bad "--aa $aa: whole '$whole', full viewport '$full'"
     [ "$tile" != "$whole" ] && case $tile in "frame crc32 "*) true;; *) false;; esac && ok ||
-        ko "--aa $aa: tile gave '$tile'"
+        bad "--aa $aa: tile gave '$tile'"
     # A window that starts below the top, on one thread and on three bands' threads.
     one=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa --viewport 100,77,300,200 --threads 1)
     three=$(crc scenes/motion.json --size 641x363 --time 1.1 --aa $aa --viewport 100,77,300,200 --threads 3)
     case $one in "frame crc32 "*) [ "$one" = "$three" ] ;; *) false ;; esac && ok ||
-        ko "--aa $aa: viewport on 1 thread '$one', on 3 threads '$three'"
+        bad "--aa $aa: viewport on 1 thread '$one', on 3 threads '$three'"
 done
 
 out=$("$bin" render scenes/demo.json --size 6000x200 --viewport 5000,0,1000,200 --crc 2>&1)
-case $out in "frame crc32 "*) ok ;; *) ko "6000-wide wall viewport: $out" ;; esac
+case $out in "frame crc32 "*) ok ;; *) bad "6000-wide wall viewport: $out" ;; esac
 out=$("$bin" render scenes/demo.json --size 6000x200 --crc 2>&1)
 rc=$?
-[ $rc -eq 2 ] && echo "$out" | grep -q 'needs --viewport' && ok || ko "6000 wide without viewport: rc $rc: $out"
+[ $rc -eq 2 ] && echo "$out" | grep -q 'needs --viewport' && ok || bad "6000 wide without viewport: rc $rc: $out"
 out=$("$bin" render scenes/demo.json --size 640x360 --viewport 600,0,41,10 --crc 2>&1)
 rc=$?
 [ $rc -eq 2 ] && echo "$out" | grep -q 'does not fit in the 640x360 output' && ok ||
-    ko "viewport past the edge: rc $rc: $out"
+    bad "viewport past the edge: rc $rc: $out"
 out=$("$bin" render scenes/demo.json --viewport 1,2,3 --crc 2>&1)
 rc=$?
-[ $rc -eq 2 ] && echo "$out" | grep -q 'expects X,Y,W,H' && ok || ko "malformed viewport: rc $rc: $out"
+[ $rc -eq 2 ] && echo "$out" | grep -q 'expects X,Y,W,H' && ok || bad "malformed viewport: rc $rc: $out"
 
 # celfw: "expect STATUS TEXT -- celfw args": the exit status and a line of stderr.
 expect() {
@@ -53,7 +51,7 @@ expect() {
     shift 3
     out=$("$fw" --backend null --frames 2 --fps 0 --log-interval 0 "$@" 2>&1)
     rc=$?
-    [ $rc -eq "$want" ] && echo "$out" | grep -q -- "$text" && ok || ko "celfw $*: rc $rc: $out"
+    [ $rc -eq "$want" ] && echo "$out" | grep -q -- "$text" && ok || bad "celfw $*: rc $rc: $out"
 }
 expect 0 'display=640x360' -- --wall 1280x720 --viewport 640,360,640,360 --aa 16
 expect 2 'needs both --wall WxH and --viewport' -- --wall 1280x720 --size 640x360
@@ -73,5 +71,4 @@ for bad in at: at:x at:nan at:-1 at:1e10 at:5s; do
     expect 2 "'$bad' is not a clock (monotonic, realtime, or at:SECONDS" -- --clock $bad
 done
 
-echo "cli_viewport: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+tl_summary

@@ -15,15 +15,10 @@
 #
 # usage: consumer_test.sh STAGE WORK_DIR HOST_BUILD_DIR SMALL_STAGE
 set -u
+TL_NAME=test-consumers
+. "$(dirname "$0")/testlib.sh"
 stage=$1 work=$2 host=$3 small=$4
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL test-consumers: $*" >&2; }
-check() { # check DESCRIPTION COMMAND...
-    what=$1
-    shift
-    if "$@" >"$work/last.log" 2>&1; then ok; else bad "$what"; tail -5 "$work/last.log" >&2; fi
-}
+TL_CHECK_LOG=$work/last.log
 
 rm -rf "$work"
 mkdir -p "$work"
@@ -78,5 +73,4 @@ echo "test-consumers: Cortex-M4F sign.elf RAM (bss): ${b_default:-?} B with cs_c
 check "smaller capacities give the firmware smaller structs" test "${b_small:-0}" -gt 0 -a \
     "${b_small:-0}" -lt "${b_default:-0}"
 
-echo "test-consumers: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+tl_summary

@@ -28,7 +28,7 @@ typedef struct edge {
 } edge;
 
 /* Knot t(m) of a periodic contour, m any integer, t(0) = 0. */
-static long double knot(const ref_contour *c, long m)
+static long double knot(const xref_contour *c, long m)
 {
     long n = c->count;
     long double t = 0.0L;
@@ -42,13 +42,13 @@ static long double knot(const ref_contour *c, long m)
 }
 
 /* Knots t(span-p .. span+p+1) into kn[0 .. 2p+1]. */
-static void span_knots(const ref_contour *c, int span, long double *kn)
+static void span_knots(const xref_contour *c, int span, long double *kn)
 {
     for (int m = -c->degree; m <= c->degree + 1; m++)
         kn[m + c->degree] = knot(c, span + m);
 }
 
-static void span_point(const ref_contour *c, const ref_view *v, int span, const long double *kn,
+static void span_point(const xref_contour *c, const xref_view *v, int span, const long double *kn,
                        long double t, long double *x, long double *y)
 {
     int p = c->degree;
@@ -75,7 +75,7 @@ static void span_point(const ref_contour *c, const ref_view *v, int span, const 
     *y = (long double)v->sy * ((long double)v->b * cx + (long double)v->d * cy + (long double)v->f);
 }
 
-void ref_contour_point(const ref_contour *c, const ref_view *v, int span, long double t,
+void xref_contour_point(const xref_contour *c, const xref_view *v, int span, long double t,
                        long double *x, long double *y)
 {
     long double kn[2 * MAX_DEGREE + 2];
@@ -113,7 +113,7 @@ static long double dist_to_chord(long double ax, long double ay, long double bx,
 }
 
 /* Appends the points of span j on (ta, tb], bisecting until flat. */
-static int flatten_span(const ref_contour *c, const ref_view *v, int span, const long double *kn,
+static int flatten_span(const xref_contour *c, const xref_view *v, int span, const long double *kn,
                         long double ta,
                         long double xa, long double ya, long double tb, long double xb,
                         long double yb, int depth, poly_buf *out)
@@ -133,7 +133,7 @@ static int flatten_span(const ref_contour *c, const ref_view *v, int span, const
     return flatten_span(c, v, span, kn, tq[1], xq[1], yq[1], tb, xb, yb, depth + 1, out);
 }
 
-long ref_flatten(const ref_contour *c, const ref_view *v, long double *pts, long cap)
+long xref_flatten(const xref_contour *c, const xref_view *v, long double *pts, long cap)
 {
     poly_buf b = {pts, 0, cap};
     for (int j = 0; j < c->count; j++) {
@@ -194,7 +194,7 @@ static void add_span(long double *acc, int width, long double a, long double b, 
         acc[ib] += w * (b - (long double)ib);
 }
 
-int ref_coverage(const ref_region *reg, const ref_view *v, int width, int height, int subscan,
+int xref_coverage(const xref_region *reg, const xref_view *v, int width, int height, int subscan,
                  double *out)
 {
     long cap = 1L << 22, nedges = 0, ecap = 0;
@@ -208,7 +208,7 @@ int ref_coverage(const ref_region *reg, const ref_view *v, int width, int height
     if (!pts || !acc)
         goto done;
     for (int k = 0; k < reg->contour_count; k++) {
-        long n = ref_flatten(&reg->contours[k], v, pts, cap);
+        long n = xref_flatten(&reg->contours[k], v, pts, cap);
         if (n < 0)
             goto done;
         edge *grown = realloc(edges, sizeof(edge) * (size_t)(ecap + n));
@@ -327,7 +327,7 @@ static int clip(const long double *in, int n, long double *out, int axis, long d
     return m;
 }
 
-long double ref_polygon_pixel_area(const long double *poly, int n, int i, int j)
+long double xref_polygon_pixel_area(const long double *poly, int n, int i, int j)
 {
     /* Each clip adds at most one point per edge; four clips of n points. */
     long double *a = malloc(sizeof(long double) * 2 * (size_t)(n + 8) * 2);

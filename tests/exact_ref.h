@@ -8,29 +8,34 @@
  * coverage is integrated with many sub-scanlines per pixel (exact
  * horizontal spans in long double, never straddling a polygon vertex),
  * under the region's fill rule. Its own
- * error is checked by tests against closed forms (exact_ref_self_test).
+ * error is checked against closed forms (test_exact's test_ref_circle_points
+ * and test_ref_accuracy).
+ *
+ * Its names start with xref_, apart from tests/ref/ref.h's ref_, the
+ * reference of the other image tests, whose contours and regions are laid
+ * out differently (float input, owned arrays).
  */
 #ifndef EXACT_REF_H
 #define EXACT_REF_H
 
 /* A closed periodic NURBS in canvas units: xyw[3*i..] = x, y, w. */
-typedef struct ref_contour {
+typedef struct xref_contour {
     int degree, count;
     const double *xyw;
     const double *intervals; /* count knot intervals; NULL for all ones */
-} ref_contour;
+} xref_contour;
 
-typedef struct ref_region {
+typedef struct xref_region {
     int evenodd;
     int contour_count;
-    const ref_contour *contours;
-} ref_region;
+    const xref_contour *contours;
+} xref_region;
 
 /* Canvas to device: (x, y) -> affine (SVG order a b c d e f) -> scale (sx, sy). */
-typedef struct ref_view {
+typedef struct xref_view {
     double a, b, c, d, e, f;
     double sx, sy;
-} ref_view;
+} xref_view;
 
 /*
  * Coverage of each pixel [i, i+1) x [j, j+1) of a width x height image by
@@ -38,21 +43,21 @@ typedef struct ref_view {
  * per pixel row (1024 keeps its error near 1e-7 on the test scenes).
  * Returns 0, or -1 if memory ran out.
  */
-int ref_coverage(const ref_region *reg, const ref_view *view, int width, int height, int subscan,
+int xref_coverage(const xref_region *reg, const xref_view *view, int width, int height, int subscan,
                  double *out);
 
 /* A point of contour c at knot parameter t in span j, in device space. */
-void ref_contour_point(const ref_contour *c, const ref_view *view, int span, long double t,
+void xref_contour_point(const xref_contour *c, const xref_view *view, int span, long double t,
                        long double *x, long double *y);
 
 /*
  * Flattened contour, for checks: up to `cap` device points (x, y pairs)
  * into pts; returns the count, or -1 if it did not fit.
  */
-long ref_flatten(const ref_contour *c, const ref_view *view, long double *pts, long cap);
+long xref_flatten(const xref_contour *c, const xref_view *view, long double *pts, long cap);
 
 /* Area of polygon poly (n points) inside the pixel square at (i, j),
  * signed by orientation: Sutherland-Hodgman clipping, for self-tests. */
-long double ref_polygon_pixel_area(const long double *poly, int n, int i, int j);
+long double xref_polygon_pixel_area(const long double *poly, int n, int i, int j);
 
 #endif /* EXACT_REF_H */

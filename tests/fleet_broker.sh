@@ -34,20 +34,13 @@
 #     sequence.
 # Last line: "fleet_broker: N passed, M failed".
 set -u
+TL_NAME=fleet_broker
+. "$(dirname "$0")/testlib.sh"
 HOST=$1
 WORK=$2
 CELFW=$HOST/celfw
 CELC=$HOST/celc
-pass=0
-fail=0
 pids=""
-ok() { pass=$((pass + 1)); }
-ko() { fail=$((fail + 1)); echo "fleet_broker: FAIL $*"; }
-check() { # check "what" command...
-    what=$1
-    shift
-    if "$@"; then ok; else ko "$what"; fi
-}
 cleanup() {
     for p in $pids; do kill "$p" 2>/dev/null; done
     for p in $pids; do wait "$p" 2>/dev/null; done
@@ -83,7 +76,7 @@ digest_of() { python3 -c 'import hashlib, sys; print(hashlib.blake2b(open(sys.ar
         chmod 600 client.key &&
         openssl req -x509 -newkey rsa:2048 -nodes -keyout rogue.key -out rogue.crt -days 2 \
             -subj /CN=rogue-ca 2>/dev/null
-) || { echo "fleet_broker: FAIL openssl could not make the certificates"; echo "fleet_broker: 0 passed, 1 failed"; exit 1; }
+) || { bad "openssl could not make the certificates"; tl_summary; exit 1; }
 
 # ---------------------------------------------------------------- users and ACL
 : >"$W/passwd"
@@ -148,15 +141,15 @@ while :; do
     MPORT=$(free_port)
     [ "$PORT" != "$TPORT" ] && [ "$PORT" != "$MPORT" ] && [ "$TPORT" != "$MPORT" ] && start_broker && break
     tries=$((tries + 1))
-    [ $tries -lt 5 ] || { ko "mosquitto would not start: $(cat "$W/broker.err" "$W/broker.log" 2>/dev/null | tail -3)"; echo "fleet_broker: $pass passed, $fail failed"; exit 1; }
+    [ $tries -lt 5 ] || { bad "mosquitto would not start: $(cat "$W/broker.err" "$W/broker.log" 2>/dev/null | tail -3)"; tl_summary; exit 1; }
 done
 
 # ---------------------------------------------------------------- content
-"$CELC" compile scenes/demo.json -o "$W/demo.cels" >/dev/null || ko "celc compile demo"
-"$CELC" compile scenes/motion.json -o "$W/motion.cels" >/dev/null || ko "celc compile motion"
+"$CELC" compile scenes/demo.json -o "$W/demo.cels" >/dev/null || bad "celc compile demo"
+"$CELC" compile scenes/motion.json -o "$W/motion.cels" >/dev/null || bad "celc compile motion"
 # The demo with another background: another content of the very same length.
 python3 -c 'import json, sys; d = json.load(open("scenes/demo.json")); d["canvas"]["background"] = "#203040"; json.dump(d, open(sys.argv[1], "w"))' "$W/demo-b.json"
-"$CELC" compile "$W/demo-b.json" -o "$W/demo-b.cels" >/dev/null || ko "celc compile demo-b"
+"$CELC" compile "$W/demo-b.json" -o "$W/demo-b.cels" >/dev/null || bad "celc compile demo-b"
 D_DEMO=$(digest_of "$W/demo.cels")
 D_MOTION=$(digest_of "$W/motion.cels")
 printf 'username = ops\npassword = pw-ops-secret\nca = %s/ca.crt\n' "$W" >"$W/ops.cred"
@@ -219,14 +212,14 @@ done
 
 # 1. One publish to the group reaches all three.
 "$CELC" publish "$W/demo.cels" --broker "mqtt://127.0.0.1:$PORT" --topic groups/lobby --retain \
-    --credentials "$W/ops.cred" >"$W/pub1.out" 2>&1 || ko "celc publish demo: $(cat "$W/pub1.out")"
+    --credentials "$W/ops.cred" >"$W/pub1.out" 2>&1 || bad "celc publish demo: $(cat "$W/pub1.out")"
 for s in s1 s2 s3; do
     check "$s applies the group's publish" wait_log "$W/$s.log" "stream commit 1 applied" 5
     check "$s reports content $D_DEMO (the demo stream)" wait_status $s "\"content\":\"$D_DEMO\"" 5
 done
 check "s3's status says online" wait_status s3 '"online":true' 3
 "$CELC" publish "$W/demo-b.cels" --broker "mqtt://127.0.0.1:$PORT" --topic groups/lobby --retain \
-    --credentials "$W/ops.cred" >/dev/null 2>&1 || ko "celc publish demo-b"
+    --credentials "$W/ops.cred" >/dev/null 2>&1 || bad "celc publish demo-b"
 for s in s1 s2 s3; do
     check "$s applies new content of the same length (not taken for a re-delivery)" \
         wait_log "$W/$s.log" "stream commit 2 applied" 5
@@ -237,7 +230,7 @@ kill "$PID_s2"
 wait "$PID_s2" 2>/dev/null
 check "s2's clean exit marks it offline" wait_status s2 '"online":false' 3
 "$CELC" publish "$W/motion.cels" --broker "mqtts://localhost:$TPORT" --topic groups/lobby --retain \
-    --credentials "$W/ops.cred" >"$W/pub2.out" 2>&1 || ko "celc publish motion over TLS: $(cat "$W/pub2.out")"
+    --credentials "$W/ops.cred" >"$W/pub2.out" 2>&1 || bad "celc publish motion over TLS: $(cat "$W/pub2.out")"
 : >"$W/s2.log"
 t0=$(now)
 start_sign s2 "$(url_of s2)"
@@ -246,7 +239,7 @@ if wait_log "$W/s2.log" "stream commit 1 applied" 2; then
     ok
     echo "fleet_broker: s2 showed the current content $(python3 -c "print('%.2f' % ($t1 - $t0))") s after starting"
 else
-    ko "s2 did not apply the retained content within 2 s of starting: $(tail -3 "$W/s2.log")"
+    bad "s2 did not apply the retained content within 2 s of starting: $(tail -3 "$W/s2.log")"
 fi
 check "s2 applied the motion stream ($D_MOTION)" grep -q "content $D_MOTION" "$W/s2.log"
 for s in s1 s3; do
@@ -262,7 +255,7 @@ for s in s1 s2 s3; do
     check "$s notices the broker is gone" wait_log "$W/$s.log" "lost" 25
 done
 sleep 0.5
-start_broker || ko "mosquitto would not restart"
+start_broker || bad "mosquitto would not restart"
 for s in s1 s2 s3; do
     check "$s reconnects and reports online" wait_status $s '"online":true' 15
 done
@@ -292,7 +285,7 @@ head -c 40000000 /dev/zero >"$W/big.bin"
 lost=$(count_log "$W/s1.log" "lost")
 fed=$(count_log "$W/s1.log" "mqtt message on")
 mosquitto_pub -h 127.0.0.1 -p "$PORT" -u ops -P pw-ops-secret -t groups/lobby -q 1 \
-    -f "$W/big.bin" >/dev/null 2>&1 || ko "publishing 40 MB"
+    -f "$W/big.bin" >/dev/null 2>&1 || bad "publishing 40 MB"
 rm -f "$W/big.bin"
 sleep 1
 check "a 40 MB message is kept from the signs, which stay connected" \
@@ -363,12 +356,12 @@ check "a sign id with a '/' is refused" sh -c "echo '$out' | grep -q 'is not a s
 # apply only what that key signed, delivered by MQTT; unsigned, forged
 # (another key, or a signature altered in transit) and replayed publishes
 # change none of them, and their status names the applied sequence.
-"$CELC" keygen -o "$W/operator" >/dev/null 2>&1 || ko "celc keygen operator"
-"$CELC" keygen -o "$W/intruder" >/dev/null 2>&1 || ko "celc keygen intruder"
+"$CELC" keygen -o "$W/operator" >/dev/null 2>&1 || bad "celc keygen operator"
+"$CELC" keygen -o "$W/intruder" >/dev/null 2>&1 || bad "celc keygen intruder"
 "$CELC" sign "$W/motion.cels" -o "$W/motion.forged.cels" --key "$W/intruder.key" >/dev/null 2>&1 ||
-    ko "celc sign (intruder)"
+    bad "celc sign (intruder)"
 "$CELC" sign "$W/demo.cels" -o "$W/demo.signed.cels" --key "$W/operator.key" >/dev/null 2>&1 ||
-    ko "celc sign (operator)"
+    bad "celc sign (operator)"
 # The operator's envelope with one bit of its signature flipped (envelope bytes 32..95,
 # after the 16-byte stream header) and the envelope's CRC made right again: a forgery, not damage.
 python3 - "$W/demo.signed.cels" "$W/demo.tampered.cels" <<'PY'
@@ -396,7 +389,7 @@ secure_pub() { # file [extra args]: publish to the secure group, then give the s
     f=$1
     shift
     "$CELC" publish "$f" --broker "mqtt://127.0.0.1:$PORT" --topic groups/secure \
-        --credentials "$W/ops.cred" "$@" >"$W/pub.out" 2>&1 || ko "publish $f: $(cat "$W/pub.out")"
+        --credentials "$W/ops.cred" "$@" >"$W/pub.out" 2>&1 || bad "publish $f: $(cat "$W/pub.out")"
 }
 for f in motion.cels motion.forged.cels demo.tampered.cels; do
     secure_pub "$W/$f"
@@ -421,5 +414,4 @@ for s in s4 s5 s6; do
     check "$s still shows the signed publish" test "$(count_log "$W/$s.log" "stream commit")" = 1
 done
 
-echo "fleet_broker: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+tl_summary

@@ -2,8 +2,8 @@
  * fw_tracks_scene.h - an animated test scene with keyframe tracks, built in
  * C, for the firmware's stream tests.
  *
- * The scene JSON loader does not read "animate" yet, so a JSON scene
- * rendered by celsim cannot show animation. This scene stands in: it uses
+ * It is built with the cs_scene_* calls, not loaded from scene JSON, so
+ * the firmware test's reference depends on no JSON loader: it uses
  * every track kind (cel transform, cel lights, region paint, contour
  * points, stack lights, background) with both eases, keys at t = 0, 1, 2 s.
  * tests/fw_cels_gen.c encodes it into a cel stream for the firmware, and

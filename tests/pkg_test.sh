@@ -13,20 +13,15 @@
 #
 # usage: pkg_test.sh CELSCAN.deb LIBCELSCAN-DEV.deb WORK_DIR
 set -u
+TL_NAME=test-pkg
+TL_CHECK_LOG=/dev/null
+. "$(dirname "$0")/testlib.sh"
 deb=$1 devdeb=$2 work=$(realpath -m "$3")
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL test-pkg: $*" >&2; }
-check() { # check DESCRIPTION COMMAND...
-    what=$1
-    shift
-    if "$@" >/dev/null 2>&1; then ok; else bad "$what"; fi
-}
 
 rm -rf "$work"
 root=$work/root
 mkdir -p "$root" "$work/tmp"
-dpkg -x "$deb" "$root" && dpkg -x "$devdeb" "$root" || { bad "dpkg -x"; echo "test-pkg: $pass passed, $((fail)) failed"; exit 1; }
+dpkg -x "$deb" "$root" && dpkg -x "$devdeb" "$root" || { bad "dpkg -x"; tl_summary; exit 1; }
 
 # ---------------------------------------------------------------- files
 for f in usr/bin/celfw usr/bin/celc usr/bin/celsim; do
@@ -122,5 +117,4 @@ done
 check "celfw(1) renders without warnings" sh -c \
     "! man --warnings -l '$root/usr/share/man/man1/celfw.1.gz' 2>&1 >/dev/null | grep -q ."
 
-echo "test-pkg: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+tl_summary

@@ -43,6 +43,7 @@
 
 #include "../tools/cli_num.h"
 #include "../tools/svg/sv_render.h"
+#include "testlib.h"
 
 #define PASS_DB 30.0
 /* Per process: the bounds the issue sets for hostile files hold here too. */
@@ -388,8 +389,7 @@ int main(int argc, char **argv)
     if (stat(suite, &st) != 0 || !S_ISDIR(st.st_mode)) {
         /* the suite lives beside the project; a checkout without it skips */
         printf("svg-conformance: suite not found at %s: skipped\n", suite);
-        printf("svg-conformance: 0 passed, 0 failed\n");
-        return 0;
+        return tl_summary("svg-conformance");
     }
     char **notes = NULL;
     int nnotes = 0;
@@ -450,23 +450,10 @@ int main(int argc, char **argv)
            every > 1 ? " (every Nth test)" : "", broken, secs);
     if (report)
         write_report(report, res, n, cat, ncat, passed, notes, nnotes, (int)every);
-    int checks_ok = 0, checks_bad = 0;
-    if (broken == 0) {
-        checks_ok++;
-    } else {
-        checks_bad++;
-        printf("FAIL: %d tests crashed or ran over %d s / %ld MB\n", broken, LIMIT_SECONDS,
-               LIMIT_BYTES >> 20);
-    }
-    if (floor_n >= 0) {
-        if (passed >= floor_n) {
-            checks_ok++;
-        } else {
-            checks_bad++;
-            printf("FAIL: %d tests pass, below the floor of %ld\n", passed, floor_n);
-        }
-    }
-    printf("svg-conformance: %d passed, %d failed\n", checks_ok, checks_bad);
+    CHECK(broken == 0, "%d tests crashed or ran over %d s / %ld MB", broken, LIMIT_SECONDS,
+          LIMIT_BYTES >> 20);
+    if (floor_n >= 0)
+        CHECK(passed >= floor_n, "%d tests pass, below the floor of %ld", passed, floor_n);
     for (int i = 0; i < nfiles; i++)
         free(files[i]);
     for (int i = 0; i < n; i++)
@@ -476,5 +463,5 @@ int main(int argc, char **argv)
     free(notes);
     free(files);
     free(res);
-    return checks_bad ? 1 : 0;
+    return tl_summary("svg-conformance");
 }

@@ -10,228 +10,12 @@
  * on multiples of 1/16 are exact under 16 sub-scanlines, and circles are
  * only sampled on pixels wholly inside or outside. Gradients are evaluated
  * from their definitions (the radial one by bisection, not by the
- * renderer's quadratic). CSG is checked against a reference coverage of the
- * boolean combination of exact circles and polygons: exact horizontal
- * intervals on 512 rows per pixel, in long double.
+ * renderer's quadratic). The cache (test_cache.c) and CSG (test_csg.c) have
+ * programs of their own, on the same helpers (beta_common.h).
  *
  * On tests/testlib.h; the last line is `test_beta: N passed, M failed`.
  */
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <time.h>
-
-#include "celscan.h"
-
-#include "testlib.h"
-
-static cs_scene g_scene;
-static cs_workspace g_ws;
-
-/* ------------------------------------------------------------ building */
-
-static const cs_affine identity = {1, 0, 0, 1, 0, 0};
-
-static void add_rect(cs_scene *s, double x0, double y0, double x1, double y1)
-{
-    cs_point p[4] = {{(float)x0, (float)y0, 1}, {(float)x1, (float)y0, 1},
-                     {(float)x1, (float)y1, 1}, {(float)x0, (float)y1, 1}};
-    cs_error e;
-    cs_status st = cs_scene_add_contour(s, 1, 4, p, NULL, &e);
-    if (st != CS_OK) {
-        printf("add_rect: %s\n", cs_status_str(st));
-        exit(2);
-    }
-}
-
-static void add_polygon(cs_scene *s, const double *xy, int n)
-{
-    cs_point p[16];
-    for (int i = 0; i < n; i++)
-        p[i] = (cs_point){(float)xy[2 * i], (float)xy[2 * i + 1], 1};
-    cs_error e;
-    if (cs_scene_add_contour(s, 1, n, p, NULL, &e) != CS_OK)
-        exit(2);
-}
-
-/* The exact rational quadratic circle of DESIGN.md. */
-static void add_circle(cs_scene *s, double cx, double cy, double r)
-{
-    const double h = sqrt(0.5);
-    const double ux[8] = {1, 1, 0, -1, -1, -1, 0, 1}, uy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
-    cs_point p[8];
-    float iv[8];
-    for (int i = 0; i < 8; i++) {
-        p[i] = (cs_point){(float)(cx + r * ux[i]), (float)(cy + r * uy[i]),
-                          (float)((i & 1) ? h : 1.0)};
-        iv[i] = (i & 1) ? 0.0f : 1.0f;
-    }
-    cs_error e;
-    if (cs_scene_add_contour(s, 2, 8, p, iv, &e) != CS_OK)
-        exit(2);
-}
-
-static cs_paint paint(double pr, double pg, double pb, double mr, double mg, double mb,
-                      double beta)
-{
-    cs_paint p = {{(float)pr, (float)pg, (float)pb}, {(float)mr, (float)mg, (float)mb},
-                  (float)beta};
-    return p;
-}
-
-static void add_region(cs_scene *s, cs_paint p)
-{
-    cs_error e;
-    if (cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e) != CS_OK)
-        exit(2);
-}
-
-static void add_cel(cs_scene *s, const cs_affine *m, const float *front, const float *back)
-{
-    cs_error e;
-    if (cs_scene_add_cel(s, m ? m : &identity, front, back, &e) != CS_OK)
-        exit(2);
-}
-
-static cs_render_opts opts_n(int w, int h, int sub)
-{
-    cs_render_opts o;
-    memset(&o, 0, sizeof o);
-    o.width = w;
-    o.height = h;
-    o.aa = CS_AA_SUBSCAN;
-    o.subscanlines = sub;
-    return o;
-}
-
-/* Renders a frame into img (3 w h floats), optionally from a cache. */
-static cs_status render(const cs_scene *s, const cs_render_opts *o, const cs_cache *cache,
-                        float *img)
-{
-    cs_renderer r;
-    cs_error e;
-    cs_status st = cs_frame_begin_cached(&r, &g_ws, s, o, cache, &e);
-    if (st != CS_OK)
-        return st;
-    for (int y = 0; y < o->height; y++) {
-        st = cs_render_line(&r, y, img + (size_t)3 * o->width * y);
-        if (st != CS_OK)
-            return st;
-    }
-    return r.sticky.status;
-}
-
-static double srgb(double v)
-{
-    v = v < 0 ? 0 : v > 1 ? 1 : v;
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
-}
-
-static double srgb_inv(double e)
-{
-    return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
-}
-
-/* ------------------------------------------------ the model, in double */
-
-typedef struct map {
-    double E[3], T[3];
-} map;
-
-static map clear_map(void)
-{
-    map m = {{0, 0, 0}, {1, 1, 1}};
-    return m;
-}
-
-static map paint_map(const double *p, const double *m, double beta, const double *F,
-                     const double *B)
-{
-    map r;
-    for (int k = 0; k < 3; k++) {
-        r.E[k] = beta * p[k] * F[k] + (1 - beta) * m[k] * B[k];
-        r.T[k] = (1 - beta) * m[k];
-    }
-    return r;
-}
-
-/* A cel's map: the sum of its regions' coverage-weighted maps. */
-static void cel_add(map *cel, const map *region, double c)
-{
-    for (int k = 0; k < 3; k++) {
-        cel->E[k] += c * region->E[k];
-        cel->T[k] -= c * (1 - region->T[k]);
-    }
-}
-
-static map over(const map *front, const map *back)
-{
-    map r;
-    for (int k = 0; k < 3; k++) {
-        r.E[k] = front->E[k] + front->T[k] * back->E[k];
-        r.T[k] = front->T[k] * back->T[k];
-    }
-    return r;
-}
-
-/* Overlap of [a, b] with [i, i+1]. */
-static double overlap(double a, double b, int i)
-{
-    double lo = a > i ? a : i, hi = b < i + 1 ? b : i + 1;
-    return hi > lo ? hi - lo : 0;
-}
-
-static double rect_cov(const double *r, int x, int y)
-{
-    return overlap(r[0], r[2], x) * overlap(r[1], r[3], y);
-}
-
-/* 1 inside, 0 outside, -1 when the circle cuts the pixel. */
-static int circle_cov(double cx, double cy, double rad, int x, int y)
-{
-    double nx = cx < x ? x : cx > x + 1 ? x + 1 : cx;
-    double ny = cy < y ? y : cy > y + 1 ? y + 1 : cy;
-    double near2 = (nx - cx) * (nx - cx) + (ny - cy) * (ny - cy);
-    double fx = fabs(cx - x) > fabs(cx - x - 1) ? x : x + 1;
-    double fy = fabs(cy - y) > fabs(cy - y - 1) ? y : y + 1;
-    double far2 = (fx - cx) * (fx - cx) + (fy - cy) * (fy - cy);
-    if (far2 < (rad - 0.01) * (rad - 0.01))
-        return 1;
-    if (near2 > (rad + 0.01) * (rad + 0.01))
-        return 0;
-    return -1;
-}
-
-/* Compares a rendered linear pixel with the expected one: 8-bit sRGB codes
- * within 1.5 (the issue's bar); returns the worst code difference. */
-static double code_diff(const float *got, const double *want)
-{
-    double worst = 0;
-    uint8_t out[3];
-    cs_pixfmt_convert(CS_PIX_RGB888_SRGB, got, 1, out);
-    for (int k = 0; k < 3; k++) {
-        double w = want[k] < 0 ? 0 : want[k] > 1 ? 1 : want[k];
-        double d = fabs(out[k] - 255.0 * srgb(w));
-        if (d > worst)
-            worst = d;
-    }
-    return worst;
-}
-
-static double lin_diff(const float *got, const double *want)
-{
-    double worst = 0;
-    for (int k = 0; k < 3; k++) {
-        double w = want[k] < 0 ? 0 : want[k] > 1 ? 1 : want[k];
-        double d = fabs(got[k] - w);
-        if (d > worst)
-            worst = d;
-    }
-    return worst;
-}
-
-static float img_a[256 * 256 * 3], img_b[256 * 256 * 3], img_c[256 * 256 * 3];
+#include "beta_common.h"
 
 /* ------------------------------------------- 1. closed form, overlapping */
 
@@ -261,16 +45,16 @@ static void test_closed_form(void)
         }
         add_cel(s, NULL, f, b);
         add_region(s, paint(pa[0], pa[1], pa[2], ma[0], ma[1], ma[2], ba));
-        add_rect(s, ra[0], ra[1], ra[2], ra[3]);
+        TL_MUST(ts_add_rect(s, ra[0], ra[1], ra[2], ra[3]));
         add_region(s, paint(pb[0], pb[1], pb[2], mb[0], mb[1], mb[2], bb));
-        add_rect(s, rb[0], rb[1], rb[2], rb[3]);
+        TL_MUST(ts_add_rect(s, rb[0], rb[1], rb[2], rb[3]));
         add_cel(s, NULL, NULL, NULL); /* front = stack front, back = black */
         add_region(s, paint(pcirc[0], pcirc[1], pcirc[2], mcirc[0], mcirc[1], mcirc[2], bcirc));
-        add_circle(s, ccx, ccy, crad);
+        TL_MUST(ts_add_circle(s, ccx, ccy, crad));
         float b2[3] = {(float)B2[0], (float)B2[1], (float)B2[2]};
         add_cel(s, NULL, NULL, b2);
         add_region(s, paint(pr[0], pr[1], pr[2], mr[0], mr[1], mr[2], br));
-        add_rect(s, rc[0], rc[1], rc[2], rc[3]);
+        TL_MUST(ts_add_rect(s, rc[0], rc[1], rc[2], rc[3]));
         /* Stack lights set after the cels: cel 1 and 2 must still follow. */
         float fs[3] = {(float)Fs[0], (float)Fs[1], (float)Fs[2]};
         float bs[3] = {(float)Bs[0], (float)Bs[1], (float)Bs[2]};
@@ -342,7 +126,7 @@ static void test_alpha_over(void)
     for (int i = 0; i < 3; i++) {
         add_cel(s, NULL, NULL, NULL);
         add_region(s, paint(col[i][0], col[i][1], col[i][2], 1, 1, 1, alpha[i]));
-        add_rect(s, rects[i][0], rects[i][1], rects[i][2], rects[i][3]);
+        TL_MUST(ts_add_rect(s, rects[i][0], rects[i][1], rects[i][2], rects[i][3]));
     }
     cs_render_opts o = opts_n(48, 48, 16);
     CHECK(render(s, &o, NULL, img_a) == CS_OK, "render");
@@ -382,10 +166,10 @@ static void matte_case(const char *name, cs_paint front, const float *back_light
     cs_scene_set_lights(s, fs, bs);
     add_cel(s, NULL, NULL, back_light);
     add_region(s, front);
-    add_rect(s, 4, 4, 20, 28);
+    TL_MUST(ts_add_rect(s, 4, 4, 20, 28));
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.8, 0.1, 0.05, 0, 0, 0, 1)); /* opaque red, right half */
-    add_rect(s, 16, 0, 32, 32);
+    TL_MUST(ts_add_rect(s, 16, 0, 32, 32));
     cs_render_opts o = opts_n(32, 32, 4);
     CHECK(render(s, &o, NULL, img_a) == CS_OK, "%s: render", name);
     const double L[3] = {0.2 * 0.9, 0.4 * 0.95, 0.6};
@@ -438,25 +222,6 @@ static void test_mattes(void)
 }
 
 /* --------------------------------------------------- 4. functional paints */
-
-static cs_paint_func make_func(int kind, int spread, const double *geom, int ngeom, int nstops,
-                               const double *off, const double (*val)[3])
-{
-    cs_paint_func f;
-    memset(&f, 0, sizeof f);
-    f.kind = (uint8_t)kind;
-    f.spread = (uint8_t)spread;
-    f.stop_count = (uint8_t)nstops;
-    f.map_cols = 1;
-    for (int i = 0; i < ngeom; i++)
-        f.geom[i] = (float)geom[i];
-    for (int i = 0; i < nstops; i++) {
-        f.stops[i].offset = off ? (float)off[i] : 0.0f;
-        for (int k = 0; k < 3; k++)
-            f.stops[i].value[k] = (float)val[i][k];
-    }
-    return f;
-}
 
 static double spread_d(double t, int mode)
 {
@@ -541,7 +306,7 @@ static void test_gradients(void)
             add_cel(s, &A, NULL, NULL);
             /* medium [0.5, 0.6, 0.7] so that a beta function shows */
             add_region(s, paint(0.5, 0.5, 0.5, 0.5, 0.6, 0.7, 1));
-            add_rect(s, -200, -200, 300, 300); /* covers everything */
+            TL_MUST(ts_add_rect(s, -200, -200, 300, 300)); /* covers everything */
             cs_paint_func fn;
             cs_error err;
             int field = CS_FIELD_PIGMENT;
@@ -622,56 +387,6 @@ static void test_gradients(void)
 
 /* --------------------------------------------- 5. early termination exact */
 
-static void build_busy_scene(cs_scene *s)
-{
-    cs_scene_init(s, 96, 64);
-    float bgf[3] = {0.3f, 0.3f, 0.35f};
-    cs_scene_set_background(s, bgf);
-    /* Front: a translucent disc and a gradient gel. */
-    add_cel(s, NULL, NULL, NULL);
-    add_region(s, paint(0.9, 0.8, 0.1, 0.6, 0.6, 0.9, 0.4));
-    add_circle(s, 30, 30, 14);
-    add_cel(s, NULL, NULL, NULL);
-    add_region(s, paint(0.2, 0.2, 0.2, 1, 1, 1, 0));
-    add_rect(s, 40, 4, 90, 60);
-    const double g[4] = {40, 0, 90, 0};
-    const double off[2] = {0, 1};
-    const double v[2][3] = {{1, 0.3, 0.3}, {0.3, 0.3, 1}};
-    cs_paint_func fn = make_func(CS_FUNC_LINEAR, CS_SPREAD_PAD, g, 4, 2, off, v);
-    cs_error e;
-    cs_scene_set_region_func(s, CS_FIELD_MEDIUM, &fn, &e);
-    /* An opaque card over the middle (partly covering), and a fully opaque
-     * full-width band that hides everything behind it on its lines. */
-    add_cel(s, NULL, NULL, NULL);
-    add_region(s, paint(0.1, 0.6, 0.2, 0, 0, 0, 1));
-    add_rect(s, 10.3, 10.6, 70.2, 40.4);
-    add_region(s, paint(0.7, 0.2, 0.2, 0, 0, 0, 1));
-    add_rect(s, 0, 44, 96, 52);
-    /* Two opaque regions of one cel meeting at a slanted edge: their
-     * coverages on the seam pixels sum to 1 only up to rounding. */
-    add_cel(s, NULL, NULL, NULL);
-    add_region(s, paint(0.9, 0.3, 0.3, 0, 0, 0, 1));
-    const double left[8] = {72.1, 2.3, 80.37, 2.3, 84.71, 62.2, 72.1, 62.2};
-    add_polygon(s, left, 4);
-    add_region(s, paint(0.3, 0.3, 0.9, 0, 0, 0, 1));
-    const double right[8] = {80.37, 2.3, 95.3, 2.3, 95.3, 62.2, 84.71, 62.2};
-    add_polygon(s, right, 4);
-    /* Just behind the card, poking out of it by under a pixel on each side:
-     * hidden only where the card is, so its bounds must be honest. */
-    add_cel(s, NULL, NULL, NULL);
-    add_region(s, paint(0.9, 0.9, 0.1, 0.2, 0.2, 0.2, 0.8));
-    add_rect(s, 9.9, 12.2, 70.6, 38.3);
-    /* Behind: many cels the early-out should skip in places. */
-    for (int i = 0; i < 12; i++) {
-        add_cel(s, NULL, NULL, NULL);
-        add_region(s, paint(0.1 * (i % 10), 0.5, 0.9 - 0.05 * i, 0.8, 0.7, 0.6, 0.5 + 0.04 * i));
-        add_circle(s, 8 + 7 * i, 20 + (i % 3) * 12, 9 + (i % 4));
-    }
-    add_cel(s, NULL, NULL, NULL);
-    add_region(s, paint(0.4, 0.4, 0.4, 0, 0, 0, 1)); /* opaque back wall */
-    add_rect(s, 0, 0, 96, 64);
-}
-
 static void test_early_out_exact(void)
 {
     build_busy_scene(&g_scene);
@@ -686,97 +401,7 @@ static void test_early_out_exact(void)
     }
 }
 
-/* --------------------------------------------------------- 6. the cache */
-
-static double max_diff(const float *a, const float *b, size_t n)
-{
-    double worst = 0;
-    for (size_t i = 0; i < n; i++) {
-        double d = fabs((double)a[i] - b[i]);
-        worst = d > worst ? d : worst;
-    }
-    return worst;
-}
-
-static unsigned char cache_buf[4 << 20];
-
-static void test_cache(void)
-{
-    build_busy_scene(&g_scene);
-    cs_render_opts o = opts_n(96, 64, 5);
-    cs_cache cache;
-    cs_error e;
-    const size_t n = (size_t)3 * 96 * 64;
-    /* Too small: reported with the size it needs, and refused by the frame. */
-    cs_status st = cs_cache_build(&cache, cache_buf + 1, 100, &g_ws, &g_scene, &o, 3, 13, &e);
-    CHECK(st == CS_ERR_CAP_CACHE && cache.status != CS_OK && cache.bytes_needed > 100,
-          "small cache: %s, needed %zu", cs_status_str(st), cache.bytes_needed);
-    cs_renderer r;
-    CHECK(cs_frame_begin_cached(&r, &g_ws, &g_scene, &o, &cache, &e) == CS_ERR_STATE,
-          "unusable cache refused");
-    size_t needed = cache.bytes_needed;
-    /* Exactly the reported size fits (odd address: alignment is handled). */
-    st = cs_cache_build(&cache, cache_buf + 1, needed, &g_ws, &g_scene, &o, 3, 13, &e);
-    CHECK(st == CS_OK && cache.bytes_used == needed, "cache of the needed size: %s, %zu vs %zu",
-          cs_status_str(st), cache.bytes_used, needed);
-    st = cs_cache_build(&cache, cache_buf + 1, needed - 1, &g_ws, &g_scene, &o, 3, 13, &e);
-    CHECK(st == CS_ERR_CAP_CACHE && cache.bytes_needed == needed, "one byte short: %s",
-          cs_status_str(st));
-    st = cs_cache_build(&cache, cache_buf + 1, needed, &g_ws, &g_scene, &o, 3, 13, &e);
-    printf("  cache of cels 3..15 at 96x64: %u runs, %zu bytes\n", cache.run_count,
-           cache.bytes_used);
-    /* Cels 0-2 live in front, the cached background behind. */
-    CHECK(render(&g_scene, &o, NULL, img_a) == CS_OK, "direct");
-    CHECK(render(&g_scene, &o, &cache, img_b) == CS_OK, "cached");
-    double d = max_diff(img_a, img_b, n);
-    CHECK(d <= 1.0 / 255.0 && d < 1e-5, "cache vs direct: %.2e", d);
-    /* Animate the front: move cel 0; the cache stays valid. */
-    for (int t = 0; t < 3; t++) {
-        g_scene.cels[0].transform.e = 5.0f * (float)t;
-        g_scene.cels[1].transform.f = -3.0f * (float)t;
-        render(&g_scene, &o, NULL, img_a);
-        render(&g_scene, &o, &cache, img_b);
-        d = max_diff(img_a, img_b, n);
-        CHECK(d < 1e-5, "animated front, frame %d: cache vs direct %.2e", t, d);
-    }
-    /* A cached range in the middle: live cels in front and behind. */
-    st = cs_cache_build(&cache, cache_buf, sizeof cache_buf, &g_ws, &g_scene, &o, 1, 5, &e);
-    CHECK(st == CS_OK, "middle cache: %s", cs_status_str(st));
-    render(&g_scene, &o, NULL, img_a);
-    render(&g_scene, &o, &cache, img_b);
-    d = max_diff(img_a, img_b, n);
-    CHECK(d < 1e-5, "middle cache vs direct: %.2e", d);
-    /* Without the background card, with a light box behind. */
-    g_scene.has_background = false;
-    float fs[3] = {1, 1, 1}, bs[3] = {0.6f, 0.5f, 0.9f};
-    cs_scene_set_lights(&g_scene, fs, bs);
-    g_scene.cel_count -= 1; /* drop the opaque back wall so the light shows */
-    st = cs_cache_build(&cache, cache_buf, sizeof cache_buf, &g_ws, &g_scene, &o, 2, 10, &e);
-    CHECK(st == CS_OK, "light box cache: %s", cs_status_str(st));
-    render(&g_scene, &o, NULL, img_a);
-    render(&g_scene, &o, &cache, img_b);
-    d = max_diff(img_a, img_b, n);
-    CHECK(d < 1e-5, "light box cache vs direct: %.2e", d);
-    /* Pre-combined and reused at other options is refused. */
-    cs_render_opts o2 = opts_n(96, 64, 4);
-    CHECK(cs_frame_begin_cached(&r, &g_ws, &g_scene, &o2, &cache, &e) == CS_ERR_STATE,
-          "cache at other AA refused");
-    o2 = opts_n(80, 64, 5);
-    CHECK(cs_frame_begin_cached(&r, &g_ws, &g_scene, &o2, &cache, &e) == CS_ERR_STATE,
-          "cache at other size refused");
-    /* Bad ranges. */
-    CHECK(cs_cache_build(&cache, cache_buf, sizeof cache_buf, &g_ws, &g_scene, &o, 5, 0, &e) ==
-              CS_ERR_ARG,
-          "empty range");
-    CHECK(cs_cache_build(&cache, cache_buf, sizeof cache_buf, &g_ws, &g_scene, &o, 10, 100,
-                         &e) == CS_ERR_ARG,
-          "range past the end");
-    /* Size query: no buffer at all. */
-    st = cs_cache_build(&cache, NULL, 0, &g_ws, &g_scene, &o, 0, 3, &e);
-    CHECK(st == CS_ERR_CAP_CACHE && cache.bytes_needed > 0, "size query");
-}
-
-/* ---------------------------------------------------- 6b. the grey path */
+/* ------------------------------------------------------ 6. the grey path */
 
 /* Whether a frame at o takes the grey path (cs_renderer.grey: a private
  * field, read here to know which path the pixels came from). */
@@ -864,10 +489,10 @@ static void test_grey_path(void)
     cs_scene_set_background(&g_scene, card);
     add_cel(&g_scene, NULL, NULL, NULL);
     add_region(&g_scene, paint(0.2, 0.6, 0.9, 0.9, 0.5, 0.2, 1));
-    add_rect(&g_scene, 4, 4, 30, 28);
+    TL_MUST(ts_add_rect(&g_scene, 4, 4, 30, 28));
     add_cel(&g_scene, NULL, NULL, NULL);
     add_region(&g_scene, paint(0.9, 0.9, 0.1, 1, 1, 1, 0));
-    add_circle(&g_scene, 20, 16, 12);
+    TL_MUST(ts_add_circle(&g_scene, 20, 16, 12));
     o = opts_n(64, 32, 5);
     CHECK(frame_grey(&g_scene, &o, NULL), "opaque paint with a coloured medium: grey");
     add_cel(&g_scene, NULL, NULL, NULL);
@@ -877,7 +502,7 @@ static void test_grey_path(void)
     const double ramp[2][3] = {{0, 0, 0}, {1, 1, 1}};
     cs_paint_func fn = make_func(CS_FUNC_LINEAR, CS_SPREAD_PAD, g, 4, 2, off, ramp);
     CHECK(cs_scene_set_region_func(&g_scene, CS_FIELD_BETA, &fn, &e) == CS_OK, "beta ramp");
-    add_rect(&g_scene, 0, 8, 64, 24);
+    TL_MUST(ts_add_rect(&g_scene, 0, 8, 64, 24));
     CHECK(!frame_grey(&g_scene, &o, NULL), "functional beta over a coloured medium: three channels");
     CHECK(same_bits_both_paths(&g_scene, o, NULL), "functional beta: the paths differ");
     /* A grey medium gradient is grey; one coloured stop is not. */
@@ -894,260 +519,7 @@ static void test_grey_path(void)
     printf("  grey path: same bits as three channels in every mode, cached and not\n");
 }
 
-/* ------------------------------------------------------------- 7. CSG */
-
-/* The reference: shapes with exact membership, combined by the same RPN. */
-typedef struct shape {
-    int kind; /* 0 circle, 1 polygon */
-    double cx, cy, r;
-    const double *xy;
-    int n;
-    int operand;
-} shape;
-
-/* x positions where row y crosses the shape's boundary. */
-static int shape_breaks(const shape *s, long double y, long double *out)
-{
-    if (s->kind == 0) {
-        long double dy = y - s->cy, q = (long double)s->r * s->r - dy * dy;
-        if (q <= 0)
-            return 0;
-        long double h = sqrtl(q);
-        out[0] = s->cx - h;
-        out[1] = s->cx + h;
-        return 2;
-    }
-    int k = 0;
-    for (int i = 0; i < s->n; i++) {
-        long double x0 = s->xy[2 * i], y0 = s->xy[2 * i + 1];
-        long double x1 = s->xy[2 * ((i + 1) % s->n)], y1 = s->xy[2 * ((i + 1) % s->n) + 1];
-        if ((y0 <= y && y < y1) || (y1 <= y && y < y0))
-            out[k++] = x0 + (y - y0) * (x1 - x0) / (y1 - y0);
-    }
-    return k;
-}
-
-static int shape_inside(const shape *s, long double x, long double y)
-{
-    if (s->kind == 0)
-        return (x - s->cx) * (x - s->cx) + (y - s->cy) * (y - s->cy) < (long double)s->r * s->r;
-    int in = 0;
-    for (int i = 0; i < s->n; i++) {
-        long double x0 = s->xy[2 * i], y0 = s->xy[2 * i + 1];
-        long double x1 = s->xy[2 * ((i + 1) % s->n)], y1 = s->xy[2 * ((i + 1) % s->n) + 1];
-        if ((y0 <= y && y < y1) || (y1 <= y && y < y0))
-            if (x < x0 + (y - y0) * (x1 - x0) / (y1 - y0))
-                in ^= 1;
-    }
-    return in;
-}
-
-/* Evaluates the RPN over operand memberships (operand = evenodd of its shapes). */
-static int rpn_eval(const int *rpn, int len, const int *in_operand)
-{
-    int st[32], sp = 0;
-    for (int i = 0; i < len; i++) {
-        if (rpn[i] >= 0) {
-            st[sp++] = in_operand[rpn[i]];
-            continue;
-        }
-        int b = st[--sp], a = st[--sp];
-        st[sp++] = rpn[i] == CS_CSG_UNION       ? (a || b)
-                   : rpn[i] == CS_CSG_INTERSECT ? (a && b)
-                   : rpn[i] == CS_CSG_DIFFERENCE ? (a && !b)
-                                                 : (a != b);
-    }
-    return st[0];
-}
-
-static void reference_coverage(const shape *sh, int ns, const int *rpn, int len, int w, int h,
-                               double *cov)
-{
-    const int rows = 512;
-    for (int i = 0; i < w * h; i++)
-        cov[i] = 0;
-    long double brk[64];
-    for (int y = 0; y < h; y++)
-        for (int k = 0; k < rows; k++) {
-            long double ys = y + (k + 0.5L) / rows;
-            int nb = 0;
-            for (int s = 0; s < ns; s++)
-                nb += shape_breaks(&sh[s], ys, brk + nb);
-            brk[nb++] = 0;
-            brk[nb++] = w;
-            for (int i = 1; i < nb; i++) /* insertion sort */
-                for (int j = i; j > 0 && brk[j - 1] > brk[j]; j--) {
-                    long double t = brk[j];
-                    brk[j] = brk[j - 1];
-                    brk[j - 1] = t;
-                }
-            for (int i = 0; i + 1 < nb; i++) {
-                long double a = brk[i] < 0 ? 0 : brk[i], b = brk[i + 1] > w ? w : brk[i + 1];
-                if (!(b > a))
-                    continue;
-                long double mid = 0.5L * (a + b);
-                int in_op[8] = {0};
-                for (int s = 0; s < ns; s++)
-                    in_op[sh[s].operand] ^= shape_inside(&sh[s], mid, ys);
-                if (!rpn_eval(rpn, len, in_op))
-                    continue;
-                for (int px = (int)a; px < w && px < b; px++)
-                    cov[y * w + px] += (double)(overlap((double)a, (double)b, px) / rows);
-            }
-        }
-}
-
-/* Coverage as celscan renders it: white paint, black surround. */
-static void celscan_coverage(const shape *sh, int ns, const int *rpn, int len, int w, int h,
-                             int aa, double *cov)
-{
-    cs_scene *s = &g_scene;
-    cs_scene_init(s, (float)w, (float)h);
-    add_cel(s, NULL, NULL, NULL);
-    cs_paint p = paint(1, 1, 1, 0, 0, 0, 1);
-    cs_error e;
-    cs_scene_add_region(s, CS_FILL_EVENODD, &p, &e);
-    if (len > 0) {
-        cs_status st = cs_scene_set_region_csg(s, rpn, len, &e);
-        CHECK(st == CS_OK, "set csg: %s", cs_status_str(st));
-    }
-    for (int i = 0; i < ns; i++) {
-        if (sh[i].kind == 0)
-            add_circle(s, sh[i].cx, sh[i].cy, sh[i].r);
-        else
-            add_polygon(s, sh[i].xy, sh[i].n);
-        cs_scene_set_contour_operand(s, sh[i].operand, &e);
-    }
-    cs_render_opts o = opts_n(w, h, 64);
-    o.aa = aa ? CS_AA_EXACT : CS_AA_SUBSCAN;
-    CHECK(render(s, &o, NULL, img_c) == CS_OK, "render csg");
-    for (int i = 0; i < w * h; i++)
-        cov[i] = img_c[3 * i];
-}
-
-static double cov_ref[64 * 64], cov_got[64 * 64], cov_a[64 * 64], cov_b[64 * 64],
-    cov_ab[64 * 64];
-
-static void test_csg(void)
-{
-    static const double tri[6] = {6, 58, 60, 50.5, 30.3, 6.2};
-    static const double square[8] = {20.5, 20.5, 44.25, 20.5, 44.25, 44.75, 20.5, 44.75};
-    /* Operands: 0 = circle A, 1 = circle B, 2 = triangle, 3 = ring (two
-     * circles in one operand: evenodd makes it a ring), 4 = square. */
-    const shape sh[] = {
-        {0, 24, 28, 15.5, NULL, 0, 0}, {0, 38.3, 31.7, 13.2, NULL, 0, 1},
-        {1, 0, 0, 0, tri, 3, 2},       {0, 32, 32, 27, NULL, 0, 3},
-        {0, 32, 32, 22.5, NULL, 0, 3}, {1, 0, 0, 0, square, 4, 4},
-    };
-    const int ns = 6;
-    struct {
-        const char *name;
-        int rpn[8];
-        int len;
-    } progs[] = {
-        {"A union B", {0, 1, CS_CSG_UNION}, 3},
-        {"A intersect B", {0, 1, CS_CSG_INTERSECT}, 3},
-        {"A - B", {0, 1, CS_CSG_DIFFERENCE}, 3},
-        {"A xor B", {0, 1, CS_CSG_XOR}, 3},
-        {"(A - B) u tri", {0, 1, CS_CSG_DIFFERENCE, 2, CS_CSG_UNION}, 5},
-        {"tri n (A u B)", {2, 0, 1, CS_CSG_UNION, CS_CSG_INTERSECT}, 5},
-        {"ring - square", {3, 4, CS_CSG_DIFFERENCE}, 3},
-        {"ring xor tri", {3, 2, CS_CSG_XOR}, 3},
-    };
-    const int W = 64, H = 64;
-    for (unsigned p = 0; p < sizeof progs / sizeof progs[0]; p++) {
-        reference_coverage(sh, ns, progs[p].rpn, progs[p].len, W, H, cov_ref);
-        for (int aa = 0; aa < 2; aa++) {
-            celscan_coverage(sh, ns, progs[p].rpn, progs[p].len, W, H, aa, cov_got);
-            double worst = 0, sum = 0, area_ref = 0, area_got = 0;
-            for (int i = 0; i < W * H; i++) {
-                double d = fabs(cov_got[i] - cov_ref[i]);
-                worst = d > worst ? d : worst;
-                sum += d;
-                area_ref += cov_ref[i];
-                area_got += cov_got[i];
-            }
-            /* 64 sub-scanlines: per pixel the midpoint rule errs by at most
-             * half a sub-scanline's height across the pixel (1/128). */
-            CHECK(worst <= 1.0 / 128 + 1e-4 && sum / (W * H) < 1e-3,
-                  "csg %s (aa %d): worst %.4f mean %.2e", progs[p].name, aa, worst,
-                  sum / (W * H));
-            CHECK(fabs(area_got - area_ref) < 0.05, "csg %s area %.3f vs %.3f", progs[p].name,
-                  area_got, area_ref);
-            if (aa == 0)
-                printf("  csg %-14s area %8.3f ref %8.3f  worst %.4f  mean %.1e\n",
-                       progs[p].name, area_got, area_ref, worst, sum / (W * H));
-        }
-    }
-    /* Identities on the renderer's own coverage (same samples, so tight):
-     * |A u B| + |A n B| = |A| + |B|, |A - B| = |A| - |A n B|,
-     * |A xor B| = |A u B| - |A n B|. */
-    int ra[] = {0}, rb[] = {1}, run[] = {0, 1, CS_CSG_UNION}, rin[] = {0, 1, CS_CSG_INTERSECT};
-    int rdf[] = {0, 1, CS_CSG_DIFFERENCE}, rx[] = {0, 1, CS_CSG_XOR};
-    celscan_coverage(sh, ns, ra, 1, W, H, 0, cov_a);
-    celscan_coverage(sh, ns, rb, 1, W, H, 0, cov_b);
-    celscan_coverage(sh, ns, rin, 3, W, H, 0, cov_ab);
-    double w1 = 0, w2 = 0, w3 = 0;
-    celscan_coverage(sh, ns, run, 3, W, H, 0, cov_got);
-    for (int i = 0; i < W * H; i++)
-        w1 = fmax(w1, fabs(cov_got[i] + cov_ab[i] - cov_a[i] - cov_b[i]));
-    celscan_coverage(sh, ns, rdf, 3, W, H, 0, cov_got);
-    for (int i = 0; i < W * H; i++)
-        w2 = fmax(w2, fabs(cov_got[i] - (cov_a[i] - cov_ab[i])));
-    celscan_coverage(sh, ns, rx, 3, W, H, 0, cov_ref);
-    celscan_coverage(sh, ns, run, 3, W, H, 0, cov_got);
-    for (int i = 0; i < W * H; i++)
-        w3 = fmax(w3, fabs(cov_ref[i] - (cov_got[i] - cov_ab[i])));
-    CHECK(w1 < 1e-4 && w2 < 1e-4 && w3 < 1e-4, "csg identities: %.2e %.2e %.2e", w1, w2, w3);
-    /* A region without CSG ignores operands: contours wind together. */
-    cs_scene *s = &g_scene;
-    cs_scene_init(s, 64, 64);
-    add_cel(s, NULL, NULL, NULL);
-    add_region(s, paint(1, 1, 1, 0, 0, 0, 1));
-    cs_error e;
-    add_circle(s, 24, 28, 15.5);
-    cs_scene_set_contour_operand(s, 3, &e);
-    cs_render_opts o = opts_n(64, 64, 64);
-    render(s, &o, NULL, img_c);
-    int rq[] = {0};
-    shape one = sh[0];
-    reference_coverage(&one, 1, rq, 1, W, H, cov_ref);
-    double worst = 0;
-    for (int i = 0; i < W * H; i++)
-        worst = fmax(worst, fabs(img_c[3 * i] - cov_ref[i]));
-    CHECK(worst <= 1.0 / 128 + 1e-4, "no-csg region with an operand set: %.4f", worst);
-}
-
-static void test_csg_validation(void)
-{
-    cs_scene *s = &g_scene;
-    cs_scene_init(s, 10, 10);
-    cs_error e;
-    int bad_under[] = {0, CS_CSG_UNION};
-    int bad_left[] = {0, 1};
-    int bad_op[] = {0, 1, -9};
-    int bad_operand[] = {CS_CFG_MAX_OPERANDS};
-    int good[] = {0, 1, CS_CSG_XOR};
-    CHECK(cs_scene_set_region_csg(s, good, 3, &e) == CS_ERR_STATE, "csg before any region");
-    add_cel(s, NULL, NULL, NULL);
-    add_region(s, paint(1, 1, 1, 0, 0, 0, 1));
-    CHECK(cs_scene_set_region_csg(s, bad_under, 2, &e) == CS_ERR_CSG && e.item == 1,
-          "operator without two inputs (item %d)", e.item);
-    CHECK(cs_scene_set_region_csg(s, bad_left, 2, &e) == CS_ERR_CSG, "two results left");
-    CHECK(cs_scene_set_region_csg(s, bad_op, 3, &e) == CS_ERR_CSG && e.item == 2, "bad operator");
-    CHECK(cs_scene_set_region_csg(s, bad_operand, 1, &e) == CS_ERR_CSG, "operand out of range");
-    CHECK(cs_scene_set_region_csg(s, good, 0, &e) == CS_ERR_CSG, "empty program");
-    CHECK(cs_scene_set_region_csg(s, good, CS_CFG_MAX_CSG + 1, &e) == CS_ERR_CSG, "too long");
-    CHECK(s->regions[0].csg_len == 0, "rejected programs leave the region unchanged");
-    CHECK(cs_scene_set_region_csg(s, good, 3, &e) == CS_OK, "good program");
-    CHECK(cs_scene_set_contour_operand(s, 1, &e) == CS_ERR_STATE, "operand before a contour");
-    add_rect(s, 1, 1, 5, 5);
-    CHECK(cs_scene_set_contour_operand(s, -1, &e) == CS_ERR_CSG, "negative operand");
-    CHECK(cs_scene_set_contour_operand(s, CS_CFG_MAX_OPERANDS, &e) == CS_ERR_CSG,
-          "operand too large");
-    CHECK(cs_scene_set_contour_operand(s, 1, &e) == CS_OK && s->contours[0].operand == 1,
-          "operand set");
-}
+/* ------------------------------------------- 7. paint function refusals */
 
 static void test_func_validation(void)
 {
@@ -1359,10 +731,10 @@ static void test_srgb_blend(void)
     cs_scene_set_background(s, blue);
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(1, 0, 0, 1, 1, 1, 0.5));
-    add_rect(s, 0, 0, 8.5, 16);
+    TL_MUST(ts_add_rect(s, 0, 0, 8.5, 16));
     /* a gradient too: stops interpolate in sRGB */
     add_region(s, paint(1, 1, 1, 1, 1, 1, 1));
-    add_rect(s, 8.5, 0, 16, 16);
+    TL_MUST(ts_add_rect(s, 8.5, 0, 16, 16));
     const double g[4] = {8.5, 0, 16, 0}, off[2] = {0, 1};
     const double v[2][3] = {{srgb_inv(0.2), srgb_inv(0.2), srgb_inv(0.2)},
                             {srgb_inv(0.8), srgb_inv(0.8), srgb_inv(0.8)}};
@@ -1397,7 +769,7 @@ static void test_defaults(void)
     cs_scene_init(s, 8, 8);
     add_cel(s, NULL, NULL, NULL);
     add_region(s, paint(0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5));
-    add_rect(s, 0, 0, 8, 8);
+    TL_MUST(ts_add_rect(s, 0, 0, 8, 8));
     float f[3] = {0.4f, 0.8f, 1.6f}, b[3] = {0.3f, 0.2f, 0.1f};
     cs_scene_set_lights(s, f, b);
     cs_render_opts o = opts_n(8, 8, 1);
@@ -1426,10 +798,7 @@ int main(void)
     test_mattes();
     test_gradients();
     test_early_out_exact();
-    test_cache();
     test_grey_path();
-    test_csg();
-    test_csg_validation();
     test_func_validation();
     test_dither();
     test_srgb_blend();

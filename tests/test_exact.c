@@ -234,9 +234,9 @@ static cs_status render_core(const tscene *t, cs_aa_mode aa, int sub, double *ou
     return render_window(t, aa, sub, 0, 0, t->width, t->height, out);
 }
 
-static ref_view view_of(const tscene *t)
+static xref_view view_of(const tscene *t)
 {
-    ref_view v = {t->aff[0], t->aff[1], t->aff[2], t->aff[3], t->aff[4], t->aff[5],
+    xref_view v = {t->aff[0], t->aff[1], t->aff[2], t->aff[3], t->aff[4], t->aff[5],
                   (double)((float)t->width / (float)t->cw),
                   (double)((float)t->height / (float)t->ch)};
     for (int k = 0; k < 6; k++)
@@ -246,13 +246,13 @@ static ref_view view_of(const tscene *t)
 
 static int ref_region_cov(const tscene *t, int ri, int subscan, double *out)
 {
-    ref_contour rc[MAXC];
+    xref_contour rc[MAXC];
     const tregion *r = &t->reg[ri];
     for (int k = 0; k < r->ncont; k++)
-        rc[k] = (ref_contour){r->cont[k].degree, r->cont[k].count, r->cont[k].xyw, r->cont[k].iv};
-    ref_region rr = {r->evenodd, r->ncont, rc};
-    ref_view v = view_of(t);
-    return ref_coverage(&rr, &v, t->width, t->height, subscan, out);
+        rc[k] = (xref_contour){r->cont[k].degree, r->cont[k].count, r->cont[k].xyw, r->cont[k].iv};
+    xref_region rr = {r->evenodd, r->ncont, rc};
+    xref_view v = view_of(t);
+    return xref_coverage(&rr, &v, t->width, t->height, subscan, out);
 }
 
 /* ---------------------------------------------------- reference checks */
@@ -263,11 +263,11 @@ static void test_ref_circle_points(void)
 {
     tscene *t = new_scene("ref-circle", 64, 64, 64, 64);
     circle(&t->reg[0], 30.25, 29.75, 20.5, 0);
-    ref_contour rc = {2, t->reg[0].cont[0].count, t->reg[0].cont[0].xyw, t->reg[0].cont[0].iv};
-    ref_view v = view_of(t);
+    xref_contour rc = {2, t->reg[0].cont[0].count, t->reg[0].cont[0].xyw, t->reg[0].cont[0].iv};
+    xref_view v = view_of(t);
     long cap = 1 << 20;
     long double *pts = malloc(sizeof(long double) * 2 * (size_t)cap);
-    long n = ref_flatten(&rc, &v, pts, cap);
+    long n = xref_flatten(&rc, &v, pts, cap);
     double worst = 0.0;
     double cx = fl(30.25), cy = fl(29.75), rad = fl(20.5);
     for (long i = 0; i < n; i++) {
@@ -297,7 +297,7 @@ static void test_ref_accuracy(void)
     double worst = 0.0;
     for (int j = 0; j < 24; j++)
         for (int i = 0; i < 24; i++) {
-            double d = fabs(fabs((double)ref_polygon_pixel_area(q, 4, i, j)) - cov[j * 24 + i]);
+            double d = fabs(fabs((double)xref_polygon_pixel_area(q, 4, i, j)) - cov[j * 24 + i]);
             if (d > worst)
                 worst = d;
         }
@@ -307,15 +307,15 @@ static void test_ref_accuracy(void)
     t = new_scene("ref-smallcircle", 16, 16, 16, 16);
     circle(&t->reg[0], 7.8125, 8.3, 6.3, 0);
     CHECK(ref_region_cov(t, 0, SUBSCAN_REF, cov) == 0, "reference failed");
-    ref_contour rc = {2, t->reg[0].cont[0].count, t->reg[0].cont[0].xyw, t->reg[0].cont[0].iv};
-    ref_view v = view_of(t);
+    xref_contour rc = {2, t->reg[0].cont[0].count, t->reg[0].cont[0].xyw, t->reg[0].cont[0].iv};
+    xref_view v = view_of(t);
     long cap = 1 << 20;
     long double *pts = malloc(sizeof(long double) * 2 * (size_t)cap);
-    long n = ref_flatten(&rc, &v, pts, cap);
+    long n = xref_flatten(&rc, &v, pts, cap);
     worst = 0.0;
     for (int j = 0; j < 16; j++)
         for (int i = 0; i < 16; i++) {
-            double d = fabs(fabs((double)ref_polygon_pixel_area(pts, (int)n, i, j)) - cov[j * 16 + i]);
+            double d = fabs(fabs((double)xref_polygon_pixel_area(pts, (int)n, i, j)) - cov[j * 16 + i]);
             if (d > worst)
                 worst = d;
         }

@@ -22,24 +22,13 @@
 #include <string.h>
 
 #include "celscan.h"
+#include "shapes.h"
 #include "testlib.h"
 
 enum { W = 203, H = 131 };
 
 static cs_scene scene;
 static cs_workspace ws;
-
-static void circle(float cx, float cy, float r)
-{
-    const float h = 0.70710678f;
-    const float ux[8] = {1, 1, 0, -1, -1, -1, 0, 1}, uy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
-    const float iv[8] = {1, 0, 1, 0, 1, 0, 1, 0};
-    cs_point p[8];
-    for (int i = 0; i < 8; i++)
-        p[i] = (cs_point){cx + r * ux[i], cy + r * uy[i], (i & 1) ? h : 1.0f};
-    cs_error e;
-    CHECK_STATUS(cs_scene_add_contour(&scene, 2, 8, p, iv, &e), CS_OK, "circle");
-}
 
 static void blob(float cx, float cy, float r, int k)
 {
@@ -70,7 +59,7 @@ static void build(void)
     cs_paint teal = {{0.1f, 0.7f, 0.6f}, {0.6f, 0.9f, 0.8f}, 0.7f}, ink = {{0, 0, 0}, {1, 1, 1}, 1};
     cs_scene_add_cel(&scene, &id, NULL, NULL, &e);
     cs_scene_add_region(&scene, CS_FILL_NONZERO, &glass, &e);
-    circle(30.3f, 30.1f, 18.7f);
+    CHECK_STATUS(ts_add_circle(&scene, 30.3f, 30.1f, 18.7f), CS_OK, "circle");
     cs_scene_add_region(&scene, CS_FILL_EVENODD, &ink, &e);
     const cs_point poly[6] = {{55, 10, 1}, {90, 10, 1}, {90, 20.5f, 1}, {70, 20.5f, 1},
                               {70, 40.25f, 1}, {55, 52, 1}};

@@ -30,21 +30,10 @@
 #include "celscan.h"
 #include "cs_wire.h"
 #include "scene_equal.h"
+#include "shapes.h"
+#include "testlib.h"
 
-static int passed, failed;
 static const double PI = 3.14159265358979323846;
-
-#define CHECK(cond, ...)                                                                          \
-    do {                                                                                          \
-        if (cond) {                                                                               \
-            passed++;                                                                             \
-        } else {                                                                                  \
-            failed++;                                                                             \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                                  \
-            fprintf(stderr, __VA_ARGS__);                                                         \
-            fputc('\n', stderr);                                                                  \
-        }                                                                                         \
-    } while (0)
 
 /* A check that runs thousands of times counts once, and reports its first failure. */
 typedef struct {
@@ -72,15 +61,7 @@ static uint32_t rnd(void)
     return rng_state;
 }
 
-static cs_scene *new_scene(void)
-{
-    cs_scene *s = calloc(1, sizeof *s);
-    if (!s) {
-        fprintf(stderr, "out of memory\n");
-        exit(2);
-    }
-    return s;
-}
+static cs_scene *new_scene(void) { return tl_calloc(1, sizeof(cs_scene)); }
 
 /* ------------------------------------------------------------ comparison */
 
@@ -95,7 +76,8 @@ static cs_status render(const cs_scene *s, int w, int h, float t, cs_aa_mode aa,
                         float *out)
 {
     cs_renderer r;
-    cs_render_opts o = {w, h, aa, sub, t, CS_BLEND_LINEAR, false};
+    cs_render_opts o = {.width = w, .height = h, .aa = aa, .subscanlines = sub, .time = t,
+                        .blend = CS_BLEND_LINEAR};
     cs_error err;
     cs_status st = cs_frame_begin(&r, ws, s, &o, &err);
     if (st != CS_OK)
@@ -125,20 +107,6 @@ static bool renders_equal(const cs_scene *a, const cs_scene *b)
 
 /* ---------------------------------------------------------------- scenes */
 
-static const float R2 = 0.70710678f;
-
-static void add_circle(cs_scene *s, float cx, float cy, float r)
-{
-    cs_point p[8] = {{cx + r, cy, 1},          {cx + r, cy + r, R2}, {cx, cy + r, 1},
-                     {cx - r, cy + r, R2},     {cx - r, cy, 1},      {cx - r, cy - r, R2},
-                     {cx, cy - r, 1},          {cx + r, cy - r, R2}};
-    float iv[8] = {1, 0, 1, 0, 1, 0, 1, 0};
-    cs_error e;
-    cs_status st = cs_scene_add_contour(s, 2, 8, p, iv, &e);
-    if (st != CS_OK)
-        fprintf(stderr, "add_circle: %s\n", cs_status_str(st));
-}
-
 static cs_paint paint_of(float r, float g, float b, float beta)
 {
     cs_paint p = {{r, g, b}, {1, 1, 1}, beta};
@@ -163,7 +131,7 @@ static void build_demo(cs_scene *s)
     cs_scene_add_cel(s, &id, NULL, NULL, &e); /* cel 0: a disc, animated transform */
     cs_paint red = paint_of(0.9f, 0.2f, 0.2f, 1.0f);
     cs_scene_add_region(s, CS_FILL_NONZERO, &red, &e);
-    add_circle(s, 20, 20, 12);
+    TL_MUST(ts_add_circle(s, 20, 20, 12));
 
     cs_affine rot = {0.8f, 0.6f, -0.6f, 0.8f, 50, 8};
     const float cel_front[3] = {0.9f, 0.95f, 1.0f};
@@ -265,7 +233,7 @@ static void build_beta(cs_scene *s)
     const float rad_s[2][4] = {{0, 1, 1, 1}, {1, 0.2f, 0.2f, 0.2f}};
     f = make_func(CS_FUNC_RADIAL, CS_SPREAD_PAD, rad_g, 2, 1, rad_s);
     cs_scene_set_region_func(s, CS_FIELD_BETA, &f, &e);
-    add_circle(s, 30, 20, 18);
+    TL_MUST(ts_add_circle(s, 30, 20, 18));
 
     cs_paint gel = {{0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}, 0.3f};
     cs_scene_add_region(s, CS_FILL_EVENODD, &gel, &e);
@@ -282,14 +250,14 @@ static void build_beta(cs_scene *s)
     cs_scene_add_region(s, CS_FILL_EVENODD, &ink, &e);
     const int rpn[5] = {0, 1, CS_CSG_DIFFERENCE, 2, CS_CSG_UNION};
     cs_scene_set_region_csg(s, rpn, 5, &e);
-    add_circle(s, 60, 20, 14); /* operand 0: a ring of two circles */
+    TL_MUST(ts_add_circle(s, 60, 20, 14)); /* operand 0: a ring of two circles */
     cs_scene_set_contour_operand(s, 0, &e);
-    add_circle(s, 60, 20, 8);
+    TL_MUST(ts_add_circle(s, 60, 20, 8));
     cs_scene_set_contour_operand(s, 0, &e);
     cs_point bar[4] = {{40, 17, 1}, {80, 17, 1}, {80, 23, 1}, {40, 23, 1}};
     cs_scene_add_contour(s, 1, 4, bar, NULL, &e); /* operand 1: the bar */
     cs_scene_set_contour_operand(s, 1, &e);
-    add_circle(s, 15, 50, 9); /* operand 2: a disc */
+    TL_MUST(ts_add_circle(s, 15, 50, 9)); /* operand 2: a disc */
     cs_scene_set_contour_operand(s, 2, &e);
     /* every field a function, on a region with no CSG */
     cs_paint any = paint_of(0, 0, 0, 0.5f);
@@ -599,7 +567,7 @@ static void truncation(void (*build)(cs_scene *), const char *name)
     cs_scene_add_cel(first, &id, NULL, NULL, &e);
     cs_paint p = paint_of(1, 1, 1, 1);
     cs_scene_add_region(first, CS_FILL_NONZERO, &p, &e);
-    add_circle(first, 30, 30, 10);
+    TL_MUST(ts_add_circle(first, 30, 30, 10));
     cels_buf g;
     encode(first, &g, true);
     size_t second = g.len;
@@ -642,7 +610,7 @@ static void bitflips(void (*build)(cs_scene *), const char *name)
     cs_scene_add_cel(first, &id, NULL, NULL, &e);
     cs_paint p = paint_of(1, 0.5f, 0.25f, 1);
     cs_scene_add_region(first, CS_FILL_NONZERO, &p, &e);
-    add_circle(first, 30, 30, 10);
+    TL_MUST(ts_add_circle(first, 30, 30, 10));
     cels_buf g;
     encode(first, &g, true);
     size_t second = g.len;
@@ -1973,6 +1941,31 @@ static void test_epoch(void)
     free(t);
 }
 
+/* cs_stream_error_text: the line every program prints, written out here by
+ * hand; offsets beyond 32 bits; cut to the buffer, with the length needed. */
+static void test_error_text(void)
+{
+    cs_stream_error e = {CS_ERR_WEIGHT, 40, 52, {CS_ERR_WEIGHT, 2, 0, 1, -1}, "weight must be > 0"};
+    char buf[200];
+    size_t n = cs_stream_error_text(&e, 1000, buf, sizeof buf);
+    const char *want = "weight must be > 0 (cel 2, region 0, contour 1) (transaction at byte 1040 dropped)";
+    CHECK(strcmp(buf, want) == 0 && n == strlen(want), "validation error: '%s' (%zu)", buf, n);
+    cs_stream_error s = {CS_ERR_STREAM_SYNC, 18446744073709551610u, 7, {CS_OK, -1, -1, -1, -1},
+                         "no transaction header here"};
+    n = cs_stream_error_text(&s, 5, buf, sizeof buf);
+    size_t whole = strlen(want);
+    want = "bytes outside any transaction were skipped: no transaction header here (skipping from "
+           "byte 18446744073709551615)";
+    CHECK(strcmp(buf, want) == 0 && n == strlen(want), "skipped bytes: '%s' (%zu)", buf, n);
+    char small[8];
+    memset(small, 'x', sizeof small);
+    n = cs_stream_error_text(&e, 0, small, sizeof small);
+    CHECK(memcmp(small, "weight ", 8) == 0 && n > sizeof small, "cut to 8 bytes: '%.8s' (%zu)",
+          small, n);
+    n = cs_stream_error_text(&e, 1000, NULL, 0);
+    CHECK(n == whole, "size query: %zu, want %zu", n, whole);
+}
+
 /* The host reader: a file with a good scene and a damaged patch. */
 static void test_reader(void)
 {
@@ -2162,10 +2155,10 @@ static void build_three(cs_scene *s, const int *order, int n)
         cs_scene_add_cel(s, &m, NULL, NULL, &e);
         cs_paint p = paint_of(0.3f * (float)k, 0.5f, 1.0f - 0.3f * (float)k, 0.5f + 0.2f * (float)k);
         cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e);
-        add_circle(s, 20, 20, 8 + 2 * (float)k);
+        TL_MUST(ts_add_circle(s, 20, 20, 8 + 2 * (float)k));
         cs_scene_add_region(s, CS_FILL_EVENODD, &p, &e);
-        add_circle(s, 30, 30, 5);
-        add_circle(s, 30, 30, 3);
+        TL_MUST(ts_add_circle(s, 30, 30, 5));
+        TL_MUST(ts_add_circle(s, 30, 30, 3));
     }
     for (int i = 0; i < n; i++) {
         int k = order[i];
@@ -2260,7 +2253,7 @@ static void build_three_beta(cs_scene *s, const int *order, int n)
             f = make_func(CS_FUNC_RADIAL, 0, rg, 2, 1, rs);
             cs_scene_set_region_func(s, CS_FIELD_BETA, &f, &e);
         }
-        add_circle(s, 20, 20, 8 + 2 * fk);
+        TL_MUST(ts_add_circle(s, 20, 20, 8 + 2 * fk));
         cs_scene_add_region(s, CS_FILL_EVENODD, &p, &e);
         const float mg[6] = {20, 20, 20, 0, 0, 20};
         const float ms[4][4] = {{0, 1, 0, 0}, {0, 0, fk / 2, 0}, {0, 0, 0, 1}, {0, 1, 1, 1}};
@@ -2268,9 +2261,9 @@ static void build_three_beta(cs_scene *s, const int *order, int n)
         cs_scene_set_region_func(s, CS_FIELD_MEDIUM, &f, &e);
         const int rpn[3] = {0, 1, k == 2 ? CS_CSG_XOR : CS_CSG_DIFFERENCE};
         cs_scene_set_region_csg(s, rpn, 3, &e);
-        add_circle(s, 30, 30, 9);
+        TL_MUST(ts_add_circle(s, 30, 30, 9));
         cs_scene_set_contour_operand(s, 0, &e);
-        add_circle(s, 34, 30, 5);
+        TL_MUST(ts_add_circle(s, 34, 30, 5));
         cs_scene_set_contour_operand(s, 1, &e);
     }
     for (int i = 0; i < n; i++) {
@@ -2326,7 +2319,7 @@ static void test_edit_ops_beta(void)
                   cs_status_str(fs), s->func_count);
             break;
         }
-        add_circle(s, 20, 20, 8);
+        TL_MUST(ts_add_circle(s, 20, 20, 8));
     }
     CHECK(s->func_count <= 8, "after %d remove/add rounds: %u functions in use",
           3 * CS_CFG_MAX_FUNCS, s->func_count);
@@ -2418,7 +2411,7 @@ static void test_track_validation(void)
     cs_scene_add_cel(s, &id, NULL, NULL, &e);
     cs_paint p = paint_of(1, 1, 1, 1);
     cs_scene_add_region(s, CS_FILL_NONZERO, &p, &e);
-    add_circle(s, 5, 5, 2);
+    TL_MUST(ts_add_circle(s, 5, 5, 2));
     CHECK(cs_scene_add_track(s, CS_TRACK_TRANSFORM, 1, CS_EASE_LINEAR, &e) == CS_ERR_INDEX,
           "track on a missing cel");
     CHECK(cs_scene_add_track(s, (cs_track_kind)9, 0, CS_EASE_LINEAR, &e) == CS_ERR_TRACK,
@@ -2470,7 +2463,7 @@ static void test_centroid(void)
     cs_scene_add_cel(s, &id, NULL, NULL, &e);
     cs_paint white = paint_of(1, 1, 1, 1);
     cs_scene_add_region(s, CS_FILL_NONZERO, &white, &e);
-    add_circle(s, 0, 0, 12);
+    TL_MUST(ts_add_circle(s, 0, 0, 12));
     const double e0 = 30.3, f0 = 40.7, e1 = 161.9, f1 = 57.2, ta = 0.5, tb = 2.5;
     for (int ease = 0; ease < 2; ease++) {
         cs_scene_add_track(s, CS_TRACK_TRANSFORM, 0, (cs_ease)ease, &e);
@@ -2659,38 +2652,36 @@ int main(int argc, char **argv)
         return write_seeds(argv[2]);
     store_a = new_scene();
     store_b = new_scene();
-    ws = malloc(sizeof *ws);
-    if (!ws)
-        return 2;
+    ws = tl_calloc(1, sizeof *ws);
     printf("test_stream: sizeof(cs_stream) = %zu bytes (decoder state, apart from the two "
            "scene stores of %zu bytes each)\n",
            sizeof(cs_stream), sizeof(cs_scene));
-    test_crc_and_lights_order();
-    test_copy();
-    test_roundtrip();
-    test_roundtrip_beta();
-    test_roundtrip_groups();
-    test_truncation();
-    test_bitflips();
-    test_crafted();
-    test_crafted_beta();
-    test_random_and_resync();
-    test_valid_then_damaged();
-    test_busy();
-    test_gap();
-    test_refuse();
-    test_epoch();
-    test_patches();
-    test_reader();
-    test_edit_ops();
-    test_edit_ops_beta();
-    test_patch_beta();
-    test_track_validation();
-    test_sampling();
-    test_centroid();
+    TL_RUN(test_crc_and_lights_order);
+    TL_RUN(test_copy);
+    TL_RUN(test_roundtrip);
+    TL_RUN(test_roundtrip_beta);
+    TL_RUN(test_roundtrip_groups);
+    TL_RUN(test_truncation);
+    TL_RUN(test_bitflips);
+    TL_RUN(test_crafted);
+    TL_RUN(test_crafted_beta);
+    TL_RUN(test_random_and_resync);
+    TL_RUN(test_valid_then_damaged);
+    TL_RUN(test_busy);
+    TL_RUN(test_gap);
+    TL_RUN(test_refuse);
+    TL_RUN(test_epoch);
+    TL_RUN(test_patches);
+    TL_RUN(test_error_text);
+    TL_RUN(test_reader);
+    TL_RUN(test_edit_ops);
+    TL_RUN(test_edit_ops_beta);
+    TL_RUN(test_patch_beta);
+    TL_RUN(test_track_validation);
+    TL_RUN(test_sampling);
+    TL_RUN(test_centroid);
     free(store_a);
     free(store_b);
     free(ws);
-    printf("test_stream: %d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return tl_summary("test_stream");
 }

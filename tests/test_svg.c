@@ -14,9 +14,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "svg_check.h"
-
-int svc_pass, svc_fail;
+#define TL_MAIN
+#include "svg_test.h"
 
 int main(int argc, char **argv)
 {
@@ -52,6 +51,5 @@ int main(int argc, char **argv)
         test_svg_rsvg(&o);
     if (!only || !strcmp(only, "hostile"))
         test_svg_hostile(&o);
-    printf("test_svg: %d passed, %d failed\n", svc_pass, svc_fail);
-    return svc_fail ? 1 : 0;
+    return tl_summary("test_svg");
 }

@@ -27,7 +27,7 @@
 #include "../host-sim/scene_json.h"
 #include "../tools/svg/sv.h"
 #include "../tools/svg/sv_gradient.h"
-#include "svg_check.h"
+#include "svg_test.h"
 
 #define N 64
 
@@ -60,7 +60,7 @@ static bool import(const char *svg, sv_doc *d)
 {
     char err[300];
     bool ok = sv_import_buffer(svg, strlen(svg), NULL, d, err, sizeof err) == 0;
-    SVC_CHECK(ok, "import: %s", err);
+    CHECK(ok, "import: %s", err);
     return ok;
 }
 
@@ -68,7 +68,7 @@ static bool to_scene(const sv_doc *d, cs_scene *scene)
 {
     char err[300];
     bool ok = sv_doc_to_scene(d, NULL, scene, err, sizeof err) == 0;
-    SVC_CHECK(ok, "scene: %s", err);
+    CHECK(ok, "scene: %s", err);
     return ok;
 }
 
@@ -92,14 +92,14 @@ static void check_gradient(const grad_case *gc, cs_scene *scene, float *img)
     if (!import(svg, &d))
         return;
     const sv_region *r = d.ncels == 1 && d.cels[0].nregions == 1 ? &d.cels[0].regions[0] : NULL;
-    SVC_CHECK(r && r->draw == SV_DRAW_FUNC && d.nwarnings == 0,
+    CHECK(r && r->draw == SV_DRAW_FUNC && d.nwarnings == 0,
               "%s: one region drawn as paint functions, no warning (%s)", gc->name,
               d.nwarnings ? d.warnings[0] : "");
-    SVC_CHECK(r && d.cels[0].has_transform == gc->cel_transform, "%s: cel transform %s",
+    CHECK(r && d.cels[0].has_transform == gc->cel_transform, "%s: cel transform %s",
               gc->name, gc->cel_transform ? "set" : "not set");
     if (!r || r->draw != SV_DRAW_FUNC || !to_scene(&d, scene) ||
         render(scene, N, N, CS_AA_NONE, CS_BLEND_SRGB, img) != CS_OK) {
-        SVC_CHECK(false, "%s: rendered", gc->name);
+        CHECK(false, "%s: rendered", gc->name);
         sv_doc_free(&d);
         return;
     }
@@ -116,7 +116,7 @@ static void check_gradient(const grad_case *gc, cs_scene *scene, float *img)
             }
         }
     printf("  gradient %-34s max |core - SVG| %.5f (sRGB, premultiplied)\n", gc->name, worst);
-    SVC_CHECK(worst <= 2e-3, "%s: the core's function differs from SVG's gradient by %.5f",
+    CHECK(worst <= 2e-3, "%s: the core's function differs from SVG's gradient by %.5f",
               gc->name, worst);
     sv_doc_free(&d);
 }
@@ -195,9 +195,9 @@ static void test_stops(void)
             funcs += d.cels[c].regions[r].draw == SV_DRAW_FUNC;
             bands += d.cels[c].regions[r].draw == SV_DRAW_BANDS;
         }
-    SVC_CHECK(funcs == 2 && bands == 1, "stops: two gradients fit the core, one falls back "
+    CHECK(funcs == 2 && bands == 1, "stops: two gradients fit the core, one falls back "
                                         "(%d functions, %d bands)", funcs, bands);
-    SVC_CHECK(d.nwarnings == 1 && strstr(d.warnings[0], "CS_CFG_MAX_STOPS"),
+    CHECK(d.nwarnings == 1 && strstr(d.warnings[0], "CS_CFG_MAX_STOPS"),
               "stops: the fallback is warned (%s)", d.nwarnings ? d.warnings[0] : "none");
     sv_doc_free(&d);
 }
@@ -223,16 +223,16 @@ static void check_areas(const clip_case *cases, size_t n, const char *what, cs_s
         sv_doc d;
         if (!import(svg, &d))
             continue;
-        SVC_CHECK(d.nwarnings == 0, "%s: no warning (%s)", cc->name,
+        CHECK(d.nwarnings == 0, "%s: no warning (%s)", cc->name,
                   d.nwarnings ? d.warnings[0] : "");
         if (to_scene(&d, scene) && render(scene, N, N, CS_AA_EXACT, CS_BLEND_LINEAR, img) == CS_OK) {
             double area = 0;
             for (int p = 0; p < N * N; p++)
                 area += img[3 * p];
             printf("  %s %-42s area %9.3f (closed form %9.3f)\n", what, cc->name, area, cc->area);
-            SVC_NEAR(area, cc->area, 0.05, cc->name);
+            CHECK_NEAR(area, cc->area, 0.05, cc->name);
         } else {
-            SVC_CHECK(false, "%s: rendered", cc->name);
+            CHECK(false, "%s: rendered", cc->name);
         }
         sv_doc_free(&d);
     }
@@ -350,7 +350,7 @@ static void test_patterns(cs_scene *scene, float *img)
         bool found = false;
         for (int w = 0; w < d.nwarnings; w++)
             found |= strstr(d.warnings[w], bad[i].warning) != NULL;
-        SVC_CHECK(found, "pattern limit warned: \"%s\"", bad[i].warning);
+        CHECK(found, "pattern limit warned: \"%s\"", bad[i].warning);
         sv_doc_free(&d);
     }
     /* 9 paints of 4096 tiles whose content falls outside the tile (nothing drawn, the
@@ -369,7 +369,7 @@ static void test_patterns(cs_scene *scene, float *img)
         bool found = false;
         for (int w = 0; w < d.nwarnings; w++)
             found |= strstr(d.warnings[w], "expand to more than 32768 regions and tiles") != NULL;
-        SVC_CHECK(found, "the expansion budget of a drawing is warned");
+        CHECK(found, "the expansion budget of a drawing is warned");
         sv_doc_free(&d);
     }
     free(big);
@@ -434,7 +434,7 @@ static void test_masks(cs_scene *scene, float *img)
         bool found = false;
         for (int w = 0; w < d.nwarnings; w++)
             found |= strstr(d.warnings[w], "used inside itself") != NULL;
-        SVC_CHECK(found && sv_doc_region_count(&d) == 1, "mask cycle warned, one region drawn");
+        CHECK(found && sv_doc_region_count(&d) == 1, "mask cycle warned, one region drawn");
         sv_doc_free(&d);
     }
     /* 40 shapes under a mask of 40 shapes would be 1600 regions: warned, left out */
@@ -453,7 +453,7 @@ static void test_masks(cs_scene *scene, float *img)
         bool found = false;
         for (int w = 0; w < d.nwarnings; w++)
             found |= strstr(d.warnings[w], "needs 1600 regions") != NULL;
-        SVC_CHECK(found && sv_doc_region_count(&d) == 0, "mask expansion limit warned");
+        CHECK(found && sv_doc_region_count(&d) == 0, "mask expansion limit warned");
         sv_doc_free(&d);
     }
     free(big);
@@ -479,7 +479,7 @@ static void test_json(cs_scene *scene, float *img)
     if (!import(svg, &d))
         return;
     char *json = sv_doc_to_json(&d, NULL);
-    SVC_CHECK(json && strstr(json, "\"blend\":\"srgb\"") && strstr(json, "\"radial\":") &&
+    CHECK(json && strstr(json, "\"blend\":\"srgb\"") && strstr(json, "\"radial\":") &&
                   strstr(json, "\"linear\":") && strstr(json, "\"csg\":") &&
                   strstr(json, "\"transform\":") && strstr(json, "\"spread\":\"reflect\""),
               "JSON: blend request, functions, CSG and a cel transform written");
@@ -487,7 +487,7 @@ static void test_json(cs_scene *scene, float *img)
     char err[SCENE_JSON_ERRLEN];
     bool ok = json && scene_json_load_string(json, strlen(json), "import", loaded, err,
                                              sizeof err) == 0;
-    SVC_CHECK(ok, "JSON: celsim's loader takes it (%s)", ok ? "" : err);
+    CHECK(ok, "JSON: celsim's loader takes it (%s)", ok ? "" : err);
     float *img2 = malloc(sizeof(float) * 3 * N * N);
     for (int b = 0; ok && b < 2; b++) {
         cs_blend blend = b ? CS_BLEND_SRGB : CS_BLEND_LINEAR;
@@ -498,7 +498,7 @@ static void test_json(cs_scene *scene, float *img)
             worst = fmax(worst, fabs(img[p] - img2[p]));
         printf("  JSON through celsim's loader vs sv_doc_to_scene (%s blending): max %.2g\n",
                b ? "sRGB" : "linear", worst);
-        SVC_CHECK(ok && worst <= 1e-4, "JSON renders as the cs_scene back end: %.3g", worst);
+        CHECK(ok && worst <= 1e-4, "JSON renders as the cs_scene back end: %.3g", worst);
     }
     free(img2);
     free(loaded);
@@ -509,7 +509,7 @@ static void test_json(cs_scene *scene, float *img)
 void test_svg_beta(const svg_test_opts *o)
 {
     (void)o;
-    int before = svc_fail;
+    int before = tl_failed;
     cs_scene *scene = malloc(sizeof *scene);
     float *img = malloc(sizeof(float) * 3 * N * N);
     test_gradients(scene, img);
@@ -520,5 +520,5 @@ void test_svg_beta(const svg_test_opts *o)
     test_json(scene, img);
     free(img);
     free(scene);
-    printf("svg-beta: %s\n", svc_fail == before ? "all checks pass" : "FAILURES above");
+    printf("svg-beta: %s\n", tl_failed == before ? "all checks pass" : "FAILURES above");
 }

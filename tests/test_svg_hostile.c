@@ -30,7 +30,7 @@
 #include <unistd.h>
 
 #include "../tools/svg/sv.h"
-#include "svg_check.h"
+#include "svg_test.h"
 
 #define LIMIT_MB 512
 #define LIMIT_S 5
@@ -145,10 +145,10 @@ static void expect_error(const char *name, const buf *svg, const char *limit)
     outcome o = import_limited(svg);
     printf("  hostile %-22s %8zu bytes: %.2f s, %4ld MB: %s\n", name, svg->n, o.secs, o.rss_mb,
            o.exited ? (o.rc ? o.msg : "imported") : o.msg);
-    SVC_CHECK(o.exited && o.rc == 1 && strstr(o.msg, limit), "%s: error naming %s (got: %s)",
+    CHECK(o.exited && o.rc == 1 && strstr(o.msg, limit), "%s: error naming %s (got: %s)",
               name, limit, o.msg);
-    SVC_CHECK(o.secs < LIMIT_S, "%s: %.2f s, not under %d s", name, o.secs, LIMIT_S);
-    SVC_CHECK(o.rss_mb < LIMIT_MB, "%s: %ld MB, not under %d MB", name, o.rss_mb, LIMIT_MB);
+    CHECK(o.secs < LIMIT_S, "%s: %.2f s, not under %d s", name, o.secs, LIMIT_S);
+    CHECK(o.rss_mb < LIMIT_MB, "%s: %ld MB, not under %d MB", name, o.rss_mb, LIMIT_MB);
 }
 
 static void head(buf *b, const char *viewbox)
@@ -281,9 +281,9 @@ static void test_memory_bound(void)
     long bound = (long)(64 * b.n >> 20) + 64;
     printf("  hostile %-22s %8zu bytes: %.2f s, %4ld MB (bound %ld MB)\n", "1000000 <g/>", b.n,
            o.secs, o.rss_mb, bound);
-    SVC_CHECK(o.exited && o.rc == 0, "1000000 <g/>: imported (%s)", o.msg);
-    SVC_CHECK(o.rss_mb <= bound, "1000000 <g/>: %ld MB over the bound of %ld MB", o.rss_mb, bound);
-    SVC_CHECK(o.secs < LIMIT_S, "1000000 <g/>: %.2f s", o.secs);
+    CHECK(o.exited && o.rc == 0, "1000000 <g/>: imported (%s)", o.msg);
+    CHECK(o.rss_mb <= bound, "1000000 <g/>: %ld MB over the bound of %ld MB", o.rss_mb, bound);
+    CHECK(o.secs < LIMIT_S, "1000000 <g/>: %.2f s", o.secs);
     free(b.s);
 }
 
@@ -301,19 +301,19 @@ static void test_warned(void)
 {
     outcome o = import_text("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 0 0\">"
                             "<rect width=\"5\" height=\"5\"/></svg>");
-    SVC_CHECK(o.exited && o.rc == 0 && o.regions == 0 && strstr(o.msg, "zero width"),
+    CHECK(o.exited && o.rc == 0 && o.regions == 0 && strstr(o.msg, "zero width"),
               "viewBox 0 0 0 0: nothing drawn, warned (%s)", o.msg);
 
     o = import_text("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 10 10\">"
                     "<rect width=\"5\" height=\"5\" stroke=\"red\" stroke-width=\"1e30\"/></svg>");
-    SVC_CHECK(o.exited && o.rc == 0 && o.regions == 1 && strstr(o.msg, "not drawn") &&
+    CHECK(o.exited && o.rc == 0 && o.regions == 1 && strstr(o.msg, "not drawn") &&
                   strstr(o.msg, "stroke"),
               "stroke-width 1e30: the stroke left out, warned (%ld regions: %s)", o.regions,
               o.msg);
 
     o = import_text("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 10 10\">"
                     "<rect width=\"5\" height=\"5\" stroke=\"red\" stroke-width=\"1e8\"/></svg>");
-    SVC_CHECK(o.exited && o.rc == 0 && o.regions == 2 && strstr(o.msg, "cut to the canvas"),
+    CHECK(o.exited && o.rc == 0 && o.regions == 2 && strstr(o.msg, "cut to the canvas"),
               "stroke-width 1e8: cut to the canvas, warned (%ld regions: %s)", o.regions, o.msg);
 
     /* 100,000 stops painting 1000 shapes: SV_MAX_STOPS of them, warned, in bounded time */
@@ -329,9 +329,9 @@ static void test_warned(void)
     o = import_limited(&b);
     printf("  hostile %-22s %8zu bytes: %.2f s, %4ld MB\n", "100000 stops x 1000", b.n, o.secs,
            o.rss_mb);
-    SVC_CHECK(o.exited && o.rc == 0 && o.regions == 1000 && strstr(o.msg, "SV_MAX_STOPS"),
+    CHECK(o.exited && o.rc == 0 && o.regions == 1000 && strstr(o.msg, "SV_MAX_STOPS"),
               "100000 stops: drawn with the first SV_MAX_STOPS, warned (%s)", o.msg);
-    SVC_CHECK(o.secs < LIMIT_S && o.rss_mb < LIMIT_MB, "100000 stops: %.2f s, %ld MB", o.secs,
+    CHECK(o.secs < LIMIT_S && o.rss_mb < LIMIT_MB, "100000 stops: %.2f s, %ld MB", o.secs,
               o.rss_mb);
 
     b.n = 0;
@@ -340,7 +340,7 @@ static void test_warned(void)
         put(&b, "<blink id=\"b%d\"/>", i);
     put(&b, "</svg>");
     o = import_limited(&b);
-    SVC_CHECK(o.exited && o.rc == 0 && o.nwarnings == SV_MAX_WARNINGS + 1,
+    CHECK(o.exited && o.rc == 0 && o.nwarnings == SV_MAX_WARNINGS + 1,
               "5000 unsupported elements: %d warnings kept, not %d", o.nwarnings,
               SV_MAX_WARNINGS + 1);
     free(b.s);

@@ -28,7 +28,7 @@
 
 #include "../tools/svg/sv.h"
 #include "../tools/svg/sv_render.h"
-#include "svg_check.h"
+#include "svg_test.h"
 
 extern char **environ;
 
@@ -177,7 +177,7 @@ void test_svg_rsvg(const svg_test_opts *o)
     for (int i = 0; roots[i]; i++)
         nftw(roots[i], visit, 16, FTW_PHYS);
     if (nfiles == 0) {
-        SVC_CHECK(false, "no icon theme installed (tools/install-deps.sh installs them)");
+        CHECK(false, "no icon theme installed (tools/install-deps.sh installs them)");
         return;
     }
     qsort(files, (size_t)nfiles, sizeof *files, cmp_str);
@@ -310,7 +310,7 @@ void test_svg_rsvg(const svg_test_opts *o)
         fclose(log);
     printf("svg-rsvg: %d of %d icons pass (%.1f%%), %d skipped (rsvg-convert failed), %.1f s\n",
            passed, tested, 100 * rate, skipped, (double)(clock() - t0) / CLOCKS_PER_SEC);
-    SVC_CHECK(tested > 0 && rate >= 0.95, "icon pass rate %.1f%% is below 95%%", 100 * rate);
+    CHECK(tested > 0 && rate >= 0.95, "icon pass rate %.1f%% is below 95%%", 100 * rate);
     for (int i = 0; i < nfiles; i++)
         free(files[i]);
     free(files);

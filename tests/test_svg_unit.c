@@ -20,7 +20,7 @@
 #include "../tools/svg/sv_internal.h"
 #include "../tools/svg/sv_font.h"
 #include "../tools/svg/sv_text.h"
-#include "svg_check.h"
+#include "svg_test.h"
 
 static const sv_seg *seg_at(const sv_path *p, int sub, int k)
 {
@@ -39,7 +39,7 @@ static void check_seg(const sv_path *p, int sub, int k, int degree, const double
     bool ok = s && s->degree == degree;
     for (int i = 0; ok && i <= degree; i++)
         ok = pt_is(s->p[i], xy[2 * i], xy[2 * i + 1]);
-    SVC_CHECK(ok, "%s: subpath %d segment %d", what, sub, k);
+    CHECK(ok, "%s: subpath %d segment %d", what, sub, k);
 }
 
 static void test_path_commands(void)
@@ -48,7 +48,7 @@ static void test_path_commands(void)
     char err[200];
     /* absolute */
     sv_path_init(&p);
-    SVC_CHECK(sv_parse_path("M10 20 L30 40 H50 V60 C1 2 3 4 5 6 S7 8 9 10 Q11 12 13 14 T15 16 Z",
+    CHECK(sv_parse_path("M10 20 L30 40 H50 V60 C1 2 3 4 5 6 S7 8 9 10 Q11 12 13 14 T15 16 Z",
                             &p, err, sizeof err) == 0,
               "absolute commands parse");
     check_seg(&p, 0, 0, 1, (double[]){10, 20, 30, 40}, "L");
@@ -60,12 +60,12 @@ static void test_path_commands(void)
     check_seg(&p, 0, 5, 2, (double[]){9, 10, 11, 12, 13, 14}, "Q");
     /* T reflects (11,12) about (13,14): (15,16) */
     check_seg(&p, 0, 6, 2, (double[]){13, 14, 15, 16, 15, 16}, "T after Q");
-    SVC_CHECK(p.n == 1 && p.sub[0].closed, "Z closes the subpath");
+    CHECK(p.n == 1 && p.sub[0].closed, "Z closes the subpath");
     sv_path_free(&p);
 
     /* relative, with implicit repeats and a subpath after z */
     sv_path_init(&p);
-    SVC_CHECK(sv_parse_path("m10 20 5 0 0 5 h-2 v-1 c1 0 2 0 3 1 s1 1 2 2 q1 0 1 1 t1 1 z l1 0",
+    CHECK(sv_parse_path("m10 20 5 0 0 5 h-2 v-1 c1 0 2 0 3 1 s1 1 2 2 q1 0 1 1 t1 1 z l1 0",
                             &p, err, sizeof err) == 0,
               "relative commands parse");
     check_seg(&p, 0, 0, 1, (double[]){10, 20, 15, 20}, "m then implicit l");
@@ -95,25 +95,25 @@ static void test_path_commands(void)
 
     /* arc flags need no separators: a rx ry rot large sweep x y */
     sv_path_init(&p);
-    SVC_CHECK(sv_parse_path("M0 0a5 5 0 1010 0", &p, err, sizeof err) == 0, "packed arc flags");
+    CHECK(sv_parse_path("M0 0a5 5 0 1010 0", &p, err, sizeof err) == 0, "packed arc flags");
     sv_pt end = p.cur;
-    SVC_CHECK(pt_is(end, 10, 0), "packed arc ends at (10,0): %g %g", end.x, end.y);
+    CHECK(pt_is(end, 10, 0), "packed arc ends at (10,0): %g %g", end.x, end.y);
     sv_path_free(&p);
 
     /* errors keep what was drawn and say where */
     sv_path_init(&p);
-    SVC_CHECK(sv_parse_path("M0 0 L10 10 L20", &p, err, sizeof err) < 0 && strstr(err, "offset"),
+    CHECK(sv_parse_path("M0 0 L10 10 L20", &p, err, sizeof err) < 0 && strstr(err, "offset"),
               "truncated data is an error with an offset (%s)", err);
-    SVC_CHECK(p.n == 1 && p.sub[0].n == 1, "segments before the error are kept");
+    CHECK(p.n == 1 && p.sub[0].n == 1, "segments before the error are kept");
     sv_path_free(&p);
     sv_path_init(&p);
-    SVC_CHECK(sv_parse_path("L10 10", &p, err, sizeof err) < 0, "data must start with M");
-    SVC_CHECK(sv_parse_path("M0 0 X1 1", &p, err, sizeof err) < 0, "unknown command");
+    CHECK(sv_parse_path("L10 10", &p, err, sizeof err) < 0, "data must start with M");
+    CHECK(sv_parse_path("M0 0 X1 1", &p, err, sizeof err) < 0, "unknown command");
     sv_path_free(&p);
 
     /* polyline points */
     sv_path_init(&p);
-    SVC_CHECK(sv_parse_points("0,0 10,0 10,10", &p, true) == 3 && p.sub[0].closed &&
+    CHECK(sv_parse_points("0,0 10,0 10,10", &p, true) == 3 && p.sub[0].closed &&
                   p.sub[0].n == 2,
               "polygon points");
     sv_path_free(&p);
@@ -141,28 +141,28 @@ static void test_arcs(void)
     /* semicircle, sweep 1: through (5,-5) (positive angles, y down) */
     sv_path_init(&p);
     sv_parse_path("M0 0 A5 5 0 0 1 10 0", &p, err, sizeof err);
-    SVC_CHECK(p.sub[0].n == 2, "180 degrees become two conics (%d)", p.sub[0].n);
-    SVC_NEAR(p.sub[0].seg[0].w, sqrt(0.5), 1e-15, "90-degree conic weight cos(45)");
-    SVC_CHECK(arc_error(&p, 5, 0, 5, 5, 0) < 1e-13, "semicircle points on the circle");
+    CHECK(p.sub[0].n == 2, "180 degrees become two conics (%d)", p.sub[0].n);
+    CHECK_NEAR(p.sub[0].seg[0].w, sqrt(0.5), 1e-15, "90-degree conic weight cos(45)");
+    CHECK(arc_error(&p, 5, 0, 5, 5, 0) < 1e-13, "semicircle points on the circle");
     sv_pt mid = p.sub[0].seg[0].p[2];
-    SVC_CHECK(pt_is(mid, 5, -5), "sweep-flag 1 passes through (5,-5): %g %g", mid.x, mid.y);
+    CHECK(pt_is(mid, 5, -5), "sweep-flag 1 passes through (5,-5): %g %g", mid.x, mid.y);
     sv_path_free(&p);
     /* sweep 0 goes the other way */
     sv_path_init(&p);
     sv_parse_path("M0 0 A5 5 0 0 0 10 0", &p, err, sizeof err);
-    SVC_CHECK(pt_is(p.sub[0].seg[0].p[2], 5, 5), "sweep-flag 0 passes through (5,5)");
+    CHECK(pt_is(p.sub[0].seg[0].p[2], 5, 5), "sweep-flag 0 passes through (5,5)");
     sv_path_free(&p);
     /* radii too small are scaled up (F.6.6) */
     sv_path_init(&p);
     sv_parse_path("M0 0 A1 1 0 0 1 10 0", &p, err, sizeof err);
-    SVC_CHECK(arc_error(&p, 5, 0, 5, 5, 0) < 1e-13, "scaled-up radii");
+    CHECK(arc_error(&p, 5, 0, 5, 5, 0) < 1e-13, "scaled-up radii");
     sv_path_free(&p);
     /* large arc: 270 degrees of a circle of radius 10 from (0,0) to (10,10) */
     sv_path_init(&p);
     sv_parse_path("M0 0 A10 10 0 1 1 10 10", &p, err, sizeof err);
-    SVC_CHECK(p.sub[0].n == 3, "270 degrees become three conics (%d)", p.sub[0].n);
+    CHECK(p.sub[0].n == 3, "270 degrees become three conics (%d)", p.sub[0].n);
     /* centre: the one for large+sweep, (10,0) */
-    SVC_CHECK(arc_error(&p, 10, 0, 10, 10, 0) < 1e-13, "large arc on its circle");
+    CHECK(arc_error(&p, 10, 0, 10, 10, 0) < 1e-13, "large arc on its circle");
     sv_path_free(&p);
     /* rotated ellipse, relative */
     sv_path_init(&p);
@@ -170,22 +170,22 @@ static void test_arcs(void)
     /* find the centre from the first conic: check all points on some rotated ellipse with
      * those radii by fitting the centre from the endpoints through the F.6.5 formulas is
      * circular; instead check the conic weights and the end point */
-    SVC_CHECK(pt_is(p.cur, 9, 9), "relative arc end");
+    CHECK(pt_is(p.cur, 9, 9), "relative arc end");
     double cmax = 0;
     for (int k = 0; k < p.sub[0].n; k++)
         cmax = fmax(cmax, p.sub[0].seg[k].w);
-    SVC_CHECK(cmax <= 1 && cmax >= sqrt(0.5) - 1e-12, "arc pieces at most 90 degrees");
+    CHECK(cmax <= 1 && cmax >= sqrt(0.5) - 1e-12, "arc pieces at most 90 degrees");
     sv_path_free(&p);
     /* rx = 0: a straight line */
     sv_path_init(&p);
     sv_parse_path("M0 0 A0 5 0 0 1 10 0", &p, err, sizeof err);
-    SVC_CHECK(p.sub[0].n == 1 && p.sub[0].seg[0].degree == 1, "zero radius arc is a line");
+    CHECK(p.sub[0].n == 1 && p.sub[0].seg[0].degree == 1, "zero radius arc is a line");
     sv_path_free(&p);
     /* full ellipse: 4 conics, points on it */
     sv_path_init(&p);
     sv_path_ellipse(&p, 1, 2, 7, 3);
-    SVC_CHECK(p.sub[0].n == 4 && arc_error(&p, 1, 2, 7, 3, 0) < 1e-13, "ellipse");
-    SVC_NEAR(sv_subpath_area(&p.sub[0]), M_PI * 21, 1e-9, "ellipse area by quadrature");
+    CHECK(p.sub[0].n == 4 && arc_error(&p, 1, 2, 7, 3, 0) < 1e-13, "ellipse");
+    CHECK_NEAR(sv_subpath_area(&p.sub[0]), M_PI * 21, 1e-9, "ellipse area by quadrature");
     sv_path_free(&p);
 }
 
@@ -198,33 +198,33 @@ static bool aff_eq(sv_affine m, double a, double b, double c, double d, double e
 static void test_transforms(void)
 {
     sv_affine m;
-    SVC_CHECK(sv_parse_transform("translate(10)", &m) && aff_eq(m, 1, 0, 0, 1, 10, 0), "translate(x)");
-    SVC_CHECK(sv_parse_transform("translate(10,-5)", &m) && aff_eq(m, 1, 0, 0, 1, 10, -5), "translate(x,y)");
-    SVC_CHECK(sv_parse_transform("scale(2)", &m) && aff_eq(m, 2, 0, 0, 2, 0, 0), "scale(s)");
-    SVC_CHECK(sv_parse_transform("scale(2 3)", &m) && aff_eq(m, 2, 0, 0, 3, 0, 0), "scale(sx sy)");
-    SVC_CHECK(sv_parse_transform("rotate(90)", &m) && aff_eq(m, 0, 1, -1, 0, 0, 0), "rotate(90)");
-    SVC_CHECK(sv_parse_transform("skewX(45)", &m) && aff_eq(m, 1, 0, 1, 1, 0, 0), "skewX(45)");
-    SVC_CHECK(sv_parse_transform("skewY(45)", &m) && aff_eq(m, 1, 1, 0, 1, 0, 0), "skewY(45)");
-    SVC_CHECK(sv_parse_transform("matrix(1,2,3,4,5,6)", &m) && aff_eq(m, 1, 2, 3, 4, 5, 6), "matrix");
+    CHECK(sv_parse_transform("translate(10)", &m) && aff_eq(m, 1, 0, 0, 1, 10, 0), "translate(x)");
+    CHECK(sv_parse_transform("translate(10,-5)", &m) && aff_eq(m, 1, 0, 0, 1, 10, -5), "translate(x,y)");
+    CHECK(sv_parse_transform("scale(2)", &m) && aff_eq(m, 2, 0, 0, 2, 0, 0), "scale(s)");
+    CHECK(sv_parse_transform("scale(2 3)", &m) && aff_eq(m, 2, 0, 0, 3, 0, 0), "scale(sx sy)");
+    CHECK(sv_parse_transform("rotate(90)", &m) && aff_eq(m, 0, 1, -1, 0, 0, 0), "rotate(90)");
+    CHECK(sv_parse_transform("skewX(45)", &m) && aff_eq(m, 1, 0, 1, 1, 0, 0), "skewX(45)");
+    CHECK(sv_parse_transform("skewY(45)", &m) && aff_eq(m, 1, 1, 0, 1, 0, 0), "skewY(45)");
+    CHECK(sv_parse_transform("matrix(1,2,3,4,5,6)", &m) && aff_eq(m, 1, 2, 3, 4, 5, 6), "matrix");
     /* rotate about a point keeps the point */
-    SVC_CHECK(sv_parse_transform("rotate(37 3 4)", &m), "rotate(a cx cy)");
+    CHECK(sv_parse_transform("rotate(37 3 4)", &m), "rotate(a cx cy)");
     sv_pt q = sv_affine_apply(m, sv_pt_make(3, 4));
-    SVC_CHECK(pt_is(q, 3, 4), "rotation centre fixed: %g %g", q.x, q.y);
+    CHECK(pt_is(q, 3, 4), "rotation centre fixed: %g %g", q.x, q.y);
     /* lists apply right to left to points: translate(10) scale(2) maps (1,1) to (12,2) */
-    SVC_CHECK(sv_parse_transform("translate(10) scale(2)", &m), "transform list");
+    CHECK(sv_parse_transform("translate(10) scale(2)", &m), "transform list");
     q = sv_affine_apply(m, sv_pt_make(1, 1));
-    SVC_CHECK(pt_is(q, 12, 2), "list order: %g %g", q.x, q.y);
-    SVC_CHECK(sv_parse_transform("translate(1,2),scale(3)", &m) && aff_eq(m, 3, 0, 0, 3, 1, 2),
+    CHECK(pt_is(q, 12, 2), "list order: %g %g", q.x, q.y);
+    CHECK(sv_parse_transform("translate(1,2),scale(3)", &m) && aff_eq(m, 3, 0, 0, 3, 1, 2),
               "comma between transforms");
-    SVC_CHECK(!sv_parse_transform("rotate(1 2)", &m), "rotate with two numbers is an error");
-    SVC_CHECK(!sv_parse_transform("translate(1", &m), "unclosed parenthesis is an error");
-    SVC_CHECK(!sv_parse_transform("spin(3)", &m), "unknown transform is an error");
+    CHECK(!sv_parse_transform("rotate(1 2)", &m), "rotate with two numbers is an error");
+    CHECK(!sv_parse_transform("translate(1", &m), "unclosed parenthesis is an error");
+    CHECK(!sv_parse_transform("spin(3)", &m), "unknown transform is an error");
     sv_affine inv;
     sv_parse_transform("matrix(2 1 -1 3 4 5)", &m);
-    SVC_CHECK(sv_affine_invert(m, &inv) && aff_eq(sv_affine_mul(m, inv), 1, 0, 0, 1, 0, 0),
+    CHECK(sv_affine_invert(m, &inv) && aff_eq(sv_affine_mul(m, inv), 1, 0, 0, 1, 0, 0),
               "inverse");
     sv_parse_transform("scale(3 2) rotate(30)", &m);
-    SVC_NEAR(sv_affine_max_scale(m), 3, 1e-12, "largest stretch of scale(3 2) rotate(30)");
+    CHECK_NEAR(sv_affine_max_scale(m), 3, 1e-12, "largest stretch of scale(3 2) rotate(30)");
 }
 
 static bool col_is(const char *s, double r, double g, double b, double a)
@@ -236,39 +236,39 @@ static bool col_is(const char *s, double r, double g, double b, double a)
 
 static void test_colors(void)
 {
-    SVC_CHECK(col_is("#fff", 1, 1, 1, 1), "#rgb");
-    SVC_CHECK(col_is("#FF8000", 1, 128 / 255.0, 0, 1), "#rrggbb upper case");
-    SVC_CHECK(col_is("#ff000080", 1, 0, 0, 128 / 255.0), "#rrggbbaa");
-    SVC_CHECK(col_is("rgb(255, 0, 128)", 1, 0, 128 / 255.0, 1), "rgb()");
-    SVC_CHECK(col_is("rgb(100%,50%,0%)", 1, 0.5, 0, 1), "rgb() percentages");
-    SVC_CHECK(col_is("rgba(0,0,255,0.25)", 0, 0, 1, 0.25), "rgba()");
-    SVC_CHECK(col_is("hsl(120, 100%, 50%)", 0, 1, 0, 1), "hsl()");
-    SVC_CHECK(col_is("cornflowerblue", 100 / 255.0, 149 / 255.0, 237 / 255.0, 1), "named");
-    SVC_CHECK(col_is(" RebeccaPurple ", 0x66 / 255.0, 0x33 / 255.0, 0x99 / 255.0, 1),
+    CHECK(col_is("#fff", 1, 1, 1, 1), "#rgb");
+    CHECK(col_is("#FF8000", 1, 128 / 255.0, 0, 1), "#rrggbb upper case");
+    CHECK(col_is("#ff000080", 1, 0, 0, 128 / 255.0), "#rrggbbaa");
+    CHECK(col_is("rgb(255, 0, 128)", 1, 0, 128 / 255.0, 1), "rgb()");
+    CHECK(col_is("rgb(100%,50%,0%)", 1, 0.5, 0, 1), "rgb() percentages");
+    CHECK(col_is("rgba(0,0,255,0.25)", 0, 0, 1, 0.25), "rgba()");
+    CHECK(col_is("hsl(120, 100%, 50%)", 0, 1, 0, 1), "hsl()");
+    CHECK(col_is("cornflowerblue", 100 / 255.0, 149 / 255.0, 237 / 255.0, 1), "named");
+    CHECK(col_is(" RebeccaPurple ", 0x66 / 255.0, 0x33 / 255.0, 0x99 / 255.0, 1),
               "named, any case, spaces");
-    SVC_CHECK(col_is("grey", 128 / 255.0, 128 / 255.0, 128 / 255.0, 1) &&
+    CHECK(col_is("grey", 128 / 255.0, 128 / 255.0, 128 / 255.0, 1) &&
                   col_is("gray", 128 / 255.0, 128 / 255.0, 128 / 255.0, 1),
               "grey and gray");
-    SVC_CHECK(col_is("transparent", 0, 0, 0, 0), "transparent");
-    SVC_CHECK(sv_named_color_count() == 148, "148 CSS named colours (%d)", sv_named_color_count());
+    CHECK(col_is("transparent", 0, 0, 0, 0), "transparent");
+    CHECK(sv_named_color_count() == 148, "148 CSS named colours (%d)", sv_named_color_count());
     double rgb[3], a;
-    SVC_CHECK(sv_parse_color("currentColor", rgb, &a) == SV_COLOR_CURRENT, "currentColor");
-    SVC_CHECK(sv_parse_color("#ggg", rgb, &a) == SV_COLOR_INVALID, "bad hex");
-    SVC_CHECK(sv_parse_color("#12345", rgb, &a) == SV_COLOR_INVALID, "bad length");
-    SVC_CHECK(sv_parse_color("nocolor", rgb, &a) == SV_COLOR_INVALID, "unknown name");
-    SVC_NEAR(sv_srgb_to_linear(0.5), 0.21404114048223255, 1e-15, "sRGB 0.5 to linear");
+    CHECK(sv_parse_color("currentColor", rgb, &a) == SV_COLOR_CURRENT, "currentColor");
+    CHECK(sv_parse_color("#ggg", rgb, &a) == SV_COLOR_INVALID, "bad hex");
+    CHECK(sv_parse_color("#12345", rgb, &a) == SV_COLOR_INVALID, "bad length");
+    CHECK(sv_parse_color("nocolor", rgb, &a) == SV_COLOR_INVALID, "unknown name");
+    CHECK_NEAR(sv_srgb_to_linear(0.5), 0.21404114048223255, 1e-15, "sRGB 0.5 to linear");
 }
 
 static void test_lengths_css(void)
 {
     double v;
-    SVC_CHECK(sv_parse_length("10px", 12, 0, &v) && v == 10, "px");
-    SVC_CHECK(sv_parse_length("1in", 12, 0, &v) && fabs(v - 96) < 1e-12, "in is 96 px");
-    SVC_CHECK(sv_parse_length("2.54cm", 12, 0, &v) && fabs(v - 96) < 1e-12, "cm");
-    SVC_CHECK(sv_parse_length("72pt", 12, 0, &v) && fabs(v - 96) < 1e-12, "pt");
-    SVC_CHECK(sv_parse_length("50%", 12, 200, &v) && v == 100, "percent");
-    SVC_CHECK(sv_parse_length("2em", 12, 0, &v) && v == 24, "em");
-    SVC_CHECK(!sv_parse_length("abc", 12, 0, &v), "not a length");
+    CHECK(sv_parse_length("10px", 12, 0, &v) && v == 10, "px");
+    CHECK(sv_parse_length("1in", 12, 0, &v) && fabs(v - 96) < 1e-12, "in is 96 px");
+    CHECK(sv_parse_length("2.54cm", 12, 0, &v) && fabs(v - 96) < 1e-12, "cm");
+    CHECK(sv_parse_length("72pt", 12, 0, &v) && fabs(v - 96) < 1e-12, "pt");
+    CHECK(sv_parse_length("50%", 12, 200, &v) && v == 100, "percent");
+    CHECK(sv_parse_length("2em", 12, 0, &v) && v == 24, "em");
+    CHECK(!sv_parse_length("abc", 12, 0, &v), "not a length");
 
     sv_doc doc;
     sv_doc_init(&doc);
@@ -278,8 +278,8 @@ static void test_lengths_css(void)
                        "path.a.c, rect { fill: #010203 !important } g > path { fill: none }\n"
                        "@media print { path { fill: black } }",
                        &doc);
-    SVC_CHECK(css.n == 5, "five rules kept, the combinator's too (%d)", css.n);
-    SVC_CHECK(doc.nwarnings == 1, "@media warned (%d)", doc.nwarnings);
+    CHECK(css.n == 5, "five rules kept, the combinator's too (%d)", css.n);
+    CHECK(doc.nwarnings == 1, "@media warned (%d)", doc.nwarnings);
     /* cascade on <path id="b" class="a c" fill="yellow" style="stroke-width:3"> */
     char *attrs[] = {"id", "b", "class", "a c", "fill", "yellow", "style", "stroke-width:3", NULL};
     sv_node n = {.name = "path", .attrs = attrs, .line = 1};
@@ -287,26 +287,26 @@ static void test_lengths_css(void)
     sv_style_initial(&root);
     sv_style_compute(&s, &root, &n, &css, 100, &doc);
     /* path.a.c's !important beats #b (specificity 10000 over 201) */
-    SVC_CHECK(s.fill.kind == SV_PAINT_COLOR && fabs(s.fill.rgb[2] - 3 / 255.0) < 1e-12,
+    CHECK(s.fill.kind == SV_PAINT_COLOR && fabs(s.fill.rgb[2] - 3 / 255.0) < 1e-12,
               "!important wins the cascade");
-    SVC_CHECK(s.stroke.kind == SV_PAINT_COLOR && fabs(s.stroke.rgb[1] - 128 / 255.0) < 1e-12,
+    CHECK(s.stroke.kind == SV_PAINT_COLOR && fabs(s.stroke.rgb[1] - 128 / 255.0) < 1e-12,
               "stroke from the id rule");
-    SVC_CHECK(s.stroke_width == 3, "style attribute applies last");
+    CHECK(s.stroke_width == 3, "style attribute applies last");
     char *attrs2[] = {"class", "a", "fill", "yellow", NULL};
     sv_node n2 = {.name = "circle", .attrs = attrs2, .line = 2};
     sv_style_compute(&s, &root, &n2, &css, 100, &doc);
-    SVC_CHECK(s.fill.rgb[0] == 1 && s.fill.rgb[1] == 0, "class rule beats the presentation attribute");
+    CHECK(s.fill.rgb[0] == 1 && s.fill.rgb[1] == 0, "class rule beats the presentation attribute");
     /* currentColor from the color property, inheritance */
     char *attrs3[] = {"style", "color:#00ff00; fill:currentColor; fill-opacity:50%", NULL};
     sv_node n3 = {.name = "g", .attrs = attrs3, .line = 3};
     sv_style_compute(&s, &root, &n3, NULL, 100, &doc);
-    SVC_CHECK(s.fill.kind == SV_PAINT_CURRENT && s.color[1] == 1 && s.fill_opacity == 0.5,
+    CHECK(s.fill.kind == SV_PAINT_CURRENT && s.color[1] == 1 && s.fill_opacity == 0.5,
               "currentColor and percentage opacity");
     char *attrs4[] = {"opacity", "0.5", "fill", "inherit", NULL};
     sv_node n4 = {.name = "rect", .attrs = attrs4, .line = 4};
     sv_style child;
     sv_style_compute(&child, &s, &n4, NULL, 100, &doc);
-    SVC_CHECK(child.fill.kind == SV_PAINT_CURRENT && child.color[1] == 1 && child.opacity == 0.5 &&
+    CHECK(child.fill.kind == SV_PAINT_CURRENT && child.color[1] == 1 && child.opacity == 0.5 &&
                   child.fill_opacity == 0.5,
               "inherited fill, colour and fill-opacity; own opacity");
     sv_css_free(&css);
@@ -323,7 +323,7 @@ static void test_lengths_css(void)
                        "[id^=r][id$='1'][class~=x], g > circle[id*=c] { opacity: 0.25 }\n"
                        "#c { transform: scale(2) } svg rect:hover { fill: red }",
                        &doc);
-    SVC_CHECK(css.n == 8, "eight rules, :hover left out (%d)", css.n);
+    CHECK(css.n == 8, "eight rules, :hover left out (%d)", css.n);
     char *ar[] = {"svg", NULL}, *ag[] = {"id", "g", "class", "x", NULL},
          *a1[] = {"id", "r1", "x", "1", "lang", "en-GB", "style", "stroke-width: 3", NULL},
          *ac[] = {"id", "c", NULL};
@@ -338,12 +338,12 @@ static void test_lengths_css(void)
     n1.parent = nc.parent = &ng;
     nc.index = 1;
     sv_style_compute(&s, &root, &n1, &css, 100, &doc);
-    SVC_CHECK(s.fill.rgb[0] == 1 / 255.0 && s.stroke.rgb[0] == 2 / 255.0 && s.stroke_width == 7 &&
+    CHECK(s.fill.rgb[0] == 1 / 255.0 && s.stroke.rgb[0] == 2 / 255.0 && s.stroke_width == 7 &&
                   s.opacity == 1 && !s.has_transform,
               "rect: child and descendant combinators, [x], [lang|=en]:first-child !important "
               "over the style attribute; [class~=x] is not its own");
     sv_style_compute(&s, &root, &nc, &css, 100, &doc);
-    SVC_CHECK(s.fill.rgb[0] == 3 / 255.0 && s.stroke.rgb[0] == 4 / 255.0 && s.stroke_width == 1 &&
+    CHECK(s.fill.rgb[0] == 3 / 255.0 && s.stroke.rgb[0] == 4 / 255.0 && s.stroke_width == 1 &&
                   s.opacity == 0.25 && s.has_transform && s.transform.a == 2,
               "circle: + and ~ siblings, [id*=c] under >, the transform property");
     sv_css_free(&css);
@@ -379,8 +379,8 @@ static void test_contours(void)
     sv_path_init(&p);
     sv_parse_path("M0 0 H10 V10 Z M20 20 L30 20 L30 20 Z M0 0 L5 5 M1 1", &p, err, sizeof err);
     sv_path_to_contours(&p, &c, &n);
-    SVC_CHECK(n == 1, "lines without area and lone moves are dropped (%d)", n);
-    SVC_CHECK(n >= 1 && c[0].degree == 1 && c[0].count == 3 && c[0].intervals[0] == 1 &&
+    CHECK(n == 1, "lines without area and lone moves are dropped (%d)", n);
+    CHECK(n >= 1 && c[0].degree == 1 && c[0].count == 3 && c[0].intervals[0] == 1 &&
                   c[0].intervals[2] == 1,
               "triangle: degree 1, 3 points, unit knots");
     for (int i = 0; i < n; i++)
@@ -394,11 +394,11 @@ static void test_contours(void)
     sv_path_init(&p);
     sv_parse_path("M0 0 H10 A5 5 0 0 1 0 0 Z", &p, err, sizeof err);
     sv_path_to_contours(&p, &c, &n);
-    SVC_CHECK(n == 1 && c[0].degree == 2 && c[0].count == 6, "line+arc: degree 2, 3 spans");
+    CHECK(n == 1 && c[0].degree == 2 && c[0].count == 6, "line+arc: degree 2, 3 spans");
     bool knots = n == 1;
     for (int k = 0; knots && k < c[0].count; k++)
         knots = c[0].intervals[k] == (k % 2 == 0 ? 1 : 0);
-    SVC_CHECK(knots, "degree 2 knots [1,0] per segment");
+    CHECK(knots, "degree 2 knots [1,0] per segment");
     double e = 0;
     for (int s = 0; n == 1 && s < 3; s++)
         for (int j = 0; j <= 20; j++) {
@@ -406,7 +406,7 @@ static void test_contours(void)
             sv_pt a = contour_span_eval(&c[0], s, j / 20.0), b = sv_seg_eval(g, j / 20.0);
             e = fmax(e, sv_len(sv_sub(a, b)));
         }
-    SVC_CHECK(e < 1e-12, "elevated contour equals the path, same parameter (%g)", e);
+    CHECK(e < 1e-12, "elevated contour equals the path, same parameter (%g)", e);
     for (int i = 0; i < n; i++)
         sv_contour_free(&c[i]);
     free(c);
@@ -418,7 +418,7 @@ static void test_contours(void)
     sv_path_init(&p);
     sv_parse_path("M0 0 A10 10 0 0 1 10 10 C5 15 -5 15 0 0", &p, err, sizeof err);
     sv_path_to_contours(&p, &c, &n);
-    SVC_CHECK(n == 1 && c[0].degree == 3 && c[0].count == 6, "conic+cubic: degree 3");
+    CHECK(n == 1 && c[0].degree == 3 && c[0].count == 6, "conic+cubic: degree 3");
     e = 0;
     int nseg = n == 1 ? p.sub[0].n : 0;
     for (int s = 0; s < nseg; s++)
@@ -427,8 +427,8 @@ static void test_contours(void)
             sv_pt b = sv_seg_eval(&p.sub[0].seg[s], j / 20.0);
             e = fmax(e, sv_len(sv_sub(a, b)));
         }
-    SVC_CHECK(e < 1e-12, "rational cubic elevation exact (%g)", e);
-    SVC_CHECK(n == 1 && fabs(c[0].pts[3 * 1 + 2] - (1 + 2 * sqrt(0.5)) / 3) < 1e-15,
+    CHECK(e < 1e-12, "rational cubic elevation exact (%g)", e);
+    CHECK(n == 1 && fabs(c[0].pts[3 * 1 + 2] - (1 + 2 * sqrt(0.5)) / 3) < 1e-15,
               "elevated weight (1+2w)/3");
     for (int i = 0; i < n; i++)
         sv_contour_free(&c[i]);
@@ -441,7 +441,7 @@ static void test_contours(void)
     sv_path_init(&p);
     sv_parse_path("M0 0 C10 0 10 10 0 0 Z", &p, err, sizeof err);
     sv_path_to_contours(&p, &c, &n);
-    SVC_CHECK(n == 1 && c[0].count == 6, "single-segment contour halved (%d points)",
+    CHECK(n == 1 && c[0].count == 6, "single-segment contour halved (%d points)",
               n ? c[0].count : 0);
     for (int i = 0; i < n; i++)
         sv_contour_free(&c[i]);
@@ -496,29 +496,29 @@ static void test_stroker(void)
     bool pos;
     /* a line: body only with butt caps, plus squares or semicircles */
     stroke_of("M0 0 L10 0", 2, SV_CAP_BUTT, SV_JOIN_MITER, 4, &o);
-    SVC_NEAR(sum_area(&o, &pos), 20, 1e-12, "butt line area");
-    SVC_CHECK(pos, "every outline contour winds positively");
+    CHECK_NEAR(sum_area(&o, &pos), 20, 1e-12, "butt line area");
+    CHECK(pos, "every outline contour winds positively");
     sv_path_free(&o);
     stroke_of("M0 0 L10 0", 2, SV_CAP_SQUARE, SV_JOIN_MITER, 4, &o);
-    SVC_NEAR(sum_area(&o, &pos), 24, 1e-12, "square caps add w/2 each end");
+    CHECK_NEAR(sum_area(&o, &pos), 24, 1e-12, "square caps add w/2 each end");
     sv_path_free(&o);
     stroke_of("M0 0 L10 0", 2, SV_CAP_ROUND, SV_JOIN_MITER, 4, &o);
-    SVC_NEAR(sum_area(&o, &pos), 20 + M_PI, 1e-8, "round caps are exact semicircles");
+    CHECK_NEAR(sum_area(&o, &pos), 20 + M_PI, 1e-8, "round caps are exact semicircles");
     sv_path_free(&o);
     /* a circle: concentric exact arcs, area 4 pi R h */
     stroke_of("M10 0 A10 10 0 0 1 -10 0 A10 10 0 0 1 10 0 Z", 4, SV_CAP_BUTT, SV_JOIN_MITER, 4, &o);
-    SVC_NEAR(sum_area(&o, &pos), 4 * M_PI * 10 * 2, 1e-8, "stroked circle area");
-    SVC_CHECK(pos, "circle outline positive");
+    CHECK_NEAR(sum_area(&o, &pos), 4 * M_PI * 10 * 2, 1e-8, "stroked circle area");
+    CHECK(pos, "circle outline positive");
     sv_path_free(&o);
     /* an L: union areas for miter, bevel and round joins (w = 2, legs 10) */
     stroke_of("M0 0 L10 0 L10 10", 2, SV_CAP_BUTT, SV_JOIN_MITER, 4, &o);
-    SVC_NEAR(union_area(&o, -1, -2, 12, 11, 520), 40, 0.06, "miter L union area");
+    CHECK_NEAR(union_area(&o, -1, -2, 12, 11, 520), 40, 0.06, "miter L union area");
     sv_path_free(&o);
     stroke_of("M0 0 L10 0 L10 10", 2, SV_CAP_BUTT, SV_JOIN_BEVEL, 4, &o);
-    SVC_NEAR(union_area(&o, -1, -2, 12, 11, 520), 39.5, 0.06, "bevel L union area");
+    CHECK_NEAR(union_area(&o, -1, -2, 12, 11, 520), 39.5, 0.06, "bevel L union area");
     sv_path_free(&o);
     stroke_of("M0 0 L10 0 L10 10", 2, SV_CAP_BUTT, SV_JOIN_ROUND, 4, &o);
-    SVC_NEAR(union_area(&o, -1, -2, 12, 11, 520), 39 + M_PI / 4, 0.06, "round L union area");
+    CHECK_NEAR(union_area(&o, -1, -2, 12, 11, 520), 39 + M_PI / 4, 0.06, "round L union area");
     sv_path_free(&o);
     /* miter limit: a 20 degree turn back needs ratio 1/sin(10deg) = 5.76 > 4: bevel */
     stroke_of("M0 0 L10 0 L0 3.5265", 2, SV_CAP_BUTT, SV_JOIN_MITER, 4, &o);
@@ -528,7 +528,7 @@ static void test_stroker(void)
     double miter = union_area(&o, -2, -2, 13, 6, 500);
     sv_path_free(&o);
     /* the miter tip adds the triangle beyond the bevel: h^2 (1/tan(a/2) ... ) > 0.5 */
-    SVC_CHECK(miter > bevel + 1.0, "miter beyond the limit becomes bevel (%g vs %g)", miter, bevel);
+    CHECK(miter > bevel + 1.0, "miter beyond the limit becomes bevel (%g vs %g)", miter, bevel);
 
     /* offsets of a cubic lie at w/2 from the curve within the tolerance */
     sv_path p;
@@ -541,7 +541,7 @@ static void test_stroker(void)
         sv_stroke_style st = {8, SV_CAP_BUTT, SV_JOIN_MITER, 4, tol, 0};
         sv_path_init(&o);
         int missed = sv_stroke_path(&p, &st, &o);
-        SVC_CHECK(missed == 0, "tolerance %g met everywhere", tol);
+        CHECK(missed == 0, "tolerance %g met everywhere", tol);
         double worst = 0;
         int offsets = 0;
         for (int k = 0; k < o.n; k++)
@@ -579,7 +579,7 @@ static void test_stroker(void)
                     }
                 }
             }
-        SVC_CHECK(offsets > 0 && worst <= tol * 1.05,
+        CHECK(offsets > 0 && worst <= tol * 1.05,
                   "cubic offset within tolerance %g: worst %.3g over %d points", tol, worst,
                   offsets);
         sv_path_free(&o);
@@ -588,10 +588,10 @@ static void test_stroker(void)
 
     /* a zero-length subpath draws a dot with round caps */
     stroke_of("M5 5 L5 5", 2, SV_CAP_ROUND, SV_JOIN_MITER, 4, &o);
-    SVC_NEAR(sum_area(&o, &pos), M_PI, 1e-8, "round dot");
+    CHECK_NEAR(sum_area(&o, &pos), M_PI, 1e-8, "round dot");
     sv_path_free(&o);
     stroke_of("M5 5 L5 5", 2, SV_CAP_BUTT, SV_JOIN_MITER, 4, &o);
-    SVC_CHECK(o.n == 0, "butt dot draws nothing");
+    CHECK(o.n == 0, "butt dot draws nothing");
     sv_path_free(&o);
 }
 
@@ -619,15 +619,15 @@ static void test_dash(void)
 {
     double xs[64];
     int n = dash_spans("M0 0 H10", (double[]){2, 1}, 2, 0, xs);
-    SVC_CHECK(n == 4 && xs[0] == 0 && xs[1] == 2 && xs[2] == 3 && xs[3] == 5 && xs[6] == 9 &&
+    CHECK(n == 4 && xs[0] == 0 && xs[1] == 2 && xs[2] == 3 && xs[3] == 5 && xs[6] == 9 &&
                   xs[7] == 10,
               "dashes 2,1 on a line (%d)", n);
     n = dash_spans("M0 0 H10", (double[]){2, 1}, 2, 1, xs);
-    SVC_CHECK(n == 4 && xs[0] == 0 && xs[1] == 1 && xs[2] == 2 && xs[3] == 4, "dash offset");
+    CHECK(n == 4 && xs[0] == 0 && xs[1] == 1 && xs[2] == 2 && xs[3] == 4, "dash offset");
     n = dash_spans("M0 0 H10", (double[]){1}, 1, 0, xs); /* odd lists repeat: 1,1 */
-    SVC_CHECK(n == 5 && xs[2] == 2 && xs[3] == 3, "odd dash list repeats");
+    CHECK(n == 5 && xs[2] == 2 && xs[3] == 3, "odd dash list repeats");
     n = dash_spans("M0 0 H10 M0 5 H10", (double[]){4, 4}, 2, 0, xs);
-    SVC_CHECK(n == 4 && xs[4] == 0 && xs[5] == 4, "pattern restarts on each subpath");
+    CHECK(n == 4 && xs[4] == 0 && xs[5] == 4, "pattern restarts on each subpath");
     /* a closed square, dash on at both ends: the dash through the start is one piece */
     sv_path p, o;
     char err[100];
@@ -636,9 +636,9 @@ static void test_dash(void)
     sv_parse_path("M0 0 H10 V10 H0 Z", &p, err, sizeof err);
     /* offset 2: on [0,4], [8,14], [18,24], [28,34], [38,40]+[0,4] */
     sv_path_dash(&p, (double[]){6, 4}, 2, 2, SV_MAX_DASHES, &o);
-    SVC_CHECK(o.n == 4, "closed square dashes (%d)", o.n);
+    CHECK(o.n == 4, "closed square dashes (%d)", o.n);
     const sv_subpath *last = &o.sub[o.n - 1];
-    SVC_CHECK(o.n == 4 && pt_is(last->seg[last->n - 1].p[1], 4, 0) && pt_is(last->seg[0].p[0], 0, 2),
+    CHECK(o.n == 4 && pt_is(last->seg[last->n - 1].p[1], 4, 0) && pt_is(last->seg[0].p[0], 0, 2),
               "last dash joined with the first through the start point");
     sv_path_free(&o);
     sv_path_free(&p);
@@ -656,7 +656,7 @@ static void test_dash(void)
         double ang = fabs(atan2(sv_cross(a, b), sv_dot(a, b)));
         worst = fmax(worst, fabs(ang - M_PI / 20));
     }
-    SVC_CHECK(o.n == 20 && worst < 1e-9, "dashes on a circle by arc length (%d, %g)", o.n, worst);
+    CHECK(o.n == 20 && worst < 1e-9, "dashes on a circle by arc length (%d, %g)", o.n, worst);
     sv_path_free(&o);
     sv_path_free(&p);
 }
@@ -671,7 +671,7 @@ static void test_clip(void)
         sv_pt q = sv_seg_eval(&piece, j / 10.0);
         e = fmax(e, fabs(sv_len(q) - 10));
     }
-    SVC_CHECK(e < 1e-12 && sv_len(sv_sub(piece.p[0], sv_seg_eval(&arc, 0.3))) < 1e-12 &&
+    CHECK(e < 1e-12 && sv_len(sv_sub(piece.p[0], sv_seg_eval(&arc, 0.3))) < 1e-12 &&
                   sv_len(sv_sub(piece.p[2], sv_seg_eval(&arc, 0.8))) < 1e-12,
               "exact conic sub-segment");
     /* a disc of radius 10 clipped to the square [0,20]^2: a quarter disc, exactly */
@@ -683,13 +683,13 @@ static void test_clip(void)
     sv_parse_path("M0 0 H20 V20 H0 Z", &c, err, sizeof err);
     sv_pt *poly;
     int n;
-    SVC_CHECK(sv_path_convex_polygon(&c, &poly, &n) && n == 4, "square is a convex polygon");
+    CHECK(sv_path_convex_polygon(&c, &poly, &n) && n == 4, "square is a convex polygon");
     sv_path_clip_polygon(&p, poly, n);
     free(poly);
     double a = 0;
     for (int k = 0; k < p.n; k++)
         a += sv_subpath_area(&p.sub[k]);
-    SVC_NEAR(fabs(a), M_PI * 25, 1e-9, "clipped disc area");
+    CHECK_NEAR(fabs(a), M_PI * 25, 1e-9, "clipped disc area");
     sv_path_free(&p);
     sv_path_free(&c);
     /* a crossing exactly on a sample point of the root search (t = 16/48) */
@@ -705,13 +705,13 @@ static void test_clip(void)
     sv_path_init(&q);
     sv_parse_path("M25.568359375 35.42578125 L28.705078125 38.27734375 L35 38.27734375 L35 35.42578125 Z",
                   &q, err, sizeof err);
-    SVC_NEAR(a, sv_subpath_area(&q.sub[0]), 1e-9, "clip with a crossing on a sample point");
-    SVC_CHECK(fabs(before) > fabs(a), "clipping removed area");
+    CHECK_NEAR(a, sv_subpath_area(&q.sub[0]), 1e-9, "clip with a crossing on a sample point");
+    CHECK(fabs(before) > fabs(a), "clipping removed area");
     sv_path_free(&p);
     sv_path_free(&q);
     sv_path_init(&c);
     sv_parse_path("M0 0 H20 L10 5 L10 20 Z", &c, err, sizeof err);
-    SVC_CHECK(!sv_path_convex_polygon(&c, &poly, &n), "a concave polygon is refused");
+    CHECK(!sv_path_convex_polygon(&c, &poly, &n), "a concave polygon is refused");
     sv_path_free(&c);
 }
 
@@ -730,53 +730,53 @@ static void test_import_doc(void)
         "</svg>";
     sv_doc d;
     char err[200];
-    SVC_CHECK(sv_import_buffer(svg, strlen(svg), NULL, &d, err, sizeof err) == 0, "import: %s", err);
-    SVC_CHECK(d.width == 32 && d.height == 16, "canvas from width/height");
-    SVC_CHECK(sv_doc_region_count(&d) == 4, "four painted regions (%zu)", sv_doc_region_count(&d));
+    CHECK(sv_import_buffer(svg, strlen(svg), NULL, &d, err, sizeof err) == 0, "import: %s", err);
+    CHECK(d.width == 32 && d.height == 16, "canvas from width/height");
+    CHECK(sv_doc_region_count(&d) == 4, "four painted regions (%zu)", sv_doc_region_count(&d));
     /* front-most first: the stroke, then the use, then the group's two shapes in one cel */
     bool order = d.ncels >= 1 && d.cels[0].nregions >= 1 &&
                  strstr(d.cels[0].regions[0].source, "path");
-    SVC_CHECK(order, "document order reversed: the last element is front-most");
+    CHECK(order, "document order reversed: the last element is front-most");
     int group_cel = -1;
     for (int c = 0; c < d.ncels; c++)
         for (int r = 0; r < d.cels[c].nregions; r++)
             if (strstr(d.cels[c].regions[r].source, "circle"))
                 group_cel = c;
-    SVC_CHECK(group_cel >= 0 && d.cels[group_cel].nregions == 2 &&
+    CHECK(group_cel >= 0 && d.cels[group_cel].nregions == 2 &&
                   fabs(d.cels[group_cel].regions[0].paint.beta - 0.5) < 1e-12 &&
                   fabs(d.cels[group_cel].regions[1].paint.pigment[0] - 1) < 1e-12,
               "group opacity: both children share one cel with beta 0.5");
     /* the viewBox scales by 2: the group's rect spans canvas x 2..10 */
     const sv_region *rect = group_cel >= 0 ? &d.cels[group_cel].regions[1] : NULL;
-    SVC_CHECK(rect && rect->bbox[0] == 2 && rect->bbox[2] == 10 && rect->bbox[3] == 10,
+    CHECK(rect && rect->bbox[0] == 2 && rect->bbox[2] == 10 && rect->bbox[3] == 10,
               "viewBox and transform applied");
     int warned = 0;
     for (int i = 0; i < d.nwarnings; i++)
         warned += strstr(d.warnings[i], "<image>") != NULL || strstr(d.warnings[i], "<foo>") != NULL;
-    SVC_CHECK(warned == 2, "unsupported elements are warned by name (%d)", warned);
+    CHECK(warned == 2, "unsupported elements are warned by name (%d)", warned);
     char *json = sv_doc_to_json(&d, NULL);
-    SVC_CHECK(json && strstr(json, "\"fill_rule\":\"nonzero\"") && strstr(json, "\"degree\":"),
+    CHECK(json && strstr(json, "\"fill_rule\":\"nonzero\"") && strstr(json, "\"degree\":"),
               "scene JSON written");
     free(json);
     cs_scene *scene = malloc(sizeof *scene);
-    SVC_CHECK(sv_doc_to_scene(&d, NULL, scene, err, sizeof err) == 0 &&
+    CHECK(sv_doc_to_scene(&d, NULL, scene, err, sizeof err) == 0 &&
                   scene->region_count == 4,
               "cs_scene built (%s)", err);
     free(scene);
     sv_doc_free(&d);
-    SVC_CHECK(sv_import_buffer("<svg><g></svg>", 14, NULL, &d, err, sizeof err) < 0 &&
+    CHECK(sv_import_buffer("<svg><g></svg>", 14, NULL, &d, err, sizeof err) < 0 &&
                   strstr(err, "line 1"),
               "XML errors name the line (%s)", err);
-    SVC_CHECK(sv_import_buffer("<html/>", 7, NULL, &d, err, sizeof err) < 0, "root must be svg");
+    CHECK(sv_import_buffer("<html/>", 7, NULL, &d, err, sizeof err) < 0, "root must be svg");
     /* a single-byte encoding expat does not know, through iconv: "\xcf\xf0" is "Пр" in windows-1251 */
     const char *cp = "<?xml version=\"1.0\" encoding=\"windows-1251\"?><svg><text>\xcf\xf0</text></svg>";
     sv_node *root = sv_xml_parse(cp, strlen(cp), err, sizeof err);
-    SVC_CHECK(root && root->nkids == 1 && root->kids[0]->text &&
+    CHECK(root && root->nkids == 1 && root->kids[0]->text &&
                   !strcmp(root->kids[0]->text, "\xd0\x9f\xd1\x80"),
               "windows-1251 read as UTF-8 (%s)", root ? "" : err);
     sv_xml_free(root);
     const char *bogus = "<?xml version=\"1.0\" encoding=\"no-such\"?><svg/>";
-    SVC_CHECK(!sv_xml_parse(bogus, strlen(bogus), err, sizeof err) && strstr(err, "encoding"),
+    CHECK(!sv_xml_parse(bogus, strlen(bogus), err, sizeof err) && strstr(err, "encoding"),
               "an unknown encoding is an error naming it (%s)", err);
 }
 
@@ -787,12 +787,12 @@ static void test_glyphs(void)
     int rule;
     sv_text_metrics m;
     char err[200];
-    SVC_CHECK(sv_text_path("O", SV_DEFAULT_FONT, 100, 0, 100, &p, &rule, &m, err, sizeof err) == 0,
+    CHECK(sv_text_path("O", SV_DEFAULT_FONT, 100, 0, 100, &p, &rule, &m, err, sizeof err) == 0,
               "DejaVu Sans loads: %s", err);
     sv_contour *c = NULL;
     int n = 0;
     sv_path_to_contours(&p, &c, &n);
-    SVC_CHECK(n == 2 && c[0].degree == 2 && c[1].degree == 2, "'O': two quadratic contours");
+    CHECK(n == 2 && c[0].degree == 2 && c[1].degree == 2, "'O': two quadratic contours");
     /* Every glyph point must be the font's point (or an implied midpoint) scaled exactly. */
     FT_Library lib;
     FT_Face face;
@@ -817,7 +817,7 @@ static void test_glyphs(void)
                 }
             }
         }
-    SVC_CHECK(total > 0 && matched == total, "on-curve points exact (%d of %d)", matched, total);
+    CHECK(total > 0 && matched == total, "on-curve points exact (%d of %d)", matched, total);
     for (int i = 0; i < n; i++)
         sv_contour_free(&c[i]);
     free(c);
@@ -829,11 +829,11 @@ static void test_glyphs(void)
     short ends[] = {3};
     FT_Outline cff = {1, 4, pts, tags, ends, 0};
     sv_path_init(&p);
-    SVC_CHECK(sv_text_outline_path((const struct FT_Outline_ *)&cff, 1, 0, 0, &p) == 0, "decompose");
+    CHECK(sv_text_outline_path((const struct FT_Outline_ *)&cff, 1, 0, 0, &p) == 0, "decompose");
     c = NULL;
     n = 0;
     sv_path_to_contours(&p, &c, &n);
-    SVC_CHECK(n == 1 && c[0].degree == 3 && c[0].count == 6, "cubic outline: degree 3 contour");
+    CHECK(n == 1 && c[0].degree == 3 && c[0].count == 6, "cubic outline: degree 3 contour");
     check_seg(&p, 0, 0, 3, (double[]){0, 0, 100, 0, 100, -100, 0, -100}, "cubic glyph segment");
     for (int i = 0; i < n; i++)
         sv_contour_free(&c[i]);
@@ -845,9 +845,9 @@ static void test_glyphs(void)
     sv_path_init(&p);
     sv_text_path("i", SV_DEFAULT_FONT, 50, 0, 0, &p, NULL, &m1, err, sizeof err);
     sv_text_path("iii", SV_DEFAULT_FONT, 50, 0, 0, &p, NULL, &m2, err, sizeof err);
-    SVC_NEAR(m2.advance, 3 * m1.advance, 1e-9, "advances add up");
+    CHECK_NEAR(m2.advance, 3 * m1.advance, 1e-9, "advances add up");
     FT_Load_Char(face, 'i', FT_LOAD_NO_SCALE);
-    SVC_NEAR(m1.advance, face->glyph->advance.x * 50.0 / face->units_per_EM, 1e-12,
+    CHECK_NEAR(m1.advance, face->glyph->advance.x * 50.0 / face->units_per_EM, 1e-12,
              "advance from the font");
     sv_path_free(&p);
     sv_text_metrics ma, mv, mav;
@@ -859,14 +859,14 @@ static void test_glyphs(void)
         FT_Vector kv;
         FT_Get_Kerning(face, FT_Get_Char_Index(face, 'A'), FT_Get_Char_Index(face, 'V'),
                        FT_KERNING_UNSCALED, &kv);
-        SVC_CHECK(kv.x < 0 && mav.kern_pairs == 1, "the font kerns AV");
-        SVC_NEAR(mav.advance, ma.advance + mv.advance + kv.x * 50.0 / face->units_per_EM, 1e-9,
+        CHECK(kv.x < 0 && mav.kern_pairs == 1, "the font kerns AV");
+        CHECK_NEAR(mav.advance, ma.advance + mv.advance + kv.x * 50.0 / face->units_per_EM, 1e-9,
                  "kerned advance");
     } else {
         printf("note: %s has no 'kern' table; kerning not exercised\n", SV_DEFAULT_FONT);
     }
     sv_path_free(&p);
-    SVC_CHECK(sv_text_path("x", "/nonexistent.ttf", 10, 0, 0, &p, NULL, NULL, err, sizeof err) < 0 &&
+    CHECK(sv_text_path("x", "/nonexistent.ttf", 10, 0, 0, &p, NULL, NULL, err, sizeof err) < 0 &&
                   strstr(err, "nonexistent"),
               "missing font named in the error");
     FT_Done_Face(face);
@@ -888,7 +888,7 @@ static void test_svg_text(void)
     sv_import_buffer(one, strlen(one), NULL, &d1, err, sizeof err);
     sv_import_buffer(two, strlen(two), NULL, &d2, err, sizeof err);
     sv_import_buffer(moved, strlen(moved), NULL, &d3, err, sizeof err);
-    SVC_CHECK(sv_doc_region_count(&d1) == 1 && sv_doc_region_count(&d2) == 2,
+    CHECK(sv_doc_region_count(&d1) == 1 && sv_doc_region_count(&d2) == 2,
               "a tspan with its own fill is its own region (%zu, %zu)", sv_doc_region_count(&d1),
               sv_doc_region_count(&d2));
     /* the tspan's B sits where B sits in "AB" minus kerning: compare bounding boxes */
@@ -896,7 +896,7 @@ static void test_svg_text(void)
     for (int c = 0; c < d2.ncels; c++)
         for (int r = 0; r < d2.cels[c].nregions; r++)
             b2 = fmax(b2, d2.cels[c].regions[r].bbox[2]);
-    SVC_NEAR(b2, b1, 0.05, "whitespace collapsed and the pen continues into the tspan");
+    CHECK_NEAR(b2, b1, 0.05, "whitespace collapsed and the pen continues into the tspan");
     double bx = 1e9, mid0 = 1e9, mid1 = -1e9;
     for (int c = 0; c < d3.ncels; c++)
         for (int r = 0; r < d3.cels[c].nregions; r++) {
@@ -908,7 +908,7 @@ static void test_svg_text(void)
                 mid1 = fmax(mid1, g->bbox[2]);
             }
         }
-    SVC_CHECK(bx >= 100 && bx < 102, "tspan x starts a new chunk at 100 (%g)", bx);
+    CHECK(bx >= 100 && bx < 102, "tspan x starts a new chunk at 100 (%g)", bx);
     /* letter-spacing after every character, word-spacing after a space, inherited from a
        group; Inkscape's zero spacings and "normal" values warn nothing */
     static const char *const spaced[] = {
@@ -928,7 +928,7 @@ static void test_svg_text(void)
         sv_doc dd;
         if (sv_import_buffer(svg, strlen(svg), NULL, &dd, err, sizeof err) < 0)
             continue;
-        SVC_CHECK(dd.nwarnings == 0, "spacing case %d: no warning (%s)", k,
+        CHECK(dd.nwarnings == 0, "spacing case %d: no warning (%s)", k,
                   dd.nwarnings ? dd.warnings[0] : "");
         for (int c = 0; c < dd.ncels; c++)
             for (int r = 0; r < dd.cels[c].nregions; r++)
@@ -953,11 +953,11 @@ static void test_svg_text(void)
             }
         sv_doc_free(&db);
     }
-    SVC_CHECK(xa < xb && xb < xr && xr < 1e9, "bidi: A, then the Hebrew pair reversed (%g %g %g)",
+    CHECK(xa < xb && xb < xr && xr < 1e9, "bidi: A, then the Hebrew pair reversed (%g %g %g)",
               xa, xb, xr);
-    SVC_NEAR(bpos[1] - bpos[0], 3, 1e-9, "letter-spacing from the group moves B by 3");
-    SVC_NEAR(bpos[3] - bpos[2], 5, 1e-9, "word-spacing moves B after the space by 5");
-    SVC_NEAR(0.5 * (mid0 + mid1), 100, 1.5, "text-anchor middle centres the chunk");
+    CHECK_NEAR(bpos[1] - bpos[0], 3, 1e-9, "letter-spacing from the group moves B by 3");
+    CHECK_NEAR(bpos[3] - bpos[2], 5, 1e-9, "word-spacing moves B after the space by 5");
+    CHECK_NEAR(0.5 * (mid0 + mid1), 100, 1.5, "text-anchor middle centres the chunk");
     sv_doc_free(&d1);
     sv_doc_free(&d2);
     sv_doc_free(&d3);
@@ -984,7 +984,7 @@ static void test_fonts(void)
         char file[512] = "";
         int rc = sv_font_match(cases[i].family, cases[i].weight, cases[i].italic, NULL,
                                cases[i].cp, file, sizeof file);
-        SVC_CHECK(rc == 0 && strstr(file, cases[i].want), "font for '%s' %d%s U+%04lX: %s (want %s)",
+        CHECK(rc == 0 && strstr(file, cases[i].want), "font for '%s' %d%s U+%04lX: %s (want %s)",
                   cases[i].family, cases[i].weight, cases[i].italic ? " italic" : "", cases[i].cp,
                   file, cases[i].want);
     }
@@ -995,12 +995,12 @@ static void test_fonts(void)
                       "</text></svg>";
     sv_doc d;
     char err[200];
-    SVC_CHECK(sv_import_buffer(cjk, strlen(cjk), NULL, &d, err, sizeof err) == 0, "%s", err);
+    CHECK(sv_import_buffer(cjk, strlen(cjk), NULL, &d, err, sizeof err) == 0, "%s", err);
     int contours = 0;
     for (int c = 0; c < d.ncels; c++)
         for (int r = 0; r < d.cels[c].nregions; r++)
             contours += d.cels[c].regions[r].ncontours;
-    SVC_CHECK(contours >= 2 + 5, "A and U+6D77 set from two faces (%d contours)", contours);
+    CHECK(contours >= 2 + 5, "A and U+6D77 set from two faces (%d contours)", contours);
     sv_doc_free(&d);
 
     /* objectBoundingBox of text: the glyph cells (advances by the font's ascender and
@@ -1020,15 +1020,15 @@ static void test_fonts(void)
             FT_Load_Glyph(face, FT_Get_Char_Index(face, 'x'), FT_LOAD_NO_SCALE);
             double adv = (double)face->glyph->advance.x * k;
             double top = 40 - face->ascender * k, height = (face->ascender - face->descender) * k;
-            SVC_CHECK(sv_import_buffer(grad, strlen(grad), NULL, &d, err, sizeof err) == 0, "%s",
+            CHECK(sv_import_buffer(grad, strlen(grad), NULL, &d, err, sizeof err) == 0, "%s",
                       err);
-            SVC_CHECK(d.ngradients == 1, "the text's gradient (%d)", d.ngradients);
+            CHECK(d.ngradients == 1, "the text's gradient (%d)", d.ngradients);
             if (d.ngradients == 1) {
                 sv_affine t = d.gradients[0].transform;
-                SVC_NEAR(t.e, 10, 1e-9, "text box starts at the pen");
-                SVC_NEAR(t.a, adv, 1e-9, "text box is the advance wide");
-                SVC_NEAR(t.f, top, 1e-9, "text box top is the ascender");
-                SVC_NEAR(t.d, height, 1e-9, "text box height is ascender - descender");
+                CHECK_NEAR(t.e, 10, 1e-9, "text box starts at the pen");
+                CHECK_NEAR(t.a, adv, 1e-9, "text box is the advance wide");
+                CHECK_NEAR(t.f, top, 1e-9, "text box top is the ascender");
+                CHECK_NEAR(t.d, height, 1e-9, "text box height is ascender - descender");
             }
             sv_doc_free(&d);
             /* text-decoration underline: a line under the whole advance, from the font's
@@ -1036,15 +1036,15 @@ static void test_fonts(void)
             const char *ul = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='60'>"
                              "<text x='10' y='40' font-family='Noto Sans' font-size='20' "
                              "text-decoration='underline'>x</text></svg>";
-            SVC_CHECK(sv_import_buffer(ul, strlen(ul), NULL, &d, err, sizeof err) == 0, "%s", err);
+            CHECK(sv_import_buffer(ul, strlen(ul), NULL, &d, err, sizeof err) == 0, "%s", err);
             if (d.ncels == 1 && d.cels[0].nregions == 1) {
                 const double *b = d.cels[0].regions[0].bbox;
                 double line_bot = 40 - face->underline_position * k;
-                SVC_NEAR(b[0], 10, 1e-9, "underline starts at the pen");
-                SVC_NEAR(b[2], 10 + adv, 1e-9, "underline spans the advance");
-                SVC_NEAR(b[3], line_bot, 1e-9, "underline's bottom at the font's position");
+                CHECK_NEAR(b[0], 10, 1e-9, "underline starts at the pen");
+                CHECK_NEAR(b[2], 10 + adv, 1e-9, "underline spans the advance");
+                CHECK_NEAR(b[3], line_bot, 1e-9, "underline's bottom at the font's position");
             }
-            SVC_CHECK(d.nwarnings == 0, "underline drawn, not warned");
+            CHECK(d.nwarnings == 0, "underline drawn, not warned");
             sv_doc_free(&d);
             FT_Done_Face(face);
         }
@@ -1055,7 +1055,7 @@ static void test_fonts(void)
 void test_svg_unit(const svg_test_opts *o)
 {
     (void)o;
-    int before = svc_fail;
+    int before = tl_failed;
     test_path_commands();
     test_arcs();
     test_transforms();
@@ -1069,5 +1069,5 @@ void test_svg_unit(const svg_test_opts *o)
     test_glyphs();
     test_svg_text();
     test_fonts();
-    printf("svg-unit: %s\n", svc_fail == before ? "all checks pass" : "FAILURES above");
+    printf("svg-unit: %s\n", tl_failed == before ? "all checks pass" : "FAILURES above");
 }

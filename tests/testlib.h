@@ -15,7 +15,13 @@
  * came out; tl_note() adds context lines (the first few offending pixels)
  * without counting anything.
  *
- * Everything is static: each test program includes this once.
+ * It is the one harness of every C test program (tests/, tests/linuxhal/):
+ * tests/README.md says how to use it and where a new test goes.
+ *
+ * Everything is static: a test program in one file includes this once. A
+ * program whose checks are spread over several files (test_svg) defines
+ * TL_SHARED before including it in each of them, and TL_MAIN as well in the
+ * file with main(): they then count into one pair of counters.
  */
 #ifndef CELSCAN_TESTLIB_H
 #define CELSCAN_TESTLIB_H
@@ -25,8 +31,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "celscan.h" /* cs_status, for the names of CHECK_STATUS and TL_MUST */
+
+#if defined(TL_SHARED)
+extern int tl_passed, tl_failed;
+extern const char *tl_current;
+#if defined(TL_MAIN)
+int tl_passed, tl_failed;
+const char *tl_current = "";
+#endif
+#else
 static int tl_passed, tl_failed;
 static const char *tl_current = "";
+#endif
 
 #if defined(__GNUC__)
 #define TL_PRINTF(a, b) __attribute__((format(printf, a, b)))
@@ -44,7 +61,10 @@ static TL_PRINTF(4, 5) TL_UNUSED int tl_check(int ok, const char *file, int line
         return 1;
     }
     tl_failed++;
-    printf("%s:%d: FAIL [%s] ", file, line, tl_current);
+    if (tl_current[0])
+        printf("%s:%d: FAIL [%s] ", file, line, tl_current);
+    else
+        printf("%s:%d: FAIL ", file, line);
     va_list ap;
     va_start(ap, fmt);
     vprintf(fmt, ap);
@@ -90,35 +110,72 @@ static TL_PRINTF(1, 2) TL_UNUSED void tl_note(const char *fmt, ...)
               tl_status_name(tl_w_), tl_w_, tl_status_name(tl_g_), tl_g_);                        \
     } while (0)
 
+/* The name of a status (designated, so the order of cs_status does not
+ * matter); one added to the core but not here prints as unnamed. */
 static TL_UNUSED const char *tl_status_name(int s)
 {
-    static const char *const names[] = {
-        "CS_OK",
-        "CS_ERR_ARG",
-        "CS_ERR_STATE",
-        "CS_ERR_NONFINITE",
-        "CS_ERR_RANGE",
-        "CS_ERR_DEGREE",
-        "CS_ERR_TOO_FEW_POINTS",
-        "CS_ERR_WEIGHT",
-        "CS_ERR_INTERVAL",
-        "CS_ERR_ZERO_RUN",
-        "CS_ERR_DEGENERATE",
-        "CS_ERR_FILL_RULE",
-        "CS_ERR_PAINT",
-        "CS_ERR_SIZE",
-        "CS_ERR_CAP_CELS",
-        "CS_ERR_CAP_REGIONS",
-        "CS_ERR_CAP_CONTOURS",
-        "CS_ERR_CAP_POINTS",
-        "CS_ERR_CAP_SEGMENTS",
-        "CS_ERR_CAP_PIECES",
-        "CS_ERR_CAP_CROSSINGS",
-        "CS_ERR_IO",
+#define TL_STATUS(name) [name] = #name
+    static const char *const names[CS_ERR_COUNT_] = {
+        TL_STATUS(CS_OK),
+        TL_STATUS(CS_ERR_ARG),
+        TL_STATUS(CS_ERR_STATE),
+        TL_STATUS(CS_ERR_NONFINITE),
+        TL_STATUS(CS_ERR_RANGE),
+        TL_STATUS(CS_ERR_DEGREE),
+        TL_STATUS(CS_ERR_TOO_FEW_POINTS),
+        TL_STATUS(CS_ERR_WEIGHT),
+        TL_STATUS(CS_ERR_INTERVAL),
+        TL_STATUS(CS_ERR_ZERO_RUN),
+        TL_STATUS(CS_ERR_DEGENERATE),
+        TL_STATUS(CS_ERR_FILL_RULE),
+        TL_STATUS(CS_ERR_PAINT),
+        TL_STATUS(CS_ERR_SIZE),
+        TL_STATUS(CS_ERR_CAP_CELS),
+        TL_STATUS(CS_ERR_CAP_REGIONS),
+        TL_STATUS(CS_ERR_CAP_CONTOURS),
+        TL_STATUS(CS_ERR_CAP_POINTS),
+        TL_STATUS(CS_ERR_CAP_SEGMENTS),
+        TL_STATUS(CS_ERR_CAP_PIECES),
+        TL_STATUS(CS_ERR_CAP_CROSSINGS),
+        TL_STATUS(CS_ERR_IO),
+        TL_STATUS(CS_ERR_CAP_FUNCS),
+        TL_STATUS(CS_ERR_FUNC),
+        TL_STATUS(CS_ERR_CSG),
+        TL_STATUS(CS_ERR_CAP_CACHE),
+        TL_STATUS(CS_ERR_INDEX),
+        TL_STATUS(CS_ERR_COUNT),
+        TL_STATUS(CS_ERR_TRACK),
+        TL_STATUS(CS_ERR_KEY_ORDER),
+        TL_STATUS(CS_ERR_CAP_TRACKS),
+        TL_STATUS(CS_ERR_CAP_KEYS),
+        TL_STATUS(CS_ERR_CAP_ANIM),
+        TL_STATUS(CS_ERR_STREAM_SYNC),
+        TL_STATUS(CS_ERR_STREAM_VERSION),
+        TL_STATUS(CS_ERR_STREAM_CRC),
+        TL_STATUS(CS_ERR_STREAM_TRUNCATED),
+        TL_STATUS(CS_ERR_STREAM_TOO_BIG),
+        TL_STATUS(CS_ERR_STREAM_RECORD),
+        TL_STATUS(CS_ERR_GROUP),
+        TL_STATUS(CS_ERR_STREAM_GAP),
     };
-    if (s >= 0 && s < (int)(sizeof names / sizeof names[0]))
+#undef TL_STATUS
+    if (s >= 0 && s < (int)(sizeof names / sizeof names[0]) && names[s])
         return names[s];
-    return "(unknown status)";
+    return "(unnamed status)";
+}
+
+/* A set-up call the test cannot go on without (status 0, CS_OK): on any
+ * other status the program ends (exit 2, which tests/run.sh counts as a
+ * failure) naming the call and the status. */
+#define TL_MUST(call) tl_must((int)(call), #call, __FILE__, __LINE__)
+
+static TL_UNUSED void tl_must(int status, const char *call, const char *file, int line)
+{
+    if (status == 0)
+        return;
+    printf("%s:%d: FAIL %s: status %s (%d)\n", file, line, call, tl_status_name(status), status);
+    fflush(stdout);
+    exit(2);
 }
 
 #define TL_RUN(fn)                                                                                \

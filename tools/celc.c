@@ -30,7 +30,6 @@
  * read or written; 2 bad command line.
  */
 #include <errno.h>
-#include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -44,10 +43,11 @@
 #include "celc_publish.h"
 #include "cels_write.h"
 #include "celscan.h"
+#include "cli.h"
 #include "lottie/lt.h"
 #include "scene_json.h"
 
-enum { EXIT_FAIL = 1, EXIT_USAGE = 2 };
+enum { EXIT_FAIL = 1 };
 
 static const char usage_text[] =
     "usage: celc compile SCENE.json -o OUT.cels [-v] [--sign NAME.key]\n"
@@ -74,22 +74,6 @@ static const char usage_text[] =
     "publish   sends a stream (a scene JSON compiled first) to an MQTT broker's topic, QoS 1\n"
     "\n"
     "exit status: 0 ok, 1 scene refused or file error, 2 usage error\n";
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 1, 2)))
-#endif
-static int usage_error(const char *fmt, ...);
-
-static int usage_error(const char *fmt, ...)
-{
-    va_list ap;
-    fputs("celc: ", stderr);
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fputc('\n', stderr);
-    return EXIT_USAGE;
-}
 
 /* Writes all of `data` to `path` through a temporary file renamed into place. */
 static int write_atomically(const char *path, const uint8_t *data, size_t len)
@@ -226,13 +210,13 @@ static int compile_main(int argc, char **argv)
         const char *a = argv[i];
         if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
             if (i + 1 >= argc || argv[i + 1][0] == '\0')
-                return usage_error("%s needs a file name (see celc --help)", a);
+                return cli_usage_error("%s needs a file name (see celc --help)", a);
             out = argv[++i];
         } else if (strncmp(a, "--output=", 9) == 0) {
             out = a + 9;
         } else if (strcmp(a, "--sign") == 0) {
             if (i + 1 >= argc || argv[i + 1][0] == '\0')
-                return usage_error("--sign needs a key file NAME.key (see celc --help)");
+                return cli_usage_error("--sign needs a key file NAME.key (see celc --help)");
             key = argv[++i];
         } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
             verbose = true;
@@ -240,17 +224,17 @@ static int compile_main(int argc, char **argv)
             fputs(usage_text, stdout);
             return 0;
         } else if (a[0] == '-' && a[1] != '\0') {
-            return usage_error("compile: unknown option '%s' (see celc --help)", a);
+            return cli_usage_error("compile: unknown option '%s' (see celc --help)", a);
         } else if (in == NULL) {
             in = a;
         } else {
-            return usage_error("compile: unexpected argument '%s': one SCENE per run", a);
+            return cli_usage_error("compile: unexpected argument '%s': one SCENE per run", a);
         }
     }
     if (in == NULL)
-        return usage_error("compile needs a SCENE.json (see celc --help)");
+        return cli_usage_error("compile needs a SCENE.json (see celc --help)");
     if (out == NULL || out[0] == '\0')
-        return usage_error("compile needs -o OUT.cels (or -o - for standard output)");
+        return cli_usage_error("compile needs -o OUT.cels (or -o - for standard output)");
 
     cels_buf b;
     cs_scene *scene = NULL;
@@ -278,10 +262,10 @@ static int keygen_main(int argc, char **argv)
         if ((strcmp(argv[i], "-o") == 0 || strcmp(argv[i], "--output") == 0) && i + 1 < argc)
             name = argv[++i];
         else
-            return usage_error("keygen: unexpected argument '%s' (celc keygen -o NAME)", argv[i]);
+            return cli_usage_error("keygen: unexpected argument '%s' (celc keygen -o NAME)", argv[i]);
     }
     if (name == NULL || name[0] == '\0')
-        return usage_error("keygen needs -o NAME (writes NAME.key and NAME.pub)");
+        return cli_usage_error("keygen needs -o NAME (writes NAME.key and NAME.pub)");
     char err[400];
     if (!cels_sign_init()) {
         fprintf(stderr, "celc: libsodium cannot start\n");
@@ -327,14 +311,14 @@ static int sign_main(int argc, char **argv)
         else if (strcmp(a, "--key") == 0 && i + 1 < argc)
             key = argv[++i];
         else if (a[0] == '-' && a[1] != '\0')
-            return usage_error("sign: unknown option or missing value '%s' (see celc --help)", a);
+            return cli_usage_error("sign: unknown option or missing value '%s' (see celc --help)", a);
         else if (in == NULL)
             in = a;
         else
-            return usage_error("sign: unexpected argument '%s': one stream per run", a);
+            return cli_usage_error("sign: unexpected argument '%s': one stream per run", a);
     }
     if (in == NULL || out == NULL || out[0] == '\0' || key == NULL)
-        return usage_error("sign needs IN.cels, -o OUT.cels and --key NAME.key");
+        return cli_usage_error("sign needs IN.cels, -o OUT.cels and --key NAME.key");
     cels_buf b;
     cels_buf_init(&b);
     int rc = read_whole(in, &b);
@@ -362,34 +346,22 @@ static bool lottie_input(int argc, char **argv)
     return false;
 }
 
+/* SVG import and text setting live in tools/celc_import.c (tools/svg/),
+ * Lottie import in tools/lottie/ (an input file named *.json). */
+static int import_main(int argc, char **argv)
+{
+    return lottie_input(argc, argv) ? lt_main(argc, argv) : celc_import_main(argc, argv);
+}
+
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        fputs(usage_text, stderr);
-        return EXIT_USAGE;
-    }
-    const char *cmd = argv[1];
-    if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
-        fputs(usage_text, stdout);
-        return 0;
-    }
-    if (strcmp(cmd, "compile") == 0)
-        return compile_main(argc - 1, argv + 1);
-    if (strcmp(cmd, "keygen") == 0)
-        return keygen_main(argc - 1, argv + 1);
-    if (strcmp(cmd, "sign") == 0)
-        return sign_main(argc - 1, argv + 1);
-    /* SVG import and text setting live in tools/celc_import.c (tools/svg/),
-     * Lottie import in tools/lottie/ (an input file named *.json). */
-    if (strcmp(cmd, "import") == 0 && lottie_input(argc - 1, argv + 1))
-        return lt_main(argc - 1, argv + 1);
-    if (strcmp(cmd, "import") == 0)
-        return celc_import_main(argc - 1, argv + 1);
-    if (strcmp(cmd, "text") == 0)
-        return celc_text_main(argc - 1, argv + 1);
     /* MQTT delivery to a fleet of signs lives in tools/celc_publish.c. */
-    if (strcmp(cmd, "publish") == 0)
-        return celc_publish_main(argc - 1, argv + 1);
-    return usage_error("unknown command '%s' (compile, keygen, sign, import, text or publish; see celc --help)",
-                       cmd);
+    static const cli_command commands[] = {
+        {"compile", compile_main}, {"keygen", keygen_main},    {"sign", sign_main},
+        {"import", import_main},   {"text", celc_text_main},  {"publish", celc_publish_main},
+    };
+    static const cli_program celc = {
+        "celc", usage_text, "compile, keygen, sign, import, text or publish; see celc --help",
+        commands, (int)(sizeof commands / sizeof commands[0])};
+    return cli_main(&celc, argc, argv);
 }

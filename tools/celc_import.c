@@ -7,9 +7,8 @@
  * "srgb"} so the scene asks to be blended as SVG renderers do); every
  * warning the importer raised (unsupported elements, gradients the core's
  * functions cannot draw, clips beyond CSG capacity) goes to stderr naming
- * the element. `-o out.cels` will
- * write the binary cel stream once its encoder lands: the hook is
- * write_cels() below, which receives the same IR the JSON writer gets.
+ * the element. `-o out.cels` writes the binary cel stream instead
+ * (write_cels() below, from the same IR the JSON writer gets).
  *
  * `celc text` sets a string in a font (FreeType) and writes it as a scene
  * with one region of glyph contours.

@@ -11,33 +11,9 @@
 
 void cels_format_error(const cs_stream_error *e, char *buf, size_t len)
 {
-    int n = snprintf(buf, len, "byte %llu: %s", (unsigned long long)e->at,
-                     cs_status_str(e->status));
-    if (n < 0 || (size_t)n >= len)
-        return;
-    if (e->what && strcmp(e->what, cs_status_str(e->status)) != 0)
-        n += snprintf(buf + n, len - (size_t)n, ": %s", e->what);
-    if (n < 0 || (size_t)n >= len)
-        return;
-    if (e->where.cel >= 0) {
-        n += snprintf(buf + n, len - (size_t)n, " (cel %d", (int)e->where.cel);
-        if (n >= 0 && (size_t)n < len && e->where.region >= 0)
-            n += snprintf(buf + n, len - (size_t)n, ", region %d", (int)e->where.region);
-        if (n >= 0 && (size_t)n < len && e->where.contour >= 0)
-            n += snprintf(buf + n, len - (size_t)n, ", contour %d", (int)e->where.contour);
-        if (n >= 0 && (size_t)n < len && e->where.item >= 0)
-            n += snprintf(buf + n, len - (size_t)n, ", item %d", (int)e->where.item);
-        if (n >= 0 && (size_t)n < len)
-            n += snprintf(buf + n, len - (size_t)n, ")");
-    }
-    if (n < 0 || (size_t)n >= len)
-        return;
-    if (e->status == CS_ERR_STREAM_SYNC)
-        snprintf(buf + n, len - (size_t)n, " (skipping from byte %llu)",
-                 (unsigned long long)e->offset);
-    else
-        snprintf(buf + n, len - (size_t)n, " (transaction at byte %llu dropped)",
-                 (unsigned long long)e->offset);
+    int n = snprintf(buf, len, "byte %llu: ", (unsigned long long)e->at);
+    if (n >= 0 && (size_t)n < len)
+        cs_stream_error_text(e, 0, buf + n, len - (size_t)n);
 }
 
 typedef struct reader {

@@ -729,14 +729,12 @@ int main(int argc, char **argv)
     say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s "
         "trusted_keys=%d threads=%d",
         fw->disp->ops->name, fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
-        celfw_input_describe(fw->in), fw->cfg.scene, celfw_stream_available() ? "cel-stream" : "none",
+        celfw_input_describe(fw->in), fw->cfg.scene, "cel-stream",
         display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw));
     if (celfw_input_public(fw->in) && celfw_trust_key_count(fw->trust) == 0)
         say("warning", "input %s listens beyond loopback and no key is trusted: anyone who can reach it "
             "can change the picture (celc keygen, then celfw --trust KEY.pub --state-dir DIR)",
             celfw_input_describe(fw->in));
-    if (!celfw_stream_available() && strcmp(fw->cfg.input, "none") != 0)
-        say("event", "stream decoder not in this build: input bytes are counted, not decoded");
     celfw_notify_ready(&fw->notify, lx_now(&lx_clock_monotonic), "showing %s on %s %dx%d",
                        fw->cfg.scene, fw->disp->ops->name, fw->disp->width, fw->disp->height);
 

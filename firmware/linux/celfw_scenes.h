@@ -1,11 +1,11 @@
 /*
  * celfw_scenes.h - scenes built into celfw, made with the core's builder calls.
  *
- * Until the cel-stream decoder lands, these give celfw (and the emulated
- * device tests) something real to show: a signage-like still and an
- * animation in which one small shape moves over a still background. The
- * animation is rebuilt for each frame's time, which is how a scene "changes
- * between frames" before keyframe tracks exist.
+ * They give celfw something to show with no stream or scene file (--scene
+ * NAME), and the emulated-device tests scenes of their own: a signage-like
+ * still and an animation in which one small shape moves over a still
+ * background. The animation is rebuilt by its builder at each frame's
+ * time, not keyed with tracks.
  */
 #ifndef CELFW_SCENES_H
 #define CELFW_SCENES_H

@@ -10,10 +10,10 @@
  * offsets count from the frame; the frame's place in its input is added,
  * so messages count from the start of the connection or file.
  *
- * Errors are turned into one line of text here (status, the decoder's
- * explanation, the scene location for validation errors, and what was
- * dropped), so the log says what was wrong and where without celfw knowing
- * the decoder's types.
+ * Errors are turned into one line of text here (cs_stream_error_text:
+ * status, the decoder's explanation, the scene location for validation
+ * errors, and what was dropped), so the log says what was wrong and where
+ * without celfw knowing the decoder's types.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,11 +26,6 @@ struct celfw_stream {
     celfw_stream_check check;
     void *check_user;
 };
-
-bool celfw_stream_available(void)
-{
-    return true;
-}
 
 void celfw_stream_set_check(celfw_stream *s, celfw_stream_check check, void *user)
 {
@@ -48,38 +43,11 @@ void celfw_stream_free(celfw_stream *s)
     free(s);
 }
 
-/* "<status>[: <explanation>][ (cel c, region r, ...)] (<what was dropped>)" */
+/* The core's one line (cs_stream_error_text); the fault's offset apart. */
 static void describe(const cs_stream_error *e, uint64_t base, celfw_stream_error *out)
 {
-    char *b = out->what;
-    size_t len = sizeof out->what, n = 0;
     out->offset = base + e->at;
-#define ADD(...)                                                                                   \
-    do {                                                                                           \
-        if (n < len) {                                                                             \
-            int k_ = snprintf(b + n, len - n, __VA_ARGS__);                                        \
-            n = k_ < 0 ? len : n + (size_t)k_;                                                     \
-        }                                                                                          \
-    } while (0)
-    const char *status = cs_status_str(e->status);
-    ADD("%s", status);
-    if (e->what && strcmp(e->what, status) != 0)
-        ADD(": %s", e->what);
-    if (e->where.cel >= 0) {
-        ADD(" (cel %d", (int)e->where.cel);
-        if (e->where.region >= 0)
-            ADD(", region %d", (int)e->where.region);
-        if (e->where.contour >= 0)
-            ADD(", contour %d", (int)e->where.contour);
-        if (e->where.item >= 0)
-            ADD(", item %d", (int)e->where.item);
-        ADD(")");
-    }
-    if (e->status == CS_ERR_STREAM_SYNC)
-        ADD(" (bytes skipped from byte %llu)", (unsigned long long)(base + e->offset));
-    else
-        ADD(" (transaction at byte %llu dropped)", (unsigned long long)(base + e->offset));
-#undef ADD
+    cs_stream_error_text(e, base, out->what, sizeof out->what);
 }
 
 void celfw_stream_describe(cs_status status, const char *what, uint64_t offset, uint64_t at,

@@ -39,8 +39,6 @@ typedef struct celfw_stream_error {
 
 typedef struct celfw_stream celfw_stream;
 
-/* true when a real decoder is linked. */
-bool celfw_stream_available(void);
 celfw_stream *celfw_stream_new(void);
 void celfw_stream_free(celfw_stream *s);
 /*

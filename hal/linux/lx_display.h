@@ -11,9 +11,9 @@
  * "lanes", each an independent stream of lines in increasing y (the order the
  * core's active-piece list can move in).
  *
- * This is celfw's own interface. hal/display.h (push model, for the simulator
- * and MCU ports) is being written at the same time; when it lands, the push
- * backends there can be wrapped as an lx_display with one lane.
+ * This is celfw's own interface. hal/display.h is the push model of the
+ * simulator and MCU ports; a push backend there can be wrapped as an
+ * lx_display with one lane.
  */
 #ifndef LX_DISPLAY_H
 #define LX_DISPLAY_H

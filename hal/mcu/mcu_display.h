@@ -11,9 +11,9 @@
  *
  * A panel is a const table of operations plus its own context, in the
  * manner of Zephyr's display drivers; optional operations may be NULL.
- * This is the MCU side's own small interface: once hal/display.h (the
- * host's display-out ops) lands, an adapter between the two is a few
- * lines, as both are geometry + format + begin/line/end.
+ * This is the MCU side's own small interface; an adapter to hal/display.h
+ * (the host's display-out ops) is a few lines, as both are geometry +
+ * format + begin/line/end.
  */
 #ifndef MCU_DISPLAY_H
 #define MCU_DISPLAY_H

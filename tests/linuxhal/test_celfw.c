@@ -33,15 +33,15 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cels_sign.h"
-#include "cels_write.h"
 #include "celfw_child.h"
 #include "celfw_input.h"
 #include "celfw_scenes.h"
+#include "cels_sign.h"
+#include "cels_write.h"
 #include "fake_gud.h"
 #include "gud_wire.h"
-#include "lx_test.h"
 #include "scene_json.h"
+#include "testlib.h"
 
 static cs_scene scene;
 
@@ -854,5 +854,5 @@ int main(void)
     test_tcp_ingress();
     test_log_flood();
     g_object_unref(tb);
-    return lx_test_report("test_celfw");
+    return tl_summary("test_celfw");
 }

@@ -15,12 +15,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cels_write.h"
 #include "celfw_child.h"
+#include "cels_write.h"
 #include "fake_gud.h"
 #include "gud_wire.h"
-#include "lx_test.h"
 #include "scene_json.h"
+#include "testlib.h"
 
 /*
  * A display reporting a 0-wide mode used to kill celfw with SIGFPE. At
@@ -350,5 +350,5 @@ int main(void)
     test_slow_frames();
     test_realtime();
     g_object_unref(tb);
-    return lx_test_report("test_celfw_robust");
+    return tl_summary("test_celfw_robust");
 }

@@ -26,8 +26,8 @@
 #include "celfw_clock.h"
 #include "celfw_scenes.h"
 #include "lx_scene_source.h"
-#include "lx_test.h"
 #include "scene_json.h"
+#include "testlib.h"
 #include "vclock.h"
 
 #define W 160
@@ -241,5 +241,5 @@ int main(void)
     test_patches();
     test_json_epoch();
     lx_scene_source_free(&src);
-    return lx_test_report("test_clock");
+    return tl_summary("test_clock");
 }

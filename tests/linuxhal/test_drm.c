@@ -27,7 +27,7 @@
 #include "fake_drm.h"
 #include "kms.h"
 #include "lx_scene_source.h"
-#include "lx_test.h"
+#include "testlib.h"
 
 static cs_workspace ws;
 
@@ -737,5 +737,5 @@ int main(void)
     test_refusals(tb);
     test_celfw(tb);
     g_object_unref(tb);
-    return lx_test_report("test_drm");
+    return tl_summary("test_drm");
 }

@@ -17,7 +17,7 @@
 #include "gud_host.h"
 #include "gud_wire.h"
 #include "lx_scene_source.h"
-#include "lx_test.h"
+#include "testlib.h"
 
 static cs_scene scene;
 static cs_workspace ws;
@@ -678,5 +678,5 @@ int main(void)
     measure(tb, 800, 480, GUD_FORMAT_RGB565);
     measure(tb, 800, 480, GUD_FORMAT_XRGB8888);
     g_object_unref(tb);
-    return lx_test_report("test_gud");
+    return tl_summary("test_gud");
 }

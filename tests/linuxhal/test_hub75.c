@@ -24,7 +24,7 @@
 #include "hub75.h"
 #include "hub75_model.h"
 #include "lx_scene_source.h"
-#include "lx_test.h"
+#include "testlib.h"
 #include "vclock.h"
 
 static _Atomic uint64_t vtime;
@@ -353,5 +353,5 @@ int main(void)
     test_errors(tb);
     report_throughput(tb);
     g_object_unref(tb);
-    return lx_test_report("test_hub75");
+    return tl_summary("test_hub75");
 }

@@ -22,15 +22,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "cels_read.h"
-#include "cels_sign.h"
 #include "celfw_frame.h"
 #include "celfw_log.h"
 #include "celfw_stream.h"
 #include "celfw_trust.h"
-#include "lx_test.h"
+#include "cels_read.h"
+#include "cels_sign.h"
 #include "scene_equal.h"
 #include "sign_test_key.h"
+#include "testlib.h"
 
 static cs_scene scene_a, scene_b, scene_c;
 
@@ -722,5 +722,5 @@ int main(int argc, char **argv)
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     if (system(cmd) != 0)
         fprintf(stderr, "test_trust: could not remove %s\n", dir);
-    return lx_test_report("test_trust");
+    return tl_summary("test_trust");
 }

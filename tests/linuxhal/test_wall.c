@@ -27,12 +27,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cels_write.h"
 #include "celfw_child.h"
+#include "cels_write.h"
 #include "fake_gud.h"
 #include "lx_scene_source.h"
-#include "lx_test.h"
 #include "scene_json.h"
+#include "testlib.h"
 
 enum { WALL_W = 192, WALL_H = 108, BW = 96, BH = 54 };
 
@@ -219,5 +219,5 @@ int main(void)
     g_free(root);
     test_four_boards(tb);
     g_object_unref(tb);
-    return lx_test_report("test_wall");
+    return tl_summary("test_wall");
 }

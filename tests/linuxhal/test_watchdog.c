@@ -34,7 +34,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "lx_test.h"
+#include "testlib.h"
 
 #define WATCHDOG_USEC 1000000 /* the unit says 10 s; the test cannot wait that long */
 
@@ -238,5 +238,5 @@ int main(void)
     test_hang_and_restart();
     test_watchdog_for_another_process();
     close_socket();
-    return lx_test_report("test_watchdog");
+    return tl_summary("test_watchdog");
 }

@@ -13,17 +13,22 @@
 #include <string.h>
 
 #include "../celc_import.h"
+#include "../cli.h"
 #include "../cli_num.h"
 #include "sv.h"
 #include "sv_import.h"
 #include "sv_render.h"
 
+static const char usage_text[] =
+    "usage: svgimport import|text|render ... (see celc import/text; render:\n"
+    "  svgimport render IN.svg -o OUT.png [--size WxH] [--aa none|N|exact]\n"
+    "            [--blend srgb|linear] [--background C|none] [-q])\n";
+
+/* A bad render command line: the help, exit 2. */
 static int usage(void)
 {
-    fprintf(stderr, "usage: svgimport import|text|render ... (see celc import/text; render:\n"
-                    "  svgimport render IN.svg -o OUT.png [--size WxH] [--aa none|N|exact]\n"
-                    "            [--blend srgb|linear] [--background C|none] [-q])\n");
-    return 2;
+    fputs(usage_text, stderr);
+    return CLI_EXIT_USAGE;
 }
 
 static int render_main(int argc, char **argv)
@@ -104,13 +109,10 @@ static int render_main(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-    if (argc < 2)
-        return usage();
-    if (!strcmp(argv[1], "import"))
-        return celc_import_main(argc - 1, argv + 1);
-    if (!strcmp(argv[1], "text"))
-        return celc_text_main(argc - 1, argv + 1);
-    if (!strcmp(argv[1], "render"))
-        return render_main(argc - 1, argv + 1);
-    return usage();
+    static const cli_command commands[] = {
+        {"import", celc_import_main}, {"text", celc_text_main}, {"render", render_main}};
+    static const cli_program svgimport = {"svgimport", usage_text,
+                                          "import, text or render; see svgimport --help", commands,
+                                          3};
+    return cli_main(&svgimport, argc, argv);
 }
