@@ -271,9 +271,9 @@ static void build_path(const sh_path *p, double f, sv_path *out)
     lt_prop_eval(&p->or_, f, &orr);
     lt_prop_eval(&p->is, f, &is);
     lt_prop_eval(&p->os, f, &os);
+    if (!(npt >= 2 && npt < 1001))
+        return; /* checked as a float: the cast of a huge or NaN count is undefined */
     int n = (int)floor(npt);
-    if (n < 2 || n > 1000)
-        return;
     if (p->whole)
         npt = n, is = os = 0;
     /* rlottie turns a polystar by twice its rotation (Debian's librlottie, checked with

@@ -348,7 +348,10 @@ static bool foldable(const cJSON *layers, const layer_xf *x, const lt_time *tm)
             return false;
         if (cJSON_IsTrue(hd))
             continue;
-        int t = ty ? (int)ty->valuedouble : 4;
+        double tyd = ty ? ty->valuedouble : 4;
+        if (!(tyd >= 0 && tyd <= 100))
+            return false; /* not a layer type (and no int: the cast would be undefined) */
+        int t = (int)tyd;
         if (t == 4 || t == 1)
             drawn++;
         else if (t != 3)
@@ -699,10 +702,12 @@ int lt_layers(lt_ctx *c, const cJSON *layers, const lt_time *tm, int parent_cel)
         ip = round(ip), op = round(op);
         warn_unsupported(c, lj);
         const cJSON *ttj = get(lj, "tt");
-        int ttv = cJSON_IsNumber(ttj) ? (int)ttj->valuedouble : 0;
+        double ttd = cJSON_IsNumber(ttj) ? ttj->valuedouble : 0;
+        /* Only a small value becomes an int (the cast of 1e48 or NaN is undefined); others are -1. */
+        int ttv = ttd >= -100 && ttd <= 100 ? (int)ttd : -1;
         if (ttv != 0 && !(ttv >= 1 && ttv <= 4 && i > 0))
-            lt_warn(c, LT_F_MATTE, "track matte type %d without a source layer is drawn unmatted",
-                    ttv);
+            lt_warn(c, LT_F_MATTE, "track matte type %g without a source layer is drawn unmatted",
+                    ttd);
         bool any = false;
         for (int k = 0; k < tm->nframes; k++) {
             visible[k] = tm->frame[k] >= ip && tm->frame[k] < op ? 1 : 0;

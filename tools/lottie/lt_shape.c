@@ -265,8 +265,10 @@ static int parse_repeater(lt_ctx *c, const cJSON *rp, const cJSON *first, int co
         if (r->c.keys[k].e)
             most = fmax(most, r->c.keys[k].e[0]);
     }
-    if (most > LT_MAX_COPIES)
+    if (!(most <= LT_MAX_COPIES)) /* NaN too */
         return lt_fail(c, "repeater: %.0f copies, more than %d", most, LT_MAX_COPIES);
+    if (most < 0)
+        most = 0; /* no copies; and no cast of a huge negative count */
     for (int k = (int)most - 1; k >= 0; k--) {
         if (t->nnodes + t->npaths_all + t->nstyles > LT_MAX_ITEMS)
             return lt_fail(c, "repeaters make more than %d shape items", LT_MAX_ITEMS);
