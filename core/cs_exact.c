@@ -89,7 +89,7 @@
  *    right of it adds nothing.
  *
  * The result lands in the same area/cover accumulators the sub-scanline
- * code uses, so the fold (cs_line.c, fold_region), the within-cel coverage
+ * code uses, so the fold (cs_composite.c, fold_region), the within-cel coverage
  * budget and the compositing are shared by every AA mode. Line state is the region's
  * active pieces plus the O(width) accumulators; memory is fixed.
  */

@@ -83,7 +83,7 @@ static void segment_xbounds(cs_segment *s, float x0, float width)
 /*
  * Appends the monotone pieces of segment `si`, whose end y is `y_end`; with
  * a viewport only those that can meet a row of it, [vy, vy + vh): a piece is active on row y
- * when y_top < y + 1 and y_bot > y (cs_line.c: update_active), so one wholly
+ * when y_top < y + 1 and y_bot > y (cs_cross.c: cs__line_active), so one wholly
  * above or below the window is never read, and leaving it out changes no
  * pixel. It leaves the arena to what the window needs, which is what lets a
  * small board render a scene larger than its arena in bands of rows.
@@ -519,7 +519,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     r->vw = win ? opts->view_w : opts->width;
     r->vh = win ? opts->view_h : opts->height;
     /* One column left of the window stands for everything left of it (the
-     * whole output clamps at its own left edge, column 0): see cs_line.c. */
+     * whole output clamps at its own left edge, column 0): see cs_coverage.c. */
     r->clip_lo = (float)(r->vx > 0 ? r->vx - 1 : 0);
     r->clip_hi = (float)(r->vx + r->vw);
     r->sx = (float)opts->width / scene->canvas_w;
