@@ -466,6 +466,43 @@ static void hide(cs_exact_piece *e, cs_index piece, const cs_piece *pc, int32_t 
     e->monotone = true;
 }
 
+/*
+ * Piece `piece`'s arc across the row into e, or a stand-in (hide) where
+ * every pixel it could touch is already opaque.
+ */
+static void place_piece(const cs_renderer *r, const cs__exact_ctx *cx, cs_exact_piece *e,
+                        cs_index piece)
+{
+    const cs_workspace *ws = cx->ws;
+    const cs_piece *pc = &ws->pieces[piece];
+    const cs_segment *s = &ws->segments[pc->segment];
+    int32_t pa = s->px_lo, pb = s->px_hi;
+    e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
+    if (e->hidden) {
+        hide(e, piece, pc, pa + r->vx); /* in device columns, as placed arcs */
+        return;
+    }
+    cs__exact_place_arc(cx, e, piece);
+    /* Its pixels on this row (its hull, widened as the segment's is) may
+     * all be opaque though the segment's are not: then it is a stand-in
+     * too, spared its area (14% of Many-blobs' arcs). The pixel of its top
+     * end, one bit, rules most arcs out. */
+    float x0 = (float)r->vx; /* arcs are in device columns, the line's bits in its own */
+    float xt = e->top.x - x0;
+    if (r->opaque_px != 0u && xt >= 0.0f && xt < (float)cx->width &&
+        cs__run_opaque(r, (uint32_t)xt)) {
+        /* clamped as floats first: a hull that could not be formed is +-HUGE_X */
+        float xl = cs__maxf(e->xmin - 0.5f - x0, 0.0f);
+        float xr = cs__minf(e->xmax + 0.5f - x0, (float)cx->width);
+        int32_t qa = cs__floori(xl), qb = cs__floori(xr) + 1;
+        qb = qb > cx->width ? cx->width : qb;
+        if (qa < qb && cs__span_opaque(r, (uint32_t)qa, (uint32_t)qb)) {
+            e->hidden = true;
+            hide(e, piece, pc, qa + r->vx);
+        }
+    }
+}
+
 cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_index *act,
                            uint32_t n, int y, int32_t *lo, int32_t *hi)
 {
@@ -488,34 +525,7 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     uint32_t *ord = ws->exact_order;
     /* Each piece's arc across the row, and its bounds. */
     for (uint32_t i = 0; i < n; i++) {
-        cs_exact_piece *e = &ex[i];
-        const cs_piece *pc = &ws->pieces[act[i]];
-        const cs_segment *s = &ws->segments[pc->segment];
-        int32_t pa = s->px_lo, pb = s->px_hi;
-        e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
-        if (e->hidden) {
-            hide(e, act[i], pc, pa + r->vx); /* in device columns, as placed arcs */
-        } else {
-            cs__exact_place_arc(&cx, e, act[i]);
-            /* Its pixels on this row (its hull, widened as the segment's
-             * is) may all be opaque though the segment's are not: then it
-             * is a stand-in too, spared its area (14% of Many-blobs' arcs).
-             * The pixel of its top end, one bit, rules most arcs out. */
-            float x0 = (float)r->vx; /* arcs are in device columns, the line's bits in its own */
-            float xt = e->top.x - x0;
-            if (r->opaque_px != 0u && xt >= 0.0f && xt < (float)cx.width &&
-                cs__run_opaque(r, (uint32_t)xt)) {
-                /* clamped as floats first: a hull that could not be formed is +-HUGE_X */
-                float xl = cs__maxf(e->xmin - 0.5f - x0, 0.0f);
-                float xr = cs__minf(e->xmax + 0.5f - x0, (float)cx.width);
-                int32_t qa = cs__floori(xl), qb = cs__floori(xr) + 1;
-                qb = qb > cx.width ? cx.width : qb;
-                if (qa < qb && cs__span_opaque(r, (uint32_t)qa, (uint32_t)qb)) {
-                    e->hidden = true;
-                    hide(e, act[i], pc, qa + r->vx);
-                }
-            }
-        }
+        place_piece(r, &cx, &ex[i], act[i]);
         ord[i] = i;
     }
     /*
