@@ -475,7 +475,7 @@ typedef struct cs_render_opts {
      * of the width x height output is all that is rendered (one board of a video
      * wall). The frame is prepared in the whole output's device coordinates, so
      * every pixel of the window comes out with the bits the whole render gives
-     * it (see cs_line.c for the one condition, for a window narrower than the
+     * it (see cs_coverage.c for the one condition, for a window narrower than the
      * output: --aa N with N a power of two);
      * lines are view_w pixels (<= CS_CFG_MAX_WIDTH) while the whole may be up to
      * CS_CFG_MAX_WALL on a side. Line y and the sink's y count from view_y.
@@ -537,8 +537,8 @@ typedef struct cs_crossing {
     float guess;      /* where the piece's root on the next sub-scanline is sought;
                          interpolated, x on the line's first sub-scanline */
     float a1, a2, a3; /* interpolated, x on sub-scanline k is guess + k (a1 + k (a2 + k a3));
-                         a3 is NaN when not (cs_line.c: interp_setup) */
-    uint16_t piece;   /* the piece's place in its region's active list (cs_line.c) */
+                         a3 is NaN when not (cs_cross.c: interp_setup) */
+    uint16_t piece;   /* the piece's place in its region's active list (cs_cross.c) */
     int8_t dir;
     uint8_t operand;  /* which winding counter of the region it moves (CSG) */
 } cs_crossing;
@@ -689,7 +689,7 @@ typedef struct cs_renderer {
     uint32_t opaque_px;           /* pixels of the line whose stack is opaque */
     int32_t vx, vy, vw, vh;       /* the window rendered (the whole output without a viewport);
                                      line pixel i is device column vx + i */
-    float clip_lo, clip_hi;       /* crossings are clamped to these device x (see cs_line.c) */
+    float clip_lo, clip_hi;       /* crossings are clamped to these device x (see cs_cross.c) */
     bool record;                  /* the early-out is on: opaque runs are skipped */
     bool grey;                    /* every T of the frame is grey: kept in channel 0 alone */
     bool rows_only;               /* a viewport: the frame keeps only the pieces, segments and

@@ -32,6 +32,58 @@ static bool same_map(const cs_cache_run *run, const float *E, const float *T)
             return false;
     return true;
 }
+
+/* Stores line y's runs (just stacked by cs__line_stack in ws) from runs[count]
+ * on, as far as capacity allows; returns the new count, which goes on past
+ * capacity so that bytes_needed is exact, and clears *grey at a coloured T. */
+static size_t cache_line(const cs_renderer *r, const cs_workspace *ws, int width,
+                         cs_cache_run *runs, size_t capacity, size_t count, bool *grey)
+{
+    /* The open run is built here and stored when it closes, so that the
+     * count (and bytes_needed) is exact even when nothing fits. The
+     * line's own runs may split pixels of one map; they are joined. */
+    cs_cache_run cur = {0, 0, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+    bool open = false;
+    for (uint32_t x = 0; x <= (uint32_t)width;) {
+        uint32_t end = x < (uint32_t)width ? ws->run_end[x] : x + 1u;
+        const float *E = &ws->stack_E[3 * x];
+        float T[3];
+        cs__run_T(ws, r->grey, x, T);
+        bool clear = x == (uint32_t)width ||
+                     (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f && T[0] == 1.0f &&
+                      T[1] == 1.0f && T[2] == 1.0f);
+        if (open && !clear && same_map(&cur, E, T)) {
+            cur.len = (uint16_t)(cur.len + (end - x));
+            x = end;
+            continue;
+        }
+        if (open) {
+            if (count < capacity) {
+                cs_cache_run *d = &runs[count];
+                d->x = cur.x;
+                d->len = cur.len;
+                for (int ch = 0; ch < 3; ch++) {
+                    d->E[ch] = cur.E[ch];
+                    d->T[ch] = cur.T[ch];
+                }
+            }
+            *grey = *grey && cs__grey3(cur.T);
+            count++;
+            open = false;
+        }
+        if (!clear) {
+            open = true;
+            cur.x = (uint16_t)x;
+            cur.len = (uint16_t)(end - x);
+            for (int ch = 0; ch < 3; ch++) {
+                cur.E[ch] = E[ch];
+                cur.T[ch] = T[ch];
+            }
+        }
+        x = end;
+    }
+    return count;
+}
 #endif
 
 cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspace *ws,
@@ -92,49 +144,7 @@ cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspac
         cs__line_stack(&r, y);
         if (line_first)
             line_first[y] = (uint32_t)count;
-        /* The open run is built here and stored when it closes, so that the
-         * count (and bytes_needed) is exact even when nothing fits. The
-         * line's own runs may split pixels of one map; they are joined. */
-        cs_cache_run cur = {0, 0, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
-        bool open = false;
-        for (uint32_t x = 0; x <= (uint32_t)width;) {
-            uint32_t end = x < (uint32_t)width ? ws->run_end[x] : x + 1u;
-            const float *E = &ws->stack_E[3 * x];
-            float T[3];
-            cs__run_T(ws, r.grey, x, T);
-            bool clear = x == (uint32_t)width ||
-                         (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f && T[0] == 1.0f &&
-                          T[1] == 1.0f && T[2] == 1.0f);
-            if (open && !clear && same_map(&cur, E, T)) {
-                cur.len = (uint16_t)(cur.len + (end - x));
-                x = end;
-                continue;
-            }
-            if (open) {
-                if (count < capacity) {
-                    cs_cache_run *d = &runs[count];
-                    d->x = cur.x;
-                    d->len = cur.len;
-                    for (int ch = 0; ch < 3; ch++) {
-                        d->E[ch] = cur.E[ch];
-                        d->T[ch] = cur.T[ch];
-                    }
-                }
-                grey = grey && cs__grey3(cur.T);
-                count++;
-                open = false;
-            }
-            if (!clear) {
-                open = true;
-                cur.x = (uint16_t)x;
-                cur.len = (uint16_t)(end - x);
-                for (int ch = 0; ch < 3; ch++) {
-                    cur.E[ch] = E[ch];
-                    cur.T[ch] = T[ch];
-                }
-            }
-            x = end;
-        }
+        count = cache_line(&r, ws, width, runs, capacity, count, &grey);
     }
     if (line_first)
         line_first[opts->height] = (uint32_t)count;

@@ -83,7 +83,7 @@ static void segment_xbounds(cs_segment *s, float x0, float width)
 /*
  * Appends the monotone pieces of segment `si`, whose end y is `y_end`; with
  * a viewport only those that can meet a row of it, [vy, vy + vh): a piece is active on row y
- * when y_top < y + 1 and y_bot > y (cs_line.c: update_active), so one wholly
+ * when y_top < y + 1 and y_bot > y (cs_cross.c: cs__line_active), so one wholly
  * above or below the window is never read, and leaving it out changes no
  * pixel. It leaves the arena to what the window needs, which is what lets a
  * small board render a scene larger than its arena in bands of rows.
@@ -486,6 +486,88 @@ cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene
     return cs__frame_prepare(r, ws, scene, opts, 0, UINT32_MAX, cache, err);
 }
 
+/* The lights of the stack (front, back: into stack[6]) at time t, and the
+ * light behind every cel, r->behind. */
+static void frame_lights(cs_renderer *r, const cs_scene *scene, float t, float stack[6])
+{
+    float bg[3];
+    cs__copy3(stack, scene->stack_front);
+    cs__copy3(stack + 3, scene->stack_back);
+    cs__copy3(bg, scene->background);
+    const cs_track *tr = cs__track_find(scene, CS_TRACK_STACK_LIGHTS, 0);
+    if (tr && tr->key_count)
+        sample(scene, tr, t, stack);
+    tr = cs__track_find(scene, CS_TRACK_BACKGROUND, 0);
+    if (tr && tr->key_count)
+        sample(scene, tr, t, bg);
+    bool srgb = r->opts.blend == CS_BLEND_SRGB;
+    for (int k = 0; k < 3; k++) {
+        float card = srgb ? cs__encode(bg[k]) : bg[k];
+        r->behind[k] = scene->has_background ? card * stack[k] : stack[3 + k];
+    }
+}
+
+/* Region ri's paint at time t under its cel's opacity: its own, or one
+ * made in *animated when a track or the opacity changes it. */
+static const cs_paint *region_paint(const cs_scene *scene, uint32_t ri, float t, float opacity,
+                                    cs_paint *animated)
+{
+    const cs_paint *paint = &scene->regions[ri].paint;
+    const cs_track *tr = cs__track_find(scene, CS_TRACK_PAINT, ri);
+    if (tr != 0 && tr->key_count) {
+        float v[7];
+        sample(scene, tr, t, v);
+        for (int k = 0; k < 3; k++) {
+            animated->pigment[k] = cs__clampf(v[k], 0.0f, 1.0f);
+            animated->medium[k] = cs__clampf(v[3 + k], 0.0f, 1.0f);
+        }
+        animated->beta = cs__clampf(v[6], 0.0f, 1.0f);
+        paint = animated;
+    }
+    if (opacity < 1.0f) {
+        if (paint != animated) {
+            cs__copy3(animated->pigment, paint->pigment);
+            cs__copy3(animated->medium, paint->medium);
+            animated->beta = paint->beta;
+            paint = animated;
+        }
+        animated->beta *= opacity;
+    }
+    return paint;
+}
+
+/* The monotone pieces of region ri's contours (of cel ci) at time t, in
+ * device coordinates (dev). */
+static cs_status region_pieces(cs_renderer *r, uint32_t ci, uint32_t ri, const cs_affine *dev,
+                               float t, cs_error *err)
+{
+    const cs_scene *scene = r->scene;
+    cs_workspace *ws = r->ws;
+    cs_frame_data *fd = &ws->frame;
+    const cs_region *reg = &scene->regions[ri];
+    const cs_cel *cel = &scene->cels[ci];
+    for (uint32_t k = 0; k < reg->contour_count; k++) {
+        uint32_t ki = reg->first_contour + k;
+        const cs_contour *c = &scene->contours[ki];
+        const cs_point *pts = &scene->points[c->first_point];
+        const cs_track *tr = cs__track_find(scene, CS_TRACK_POINTS, ki);
+        if (tr != 0 && tr->key_count && tr->width - cs__track_lead(tr) == 3u * c->point_count &&
+            c->point_count <= CS_CFG_MAX_ANIM_POINTS)
+            pts = sample_points(scene, tr, t, ws->anim_points);
+        int32_t bad;
+        cs_status st = cs__contour_begin(&fd->contour, pts, &scene->intervals[c->first_point],
+                                         c->point_count, c->degree, dev, (uint16_t)ri, &bad);
+        /* Without CSG every contour winds together in operand 0. */
+        if (st == CS_OK)
+            st = contour_pieces(r, &fd->contour, reg->csg_len ? c->operand : 0);
+        if (st != CS_OK) {
+            cs__error(err, st, (int32_t)ci, (int32_t)(ri - cel->first_region), (int32_t)k, bad);
+            return st;
+        }
+    }
+    return CS_OK;
+}
+
 cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                             const cs_render_opts *opts, uint32_t cel_begin, uint32_t cel_end,
                             const cs_cache *cache, cs_error *err)
@@ -519,7 +601,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     r->vw = win ? opts->view_w : opts->width;
     r->vh = win ? opts->view_h : opts->height;
     /* One column left of the window stands for everything left of it (the
-     * whole output clamps at its own left edge, column 0): see cs_line.c. */
+     * whole output clamps at its own left edge, column 0): see cs_coverage.c. */
     r->clip_lo = (float)(r->vx > 0 ? r->vx - 1 : 0);
     r->clip_hi = (float)(r->vx + r->vw);
     r->sx = (float)opts->width / scene->canvas_w;
@@ -531,21 +613,10 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
     cs_frame_data *fd = &ws->frame;
     read_frame(ws, fd);
     const float t = opts->time;
-    float stack[6], bg[3];
-    cs__copy3(stack, scene->stack_front);
-    cs__copy3(stack + 3, scene->stack_back);
-    cs__copy3(bg, scene->background);
-    const cs_track *tr = cs__track_find(scene, CS_TRACK_STACK_LIGHTS, 0);
-    if (tr && tr->key_count)
-        sample(scene, tr, t, stack);
-    tr = cs__track_find(scene, CS_TRACK_BACKGROUND, 0);
-    if (tr && tr->key_count)
-        sample(scene, tr, t, bg);
+    float stack[6];
+    frame_lights(r, scene, t, stack);
     bool srgb = r->opts.blend == CS_BLEND_SRGB;
-    for (int k = 0; k < 3; k++) {
-        float card = srgb ? cs__encode(bg[k]) : bg[k];
-        r->behind[k] = scene->has_background ? card * stack[k] : stack[3 + k];
-    }
+    const cs_track *tr;
 
     bool grey = !opts->no_grey && (!cache || cache->grey);
     for (uint32_t ci = r->cel_begin; ci < r->cel_end; ci++) {
@@ -566,52 +637,17 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++) {
             const cs_region *reg = &scene->regions[ri];
             fd->region_cel[ri] = (uint16_t)ci;
-            const cs_paint *paint = &reg->paint;
             cs_paint animated;
-            if ((tr = cs__track_find(scene, CS_TRACK_PAINT, ri)) != 0 && tr->key_count) {
-                float v[7];
-                sample(scene, tr, t, v);
-                for (int k = 0; k < 3; k++) {
-                    animated.pigment[k] = cs__clampf(v[k], 0.0f, 1.0f);
-                    animated.medium[k] = cs__clampf(v[3 + k], 0.0f, 1.0f);
-                }
-                animated.beta = cs__clampf(v[6], 0.0f, 1.0f);
-                paint = &animated;
-            }
-            if (opacity < 1.0f) {
-                if (paint != &animated) {
-                    cs__copy3(animated.pigment, paint->pigment);
-                    cs__copy3(animated.medium, paint->medium);
-                    animated.beta = paint->beta;
-                    paint = &animated;
-                }
-                animated.beta *= opacity;
-            }
+            const cs_paint *paint = region_paint(scene, ri, t, opacity, &animated);
             region_map(paint, lights, lights + 3, srgb, fd->region_E[ri], fd->region_T[ri]);
             grey = grey && region_grey(scene, reg, paint, fd->region_T[ri]);
             for (int f = 0; f < 3; f++)
                 if (reg->func[f])
                     cs__func_compile(&scene->funcs[reg->func[f] - 1u], &inv,
                                      fd->func_xf[reg->func[f] - 1u]);
-            for (uint32_t k = 0; k < reg->contour_count; k++) {
-                uint32_t ki = reg->first_contour + k;
-                const cs_contour *c = &scene->contours[ki];
-                const cs_point *pts = &scene->points[c->first_point];
-                if ((tr = cs__track_find(scene, CS_TRACK_POINTS, ki)) != 0 && tr->key_count &&
-                    tr->width - cs__track_lead(tr) == 3u * c->point_count && c->point_count <= CS_CFG_MAX_ANIM_POINTS)
-                    pts = sample_points(scene, tr, t, ws->anim_points);
-                int32_t bad;
-                st = cs__contour_begin(&fd->contour, pts, &scene->intervals[c->first_point],
-                                       c->point_count, c->degree, &dev, (uint16_t)ri, &bad);
-                /* Without CSG every contour winds together in operand 0. */
-                if (st == CS_OK)
-                    st = contour_pieces(r, &fd->contour, reg->csg_len ? c->operand : 0);
-                if (st != CS_OK) {
-                    cs__error(err, st, (int32_t)ci, (int32_t)(ri - cel->first_region),
-                              (int32_t)k, bad);
-                    return st;
-                }
-            }
+            st = region_pieces(r, ci, ri, &dev, t, err);
+            if (st != CS_OK)
+                return st;
         }
     }
     r->grey = CS_CFG_GREY && grey;

@@ -331,7 +331,7 @@ bool cs__contour_next(cs__contour_iter *it, cs_segment *out);
 /* Whether cs__contour_next has a segment left to give. */
 bool cs__contour_more(const cs__contour_iter *it);
 
-/* Fewest sub-scanlines for which crossings are interpolated (cs_line.c):
+/* Fewest sub-scanlines for which crossings are interpolated (cs_cross.c):
  * below it the extra solves and slopes cost about what they save. */
 #define CS__INTERP_MIN_SAMPLES 8
 
@@ -470,11 +470,27 @@ static inline void cs__acc_cover(cs_workspace *ws, int32_t x, float v)
     ws->touched[(uint32_t)x >> 5] |= 1u << ((uint32_t)x & 31u);
 }
 
-/* ---- line pipeline (cs_line.c), shared with the cache builder */
+/* ---- line pipeline (cs_cross.c, cs_coverage.c, cs_composite.c, cs_line.c) */
 
 /* Composites line y of every live cel (and the cache) into the line's runs
- * (ws->stack_E, ws->stack_T at run starts; see cs_runs.h). */
+ * (ws->stack_E, ws->stack_T at run starts; see cs_runs.h): cs_composite.c,
+ * shared with the cache builder. */
 void cs__line_stack(cs_renderer *r, int y);
+
+/* Moves the active list (ws->active, in piece order) to line y
+ * (cs_cross.c). */
+void cs__line_active(cs_renderer *r, int y);
+
+/* The crossings of a region's active pieces act[] with sub-scanline `sub`
+ * (of `samples`) of line y, sorted by x into ws->crossings; -1 if they do
+ * not fit (cs_cross.c). */
+int32_t cs__crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, uint32_t *idle,
+                         uint32_t live, int y, int sub, int samples);
+
+/* Coverage of region `reg` on line y from its n active pieces act[], left
+ * in the area/cover accumulators over [*lo, *hi) (cs_coverage.c). */
+void cs__region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, uint32_t n, int y,
+                         int32_t *lo, int32_t *hi);
 
 /* Prepares the frame for cels [cel_begin, cel_end), skipping `cache`'s range. */
 cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,

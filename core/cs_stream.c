@@ -16,13 +16,13 @@
  *     transaction was cut short because a sender restarted (a new header
  *     inside a body drops the old transaction instead of eating the new
  *     one). A header's length field is trusted only once its CRC matched.
- *   - Records are applied to the back scene store as they stream in, through
- *     the same cs_scene_* calls the JSON loader uses, so a stream and its
- *     JSON give identical stores. Bulk data (control points, keys) is read
- *     straight into the free end of the store's arrays, or in place for a
- *     same-size point update, and then checked and adopted by those calls,
- *     so no record size needs a buffer. A patch transaction first copies the
- *     front scene into the back store.
+ *   - Records are applied to the back scene store as they stream in
+ *     (cs_stream_apply.c), through the same cs_scene_* calls the JSON
+ *     loader uses, so a stream and its JSON give identical stores. Bulk
+ *     data (control points, keys) is read straight into the free end of the
+ *     store's arrays, or in place for a same-size point update, and then
+ *     checked and adopted by those calls, so no record size needs a buffer.
+ *     A patch transaction first copies the front scene into the back store.
  *   - Nothing of a transaction becomes visible until its CRC trailer has
  *     matched and every record was accepted; then feeding pauses with
  *     CS_STREAM_COMMIT and the caller swaps the two stores between frames.
@@ -31,44 +31,7 @@
  *     error inside a transaction whose CRC then fails is reported as the
  *     CRC error: the bytes were damaged, not badly encoded.
  */
-#include "cs_internal.h"
-#include "cs_wire.h"
-
-enum { ST_HUNT, ST_BODY, ST_TRAILER, ST_SKIP };
-enum { P_HDR, P_FIXED, P_FLOATS, P_SKIP, P_DEAD };
-enum { M_NONE, M_FULL, M_PATCH };
-enum { H_NONE, H_STREAM, H_TXN, H_SIGNED };
-
-static uint32_t rd_u32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
-static float rd_f32(const uint8_t *p)
-{
-    union {
-        uint32_t u;
-        float f;
-    } v;
-    v.u = rd_u32(p);
-    return v.f;
-}
-
-static float word_f32(uint32_t w)
-{
-    union {
-        uint32_t u;
-        float f;
-    } v;
-    v.u = w;
-    return v.f;
-}
-
-static void rd_f32s(const uint8_t *p, float *out, int n)
-{
-    for (int i = 0; i < n; i++)
-        out[i] = rd_f32(p + 4 * i);
-}
+#include "cs_stream_internal.h"
 
 /* Bytes of a record's fixed part, or -1 for a type this version does not know. */
 static int fixed_size(uint32_t type)
@@ -211,7 +174,7 @@ static int ring_header(const cs_stream *s, uint8_t *hdr)
     else if (hdr[1] == CS_WIRE_STREAM_MAGIC[1] && hdr[2] == CS_WIRE_STREAM_MAGIC[2] &&
              hdr[3] == CS_WIRE_STREAM_MAGIC[3])
         kind = H_STREAM;
-    if (kind == H_NONE || cs_crc32(0, hdr, 12) != rd_u32(hdr + 12))
+    if (kind == H_NONE || cs_crc32(0, hdr, 12) != cs__rd_u32(hdr + 12))
         return H_NONE;
     return kind;
 }
@@ -228,7 +191,7 @@ static void end_body(cs_stream *s, uint64_t at);
  */
 static void start_envelope(cs_stream *s, const uint8_t *hdr, uint64_t at)
 {
-    uint32_t len = rd_u32(hdr + 8);
+    uint32_t len = cs__rd_u32(hdr + 8);
     s->win_count = 0;
     s->in_garbage = false;
     s->skip_left = (uint64_t)len + CS_WIRE_TRAILER_SIZE;
@@ -261,7 +224,7 @@ static void frame_done(cs_stream *s)
 
 static void start_txn(cs_stream *s, const uint8_t *hdr, uint64_t at)
 {
-    uint32_t len = rd_u32(hdr + 8);
+    uint32_t len = cs__rd_u32(hdr + 8);
     s->txn_offset = at;
     s->win_count = 0;
     s->in_garbage = false;
@@ -318,145 +281,13 @@ static bool prepare(cs_stream *s, uint32_t type)
     return true;
 }
 
-/* Fill rule from the wire: anything but 0 or 1 becomes an invalid value the
- * scene call rejects with its location. */
-static cs_fill_rule wire_rule(uint32_t v)
-{
-    return v <= 1 ? (cs_fill_rule)v : (cs_fill_rule)2;
-}
-
-static void wire_paint(const uint8_t *p, cs_paint *paint)
-{
-    rd_f32s(p, paint->pigment, 3);
-    rd_f32s(p + 12, paint->medium, 3);
-    paint->beta = rd_f32(p + 24);
-}
-
-static void wire_affine(const uint8_t *p, cs_affine *m)
-{
-    m->a = rd_f32(p);
-    m->b = rd_f32(p + 4);
-    m->c = rd_f32(p + 8);
-    m->d = rd_f32(p + 12);
-    m->e = rd_f32(p + 16);
-    m->f = rd_f32(p + 20);
-}
-
-/* Applies a record whose fields are all in (fixed part and floats). */
+/* Applies a record whose fields are all in (fixed part and floats):
+ * cs__stream_apply, in cs_stream_apply.c. */
 static void finish_record(cs_stream *s)
 {
-    cs_scene *sc = s->back;
-    const uint8_t *b = s->buf;
     cs_error where;
     cs__error(&where, CS_OK, -1, -1, -1, -1);
-    cs_status st = CS_OK;
-    float f[6];
-    cs_affine m;
-    cs_paint paint;
-    switch (s->rec_type) {
-    case CS_REC_COMMIT:
-        s->seen_commit = true;
-        break;
-    case CS_REC_SCENE:
-        st = cs_scene_init(sc, rd_f32(b), rd_f32(b + 4));
-        break;
-    case CS_REC_CANVAS:
-        st = cs_scene_set_canvas(sc, rd_f32(b), rd_f32(b + 4));
-        break;
-    case CS_REC_LIGHTS:
-        rd_f32s(b, f, 6);
-        st = cs_scene_set_lights(sc, f, f + 3);
-        break;
-    case CS_REC_BACKGROUND:
-        rd_f32s(b, f, 3);
-        st = cs_scene_set_background(sc, f);
-        break;
-    case CS_REC_NO_BACKGROUND:
-        st = cs_scene_clear_background(sc);
-        break;
-    case CS_REC_BLEND:
-        st = rd_u32(b) > 1u ? CS_ERR_STREAM_RECORD : cs_scene_set_blend(sc, (cs_blend)rd_u32(b));
-        break;
-    case CS_REC_EPOCH:
-        st = cs_scene_set_epoch(sc, (uint64_t)rd_u32(b) | (uint64_t)rd_u32(b + 4) << 32);
-        break;
-    case CS_REC_CEL:
-        wire_affine(b + 4, &m);
-        rd_f32s(b + 28, f, 6);
-        st = cs_scene_add_cel(sc, &m, (s->rec_flags & CS_WIRE_CEL_HAS_FRONT) ? f : 0, f + 3,
-                              &where);
-        break;
-    case CS_REC_REGION:
-        wire_paint(b + 4, &paint);
-        st = cs_scene_add_region(sc, wire_rule(rd_u32(b)), &paint, &where);
-        break;
-    case CS_REC_CONTOUR: {
-        uint32_t degree = rd_u32(b);
-        st = cs_scene_add_contour(sc, degree > 3 ? 4 : (int)degree, (int)s->count,
-                                  &sc->points[s->base],
-                                  (s->rec_flags & CS_WIRE_CONTOUR_INTERVALS) ? &sc->intervals[s->base]
-                                                                           : 0,
-                                  &where);
-        break;
-    }
-    case CS_REC_CEL_REMOVE:
-        st = cs_scene_remove_cel(sc, rd_u32(b), &where);
-        break;
-    case CS_REC_CEL_MOVE:
-        st = cs_scene_move_cel(sc, rd_u32(b), rd_u32(b + 4), &where);
-        break;
-    case CS_REC_CEL_PARENT:
-        st = cs_scene_set_cel_parent(sc, rd_u32(b), rd_u32(b + 4), &where);
-        break;
-    case CS_REC_CEL_TRANSFORM:
-        wire_affine(b + 4, &m);
-        st = cs_scene_set_transform(sc, rd_u32(b), &m, &where);
-        break;
-    case CS_REC_CEL_LIGHTS:
-        rd_f32s(b + 8, f, 6);
-        st = cs_scene_set_cel_lights(sc, rd_u32(b), (s->rec_flags & CS_WIRE_CEL_HAS_FRONT) ? f : 0,
-                                     f + 3, &where);
-        break;
-    case CS_REC_REGION_PAINT:
-        wire_paint(b + 8, &paint);
-        st = cs_scene_set_paint(sc, rd_u32(b), wire_rule(rd_u32(b + 4)), &paint, &where);
-        break;
-    case CS_REC_CONTOUR_POINTS:
-        st = cs_scene_set_points(sc, rd_u32(b), (int)s->count, &sc->points[s->base],
-                                 (s->rec_flags & CS_WIRE_CONTOUR_INTERVALS) ? &sc->intervals[s->base]
-                                                                          : 0,
-                                 &where);
-        break;
-    case CS_REC_TRACK:
-        break; /* every key was added as it arrived */
-    case CS_REC_REGION_FUNC:
-        /* The function was read into its slot; the call checks it there. */
-        st = cs_scene_set_region_func(sc, (cs_paint_field)rd_u32(b), &sc->funcs[s->base], &where);
-        break;
-    case CS_REC_REGION_CSG: {
-        int rpn[CS_CFG_MAX_CSG];
-        for (uint32_t i = 0; i < s->count; i++) {
-            uint8_t t = b[4 + i];
-            rpn[i] = (t & 0x80u) ? -(int)(t & 0x7Fu) : (int)t;
-        }
-        st = cs_scene_set_region_csg(sc, rpn, (int)s->count, &where);
-        break;
-    }
-    case CS_REC_CONTOUR_OPERAND: {
-        uint32_t op = rd_u32(b);
-        st = cs_scene_set_contour_operand(sc, op > CS_CFG_MAX_OPERANDS ? -1 : (int)op, &where);
-        break;
-    }
-    case CS_REC_TRACK_REMOVE: {
-        uint32_t kind = rd_u32(b);
-        st = cs_scene_remove_track(
-            sc, kind < CS_TRACK_KIND_COUNT_ ? (cs_track_kind)kind : CS_TRACK_KIND_COUNT_,
-            rd_u32(b + 4), &where);
-        break;
-    }
-    default:
-        break;
-    }
+    cs_status st = cs__stream_apply(s, &where);
     if (st != CS_OK) {
         where.status = st;
         fail(s, st, cs_status_str(st), &where);
@@ -485,8 +316,8 @@ static bool begin_func(cs_stream *s)
 {
     cs_scene *sc = s->back;
     const uint8_t *b = s->buf;
-    uint32_t field = rd_u32(b), kind = rd_u32(b + 4), spread = rd_u32(b + 8);
-    uint32_t cols = rd_u32(b + 12), stops = rd_u32(b + 16);
+    uint32_t field = cs__rd_u32(b), kind = cs__rd_u32(b + 4), spread = cs__rd_u32(b + 8);
+    uint32_t cols = cs__rd_u32(b + 12), stops = cs__rd_u32(b + 16);
     cs_error where;
     last_region_where(sc, &where, CS_ERR_FUNC);
     if (field > CS_FIELD_BETA) {
@@ -518,9 +349,81 @@ static bool begin_func(cs_stream *s)
     f->spread = (uint8_t)(spread <= 0xFFu ? spread : 0xFFu);
     f->map_cols = (uint8_t)(cols <= 0xFFu ? cols : 0u);
     f->stop_count = (uint8_t)stops;
-    rd_f32s(b + 20, f->geom, 6);
+    cs__rd_f32s(b + 20, f->geom, 6);
     s->base = slot;
     s->count = stops;
+    return true;
+}
+
+/* CONTOUR (points into the free end of the store) or CONTOUR_POINTS (in
+ * place): checks the counts and flags, and says where the floats go. */
+static bool begin_points(cs_stream *s, uint64_t *floats)
+{
+    cs_scene *sc = s->back;
+    const uint8_t *b = s->buf;
+    uint32_t count = cs__rd_u32(b + 4), flags = cs__rd_u32(b + 8);
+    if (flags & ~CS_WIRE_CONTOUR_INTERVALS) {
+        fail(s, CS_ERR_STREAM_RECORD, "reserved flag bits set", 0);
+        return false;
+    }
+    s->rec_flags = (uint8_t)flags;
+    if (s->rec_type == CS_REC_CONTOUR) {
+        /* Points are read into the free end of the store. */
+        if (count > UINT16_MAX || count > CS_CFG_MAX_POINTS - sc->point_count) {
+            cs_error where;
+            cs__error(&where, CS_ERR_CAP_POINTS, (int32_t)sc->cel_count - 1, -1, -1, -1);
+            fail(s, CS_ERR_CAP_POINTS, cs_status_str(CS_ERR_CAP_POINTS), &where);
+            return false;
+        }
+        s->base = sc->point_count;
+    } else {
+        /* Points are read in place: the count must be the contour's. */
+        uint32_t contour = cs__rd_u32(b);
+        if (contour >= sc->contour_count) {
+            fail(s, CS_ERR_INDEX, "no such contour", 0);
+            return false;
+        }
+        if (count != sc->contours[contour].point_count) {
+            fail(s, CS_ERR_COUNT, cs_status_str(CS_ERR_COUNT), 0);
+            return false;
+        }
+        s->base = sc->contours[contour].first_point;
+    }
+    s->count = count;
+    *floats = (uint64_t)count * ((flags & CS_WIRE_CONTOUR_INTERVALS) ? 4u : 3u);
+    return true;
+}
+
+/* TRACK: opens the track, checks its keys fit, and counts their floats. */
+static bool begin_track(cs_stream *s, uint64_t *floats)
+{
+    cs_scene *sc = s->back;
+    const uint8_t *b = s->buf;
+    uint32_t kind = cs__rd_u32(b), target = cs__rd_u32(b + 4), ease = cs__rd_u32(b + 8);
+    uint32_t keys = cs__rd_u32(b + 12);
+    if (kind >= CS_TRACK_KIND_COUNT_ || ease >= CS_EASE_COUNT_) {
+        fail(s, CS_ERR_TRACK, cs_status_str(CS_ERR_TRACK), 0);
+        return false;
+    }
+    if (keys == 0) {
+        fail(s, CS_ERR_STREAM_RECORD, "a track needs at least one key", 0);
+        return false;
+    }
+    cs_error where;
+    cs_status st = cs_scene_add_track(sc, (cs_track_kind)kind, target, (cs_ease)ease, &where);
+    if (st != CS_OK) {
+        fail(s, st, cs_status_str(st), &where);
+        return false;
+    }
+    s->width = sc->tracks[sc->open_track].width;
+    /* Key values are read into the free end of the pool, one key at a time. */
+    if (keys > CS_CFG_MAX_KEYS - sc->key_count ||
+        (uint64_t)keys * s->width > CS_CFG_MAX_KEY_VALUES - sc->value_count) {
+        fail(s, CS_ERR_CAP_KEYS, cs_status_str(CS_ERR_CAP_KEYS), 0);
+        return false;
+    }
+    s->slot = 0;
+    *floats = (uint64_t)keys * (1u + s->width);
     return true;
 }
 
@@ -537,7 +440,7 @@ static void begin_floats(cs_stream *s)
     switch (s->rec_type) {
     case CS_REC_CEL:
     case CS_REC_CEL_LIGHTS: {
-        uint32_t flags = rd_u32(s->rec_type == CS_REC_CEL ? b : b + 4);
+        uint32_t flags = cs__rd_u32(s->rec_type == CS_REC_CEL ? b : b + 4);
         if (flags & ~CS_WIRE_CEL_HAS_FRONT) {
             fail(s, CS_ERR_STREAM_RECORD, "reserved flag bits set", 0);
             return;
@@ -546,74 +449,21 @@ static void begin_floats(cs_stream *s)
         break;
     }
     case CS_REC_CONTOUR:
-    case CS_REC_CONTOUR_POINTS: {
-        uint32_t count = rd_u32(b + 4), flags = rd_u32(b + 8);
-        if (flags & ~CS_WIRE_CONTOUR_INTERVALS) {
-            fail(s, CS_ERR_STREAM_RECORD, "reserved flag bits set", 0);
+    case CS_REC_CONTOUR_POINTS:
+        if (!begin_points(s, &floats))
             return;
-        }
-        s->rec_flags = (uint8_t)flags;
-        if (s->rec_type == CS_REC_CONTOUR) {
-            /* Points are read into the free end of the store. */
-            if (count > UINT16_MAX || count > CS_CFG_MAX_POINTS - sc->point_count) {
-                cs_error where;
-                cs__error(&where, CS_ERR_CAP_POINTS, (int32_t)sc->cel_count - 1, -1, -1, -1);
-                fail(s, CS_ERR_CAP_POINTS, cs_status_str(CS_ERR_CAP_POINTS), &where);
-                return;
-            }
-            s->base = sc->point_count;
-        } else {
-            /* Points are read in place: the count must be the contour's. */
-            uint32_t contour = rd_u32(b);
-            if (contour >= sc->contour_count) {
-                fail(s, CS_ERR_INDEX, "no such contour", 0);
-                return;
-            }
-            if (count != sc->contours[contour].point_count) {
-                fail(s, CS_ERR_COUNT, cs_status_str(CS_ERR_COUNT), 0);
-                return;
-            }
-            s->base = sc->contours[contour].first_point;
-        }
-        s->count = count;
-        floats = (uint64_t)count * ((flags & CS_WIRE_CONTOUR_INTERVALS) ? 4u : 3u);
         break;
-    }
-    case CS_REC_TRACK: {
-        uint32_t kind = rd_u32(b), target = rd_u32(b + 4), ease = rd_u32(b + 8);
-        uint32_t keys = rd_u32(b + 12);
-        if (kind >= CS_TRACK_KIND_COUNT_ || ease >= CS_EASE_COUNT_) {
-            fail(s, CS_ERR_TRACK, cs_status_str(CS_ERR_TRACK), 0);
+    case CS_REC_TRACK:
+        if (!begin_track(s, &floats))
             return;
-        }
-        if (keys == 0) {
-            fail(s, CS_ERR_STREAM_RECORD, "a track needs at least one key", 0);
-            return;
-        }
-        cs_error where;
-        cs_status st = cs_scene_add_track(sc, (cs_track_kind)kind, target, (cs_ease)ease, &where);
-        if (st != CS_OK) {
-            fail(s, st, cs_status_str(st), &where);
-            return;
-        }
-        s->width = sc->tracks[sc->open_track].width;
-        /* Key values are read into the free end of the pool, one key at a time. */
-        if (keys > CS_CFG_MAX_KEYS - sc->key_count ||
-            (uint64_t)keys * s->width > CS_CFG_MAX_KEY_VALUES - sc->value_count) {
-            fail(s, CS_ERR_CAP_KEYS, cs_status_str(CS_ERR_CAP_KEYS), 0);
-            return;
-        }
-        s->slot = 0;
-        floats = (uint64_t)keys * (1u + s->width);
         break;
-    }
     case CS_REC_REGION_FUNC:
         if (!begin_func(s))
             return;
         floats = 4u * (uint64_t)s->count;
         break;
     case CS_REC_REGION_CSG:
-        s->count = rd_u32(b);
+        s->count = cs__rd_u32(b);
         if (s->count < 1 || s->count > CS_CFG_MAX_CSG) {
             cs_error where;
             last_region_where(sc, &where, CS_ERR_CSG);
@@ -643,7 +493,7 @@ static void put_word(cs_stream *s, uint32_t w)
 {
     cs_scene *sc = s->back;
     uint32_t i = s->float_index;
-    float v = word_f32(w);
+    float v = cs__word_f32(w);
     switch (s->rec_type) {
     case CS_REC_CONTOUR:
     case CS_REC_CONTOUR_POINTS:
@@ -704,7 +554,7 @@ static void put_word(cs_stream *s, uint32_t w)
 static void begin_record(cs_stream *s)
 {
     uint32_t type = (uint32_t)s->buf[0] | (uint32_t)s->buf[1] << 8;
-    uint32_t len = rd_u32(s->buf + 2);
+    uint32_t len = cs__rd_u32(s->buf + 2);
     s->rec_type = (uint16_t)type;
     s->rec_len = len;
     s->rec_pos = 0;

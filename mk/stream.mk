@@ -48,8 +48,8 @@ FUZZ_CAPS := -DCS_CFG_MAX_CELS=8 -DCS_CFG_MAX_REGIONS=32 -DCS_CFG_MAX_CONTOURS=6
 # Coverage guidance (and its cost) only where the input steers: the decoder,
 # the store and the writer. The renderer that checks committed scenes runs
 # under the same sanitizers without coverage tracing, ~3x faster.
-FUZZ_GUIDED := core/cs_stream.c core/cs_scene.c core/cs_edit.c core/cs_anim.c core/cs_status.c \
-        tools/cels_write.c tests/fuzz_stream.c
+FUZZ_GUIDED := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_edit.c \
+        core/cs_anim.c core/cs_status.c tools/cels_write.c tests/fuzz_stream.c
 FUZZ_PLAIN := $(filter-out $(FUZZ_GUIDED),$(CORE_SRC))
 # Every fuzz build (the JSON loader's below and the SVG importer's in mk/svg.mk too).
 FUZZ_BASE_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all

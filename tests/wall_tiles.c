@@ -25,7 +25,7 @@
  *     pre-combination cache with a viewport is refused.
  * --aa N for N not a power of two is left out on purpose: the running
  * coverage of a line is then a sum of multiples of 1/N that rounds, and a
- * window starts that sum at its own left edge (cs_line.c, add_span).
+ * window starts that sum at its own left edge (cs_coverage.c, add_span).
  * The last line is `wall_tiles: N passed, M failed`.
  */
 #include <stdio.h>

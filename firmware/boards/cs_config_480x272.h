@@ -11,7 +11,7 @@
  *                  arena 72 segments x 60 + 84 pieces x (24 + 3 x 2
  *                  index): 6,840; per region 32 x 26 (paint maps, cel):
  *                  832; crossings 64 x 24 (with the interpolated cubic,
- *                  cs_line.c): 1,536; paint function maps, one animated
+ *                  cs_cross.c): 1,536; paint function maps, one animated
  *                  contour, the contour being converted: 616
  *   staging store  the decoder's back store shares the workspace's RAM
  *                  (firmware/fw_render.c: a union), so it costs nothing

@@ -1,0 +1,490 @@
+/*
+ * cs_composite.c - compositing: a line's regions, cel by cel, front to
+ *
+ * back into the line's runs (cs__line_stack, also the cache builder's
+ * line). Stage 5 of a frame; the line's output (cs_line.c) turns the
+ * runs into pixels.
+ *
+ * Everything after that is per run of pixels, not per pixel (cs_runs.h):
+ * the line is a list of runs that share one stack and one cel state. The
+ * marked entries are visited in x order; pixel x gets clamp(area + running
+ * cover), and the pixels up to the next marked entry share clamp(running
+ * cover), so a region's coverage is a handful of runs however wide it is.
+ * Coverage c turns a region's paint map (E, T) into (c E, 1 - c (1 - T)).
+ * Within a cel the regions' maps are summed, so two regions sharing an
+ * edge leave no seam; each region may only claim the coverage the regions
+ * in front of it left (`used`), so a region hidden behind another in the
+ * same cel stays hidden. The cel then joins the stack front to back:
+ * E += T_stack E_cel, T_stack *= T_cel, and the pixel is E + T_stack L.
+ * The finished runs become pixels once per run, in the display's format
+ * (cs_line_pixels) or as floats (cs_render_line).
+ *
+ * Front to back pays off where the stack turns opaque. Where T_stack is 0
+ * on every channel, E += 0 * E_cel and T_stack *= T_cel leave the pixel
+ * exactly as it is, so later cels may be skipped there without changing a
+ * bit: opaque runs are passed over, a region whose whole x range is opaque
+ * is not intersected at all, and the line stops when every pixel is
+ * opaque. A pre-combined cel range (the cache) is composited from its runs
+ * at its place in the stack.
+ */
+#include "cs_runs.h"
+
+/*
+ * A region's paint at one pixel when any of its fields is a function:
+ * the same E, T as the frame's region_map, with the fields evaluated at the
+ * pixel centre.
+ */
+static void paint_at(const cs_renderer *r, const cs_region *region, const float *front,
+                     const float *back, float px, float py, float *E, float *A)
+{
+    const cs_scene *scene = r->scene;
+    bool srgb = r->opts.blend == CS_BLEND_SRGB;
+    float pig[3], med[3], beta;
+    const cs_paint *p = &region->paint;
+    if (region->func[CS_FIELD_PIGMENT]) {
+        uint32_t f = region->func[CS_FIELD_PIGMENT] - 1u;
+        cs__func_eval(&scene->funcs[f], r->ws->func_xf[f], px, py, srgb, pig);
+    } else {
+        for (int ch = 0; ch < 3; ch++)
+            pig[ch] = srgb ? cs__encode(p->pigment[ch]) : p->pigment[ch];
+    }
+    if (region->func[CS_FIELD_MEDIUM]) {
+        uint32_t f = region->func[CS_FIELD_MEDIUM] - 1u;
+        cs__func_eval(&scene->funcs[f], r->ws->func_xf[f], px, py, srgb, med);
+    } else {
+        for (int ch = 0; ch < 3; ch++)
+            med[ch] = srgb ? cs__encode(p->medium[ch]) : p->medium[ch];
+    }
+    if (region->func[CS_FIELD_BETA]) {
+        float v[3];
+        uint32_t f = region->func[CS_FIELD_BETA] - 1u;
+        cs__func_eval(&scene->funcs[f], r->ws->func_xf[f], px, py, false, v); /* a proportion */
+        beta = v[0];
+    } else {
+        beta = p->beta;
+    }
+    beta *= r->ws->cel_opacity[r->ws->region_cel[region - scene->regions]];
+    for (int ch = 0; ch < 3; ch++) {
+        float clear = (1.0f - beta) * med[ch];
+        E[ch] = beta * pig[ch] * front[ch] + clear * back[ch];
+        A[ch] = 1.0f - clear;
+    }
+}
+
+/*
+ * Whether the region can make a pixel of its cel opaque on its own: T = 0
+ * on every channel (or a functional medium or beta that may reach it).
+ * The cel's T at a pixel is 1 - sum c_i (1 - T_i) with sum c_i <= 1, so it
+ * can only vanish where such regions cover it. Only such cels snap T to 0
+ * (below CS__T_ZERO), so that a stack covered by them turns opaque.
+ */
+static bool region_may_hide(const cs_renderer *r, uint32_t reg)
+{
+    const cs_region *region = &r->scene->regions[reg];
+    const float *T = r->ws->region_T[reg];
+    return (T[0] < CS__T_ZERO && T[1] < CS__T_ZERO && T[2] < CS__T_ZERO) ||
+           region->func[CS_FIELD_MEDIUM] || region->func[CS_FIELD_BETA];
+}
+
+/* What a region adds to the runs: its paint, or how to evaluate it. */
+typedef struct fold_paint {
+    cs_renderer *r; /* the direct path counts opaque pixels in it */
+    const cs_region *region;
+    const cs_cel *cel;
+    const float *front;
+    float E[3], A[3]; /* the constant map (c = 1) when not functional */
+    float py;         /* pixel-centre y, for functional paints */
+    bool functional;
+    bool direct;      /* the cel's only region on this line: straight into the stack */
+    bool snap;        /* with direct: the cel may hide (see region_may_hide) */
+} fold_paint;
+
+/* Adds coverage c of paint (E, A) to the cel at the run starting at s,
+ * within what the regions in front of it left (`used`). A grey frame keeps
+ * A in channel 0 alone. */
+static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, float c,
+                                      const float *E, const float *A)
+{
+    float room = 1.0f - ws->used[s];
+    if (c > room)
+        c = room;
+    if (!(c > 0.0f))
+        return;
+    float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
+    if (ws->used[s] == 0.0f) { /* the first region here: what is stored is stale */
+        for (int ch = 0; ch < 3; ch++)
+            ce[ch] = c * E[ch];
+        ca[0] = c * A[0];
+        if (!grey) {
+            ca[1] = c * A[1];
+            ca[2] = c * A[2];
+        }
+    } else {
+        for (int ch = 0; ch < 3; ch++)
+            ce[ch] += c * E[ch];
+        ca[0] += c * A[0];
+        if (!grey) {
+            ca[1] += c * A[1];
+            ca[2] += c * A[2];
+        }
+    }
+    ws->used[s] += c;
+}
+
+/* t = 1 - c A, snapped to 0 below CS__T_ZERO if the cel may hide; channel
+ * 0 alone in a grey frame (the others are left unset). */
+static CS__SPECIALISE void transmittance(float t[3], const float *A, float c, bool snap, bool grey)
+{
+    for (int ch = 0; ch < (grey ? 1 : 3); ch++) {
+        t[ch] = 1.0f - c * A[ch];
+        if (snap && t[ch] < CS__T_ZERO)
+            t[ch] = 0.0f;
+    }
+}
+
+/*
+ * The region alone in its cel on this line: its cel map at the run is just
+ * (c E, 1 - c A), so it joins the stack at once. These are the operations
+ * accumulate and composite_cel would do on a cel with one region (room is
+ * 1, 0 + v is v), so the bits are the same, without the round trip through
+ * the cel's share of the runs.
+ */
+static CS__SPECIALISE void composite_direct(cs_renderer *r, bool grey, uint32_t s, uint32_t e,
+                                            float c, const float *E, const float *A, bool snap)
+{
+    float cE[3], t[3];
+    for (int ch = 0; ch < 3; ch++)
+        cE[ch] = c * E[ch];
+    transmittance(t, A, c, snap, grey);
+    cs__run_join(r, grey, s, e, cE, t);
+}
+
+/*
+ * Folds coverage c over pixels [a, b) into the runs, splitting them at a
+ * and b; opaque runs are passed over whole. `s` is a run start at or left
+ * of a; returns the start of the last run visited (at or left of b - 1),
+ * from which the region's next coverage run, further right, is sought.
+ */
+static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *fp, uint32_t s,
+                                           uint32_t a, uint32_t b, float c, bool grey)
+{
+    s = cs__run_seek(ws, s, a);
+    for (;;) {
+        uint32_t e = ws->run_end[s];
+        if (!cs__run_opaque(fp->r, s)) {
+            e = cs__run_clip(ws, grey, &s, a, b);
+            if (!fp->functional) {
+                if (fp->direct)
+                    composite_direct(fp->r, grey, s, e, c, fp->E, fp->A, fp->snap);
+                else
+                    accumulate(ws, grey, s, c, fp->E, fp->A);
+            } else {
+                /* The paint varies along x: a run per pixel. */
+                for (uint32_t x = s;; x++) {
+                    if (x + 1u < e)
+                        cs__run_split(ws, grey, x, x + 1u);
+                    float E[3], A[3];
+                    paint_at(fp->r, fp->region, fp->front, fp->cel->back,
+                             (float)((int32_t)x + fp->r->vx) + 0.5f, fp->py, E, A);
+                    if (fp->direct)
+                        composite_direct(fp->r, grey, x, x + 1u, c, E, A, fp->snap);
+                    else
+                        accumulate(ws, grey, x, c, E, A);
+                    if (x + 1u >= e)
+                        break;
+                }
+            }
+        }
+        if (e >= b)
+            return s;
+        s = e;
+    }
+}
+
+/*
+ * Coverage waiting to be folded: pixels [a, b) at c. It waits until a
+ * different value comes, so that a pixel with the coverage of the pixels
+ * after it (an entry that only holds a cover delta, as at the inner side
+ * of an edge) joins them: fewer, longer runs, and every pixel gets the
+ * value it would alone. `cursor` is where fold_run_as seeks from.
+ */
+typedef struct pending {
+    uint32_t a, b, cursor;
+    float c;
+} pending;
+
+/* Pixels [p->b, b) at coverage c. */
+static CS__SPECIALISE void pending_extend(cs_workspace *ws, const fold_paint *fp, pending *p,
+                                          uint32_t b, float c, bool grey)
+{
+    if (c != p->c) {
+        if (p->c > 0.0f)
+            p->cursor = fold_run_as(ws, fp, p->cursor, p->a, p->b, p->c, grey);
+        p->a = p->b;
+        p->c = c;
+    }
+    p->b = b;
+}
+
+/*
+ * Folds the region's coverage into the cel's share of the runs and clears
+ * the coverage accumulators behind it. Only the accumulator entries the
+ * region wrote (ws->touched) are visited, in x order: pixel x gets
+ * clamp(area[x] + running cover), and the pixels up to the next entry
+ * share clamp(running cover), so they are folded as one run. The sums are
+ * those a pass over every pixel of [lo, hi) makes, in the same order.
+ */
+static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, int32_t lo,
+                                           int32_t hi, bool direct, bool grey)
+{
+    cs_workspace *ws = r->ws;
+    fold_paint fp;
+    fp.r = r;
+    fp.region = &r->scene->regions[reg];
+    fp.cel = &r->scene->cels[ws->region_cel[reg]];
+    fp.front = fp.cel->has_front ? fp.cel->front : r->scene->stack_front;
+    fp.functional = (fp.region->func[0] | fp.region->func[1] | fp.region->func[2]) != 0;
+    const float *E = ws->region_E[reg], *T = ws->region_T[reg];
+    for (int ch = 0; ch < 3; ch++) {
+        fp.E[ch] = E[ch];
+        fp.A[ch] = 1.0f - T[ch];
+    }
+    fp.py = (float)y + 0.5f;
+    fp.direct = direct;
+    fp.snap = direct && region_may_hide(r, reg);
+    uint32_t width = (uint32_t)r->vw;
+    uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
+    float run = 0.0f;
+    pending p;
+    p.a = p.b = p.cursor = 0;
+    p.c = 0.0f;
+    bool first = true;
+    for (uint32_t w = (uint32_t)lo >> 5; w <= width >> 5 && w <= (end + 1u) >> 5; w++) {
+        uint32_t bits = ws->touched[w];
+        ws->touched[w] = 0u;
+        while (bits) {
+            uint32_t x = (w << 5) + cs__low_bit(bits);
+            bits &= bits - 1u;
+            float cv = ws->cover[x], ar = ws->area[x];
+            ws->cover[x] = ws->area[x] = 0.0f;
+            if (x >= end)
+                continue; /* deltas past the right end sum to zero */
+            if (first) {
+                p.cursor = cs__run_start(ws, x);
+                p.a = p.b = x;
+                first = false;
+            } else if (p.b < x) { /* the gap up to x has the running cover */
+                pending_extend(ws, &fp, &p, x, cs__clampf(run, 0.0f, 1.0f), grey);
+            }
+            run += cv;
+            pending_extend(ws, &fp, &p, x + 1u, cs__clampf(ar + run, 0.0f, 1.0f), grey);
+        }
+    }
+    if (first)
+        return;
+    /* Rounding may leave the running cover a hair from zero up to hi. */
+    if (p.b < end)
+        pending_extend(ws, &fp, &p, end, cs__clampf(run, 0.0f, 1.0f), grey);
+    if (p.c > 0.0f)
+        fold_run_as(ws, &fp, p.cursor, p.a, p.b, p.c, grey);
+}
+
+/*
+ * fold_region_as once per case, a grey frame and a coloured one, with the
+ * run code inlined at each of its four places: 2 % fewer instructions in a
+ * Many-blobs frame than calling one copy of it per case (the call, and the
+ * registers it saves, were ~25 instructions of each of ~100 k folded runs),
+ * for ~14 KB more Cortex-M4 code, which CS_CFG_GREY 0 leaves out.
+ */
+static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi, bool direct)
+{
+    if (CS_CFG_GREY && r->grey)
+        fold_region_as(r, reg, y, lo, hi, direct, true);
+    else
+        fold_region_as(r, reg, y, lo, hi, direct, false);
+}
+
+/*
+ * Whether every pixel the region's pieces could touch on this line (their
+ * segments' hulls, cs_segment.px_lo/px_hi) is already opaque: a skipped
+ * region then provably changes no pixel.
+ */
+static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
+{
+    if (!r->record || r->opaque_px == 0u)
+        return false;
+    cs_workspace *ws = r->ws;
+    uint32_t a = (uint32_t)r->vw, b = 0u;
+    for (uint32_t i = 0; i < n; i++) {
+        const cs_segment *s = &ws->segments[ws->pieces[act[i]].segment];
+        a = s->px_lo < a ? s->px_lo : a;
+        b = s->px_hi > b ? s->px_hi : b;
+    }
+    return a >= b || cs__span_opaque(r, a, b);
+}
+
+/*
+ * Composites the runs of [lo, hi) that the cel covers (used > 0) behind
+ * the stack and clears the cel's share of them. Elsewhere the cel's map is
+ * (0, 1), which leaves the stack as it is. If the cel may hide (`snap`), T
+ * is snapped to 0 below CS__T_ZERO. Snapping depends on the cel alone,
+ * never on the early-out, so turning the early-out off changes no bit.
+ */
+static CS__SPECIALISE void composite_cel_as(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap,
+                                            bool grey)
+{
+    cs_workspace *ws = r->ws;
+    for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s]) {
+        if (ws->used[s] == 0.0f)
+            continue;
+        float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
+        float t[3];
+        transmittance(t, ca, 1.0f, snap, grey);
+        cs__run_join(r, grey, s, ws->run_end[s], ce, t);
+        ws->used[s] = 0.0f;
+    }
+}
+
+static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
+{
+    if (CS_CFG_GREY && r->grey)
+        composite_cel_as(r, lo, hi, snap, true);
+    else
+        composite_cel_as(r, lo, hi, snap, false);
+}
+
+/*
+ * The pixel ranges a cel's regions touched on this line, sorted and
+ * disjoint: composite_cel walks these rather than the hull from the
+ * leftmost to the rightmost region, which for a cel of scattered shapes
+ * is most of the line. A few ranges suffice; when an added range would
+ * make one too many, the two closest ranges become one (covering the gap
+ * costs a scan of pixels whose coverage is zero, never a wrong pixel).
+ */
+#define CEL_RANGES 8
+
+typedef struct cel_ranges {
+    int32_t lo[CEL_RANGES + 1], hi[CEL_RANGES + 1];
+    uint32_t n;
+} cel_ranges;
+
+static void ranges_add(cel_ranges *s, int32_t lo, int32_t hi)
+{
+    int32_t tlo[CEL_RANGES + 1], thi[CEL_RANGES + 1];
+    uint32_t n = 0;
+    bool placed = false;
+    for (uint32_t k = 0; k < s->n; k++) {
+        if (s->hi[k] < lo) {
+            tlo[n] = s->lo[k];
+            thi[n++] = s->hi[k];
+        } else if (s->lo[k] > hi) {
+            if (!placed) {
+                tlo[n] = lo;
+                thi[n++] = hi;
+                placed = true;
+            }
+            tlo[n] = s->lo[k];
+            thi[n++] = s->hi[k];
+        } else { /* overlapping or touching: absorb it */
+            lo = s->lo[k] < lo ? s->lo[k] : lo;
+            hi = s->hi[k] > hi ? s->hi[k] : hi;
+        }
+    }
+    if (!placed) {
+        tlo[n] = lo;
+        thi[n++] = hi;
+    }
+    if (n > CEL_RANGES) { /* join the two ranges with the smallest gap */
+        uint32_t best = 0;
+        for (uint32_t k = 1; k + 1 < n; k++)
+            if (tlo[k + 1] - thi[k] < tlo[best + 1] - thi[best])
+                best = k;
+        thi[best] = thi[best + 1];
+        for (uint32_t k = best + 1; k + 1 < n; k++) {
+            tlo[k] = tlo[k + 1];
+            thi[k] = thi[k + 1];
+        }
+        n--;
+    }
+    for (uint32_t k = 0; k < n; k++) {
+        s->lo[k] = tlo[k];
+        s->hi[k] = thi[k];
+    }
+    s->n = n;
+}
+
+static void composite_ranges(cs_renderer *r, cel_ranges *s, bool snap)
+{
+    for (uint32_t k = 0; k < s->n; k++)
+        composite_cel(r, (uint32_t)s->lo[k], (uint32_t)s->hi[k], snap);
+    s->n = 0;
+}
+
+void cs__line_stack(cs_renderer *r, int y)
+{
+    cs_workspace *ws = r->ws;
+    uint32_t width = (uint32_t)r->vw;
+    cs__line_active(r, y);
+    /* One clear run: E = 0, T = 1, nothing of a cel. */
+    for (uint32_t w = 0; w <= width >> 5; w++)
+        ws->run_starts[w] = ws->opaque_bits[w] = 0u;
+    ws->run_starts[0] = 1u;
+    ws->run_end[0] = (uint16_t)width;
+    ws->used[0] = 0.0f;
+    for (int ch = 0; ch < 3; ch++) {
+        ws->stack_E[ch] = 0.0f;
+        ws->stack_T[ch] = 1.0f;
+    }
+    r->opaque_px = 0;
+    /* Without the record nothing is ever opaque, so nothing is skipped. */
+    r->record = !r->opts.no_early_out;
+    uint32_t cache_end = r->cache ? r->cache->cel_first + r->cache->cel_count : 0;
+    bool cache_pending = CS_CFG_CACHE && r->cache != 0; /* else its code is left out */
+    uint32_t i = 0;
+    cel_ranges ranges;
+    ranges.n = 0;
+    uint32_t current_cel = UINT32_MAX;
+    bool cel_hides = false;
+    bool cel_folded = false; /* a region of the current cel was folded on this line */
+    while (i < r->active_count) {
+        uint32_t reg = ws->pieces[ws->active[i]].region;
+        uint32_t j = i + 1;
+        while (j < r->active_count && ws->pieces[ws->active[j]].region == reg)
+            j++;
+        uint32_t cel = ws->region_cel[reg];
+        if (cel != current_cel) {
+            composite_ranges(r, &ranges, cel_hides);
+            cel_hides = false;
+            cel_folded = false;
+            if (cache_pending && cel >= cache_end) {
+                cs__cache_composite(r, y);
+                cache_pending = false;
+            }
+            current_cel = cel;
+            /* Front to back: once the whole line is opaque nothing behind shows. */
+            if (r->record && r->opaque_px >= width)
+                break;
+        }
+        if (!region_hidden(r, &ws->active[i], j - i)) {
+            int32_t lo, hi;
+            cs__region_coverage(r, reg, &ws->active[i], j - i, y, &lo, &hi);
+            if (lo < hi) {
+                /* A cel's only region on the line goes straight into the
+                 * stack; otherwise the cel's regions are summed first. */
+                bool alone = ranges.n == 0 && !cel_folded &&
+                             (j == r->active_count ||
+                              ws->region_cel[ws->pieces[ws->active[j]].region] != cel);
+                fold_region(r, reg, y, lo, hi, alone);
+                if (!alone) {
+                    ranges_add(&ranges, lo, hi);
+                    cel_hides = cel_hides || region_may_hide(r, reg);
+                }
+                cel_folded = true;
+            }
+        }
+        i = j;
+    }
+    composite_ranges(r, &ranges, cel_hides);
+    if (cache_pending)
+        cs__cache_composite(r, y);
+}
