@@ -130,6 +130,17 @@ static void rig_close(rig *r, bool opened)
     fake_drm_free(r->card);
 }
 
+/* rig_open, checked: on failure the rig is closed and the caller returns. */
+static bool rig_start(rig *r, UMockdevTestbed *tb)
+{
+    char err[320];
+    lx_status s = rig_open(r, tb, err, sizeof err);
+    CHECK(s == LX_OK, "open: %s: %s", lx_status_str(s), err);
+    if (s != LX_OK)
+        rig_close(r, false);
+    return s == LX_OK;
+}
+
 /* Builds scene `name` at time t and presents it. */
 static lx_status show(rig *r, const char *name, float t, lx_frame_stats *st)
 {
@@ -165,13 +176,9 @@ static void test_frames(UMockdevTestbed *tb)
 {
     static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
-    char err[320];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s: %s", lx_status_str(s), err);
-    if (s != LX_OK) {
-        rig_close(&r, false);
+    if (!rig_start(&r, tb))
         return;
-    }
+    lx_status s;
     kms_info info;
     kms_get_info(r.d, &info);
     CHECK(info.width == 96 && info.height == 64 && info.refresh == 60, "preferred mode: got %dx%d@%d",
@@ -311,13 +318,9 @@ static void test_no_flips(UMockdevTestbed *tb, bool dirty)
     rig_defaults(&r);
     r.o.no_flip = true;
     r.o.no_dirty = !dirty;
-    char err[320];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK) {
-        rig_close(&r, false);
+    if (!rig_start(&r, tb))
         return;
-    }
+    lx_status s;
     lx_frame_stats st;
     s = show(&r, "anim", 0.0f, &st);
     CHECK(s == LX_OK && compare(&r) == 0, "no flips, frame 0: %s", r.d->err);
@@ -357,13 +360,9 @@ static void test_unplug(UMockdevTestbed *tb)
 {
     static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
-    char err[320];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK) {
-        rig_close(&r, false);
+    if (!rig_start(&r, tb))
         return;
-    }
+    lx_status s;
     lx_frame_stats st;
     CHECK(show(&r, "demo", 0.0f, &st) == LX_OK && show(&r, "anim", 0.2f, &st) == LX_OK, "frames before unplug");
 
@@ -421,13 +420,9 @@ static void test_gone_at_flip(UMockdevTestbed *tb)
     static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.cfg.probe_ms = 60000;
-    char err[320];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK) {
-        rig_close(&r, false);
+    if (!rig_start(&r, tb))
         return;
-    }
+    lx_status s;
     lx_frame_stats st;
     CHECK(show(&r, "demo", 0.0f, &st) == LX_OK, "first frame: %s", r.d->err);
     fake_drm_set_gone(r.card, true);
@@ -447,13 +442,9 @@ static void test_flip_timeout(UMockdevTestbed *tb)
     static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.cfg.flip_timeout_ms = 50;
-    char err[320];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK) {
-        rig_close(&r, false);
+    if (!rig_start(&r, tb))
         return;
-    }
+    lx_status s;
     lx_frame_stats st;
     fake_drm_hold_flips(r.card, true);
     CHECK(show(&r, "anim", 0.0f, &st) == LX_OK && show(&r, "anim", 0.3f, &st) == LX_OK, "mode set and a flip");
@@ -497,13 +488,9 @@ static void test_atomic(UMockdevTestbed *tb, bool damage_clips)
     rig_defaults(&r);
     r.o.atomic = true;
     r.o.damage_clips = damage_clips;
-    char err[320];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK) {
-        rig_close(&r, false);
+    if (!rig_start(&r, tb))
         return;
-    }
+    lx_status s;
     kms_info info;
     kms_get_info(r.d, &info);
     CHECK(info.atomic == damage_clips, "atomic path %d with damage clips %d", info.atomic, damage_clips);
