@@ -210,10 +210,9 @@ static int parse_style(lt_ctx *c, const cJSON *it, const char *ty, sh_node *node
                 if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash offset", &s->dash_offset))
                     return -1;
             } else if (s->ndash < 16) {
-                /* Counted before parsing, so that a refused one is freed with the rest. */
+                if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash", &s->dash[s->ndash]))
+                    return -1; /* a refused property holds nothing (lt_prop_parse frees it) */
                 s->ndash++;
-                if (lt_prop_parse(c, get(e, "v"), 1, d_zero, "dash", &s->dash[s->ndash - 1]))
-                    return -1;
             }
         }
         s->has_dash = s->ndash > 0;
