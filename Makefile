@@ -115,7 +115,7 @@ $(HOST)/obj/%.o: %.c $(FLAGS_DIR)/host-obj
 # the hal/sim backend (in-memory display, host clock) and the host side of the
 # cel stream reader (tools/cels_read.c, over the core's decoder) and the
 # typed-number reader all host programs share (tools/cli_num.c) over libcelscan.
-CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c)) tools/cels_read.c \
+CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c hal/host/*.c)) tools/cels_read.c \
         tools/cli.c tools/cli_num.c
 CELSIM_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELSIM_SRC))
 

@@ -1,11 +1,16 @@
 /*
- * clock.h - the monotonic clock interface.
+ * clock.h - the one clock interface: a reading and a precise wait.
  *
- * The renderer itself is timeless (a frame is rendered at the time it is
- * given), but the programs around it need a clock: the simulator to measure
- * render time, the firmware to pick each frame's time and to pace lines.
- * Exactly one backend is linked in (hal/sim/clock_host.c on the host, a timer
- * driver on a board), TinyUSB-port style, so the call costs no indirection.
+ * The renderer is timeless (a frame is rendered at the time it is given), but
+ * the code around it needs a clock: the simulator to time renders, celfw to
+ * pick each frame's time and to pace lines, a HUB75 drive loop to hold a bit
+ * plane for a few hundred nanoseconds. Each goes through this small table, so
+ * a test can hand a driver a virtual clock that its emulated device also
+ * reads (then every recorded wire change carries an exact time).
+ *
+ * Clocks: hal_clock_monotonic and hal_clock_realtime on a POSIX host
+ * (hal/host/clock_host.c); on a microcontroller the board's timer
+ * (firmware/boards/board_api.h, board_clock).
  */
 #ifndef HAL_CLOCK_H
 #define HAL_CLOCK_H
@@ -16,12 +21,24 @@
 extern "C" {
 #endif
 
-/*
- * Nanoseconds since an arbitrary fixed origin (e.g. boot). Never goes
- * backwards and is not affected by wall-clock changes; only differences are
- * meaningful.
- */
-uint64_t hal_clock_now_ns(void);
+typedef struct hal_clock {
+    void *user;
+    /* Nanoseconds since a fixed origin; never goes backwards (monotonic
+     * clocks) and only differences are meaningful. */
+    uint64_t (*now_ns)(void *user);
+    /* Returns at (or just after) time t; returns at once if t has passed. */
+    void (*wait_until_ns)(void *user, uint64_t t);
+} hal_clock;
+
+static inline uint64_t hal_now(const hal_clock *c) { return c->now_ns(c->user); }
+static inline void hal_wait_until(const hal_clock *c, uint64_t t) { c->wait_until_ns(c->user, t); }
+
+/* CLOCK_MONOTONIC: sleeps for long waits and spins for the last stretch. */
+extern const hal_clock hal_clock_monotonic;
+/* CLOCK_REALTIME, ns since 1970-01-01 UTC: the shared time of a video wall's
+ * boards (celfw --clock realtime). It can jump when the time is set, so it
+ * never paces anything. */
+extern const hal_clock hal_clock_realtime;
 
 #ifdef __cplusplus
 }

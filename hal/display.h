@@ -1,95 +1,208 @@
 /*
- * display.h - the display-out interface between the renderer and a panel.
+ * display.h - the one display contract between the renderer and a panel.
  *
- * The core produces one finished line at a time and never holds a frame, so a
- * display is driven as a stream: begin a frame, send its lines top to bottom,
- * end the frame. Every backend (the host simulator in hal/sim, libgpiod, USB,
- * bare-metal MCU) implements the same const table of operations, in the style
- * of Zephyr's display driver API: one typedef per operation, the table in ROM,
- * constant configuration (ROM) split from mutable state (RAM), and callers
- * going through the inline wrappers below, which NULL-check the optional
- * operations and return -ENOSYS for them. All operations return 0 or a
- * negative errno value.
+ * The core produces one finished line at a time and never holds a frame, so
+ * a display is a sink of lines: begin a frame, send its lines top to bottom
+ * in the display's own pixel format, end the frame. Every backend implements
+ * the same const table of operations (hal_display_api), in the style of
+ * Zephyr's display drivers: one typedef per operation, the table in ROM,
+ * optional operations NULL. A backend's state embeds a hal_display as its
+ * first member, so an operation casts the pointer it gets back to its own
+ * type. Backends: hal/sim (memory, PNG), hal/host/null.c, hal/mcu panels
+ * (semihost file, SSD1963), hal/gpio (HUB75), hal/usb (GUD), hal/drm
+ * (DRM/KMS); hal/template is the commented one to copy.
  *
- * A line is sent in the display's own pixel format (cs_pixfmt), already
- * converted: the display reports the format it wants and the caller converts
- * with cs_pixfmt_convert, so backends never see floats.
+ * Three shapes of panel fit it:
+ *  - A panel that latches every line (a frame buffer in a USB bridge, a
+ *    controller's GRAM, a DRM dumb buffer) implements line_out, and
+ *    begin_frame/end_frame where it has work to do around a frame.
+ *  - A panel that keeps its picture may take a frame limited to a window
+ *    (rows y0..y1-1, columns x0..x1-1): only what changed travels. A backend
+ *    that cannot narrow its writes refuses a window with HAL_ERR_CONFIG.
+ *  - A panel that must be refreshed continuously and holds nothing (a HUB75
+ *    matrix) implements the pull lane, present: it asks a hal_source for
+ *    lines when its scan needs them, in one or more "lanes", each an
+ *    independent stream of lines in increasing y (the order the core's
+ *    active-piece list can move in).
+ * hal_display_present drives either kind from a hal_source; a program that
+ * has its lines in hand (the simulator) calls the push operations itself.
  *
- * Required operations: get_geometry, line_out.
- * Optional operations: begin_frame, end_frame (a panel that latches every line
- * as it comes needs neither).
+ * Errors are one type, hal_status, and the backend writes what went wrong,
+ * prefixed with its name, into d->err (hal_display_fail). On a
+ * microcontroller HAL_ERR_LEN may be set small: the status still says what
+ * kind of failure it was.
  */
 #ifndef HAL_DISPLAY_H
 #define HAL_DISPLAY_H
 
-#include <errno.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "celscan.h"
+#include "clock.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* What a display shows: its size in pixels and the format of its lines. */
-typedef struct hal_display_geometry {
-    int width, height;
-    cs_pixfmt pixfmt;
-    size_t line_bytes; /* width * bytes per pixel: the length line_out expects */
-} hal_display_geometry;
+#if !defined(HAL_ERR_LEN)
+#define HAL_ERR_LEN 256 /* bytes of d->err, the last error's message */
+#endif
+
+typedef enum hal_status {
+    HAL_OK = 0,
+    HAL_ERR_CONFIG,    /* configuration or geometry is invalid; the message says which */
+    HAL_ERR_NO_DEVICE, /* the device is absent or vanished */
+    HAL_ERR_IO,        /* a transfer or write failed */
+    HAL_ERR_TIMEOUT,   /* the device did not answer in time */
+    HAL_ERR_PROTOCOL,  /* the device answered something we cannot use */
+    HAL_ERR_RENDER,    /* the renderer failed (scene or capacity error) */
+    HAL_ERR_NOMEM,
+    HAL_ERR_SEQUENCE   /* a call out of order: a line outside a frame, a row sent twice */
+} hal_status;
 
 /*
- * One display instance. `api` is the backend's operation table, `config` its
- * constant configuration (wiring, size; may live in ROM) and `data` its mutable
- * state. The interface never looks inside config or data.
+ * The formats a display takes: any cs_pixfmt, or HAL_PIX_XRGB8888 (32 bits,
+ * little-endian, so B, G, R, X in memory: the layout DRM and GUD scan out,
+ * which the core does not produce).
  */
+typedef int hal_pixfmt;
+#define HAL_PIX_XRGB8888 0x100
+
+/* A frame's window: rows y0..y1-1 and columns x0..x1-1 (half-open). */
+typedef struct hal_window {
+    int x0, y0, x1, y1;
+} hal_window;
+
+/* Where lines come from, for the pull lane and hal_display_present. */
+typedef struct hal_source {
+    int width, height;
+    void *user;
+    /* Starts a frame with `lanes` independent line streams (1 or 2). */
+    hal_status (*begin)(void *user, int lanes);
+    /* Renders line y into rgb (3*width floats, linear light). Within a lane,
+     * y must increase from call to call; lines may be skipped. */
+    hal_status (*line)(void *user, int lane, int y, float *rgb);
+} hal_source;
+
+/* What frames did; hal_display_present adds a frame's counts to the caller's. */
+typedef struct hal_frame_stats {
+    uint64_t lines_rendered;
+    uint64_t lines_sent;   /* lines that travelled (changed lines) */
+    uint64_t rects;        /* rectangles sent (USB SET_BUFFER, DRM damage clips) */
+    uint64_t bytes_raw;    /* pixel bytes of the rectangles */
+    uint64_t bytes_wire;   /* USB: bytes on the bulk pipe (after LZ4) */
+    uint64_t writes;       /* GPIO: bulk line writes */
+    uint64_t line_misses;  /* lines (row pairs) finished after their deadline */
+    uint64_t retries;      /* transfers repeated after an error */
+    uint64_t errors;       /* transfers that failed for good */
+} hal_frame_stats;
+
+typedef void (*hal_log_fn)(void *user, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 typedef struct hal_display hal_display;
 
-typedef int (*hal_display_get_geometry_fn)(const hal_display *dev, hal_display_geometry *geo);
-typedef int (*hal_display_begin_frame_fn)(const hal_display *dev);
-/* `bytes` holds geo.line_bytes bytes of row y (0 = top) in geo.pixfmt. */
-typedef int (*hal_display_line_out_fn)(const hal_display *dev, int y, const uint8_t *bytes,
-                                       size_t len);
-typedef int (*hal_display_end_frame_fn)(const hal_display *dev);
+/* A frame starts; win is NULL for the whole display, or within it. */
+typedef hal_status (*hal_begin_frame_fn)(hal_display *d, const hal_window *win);
+/* Row y of the frame in d->pixfmt: the window's columns, len bytes
+ * (hal_line_bytes of the window's width). Rows increase within a frame. */
+typedef hal_status (*hal_line_out_fn)(hal_display *d, int y, const uint8_t *px, size_t len);
+typedef hal_status (*hal_end_frame_fn)(hal_display *d);
+/* The pull lane: shows one frame, pulling its lines from src as the panel
+ * needs them. Deadlines: line y (a row pair for HUB75) is due at
+ * d->frame_start_ns + (y+1) * d->frame_period_ns / d->height; later lines
+ * count as misses. */
+typedef hal_status (*hal_present_fn)(hal_display *d, const hal_source *src, hal_frame_stats *st);
+typedef bool (*hal_connected_fn)(hal_display *d);
+typedef void (*hal_close_fn)(hal_display *d);
 
 typedef struct hal_display_api {
-    hal_display_get_geometry_fn get_geometry; /* required */
-    hal_display_begin_frame_fn begin_frame;   /* optional */
-    hal_display_line_out_fn line_out;         /* required */
-    hal_display_end_frame_fn end_frame;       /* optional */
+    const char *name;               /* prefix of the messages: "usb", "drm", ... */
+    hal_begin_frame_fn begin_frame; /* optional */
+    hal_line_out_fn line_out;       /* required, unless present is given */
+    hal_end_frame_fn end_frame;     /* optional */
+    hal_present_fn present;         /* optional: the pull lane */
+    int lanes;                      /* lanes present pulls with (1 or 2) */
+    hal_connected_fn connected;     /* optional: NULL means always there */
+    hal_close_fn close;             /* optional: blanks and frees what open took */
 } hal_display_api;
 
 struct hal_display {
     const hal_display_api *api;
-    const void *config;
-    void *data;
+    int width, height;        /* what the display shows now (a hot-plugged one may change) */
+    hal_pixfmt pixfmt;        /* the format of the lines it takes */
+    const hal_clock *clock;   /* for deadlines and reconnect timers; may be NULL on an MCU */
+    uint64_t frame_start_ns, frame_period_ns; /* deadlines; period 0: none */
+    hal_log_fn log;           /* where backends' messages go; may be NULL */
+    void *log_user;
+    hal_frame_stats st;       /* the backend's counts for the current frame */
+    char err[HAL_ERR_LEN];    /* the last error: "name: what, where" */
 };
 
-static inline int hal_display_get_geometry(const hal_display *dev, hal_display_geometry *geo)
+/* The operations, through inline wrappers so that an MCU build costs no
+ * flash for them: optional operations that are absent succeed. */
+static inline hal_status hal_display_begin_frame(hal_display *d, const hal_window *win)
 {
-    return dev->api->get_geometry(dev, geo);
+    return d->api->begin_frame ? d->api->begin_frame(d, win) : HAL_OK;
 }
 
-static inline int hal_display_begin_frame(const hal_display *dev)
+static inline hal_status hal_display_line_out(hal_display *d, int y, const uint8_t *px, size_t len)
 {
-    if (dev->api->begin_frame == NULL)
-        return -ENOSYS;
-    return dev->api->begin_frame(dev);
+    return d->api->line_out(d, y, px, len);
 }
 
-static inline int hal_display_line_out(const hal_display *dev, int y, const uint8_t *bytes,
-                                       size_t len)
+static inline hal_status hal_display_end_frame(hal_display *d)
 {
-    return dev->api->line_out(dev, y, bytes, len);
+    return d->api->end_frame ? d->api->end_frame(d) : HAL_OK;
 }
 
-static inline int hal_display_end_frame(const hal_display *dev)
+static inline bool hal_display_connected(hal_display *d)
 {
-    if (dev->api->end_frame == NULL)
-        return -ENOSYS;
-    return dev->api->end_frame(dev);
+    return d->api->connected ? d->api->connected(d) : true;
 }
+
+/* Lanes a frame of d pulls from its source (a push display: one). */
+static inline int hal_display_lanes(const hal_display *d)
+{
+    return d->api->present ? d->api->lanes : 1;
+}
+
+static inline void hal_display_close(hal_display *d)
+{
+    if (d && d->api->close)
+        d->api->close(d);
+}
+
+/* ---- host side (hal/host/display_host.c) ---- */
+
+/* "ok", "device absent", ...: the kind of failure in words. */
+const char *hal_status_str(hal_status st);
+
+/* Bytes of a line of `width` pixels in fmt; 0 for an unknown format. */
+size_t hal_line_bytes(hal_pixfmt fmt, int width);
+
+/* Converts width pixels of linear RGB floats to fmt at dst. */
+void hal_pixfmt_convert(hal_pixfmt fmt, const float *rgb, int width, uint8_t *dst);
+
+/* Writes "name: message" into d->err and returns st. */
+hal_status hal_display_fail(hal_display *d, hal_status st, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* A backend's message to d's log (none without one), as "name: message". */
+void hal_display_say(const hal_display *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/*
+ * Shows one frame of src: through the pull lane where the backend has one,
+ * else by pushing every line (converted to d->pixfmt) between begin_frame
+ * and end_frame, counting lines finished after their deadline. Adds the
+ * frame's counts to *st. A source of another size than the display is
+ * HAL_ERR_CONFIG; a failure stops the frame with d->err set.
+ */
+hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_stats *st);
+
+/* A display that takes every line and shows nothing (dry runs, render timing). */
+hal_status hal_null_open(hal_display **out, int width, int height, const hal_clock *clock);
 
 #ifdef __cplusplus
 }

@@ -390,11 +390,9 @@ static int render(const options *o, sim_state *s)
         ro.view_h = oh = o->view[3];
     }
 
-    sim_display_config cfg = {ow, oh,
-                              o->linear ? CS_PIX_RGB16_LINEAR : CS_PIX_RGB888_SRGB};
-    sim_display_data data;
-    hal_display dev;
-    size_t image_bytes = sim_display_image_bytes(&cfg);
+    cs_pixfmt fmt = o->linear ? CS_PIX_RGB16_LINEAR : CS_PIX_RGB888_SRGB;
+    sim_display dev;
+    size_t image_bytes = sim_display_image_bytes(ow, oh, fmt);
     size_t line_bytes = image_bytes / (size_t)oh;
     s->image = malloc(image_bytes);
     s->bytes = malloc(line_bytes);
@@ -406,8 +404,8 @@ static int render(const options *o, sim_state *s)
         fprintf(stderr, "celsim: out of memory for a %dx%d frame\n", ow, oh);
         return EXIT_LOAD;
     }
-    if (sim_display_init(&dev, &cfg, &data, s->image, image_bytes) != 0) {
-        fprintf(stderr, "celsim: cannot set up a %dx%d display\n", ow, oh);
+    if (sim_display_init(&dev, ow, oh, fmt, s->image, image_bytes) != HAL_OK) {
+        fprintf(stderr, "celsim: cannot set up a %dx%d display: %s\n", ow, oh, dev.d.err);
         return EXIT_LOAD;
     }
 
@@ -422,7 +420,7 @@ static int render(const options *o, sim_state *s)
             return EXIT_LOAD;
         }
     }
-    frame_drive d = {.dev = &dev, .bytes = s->bytes, .panel = NULL, .pool = s->pool,
+    frame_drive d = {.dev = &dev.d, .bytes = s->bytes, .panel = NULL, .pool = s->pool,
                      .frame_bytes = s->frame_bytes, .frame_panel = s->frame_panel};
     cs_renderer r;
     int rc = FRAME_DRIVE_OK;
@@ -431,9 +429,9 @@ static int render(const options *o, sim_state *s)
         /* Hash only the first frame: every run renders the same bytes, and the
          * median of the timings shrugs off the one slower run. */
         d.panel = k == 0 ? s->panel : NULL;
-        uint64_t t0 = hal_clock_now_ns();
+        uint64_t t0 = hal_now(&hal_clock_monotonic);
         rc = frame_drive_render(&d, &r, s->ws, s->scene, &ro);
-        uint64_t t1 = hal_clock_now_ns();
+        uint64_t t1 = hal_now(&hal_clock_monotonic);
         s->times[k] = (double)(t1 - t0) * 1e-6;
         if (k == 0)
             crc = d.crc;
@@ -447,11 +445,9 @@ static int render(const options *o, sim_state *s)
     }
     if (rc == FRAME_DRIVE_HAL) {
         if (d.hal_y >= 0)
-            fprintf(stderr, "celsim: simulated display refused line %d: %s\n", d.hal_y,
-                    strerror(-d.hal_rc));
+            fprintf(stderr, "celsim: simulated display refused line %d: %s\n", d.hal_y, dev.d.err);
         else
-            fprintf(stderr, "celsim: simulated display refused the frame: %s\n",
-                    strerror(-d.hal_rc));
+            fprintf(stderr, "celsim: simulated display refused the frame: %s\n", dev.d.err);
         return EXIT_LOAD;
     }
     if (rc == FRAME_DRIVE_DEGRADED) {
@@ -468,7 +464,7 @@ static int render(const options *o, sim_state *s)
 
     if (o->out != NULL) {
         char err[1024];
-        if (png_write_rgb(o->out, ow, oh, cfg.pixfmt, s->image, line_bytes, err,
+        if (png_write_rgb(o->out, ow, oh, fmt, s->image, line_bytes, err,
                           sizeof err) != 0) {
             fprintf(stderr, "celsim: %s\n", err);
             return EXIT_LOAD;

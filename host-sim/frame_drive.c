@@ -1,8 +1,8 @@
 /*
  * frame_drive.c - core lines to HAL display lines (see frame_drive.h).
  *
- * Begin and end frame are optional display operations: -ENOSYS from them
- * means the panel needs no framing, not a failure.
+ * Begin and end frame are optional display operations; the wrappers in
+ * display.h make an absent one succeed.
  */
 #include <string.h>
 
@@ -10,7 +10,7 @@
 
 static size_t panel_bytes(const frame_drive *d)
 {
-    return (size_t)d->geo.width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
+    return (size_t)d->dev->width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
 }
 
 /* Line y, converted to display bytes (and panel pixels to hash, if any), to the display. */
@@ -18,11 +18,11 @@ static cs_status show_line(frame_drive *d, int y, const uint8_t *bytes, const ui
 {
     if (panel != NULL)
         d->crc = cs_crc32(d->crc, panel, panel_bytes(d));
-    int rc = hal_display_line_out(d->dev, y, bytes, d->geo.line_bytes);
-    if (rc != 0) {
-        d->hal_rc = rc;
+    hal_status hs = hal_display_line_out(d->dev, y, bytes, d->line_bytes);
+    if (hs != HAL_OK) {
+        d->hal_st = hs;
         d->hal_y = y;
-        /* Any refusal stops the frame; hal_rc keeps the errno for the caller. */
+        /* Any refusal stops the frame; dev->err says why. */
         return CS_ERR_IO;
     }
     return CS_OK;
@@ -31,7 +31,7 @@ static cs_status show_line(frame_drive *d, int y, const uint8_t *bytes, const ui
 /* Line y, already rendered into the renderer's runs, to the display. */
 static cs_status drive_line(frame_drive *d, const cs_renderer *r, int y)
 {
-    cs_line_pixels(r, d->geo.pixfmt, d->bytes);
+    cs_line_pixels(r, d->pixfmt, d->bytes);
     if (d->panel != NULL)
         cs_line_pixels(r, CS_PANEL_PIXFMT, d->panel);
     return show_line(d, y, d->bytes, d->panel);
@@ -41,7 +41,7 @@ static cs_status drive_line(frame_drive *d, const cs_renderer *r, int y)
 static void band_line(void *user, const cs_renderer *r, int y)
 {
     frame_drive *d = user;
-    cs_line_pixels(r, d->geo.pixfmt, d->frame_bytes + (size_t)y * d->geo.line_bytes);
+    cs_line_pixels(r, d->pixfmt, d->frame_bytes + (size_t)y * d->line_bytes);
     if (d->panel != NULL)
         cs_line_pixels(r, CS_PANEL_PIXFMT, d->frame_panel + (size_t)y * panel_bytes(d));
 }
@@ -49,10 +49,10 @@ static void band_line(void *user, const cs_renderer *r, int y)
 /* The lines of the frame r prepared, rendered by the pool and shown in order. */
 static cs_status drive_bands(frame_drive *d, const cs_renderer *r, cs_error *sticky)
 {
-    cs_status st = bands_start(d->pool, r, 0, d->geo.height, band_line, d);
-    for (int y = 0; y < d->geo.height && st == CS_OK; y++) {
+    cs_status st = bands_start(d->pool, r, 0, d->dev->height, band_line, d);
+    for (int y = 0; y < d->dev->height && st == CS_OK; y++) {
         bands_wait(d->pool, y);
-        st = show_line(d, y, d->frame_bytes + (size_t)y * d->geo.line_bytes,
+        st = show_line(d, y, d->frame_bytes + (size_t)y * d->line_bytes,
                        d->panel ? d->frame_panel + (size_t)y * panel_bytes(d) : NULL);
     }
     *sticky = bands_finish(d->pool);
@@ -63,18 +63,23 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
                        const cs_render_opts *opts)
 {
     d->crc = 0;
-    d->hal_rc = 0;
+    d->hal_st = HAL_OK;
     d->hal_y = -1;
     d->err = (cs_error){CS_OK, -1, -1, -1, -1};
 
     /* With a viewport the display is the window, and its rows count from view_y. */
     bool win = opts->view_w != 0 || opts->view_h != 0;
     int y0 = win ? opts->view_y : 0, rows = win ? opts->view_h : opts->height;
-    int rc = hal_display_get_geometry(d->dev, &d->geo);
-    if (rc == 0 && (d->geo.width != (win ? opts->view_w : opts->width) || d->geo.height != rows))
-        rc = -EINVAL;
-    if (rc != 0) {
-        d->hal_rc = rc;
+    hal_display *dev = d->dev;
+    d->pixfmt = (cs_pixfmt)dev->pixfmt;
+    d->line_bytes = hal_line_bytes(dev->pixfmt, dev->width);
+    if (dev->width != (win ? opts->view_w : opts->width) || dev->height != rows) {
+        d->hal_st = hal_display_fail(dev, HAL_ERR_CONFIG, "the frame is %dx%d, the display %dx%d",
+                                     win ? opts->view_w : opts->width, rows, dev->width, dev->height);
+        return FRAME_DRIVE_HAL;
+    }
+    if (dev->pixfmt == HAL_PIX_XRGB8888) {
+        d->hal_st = hal_display_fail(dev, HAL_ERR_CONFIG, "the core does not render XRGB8888 lines");
         return FRAME_DRIVE_HAL;
     }
 
@@ -83,11 +88,8 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
         d->err.status = st;
         return FRAME_DRIVE_CORE;
     }
-    rc = hal_display_begin_frame(d->dev);
-    if (rc != 0 && rc != -ENOSYS) {
-        d->hal_rc = rc;
+    if ((d->hal_st = hal_display_begin_frame(dev, NULL)) != HAL_OK)
         return FRAME_DRIVE_HAL;
-    }
     /* Lines go from the core's runs straight to display bytes: each run of
      * equal pixels is converted once (cs_line_pixels). */
     cs_error sticky;
@@ -103,14 +105,10 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
     }
     if (st == CS_OK)
         st = sticky.status;
-    if (d->hal_rc != 0)
+    if (d->hal_st != HAL_OK)
         return FRAME_DRIVE_HAL;
-    rc = hal_display_end_frame(d->dev);
-    if (rc != 0 && rc != -ENOSYS) {
-        d->hal_rc = rc;
-        d->hal_y = -1;
+    if ((d->hal_st = hal_display_end_frame(dev)) != HAL_OK)
         return FRAME_DRIVE_HAL;
-    }
     if (st >= CS_ERR_CAP_CELS && st <= CS_ERR_CAP_CROSSINGS) {
         d->err = sticky;
         d->err.status = st;

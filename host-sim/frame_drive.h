@@ -21,8 +21,8 @@
 
 typedef struct frame_drive {
     /* Set by the caller. */
-    const hal_display *dev;
-    uint8_t *bytes;   /* geometry.line_bytes: one line in the display's format */
+    hal_display *dev;
+    uint8_t *bytes;   /* hal_line_bytes of the display: one line in its format */
     uint8_t *panel;   /* NULL, or width * bytes-per-pixel of CS_PANEL_PIXFMT to hash the frame */
     /* Optional: lines rendered on the pool's threads (bands.h). Each line is
      * converted on its worker into frame_bytes (height lines of line_bytes)
@@ -35,18 +35,19 @@ typedef struct frame_drive {
     /* Set by frame_drive_render. */
     uint32_t crc;     /* CRC-32 of the frame in CS_PANEL_PIXFMT, rows top to bottom */
     cs_error err;     /* the core's failure, or its sticky capacity error */
-    int hal_rc;       /* first HAL failure (negative errno), 0 if none */
+    hal_status hal_st; /* first HAL failure (its message in dev->err), HAL_OK if none */
     int hal_y;        /* the row it happened on, -1 for begin/end frame */
 
-    /* Private: the display's geometry for this frame. */
-    hal_display_geometry geo;
+    /* Private: the display's format and line length for this frame. */
+    cs_pixfmt pixfmt;
+    size_t line_bytes;
 } frame_drive;
 
 enum {
     FRAME_DRIVE_OK = 0,       /* every line rendered and shown */
     FRAME_DRIVE_DEGRADED = 1, /* every line shown, but the core ran out of capacity (d->err) */
     FRAME_DRIVE_CORE = -1,    /* the core could not start the frame (d->err) */
-    FRAME_DRIVE_HAL = -2      /* the display refused a call (d->hal_rc, d->hal_y) */
+    FRAME_DRIVE_HAL = -2      /* the display refused a call (d->hal_st, d->hal_y) */
 };
 
 /*

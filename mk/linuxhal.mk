@@ -12,7 +12,7 @@ LX_UMOCKDEV_CFLAGS = $(shell pkg-config --cflags umockdev-1.0 2>/dev/null)
 LX_UMOCKDEV_LIBS = $(shell pkg-config --libs umockdev-1.0 2>/dev/null)
 LX_INC := -Ihal/linux -Ihal/gpio -Ihal/usb -Ihal/drm -Ifirmware/linux
 
-LX_HAL_SRC := $(wildcard hal/linux/*.c hal/gpio/*.c hal/usb/*.c hal/drm/*.c)
+LX_HAL_SRC := $(wildcard hal/host/*.c hal/linux/*.c hal/gpio/*.c hal/usb/*.c hal/drm/*.c)
 LX_FW_SRC := $(filter-out firmware/linux/celfw.c,$(wildcard firmware/linux/*.c))
 LX_HAL_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(LX_HAL_SRC))
 LX_FW_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(LX_FW_SRC))

@@ -35,7 +35,7 @@ define bands_san
 $$(eval $$(call flags_record,bands-$(1),clang $(2)))
 $(BUILD)/bands-$(1)/%.o: %.c $(FLAGS_DIR)/bands-$(1)
 	@mkdir -p $$(dir $$@)
-	$$(Q)clang -std=c11 $(2) -O1 -g $(FP_FLAGS) -Icore -Ihost-sim -Ihal/linux -Itests \
+	$$(Q)clang -std=c11 $(2) -O1 -g $(FP_FLAGS) -Icore -Ihal -Ihost-sim -Ihal/linux -Itests \
 		-D_POSIX_C_SOURCE=200809L $$(PKG_CFLAGS) -MMD -MP -c $$< -o $$@
 $(BUILD)/bands-$(1)/test_bands: $(patsubst %.c,$(BUILD)/bands-$(1)/%.o,$(BANDS_SAN_SRC))
 	$$(Q)clang $(2) -o $$@ $$^ $$(PKG_LIBS) -lm -pthread

@@ -267,8 +267,8 @@ static void test_celfw_source(void)
     render_one(&o, NULL);
     for (int threads = 1; threads <= 3; threads += 2) {
         lx_scene_source src;
-        if (!CHECK(lx_scene_source_init(&src, w, h, CS_AA_SUBSCAN, 4) == LX_OK &&
-                       lx_scene_source_threads(&src, threads) == LX_OK,
+        if (!CHECK(lx_scene_source_init(&src, w, h, CS_AA_SUBSCAN, 4) == HAL_OK &&
+                       lx_scene_source_threads(&src, threads) == HAL_OK,
                    "source with %d threads", threads))
             continue;
         lx_scene_source_set(&src, scene, 0.0f);
@@ -276,15 +276,15 @@ static void test_celfw_source(void)
         for (int round = 0; round < 2; round++) {
             /* Round 0 gives up after 40 lines, as a backend that lost its device does. */
             int bad = 0, last = round == 0 ? 40 : h;
-            CHECK(src.src.begin(src.src.user, 1) == LX_OK, "begin");
+            CHECK(src.src.begin(src.src.user, 1) == HAL_OK, "begin");
             for (int y = 0; y < last; y++) {
-                if (src.src.line(src.src.user, 0, y, line) != LX_OK ||
+                if (src.src.line(src.src.user, 0, y, line) != HAL_OK ||
                     memcmp(line, want + (size_t)y * 3u * (size_t)w, 3u * (size_t)w * sizeof(float)))
                     bad++;
             }
             CHECK(bad == 0, "%d threads, round %d: %d of %d lines differ", threads, round, bad, last);
             if (round == 1 && threads > 1)
-                CHECK(src.src.line(src.src.user, 0, 5, line) == LX_ERR_RENDER,
+                CHECK(src.src.line(src.src.user, 0, 5, line) == HAL_ERR_RENDER,
                       "a line behind the ring is refused");
         }
         lx_scene_source_end(&src);

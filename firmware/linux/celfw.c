@@ -53,7 +53,7 @@
 #include "gud_host.h"
 #include "hub75.h"
 #include "kms.h"
-#include "lx_display.h"
+#include "display.h"
 #include "lx_scene_source.h"
 
 enum { EXIT_CONFIG = 2, EXIT_INPUT = 3, EXIT_DISPLAY = 4 };
@@ -69,7 +69,7 @@ static const char *const log_kind_name[LOG_KINDS] = {"stream commit", "stream er
 
 typedef struct celfw {
     celfw_config cfg;
-    lx_display *disp;
+    hal_display *disp;
     lx_scene_source src;
     cs_scene *scene[2];
     int front;
@@ -80,10 +80,10 @@ typedef struct celfw {
     celfw_ratelimit limit[LOG_KINDS];
     uint64_t frames, dropped, stream_bytes, stream_errors, commits, failures, slow;
     uint64_t applied_seq;    /* the shown stream's signature sequence; 0 if unsigned */
-    lx_frame_stats sum;
+    hal_frame_stats sum;
     bool display_up, render_warned;
     celfw_clock clk;         /* which animation time each frame shows */
-    lx_clock wall_at;        /* --clock at:S: a wall clock that stays at cfg.clock_at_ns */
+    hal_clock wall_at;        /* --clock at:S: a wall clock that stays at cfg.clock_at_ns */
     char refusal[200];       /* why the last commit was refused */
     bool in_frame;           /* a frame is rendering: whole frames are held, not decoded */
     uint8_t *held;           /* held_frame records, each followed by its frame's bytes */
@@ -149,7 +149,7 @@ static void tell(celfw *fw, int kind, const char *fmt, ...) __attribute__((forma
 static void tell(celfw *fw, int kind, const char *fmt, ...)
 {
     uint64_t held;
-    bool allow = celfw_ratelimit_allow(&fw->limit[kind], lx_now(&lx_clock_monotonic), &held);
+    bool allow = celfw_ratelimit_allow(&fw->limit[kind], hal_now(&hal_clock_monotonic), &held);
     say_held(kind, held);
     if (!allow)
         return;
@@ -164,7 +164,7 @@ static void tell(celfw *fw, int kind, const char *fmt, ...)
 /* Tells the counts held back in windows that have ended (every kind, at exit). */
 static void tell_held(celfw *fw, bool final)
 {
-    uint64_t now = lx_now(&lx_clock_monotonic);
+    uint64_t now = hal_now(&hal_clock_monotonic);
     for (int k = 0; k < LOG_KINDS; k++)
         say_held(k, celfw_ratelimit_due(&fw->limit[k], now, final));
 }
@@ -367,12 +367,12 @@ static void on_note(void *user, const char *what)
 
 static const char *display_state(const celfw *fw)
 {
-    return fw->disp->ops->connected(fw->disp) ? "up" : "absent";
+    return hal_display_connected(fw->disp) ? "up" : "absent";
 }
 
 static void status(celfw *fw, const char *kind, const char *extra)
 {
-    uint64_t now = lx_now(fw->clk.mono);
+    uint64_t now = hal_now(fw->clk.mono);
     bool final = !strcmp(kind, "exit"); /* the exit line gives the whole run's rate */
     uint64_t since = final ? fw->t0 : fw->last_log, base = final ? 0 : fw->frames_at_log;
     double dt = (double)(now - since) / 1e9;
@@ -395,7 +395,7 @@ static void status(celfw *fw, const char *kind, const char *extra)
         report(fw, NULL, fps);
 }
 
-static void add_stats(lx_frame_stats *a, const lx_frame_stats *b)
+static void add_stats(hal_frame_stats *a, const hal_frame_stats *b)
 {
     a->lines_rendered += b->lines_rendered;
     a->lines_sent += b->lines_sent;
@@ -413,29 +413,29 @@ static void add_stats(lx_frame_stats *a, const lx_frame_stats *b)
 static int open_display(celfw *fw)
 {
     char err[320] = "";
-    lx_status s;
+    hal_status s;
     celfw_config *c = &fw->cfg;
     switch (c->backend) {
     case CELFW_GPIO:
-        s = hub75_open(&fw->disp, &c->hub75, &lx_clock_monotonic, err, sizeof err);
+        s = hub75_open(&fw->disp, &c->hub75, &hal_clock_monotonic, err, sizeof err);
         break;
     case CELFW_USB:
         c->usb.width = c->width;
         c->usb.height = c->height;
-        s = gud_open(&fw->disp, &c->usb, &lx_clock_monotonic, backend_log, fw, err, sizeof err);
+        s = gud_open(&fw->disp, &c->usb, &hal_clock_monotonic, backend_log, fw, err, sizeof err);
         break;
     case CELFW_DRM:
-        s = kms_open(&fw->disp, &c->drm, &lx_clock_monotonic, backend_log, fw, err, sizeof err);
+        s = kms_open(&fw->disp, &c->drm, &hal_clock_monotonic, backend_log, fw, err, sizeof err);
         break;
     default:
-        s = lx_null_open(&fw->disp, c->width, c->height, &lx_clock_monotonic);
-        if (s != LX_OK)
-            snprintf(err, sizeof err, "null display: %s", lx_status_str(s));
+        s = hal_null_open(&fw->disp, c->width, c->height, &hal_clock_monotonic);
+        if (s != HAL_OK)
+            snprintf(err, sizeof err, "null display: %s", hal_status_str(s));
         break;
     }
-    if (s != LX_OK) {
-        say("error", "%s", err[0] ? err : lx_status_str(s));
-        return s == LX_ERR_CONFIG ? EXIT_CONFIG : EXIT_DISPLAY;
+    if (s != HAL_OK) {
+        say("error", "%s", err[0] ? err : hal_status_str(s));
+        return s == HAL_ERR_CONFIG ? EXIT_CONFIG : EXIT_DISPLAY;
     }
     fw->disp->log = backend_log;
     fw->disp->log_user = fw;
@@ -537,7 +537,7 @@ static void serve(celfw *fw, uint64_t until)
     celfw_input_sink sink = sink_of(fw);
     struct pollfd pfd[CELFW_INPUT_MAX_FDS];
     int n = fw->in ? celfw_input_pollfds(fw->in, pfd, CELFW_INPUT_MAX_FDS) : 0;
-    uint64_t now = lx_now(fw->clk.mono);
+    uint64_t now = hal_now(fw->clk.mono);
     uint64_t left = until > now ? until - now : 0;
     struct timespec ts = {(time_t)(left / 1000000000u), (long)(left % 1000000000u)};
     if (ppoll(pfd, (nfds_t)n, &ts, NULL) > 0)
@@ -547,7 +547,7 @@ static void serve(celfw *fw, uint64_t until)
 /* Render threads: a backend that pulls two lanes (HUB75) renders them itself. */
 static int render_threads(const celfw *fw)
 {
-    return fw->disp->ops->lanes == 1 ? fw->cfg.threads : 1;
+    return hal_display_lanes(fw->disp) == 1 ? fw->cfg.threads : 1;
 }
 
 /* Between the lines of a frame: read what arrived, every CELFW_SERVE_NS. */
@@ -556,7 +556,7 @@ static void serve_between_lines(void *user)
     celfw *fw = user;
     if (!fw->in || fw->held_n >= CELFW_HOLD_MAX)
         return; /* enough held: the rest waits in the socket buffers */
-    uint64_t now = lx_now(fw->clk.mono);
+    uint64_t now = hal_now(fw->clk.mono);
     if (now - fw->last_serve < CELFW_SERVE_NS)
         return;
     fw->last_serve = now;
@@ -571,20 +571,20 @@ static void wait_and_serve(celfw *fw, uint64_t until)
     tell_held(fw, false);
     do {
         serve(fw, until);
-    } while (!stop_signal && lx_now(fw->clk.mono) < until);
-    fw->last_serve = lx_now(fw->clk.mono);
+    } while (!stop_signal && hal_now(fw->clk.mono) < until);
+    fw->last_serve = hal_now(fw->clk.mono);
 }
 
 static const char *run(celfw *fw)
 {
     const celfw_config *c = &fw->cfg;
     uint64_t period = c->fps > 0 ? (uint64_t)(1e9 / c->fps) : 0;
-    uint64_t next = lx_now(fw->clk.mono);
+    uint64_t next = hal_now(fw->clk.mono);
     fw->t0 = fw->last_log = next;
     uint64_t log_every = (uint64_t)(c->log_interval * 1e9);
     uint64_t render_errors = 0;
     for (;;) {
-        uint64_t start = lx_now(fw->clk.mono);
+        uint64_t start = hal_now(fw->clk.mono);
         celfw_notify_alive(&fw->notify, start); /* a hung loop stops the pings */
         float t = fw->anim_t = celfw_clock_frame(&fw->clk, fw->scene[fw->front]);
         if (fw->builtin[0] && celfw_scene_animated(fw->builtin))
@@ -592,21 +592,21 @@ static const char *run(celfw *fw)
         lx_scene_source_set(&fw->src, fw->scene[fw->front], t);
         fw->disp->frame_start_ns = start;
         fw->disp->frame_period_ns = period;
-        lx_frame_stats st = {0};
+        hal_frame_stats st = {0};
         fw->in_frame = true;
-        lx_status s = fw->disp->ops->present(fw->disp, &fw->src.src, &st);
+        hal_status s = hal_display_present(fw->disp, &fw->src.src, &st);
         lx_scene_source_end(&fw->src); /* no worker reads the scene past here */
         release_held(fw);
         add_stats(&fw->sum, &st);
-        uint64_t took = lx_now(fw->clk.mono) - start;
-        if (period && took > period && s == LX_OK) {
+        uint64_t took = hal_now(fw->clk.mono) - start;
+        if (period && took > period && s == HAL_OK) {
             /* the lines went out as they were rendered; nothing was blanked */
             fw->slow++;
             if (fw->slow <= 3 || fw->slow % 1000 == 0)
                 say("event", "slow frame: %.1f ms for a %.1f ms budget (%llu so far); input served between lines",
                     (double)took / 1e6, (double)period / 1e6, (unsigned long long)fw->slow);
         }
-        if (s == LX_OK) {
+        if (s == HAL_OK) {
             fw->frames++;
             if (!fw->display_up)
                 fw->display_up = true;
@@ -616,12 +616,12 @@ static const char *run(celfw *fw)
                     cs_status_str(fw->src.err.status), fw->src.err.cel, fw->src.err.region,
                     fw->src.err.contour);
             }
-        } else if (s == LX_ERR_NO_DEVICE) {
+        } else if (s == HAL_ERR_NO_DEVICE) {
             fw->dropped++;
             if (fw->display_up)
                 say("event", "display lost: %s", fw->disp->err);
             fw->display_up = false;
-        } else if (s == LX_ERR_CONFIG) {
+        } else if (s == HAL_ERR_CONFIG) {
             say("error", "%s", fw->disp->err);
             return "error";
         } else {
@@ -629,13 +629,13 @@ static const char *run(celfw *fw)
              * the first few times, then every thousandth */
             fw->failures++;
             bool tell = fw->failures <= 3 || fw->failures % 1000 == 0;
-            if (s == LX_ERR_RENDER && render_errors++ < 3)
+            if (s == HAL_ERR_RENDER && render_errors++ < 3)
                 say("event", "render failed: %s (%s)", cs_status_str(fw->src.err.status), fw->disp->err);
-            else if (s != LX_ERR_RENDER && tell)
+            else if (s != HAL_ERR_RENDER && tell)
                 say("event", "frame failed (%llu so far): %s: %s", (unsigned long long)fw->failures,
-                    lx_status_str(s), fw->disp->err);
+                    hal_status_str(s), fw->disp->err);
         }
-        uint64_t now = lx_now(fw->clk.mono);
+        uint64_t now = hal_now(fw->clk.mono);
         if (log_every && now - fw->last_log >= log_every)
             status(fw, "status", "");
         if (stop_signal)
@@ -650,7 +650,7 @@ static const char *run(celfw *fw)
                 next = now; /* late: start the next frame at once, without a burst */
         } else {
             /* unpaced; but with the display away, do not spin on reconnects */
-            next = s == LX_ERR_NO_DEVICE ? now + 5000000u : now;
+            next = s == HAL_ERR_NO_DEVICE ? now + 5000000u : now;
         }
         wait_and_serve(fw, next);
     }
@@ -681,7 +681,7 @@ int main(int argc, char **argv)
         return rc;
     if (fw->cfg.bench_gpio) {
         rc = bench_gpio(fw);
-        fw->disp->ops->close(fw->disp);
+        hal_display_close(fw->disp);
         return rc;
     }
     fw->scene[0] = calloc(1, sizeof(cs_scene));
@@ -689,38 +689,38 @@ int main(int argc, char **argv)
     fw->stream = celfw_stream_new();
     if (!fw->scene[0] || !fw->scene[1] || !fw->stream ||
         lx_scene_source_init(&fw->src, fw->disp->width, fw->disp->height, fw->cfg.aa,
-                             fw->cfg.subscanlines) != LX_OK ||
-        lx_scene_source_threads(&fw->src, render_threads(fw)) != LX_OK) {
+                             fw->cfg.subscanlines) != HAL_OK ||
+        lx_scene_source_threads(&fw->src, render_threads(fw)) != HAL_OK) {
         say("error", "out of memory for %dx%d", fw->disp->width, fw->disp->height);
-        fw->disp->ops->close(fw->disp);
+        hal_display_close(fw->disp);
         return EXIT_DISPLAY;
     }
     if ((rc = celfw_wall_setup(&fw->src, &fw->cfg, fw->disp, err, sizeof err)) != 0) {
         say("error", "%s", err);
-        fw->disp->ops->close(fw->disp);
+        hal_display_close(fw->disp);
         return rc;
     }
-    fw->wall_at = (lx_clock){&fw->cfg.clock_at_ns, fixed_now, fixed_wait_until};
-    celfw_clock_init(&fw->clk, &lx_clock_monotonic, fw->cfg.clock_at ? &fw->wall_at : &lx_clock_realtime,
+    fw->wall_at = (hal_clock){&fw->cfg.clock_at_ns, fixed_now, fixed_wait_until};
+    celfw_clock_init(&fw->clk, &hal_clock_monotonic, fw->cfg.clock_at ? &fw->wall_at : &hal_clock_realtime,
                      fw->cfg.realtime, fw->cfg.time_step);
     celfw_stream_set_check(fw->stream, check_commit, fw);
     fw->src.between_lines = serve_between_lines;
     fw->src.between_user = fw;
     if ((rc = load_scene(fw)) != 0) {
-        fw->disp->ops->close(fw->disp);
+        hal_display_close(fw->disp);
         return rc;
     }
     if ((rc = open_trust(fw)) != 0) {
-        fw->disp->ops->close(fw->disp);
+        hal_display_close(fw->disp);
         return rc;
     }
     if (celfw_input_open_with(&fw->in, fw->cfg.input, &fw->cfg.mqtt, err, sizeof err) != 0) {
         say("error", "%s", err);
-        fw->disp->ops->close(fw->disp);
+        hal_display_close(fw->disp);
         return EXIT_INPUT;
     }
     celfw_input_set_timeout(fw->in, fw->cfg.input_timeout);
-    fw->display_up = fw->disp->ops->connected(fw->disp);
+    fw->display_up = hal_display_connected(fw->disp);
     char aa[16];
     if (fw->cfg.aa == CS_AA_NONE)
         snprintf(aa, sizeof aa, "none");
@@ -728,15 +728,15 @@ int main(int argc, char **argv)
         snprintf(aa, sizeof aa, "%d", fw->cfg.subscanlines);
     say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s "
         "trusted_keys=%d threads=%d",
-        fw->disp->ops->name, fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
+        fw->disp->api->name, fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
         celfw_input_describe(fw->in), fw->cfg.scene, "cel-stream",
         display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw));
     if (celfw_input_public(fw->in) && celfw_trust_key_count(fw->trust) == 0)
         say("warning", "input %s listens beyond loopback and no key is trusted: anyone who can reach it "
             "can change the picture (celc keygen, then celfw --trust KEY.pub --state-dir DIR)",
             celfw_input_describe(fw->in));
-    celfw_notify_ready(&fw->notify, lx_now(&lx_clock_monotonic), "showing %s on %s %dx%d",
-                       fw->cfg.scene, fw->disp->ops->name, fw->disp->width, fw->disp->height);
+    celfw_notify_ready(&fw->notify, hal_now(&hal_clock_monotonic), "showing %s on %s %dx%d",
+                       fw->cfg.scene, fw->disp->api->name, fw->disp->width, fw->disp->height);
 
     const char *why = run(fw);
     tell_held(fw, true);
@@ -744,7 +744,7 @@ int main(int argc, char **argv)
     char reason[64];
     snprintf(reason, sizeof reason, "reason=%s ", why);
     status(fw, "exit", reason);
-    fw->disp->ops->close(fw->disp);
+    hal_display_close(fw->disp);
     celfw_input_close(fw->in);
     celfw_stream_free(fw->stream);
     celfw_trust_free(fw->trust);

@@ -12,7 +12,7 @@
 
 #define NS 1000000000u
 
-void celfw_clock_init(celfw_clock *c, const lx_clock *mono, const lx_clock *wall, bool realtime,
+void celfw_clock_init(celfw_clock *c, const hal_clock *mono, const hal_clock *wall, bool realtime,
                       double step)
 {
     memset(c, 0, sizeof *c);
@@ -20,7 +20,7 @@ void celfw_clock_init(celfw_clock *c, const lx_clock *mono, const lx_clock *wall
     c->wall = wall;
     c->realtime = realtime;
     c->step = step;
-    c->origin = lx_now(mono);
+    c->origin = hal_now(mono);
 }
 
 bool celfw_clock_same_animation(const cs_scene *a, const cs_scene *b)
@@ -39,7 +39,7 @@ void celfw_clock_show(celfw_clock *c, const cs_scene *before, const cs_scene *af
     c->period_ns = period_ns;
     if (before && after && celfw_clock_same_animation(before, after))
         return;
-    c->origin = lx_now(c->mono);
+    c->origin = hal_now(c->mono);
     c->frames = 0;
 }
 
@@ -72,10 +72,10 @@ float celfw_clock_frame(celfw_clock *c, const cs_scene *scene)
     if (c->step > 0) {
         e = (uint64_t)((double)c->frames * c->step * 1e9 + 0.5);
     } else if (c->realtime && c->has_epoch) {
-        uint64_t now = lx_now(c->wall);
+        uint64_t now = hal_now(c->wall);
         e = now > c->epoch_ns ? now - c->epoch_ns : 0; /* before its epoch: the first frame */
     } else {
-        e = lx_now(c->mono) - c->origin;
+        e = hal_now(c->mono) - c->origin;
     }
     c->frames++;
     float t = celfw_clock_seconds(e, c->period_ns, scene);

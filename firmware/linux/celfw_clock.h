@@ -6,7 +6,7 @@
  * after about 200; and a stream's animation was timed from celfw's start, so
  * a scene committed a week in began a week into its tracks. So:
  *
- *  - Time is kept in integer nanoseconds from a clock given as an lx_clock
+ *  - Time is kept in integer nanoseconds from a clock given as an hal_clock
  *    (injectable: the tests run it at 1, 30 and 400 days of uptime).
  *  - By default (monotonic) an animation's time 0 is the commit that brought
  *    it. A commit that leaves every track and key as they were (a patch
@@ -32,11 +32,11 @@
 #include <stdint.h>
 
 #include "celscan.h"
-#include "lx_clock.h"
+#include "clock.h"
 
 typedef struct celfw_clock {
-    const lx_clock *mono; /* paces frames; the origin of commit-relative time */
-    const lx_clock *wall; /* ns since 1970-01-01 UTC, for --clock realtime */
+    const hal_clock *mono; /* paces frames; the origin of commit-relative time */
+    const hal_clock *wall; /* ns since 1970-01-01 UTC, for --clock realtime */
     bool realtime;
     double step;          /* > 0: seconds per frame instead of a clock */
     uint64_t origin;      /* mono reading when the shown animation started */
@@ -47,7 +47,7 @@ typedef struct celfw_clock {
     uint64_t elapsed_ns;  /* of the last frame, after reduction */
 } celfw_clock;
 
-void celfw_clock_init(celfw_clock *c, const lx_clock *mono, const lx_clock *wall, bool realtime,
+void celfw_clock_init(celfw_clock *c, const hal_clock *mono, const hal_clock *wall, bool realtime,
                       double step);
 /*
  * A new scene is shown (before: the one it replaces, NULL at start). The

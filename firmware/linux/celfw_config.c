@@ -743,7 +743,7 @@ bool celfw_config_check(celfw_config *c, char *err, size_t errlen)
                      "continuously (each scan is a frame); leave fps out", c->fps);
             return false;
         }
-        if (hub75_config_check(&c->hub75, why, sizeof why) != LX_OK) {
+        if (hub75_config_check(&c->hub75, why, sizeof why) != HAL_OK) {
             snprintf(err, errlen, "%s", why);
             return false;
         }

@@ -8,7 +8,7 @@
 
 #include "celfw_wall.h"
 
-int celfw_wall_setup(lx_scene_source *src, const celfw_config *cfg, const lx_display *disp,
+int celfw_wall_setup(lx_scene_source *src, const celfw_config *cfg, const hal_display *disp,
                      char *err, size_t errlen)
 {
     const int *v = cfg->view;
@@ -19,7 +19,7 @@ int celfw_wall_setup(lx_scene_source *src, const celfw_config *cfg, const lx_dis
                  v[2], v[3], disp->width, disp->height, v[2], v[3]);
         return 2;
     }
-    if (lx_scene_source_viewport(src, cfg->wall_w, cfg->wall_h, v[0], v[1]) != LX_OK) {
+    if (lx_scene_source_viewport(src, cfg->wall_w, cfg->wall_h, v[0], v[1]) != HAL_OK) {
         snprintf(err, errlen, "viewport %d,%d,%d,%d does not fit in the %dx%d wall", v[0], v[1],
                  v[2], v[3], cfg->wall_w, cfg->wall_h);
         return 2;

@@ -13,7 +13,7 @@
 #include <stddef.h>
 
 #include "celfw_config.h"
-#include "lx_display.h"
+#include "display.h"
 #include "lx_scene_source.h"
 
 /*
@@ -22,7 +22,7 @@
  * nothing. Returns 0, or celfw's configuration exit status (2) with the
  * reason in err.
  */
-int celfw_wall_setup(lx_scene_source *src, const celfw_config *cfg, const lx_display *disp,
+int celfw_wall_setup(lx_scene_source *src, const celfw_config *cfg, const hal_display *disp,
                      char *err, size_t errlen);
 
 #endif /* CELFW_WALL_H */

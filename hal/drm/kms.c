@@ -31,17 +31,8 @@
 #include "celscan.h"
 #include "cli_num.h"
 #include "kms_priv.h"
-#include "lx_pixel.h"
+#include "display.h"
 
-#define KMS_MAX_CLIPS 64 /* bands per DirtyFB; more are merged (the kernel takes 256) */
-
-void kms_say(kms_dev *k, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    lx_display_vsay(&k->d, "drm", fmt, ap);
-    va_end(ap);
-}
 
 void kms_config_default(kms_config *c)
 {
@@ -89,7 +80,7 @@ static void drop_buffer(kms_dev *k, kms_buf *b)
     lx_damage_invalidate(&b->held, 0, b->held.height);
 }
 
-static lx_status make_buffer(kms_dev *k, kms_buf *b)
+static hal_status make_buffer(kms_dev *k, kms_buf *b)
 {
     struct drm_mode_create_dumb cd = {.width = (uint32_t)k->width, .height = (uint32_t)k->height, .bpp = k->bpp};
     if (drmIoctl(k->fd, DRM_IOCTL_MODE_CREATE_DUMB, &cd) != 0) {
@@ -101,11 +92,11 @@ static lx_status make_buffer(kms_dev *k, kms_buf *b)
     if (cd.pitch < row || cd.size < (uint64_t)cd.pitch * (uint64_t)k->height) {
         snprintf(k->why, sizeof k->why, "the driver gave a dumb buffer of pitch %u, size %llu for %dx%d",
                  cd.pitch, (unsigned long long)cd.size, k->width, k->height);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     if (k->pitch && cd.pitch != k->pitch) {
         snprintf(k->why, sizeof k->why, "the two dumb buffers differ in pitch (%u, %u)", k->pitch, cd.pitch);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     k->pitch = cd.pitch;
     b->size = (size_t)cd.size;
@@ -128,7 +119,7 @@ static lx_status make_buffer(kms_dev *k, kms_buf *b)
     }
     b->map = p;
     lx_damage_invalidate(&b->held, 0, k->height);
-    return LX_OK;
+    return HAL_OK;
 }
 
 /* Frees what the card holds of ours and closes it (after a loss or at close). */
@@ -149,19 +140,17 @@ static void disconnect(kms_dev *k)
 /* The per-line state, sized once the first mode fixed the source's size. */
 static bool alloc_lines(kms_dev *k)
 {
-    if (k->line)
-        return true;
-    k->line = malloc((size_t)k->width * 4u); /* XRGB8888, the widest format */
-    k->rgb = calloc((size_t)k->width * 3u, sizeof(float));
-    return k->line && k->rgb && lx_damage_init(&k->buf[0].held, k->height) &&
-           lx_damage_init(&k->buf[1].held, k->height);
+    for (int i = 0; i < 2; i++)
+        if (!k->buf[i].held.hash && !lx_damage_init(&k->buf[i].held, k->height))
+            return false;
+    return true;
 }
 
 /* Opens the card and makes both buffers; the next frame is a full mode set. */
-static lx_status connect_card(kms_dev *k, char *err, size_t n)
+static hal_status connect_card(kms_dev *k, char *err, size_t n)
 {
-    lx_status s = kms_card_open(k, err, n);
-    if (s != LX_OK)
+    hal_status s = kms_card_open(k, err, n);
+    if (s != HAL_OK)
         return s;
     if (!k->width) {
         k->width = k->mode.hdisplay;
@@ -169,29 +158,30 @@ static lx_status connect_card(kms_dev *k, char *err, size_t n)
     }
     if (!alloc_lines(k)) {
         snprintf(k->why, sizeof k->why, "out of memory for %d lines", k->height);
-        s = LX_ERR_NOMEM;
+        s = HAL_ERR_NOMEM;
     }
-    for (int i = 0; i < 2 && s == LX_OK; i++)
+    for (int i = 0; i < 2 && s == HAL_OK; i++)
         s = make_buffer(k, &k->buf[i]);
-    if (s != LX_OK) {
+    if (s != HAL_OK) {
         snprintf(err, n, "%.60s: %.190s", k->path, k->why);
         disconnect(k);
         return s;
     }
+    k->d.pixfmt = k->fourcc == DRM_FORMAT_RGB565 ? CS_PIX_RGB565_SRGB : HAL_PIX_XRGB8888;
     k->flips = true;
     k->dirty_fb = true;
     kms_atomic_setup(k);
     k->connected = true;
     k->connects++;
     k->next_probe_ns = 0;
-    return LX_OK;
+    return HAL_OK;
 }
 
 static void lost(kms_dev *k, const char *during)
 {
-    kms_say(k, "screen lost (%s during %s); retrying every %u ms", k->why, during, k->cfg.reconnect_ms);
+    hal_display_say(&k->d, "screen lost (%s during %s); retrying every %u ms", k->why, during, k->cfg.reconnect_ms);
     disconnect(k);
-    k->next_attempt_ns = lx_now(k->d.clock) + (uint64_t)k->cfg.reconnect_ms * 1000000u;
+    k->next_attempt_ns = hal_now(k->d.clock) + (uint64_t)k->cfg.reconnect_ms * 1000000u;
     k->quiet_failures = 0;
 }
 
@@ -206,9 +196,9 @@ static void on_flip(int fd, unsigned seq, unsigned sec, unsigned usec, void *use
 }
 
 /* Waits until the last flip completed, so the old front buffer may be written. */
-static lx_status wait_flip(kms_dev *k)
+static hal_status wait_flip(kms_dev *k)
 {
-    uint64_t deadline = lx_now(k->d.clock) + (uint64_t)k->cfg.flip_timeout_ms * 1000000u;
+    uint64_t deadline = hal_now(k->d.clock) + (uint64_t)k->cfg.flip_timeout_ms * 1000000u;
     drmEventContext ev = {.version = 2, .page_flip_handler = on_flip};
     while (k->flip_pending) {
         /* The event has usually come while the frame rendered: read first, poll only if not. */
@@ -219,19 +209,19 @@ static lx_status wait_flip(kms_dev *k)
             snprintf(k->why, sizeof k->why, "reading the flip event: %s", strerror(errno));
             return kms_errno_status(errno);
         }
-        uint64_t now = lx_now(k->d.clock);
+        uint64_t now = hal_now(k->d.clock);
         if (now >= deadline) {
             snprintf(k->why, sizeof k->why, "page flip not completed after %u ms", k->cfg.flip_timeout_ms);
             k->flip_pending = false; /* the next flip says whether the CRTC is still busy */
-            return LX_ERR_TIMEOUT;
+            return HAL_ERR_TIMEOUT;
         }
         struct pollfd p = {.fd = k->fd, .events = POLLIN};
         poll(&p, 1, (int)((deadline - now + 999999u) / 1000000u));
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
-static lx_status modeset(kms_dev *k, int b)
+static hal_status modeset(kms_dev *k, int b)
 {
     if (drmModeSetCrtc(k->fd, k->crtc_id, k->buf[b].fb, 0, 0, &k->conn_id, 1, &k->mode) != 0) {
         snprintf(k->why, sizeof k->why, "setting mode %ux%u on connector %s: %s", k->mode.hdisplay,
@@ -239,18 +229,18 @@ static lx_status modeset(kms_dev *k, int b)
         return kms_errno_status(errno);
     }
     k->modesets++;
-    return LX_OK;
+    return HAL_OK;
 }
 
 /* Puts buffer b on screen; clips are the bands that changed from the screen. */
-static lx_status show(kms_dev *k, int b, drmModeClip *clips, int nclips)
+static hal_status show(kms_dev *k, int b, drmModeClip *clips, int nclips)
 {
     if (k->atomic.on && (k->front < 0 || b != k->front)) {
-        lx_status s = kms_atomic_show(k, b, clips, nclips, k->front < 0);
+        hal_status s = kms_atomic_show(k, b, clips, nclips, k->front < 0);
         int e = errno;
-        if (s == LX_OK || s == LX_ERR_NO_DEVICE || s == LX_ERR_NOMEM || e == EBUSY)
+        if (s == HAL_OK || s == HAL_ERR_NO_DEVICE || s == HAL_ERR_NOMEM || e == EBUSY)
             return s;
-        kms_say(k, "the driver refuses an atomic commit (%s): legacy calls from now on", k->why);
+        hal_display_say(&k->d, "the driver refuses an atomic commit (%s): legacy calls from now on", k->why);
         kms_atomic_release(k);
     }
     if (k->front < 0)
@@ -258,25 +248,25 @@ static lx_status show(kms_dev *k, int b, drmModeClip *clips, int nclips)
     if (b != k->front) {
         if (drmModePageFlip(k->fd, k->crtc_id, k->buf[b].fb, DRM_MODE_PAGE_FLIP_EVENT, k) == 0) {
             k->flip_pending = true;
-            return LX_OK;
+            return HAL_OK;
         }
         int e = errno;
         snprintf(k->why, sizeof k->why, "page flip: %s", strerror(e));
-        if (kms_errno_status(e) == LX_ERR_NO_DEVICE || e == EBUSY)
+        if (kms_errno_status(e) == HAL_ERR_NO_DEVICE || e == EBUSY)
             return kms_errno_status(e);
-        kms_say(k, "the driver refuses page flips (%s): one buffer from now on, with damage clips",
+        hal_display_say(&k->d, "the driver refuses page flips (%s): one buffer from now on, with damage clips",
                 strerror(e));
         k->flips = false;
         return modeset(k, b);
     }
     if (!k->dirty_fb || nclips == 0)
-        return LX_OK;
+        return HAL_OK;
     if (drmModeDirtyFB(k->fd, k->buf[b].fb, clips, (uint32_t)nclips) == 0)
-        return LX_OK;
+        return HAL_OK;
     int e = errno;
     if (e == ENOSYS || e == EOPNOTSUPP) {
         k->dirty_fb = false; /* the buffer is scanned out as it is: nothing to report */
-        return LX_OK;
+        return HAL_OK;
     }
     snprintf(k->why, sizeof k->why, "DirtyFB of %d bands: %s", nclips, strerror(e));
     return kms_errno_status(e);
@@ -295,29 +285,29 @@ static void add_damage(drmModeClip *clips, int *n, int y, int width)
     }
 }
 
-static lx_status reconnect(kms_dev *k)
+static hal_status reconnect(kms_dev *k)
 {
-    uint64_t now = lx_now(k->d.clock);
+    uint64_t now = hal_now(k->d.clock);
     if (now < k->next_attempt_ns) {
         snprintf(k->d.err, sizeof k->d.err, "drm: screen absent (%.200s)", k->why);
-        return LX_ERR_NO_DEVICE;
+        return HAL_ERR_NO_DEVICE;
     }
     char err[256];
-    if (connect_card(k, err, sizeof err) != LX_OK) {
+    if (connect_card(k, err, sizeof err) != HAL_OK) {
         k->next_attempt_ns = now + (uint64_t)k->cfg.reconnect_ms * 1000000u;
         if (k->quiet_failures++ % 20 == 0) /* say why now and then, not on every attempt */
-            kms_say(k, "screen not back yet: %s", err);
+            hal_display_say(&k->d, "screen not back yet: %s", err);
         snprintf(k->d.err, sizeof k->d.err, "drm: %.240s", err);
-        return LX_ERR_NO_DEVICE;
+        return HAL_ERR_NO_DEVICE;
     }
-    kms_say(k, "screen connected: %s connector %s, %dx%d@%u %s", k->path, k->conn_name, k->width, k->height,
+    hal_display_say(&k->d, "screen connected: %s connector %s, %dx%d@%u %s", k->path, k->conn_name, k->width, k->height,
             k->mode.vrefresh, k->bpp == 16 ? "RGB565" : "XRGB8888");
-    return LX_OK;
+    return HAL_OK;
 }
 
-static lx_status fail(kms_dev *k, lx_status s, const char *during)
+static hal_status fail(kms_dev *k, hal_status s, const char *during)
 {
-    if (s == LX_ERR_NO_DEVICE) {
+    if (s == HAL_ERR_NO_DEVICE) {
         snprintf(k->d.err, sizeof k->d.err, "drm: screen lost: %.200s", k->why);
         lost(k, during);
     } else {
@@ -326,82 +316,77 @@ static lx_status fail(kms_dev *k, lx_status s, const char *during)
     return s;
 }
 
-static lx_status kms_present(lx_display *d, const lx_source *src, lx_frame_stats *st)
+/* A frame starts: the screen is (re)connected and checked, the back buffer chosen. */
+static hal_status kms_begin_frame(hal_display *d, const hal_window *win)
 {
     kms_dev *k = (kms_dev *)d;
-    lx_status s;
-    if (!k->connected && (s = reconnect(k)) != LX_OK)
+    hal_status s;
+    if (win)
+        return hal_display_fail(d, HAL_ERR_CONFIG, "frames are whole (damage is found per line)");
+    if (!k->connected && (s = reconnect(k)) != HAL_OK)
         return s;
-    uint64_t now = lx_now(d->clock);
+    uint64_t now = hal_now(d->clock);
     if (now >= k->next_probe_ns) {
-        if ((s = kms_card_probe(k)) != LX_OK)
+        if ((s = kms_card_probe(k)) != HAL_OK)
             return fail(k, s, "a connector check");
         k->next_probe_ns = now + (uint64_t)k->cfg.probe_ms * 1000000u;
     }
-    if (src->width != k->width || src->height != k->height) {
-        snprintf(d->err, sizeof d->err, "drm: source is %dx%d, the screen %dx%d", src->width, src->height,
-                 k->width, k->height);
-        return LX_ERR_CONFIG;
-    }
-    if ((s = wait_flip(k)) != LX_OK)
+    if ((s = wait_flip(k)) != HAL_OK)
         return fail(k, s, "a page flip");
-    int back = k->front < 0 ? 0 : k->flips ? 1 - k->front : k->front;
-    kms_buf *b = &k->buf[back];
-    const kms_buf *f = k->front < 0 ? NULL : &k->buf[k->front];
-    if ((s = src->begin(src->user, 1)) != LX_OK) {
-        snprintf(d->err, sizeof d->err, "drm: the renderer could not start the frame");
-        return s;
-    }
-    size_t row = (size_t)k->width * k->bpp / 8u;
-    drmModeClip clips[KMS_MAX_CLIPS];
-    int nclips = 0;
-    for (int y = 0; y < k->height; y++) {
-        if ((s = src->line(src->user, 0, y, k->rgb)) != LX_OK) {
-            snprintf(d->err, sizeof d->err, "drm: the renderer failed on line %d", y);
-            return s;
-        }
-        st->lines_rendered++;
-        if (k->fourcc == DRM_FORMAT_RGB565)
-            cs_pixfmt_convert(CS_PIX_RGB565_SRGB, k->rgb, k->width, k->line);
-        else
-            lx_line_xrgb8888(k->rgb, k->width, k->line);
-        uint64_t h = lx_line_hash(k->line, row);
-        bool on_screen = f && !lx_damage_changed(&f->held, y, h);
-        if (lx_damage_changed(&b->held, y, h)) {
-            memcpy(b->map + (size_t)y * k->pitch, k->line, row);
-            lx_damage_commit(&b->held, y, h);
-            st->bytes_raw += row;
-            if (b == f)
-                on_screen = false; /* single buffer: written where it is scanned out */
-        }
-        if (!on_screen) {
-            add_damage(clips, &nclips, y, k->width);
-            st->lines_sent++;
-        }
-        if (d->frame_period_ns) {
-            uint64_t due = d->frame_start_ns + (uint64_t)(y + 1) * d->frame_period_ns / (uint64_t)k->height;
-            if (lx_now(d->clock) > due)
-                st->line_misses++;
-        }
-    }
-    if (f && nclips == 0)
-        return LX_OK; /* the screen already shows this frame */
-    st->rects += (uint64_t)nclips;
-    if ((s = show(k, back, clips, nclips)) != LX_OK) {
-        if (s != LX_ERR_NO_DEVICE)
-            st->errors++;
-        return fail(k, s, "a frame");
-    }
-    k->front = back;
-    return LX_OK;
+    k->back = k->front < 0 ? 0 : k->flips ? 1 - k->front : k->front;
+    k->nclips = 0;
+    return HAL_OK;
 }
 
-static bool kms_connected(lx_display *d)
+/* Line y goes into the back buffer only if that buffer holds something else;
+ * it is damage if it differs from what the screen shows. */
+static hal_status kms_line_out(hal_display *d, int y, const uint8_t *px, size_t len)
+{
+    kms_dev *k = (kms_dev *)d;
+    size_t row = (size_t)k->width * k->bpp / 8u;
+    if (!k->connected || y < 0 || y >= k->height || len != row)
+        return hal_display_fail(d, HAL_ERR_SEQUENCE, "line %d of %zu bytes outside a frame of %d lines of %zu",
+                                y, len, k->height, row);
+    kms_buf *b = &k->buf[k->back];
+    const kms_buf *f = k->front < 0 ? NULL : &k->buf[k->front];
+    uint64_t h = lx_line_hash(px, row);
+    bool on_screen = f && !lx_damage_changed(&f->held, y, h);
+    if (lx_damage_changed(&b->held, y, h)) {
+        memcpy(b->map + (size_t)y * k->pitch, px, row);
+        lx_damage_commit(&b->held, y, h);
+        d->st.bytes_raw += row;
+        if (b == f)
+            on_screen = false; /* single buffer: written where it is scanned out */
+    }
+    if (!on_screen) {
+        add_damage(k->clips, &k->nclips, y, k->width);
+        d->st.lines_sent++;
+    }
+    return HAL_OK;
+}
+
+static hal_status kms_end_frame(hal_display *d)
+{
+    kms_dev *k = (kms_dev *)d;
+    if (k->front >= 0 && k->nclips == 0)
+        return HAL_OK; /* the screen already shows this frame */
+    d->st.rects += (uint64_t)k->nclips;
+    hal_status s = show(k, k->back, k->clips, k->nclips);
+    if (s != HAL_OK) {
+        if (s != HAL_ERR_NO_DEVICE)
+            d->st.errors++;
+        return fail(k, s, "a frame");
+    }
+    k->front = k->back;
+    return HAL_OK;
+}
+
+static bool kms_connected(hal_display *d)
 {
     return ((kms_dev *)d)->connected;
 }
 
-static void kms_close(lx_display *d)
+static void kms_close(hal_display *d)
 {
     kms_dev *k = (kms_dev *)d;
     if (k->connected && k->flip_pending)
@@ -409,14 +394,19 @@ static void kms_close(lx_display *d)
     disconnect(k);
     lx_damage_free(&k->buf[0].held);
     lx_damage_free(&k->buf[1].held);
-    free(k->line);
-    free(k->rgb);
     free(k);
 }
 
-static const lx_display_ops kms_ops = {"drm", 1, kms_present, kms_connected, kms_close};
+static const hal_display_api kms_api = {
+    .name = "drm",
+    .begin_frame = kms_begin_frame,
+    .line_out = kms_line_out,
+    .end_frame = kms_end_frame,
+    .connected = kms_connected,
+    .close = kms_close,
+};
 
-lx_status kms_open(lx_display **out, const kms_config *c, const lx_clock *clock, lx_log_fn log,
+hal_status kms_open(hal_display **out, const kms_config *c, const hal_clock *clock, hal_log_fn log,
                    void *log_user, char *err, size_t errlen)
 {
     if (c->width < 0 || c->height < 0 || c->width > CS_CFG_MAX_WIDTH || c->height > CS_CFG_MAX_HEIGHT ||
@@ -425,44 +415,45 @@ lx_status kms_open(lx_display **out, const kms_config *c, const lx_clock *clock,
         snprintf(err, errlen, "drm: mode %dx%d@%d out of range (%dx%d at most; a rate, and waiting for an "
                  "absent screen, need a size)", c->width, c->height, c->refresh, CS_CFG_MAX_WIDTH,
                  CS_CFG_MAX_HEIGHT);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     kms_dev *k = calloc(1, sizeof *k);
     if (!k)
-        return LX_ERR_NOMEM;
+        return HAL_ERR_NOMEM;
     k->cfg = *c;
     k->fd = -1;
     k->front = -1;
-    k->d.ops = &kms_ops;
+    k->d.api = &kms_api;
+    k->d.pixfmt = HAL_PIX_XRGB8888;
     k->d.clock = clock;
     k->d.log = log;
     k->d.log_user = log_user;
     char why[256];
-    lx_status s = connect_card(k, why, sizeof why);
+    hal_status s = connect_card(k, why, sizeof why);
     /* Waiting, a card that is absent, busy or broken counts as absent: the
      * screen may come. A connector without the mode asked for is the user's to fix. */
-    if (s != LX_OK && !(c->wait && s != LX_ERR_CONFIG && s != LX_ERR_NOMEM)) {
+    if (s != HAL_OK && !(c->wait && s != HAL_ERR_CONFIG && s != HAL_ERR_NOMEM)) {
         snprintf(err, errlen, "drm: %s", why);
         kms_close(&k->d);
         return s;
     }
-    if (s != LX_OK) {
+    if (s != HAL_OK) {
         k->width = c->width;
         k->height = c->height;
         if (!alloc_lines(k)) {
             kms_close(&k->d);
-            return LX_ERR_NOMEM;
+            return HAL_ERR_NOMEM;
         }
         snprintf(k->why, sizeof k->why, "%.190s", why);
-        kms_say(k, "no screen yet (%s); waiting", why);
+        hal_display_say(&k->d, "no screen yet (%s); waiting", why);
     }
     k->d.width = k->width;
     k->d.height = k->height;
     *out = &k->d;
-    return LX_OK;
+    return HAL_OK;
 }
 
-void kms_get_info(lx_display *d, kms_info *info)
+void kms_get_info(hal_display *d, kms_info *info)
 {
     kms_dev *k = (kms_dev *)d;
     memset(info, 0, sizeof *info);

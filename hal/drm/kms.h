@@ -22,7 +22,7 @@
  * such as a desktop, holds as DRM master), a connector with nothing
  * connected, a connector that reports disconnected mid-run (checked every
  * probe_ms) or ioctls that fail with ENODEV (the card went away) turn
- * present() into a cheap LX_ERR_NO_DEVICE; the backend retries every
+ * present() into a cheap HAL_ERR_NO_DEVICE; the backend retries every
  * reconnect_ms and repaints the whole frame once the screen is back. With
  * `wait` it starts that way too, when the screen is not there at start.
  */
@@ -33,7 +33,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "lx_display.h"
+#include "display.h"
 
 typedef struct kms_config {
     char device[128];          /* "" = the first /dev/dri/cardN with a connected connector */
@@ -50,7 +50,7 @@ void kms_config_default(kms_config *c);
 /* Parses a mode "WxH" or "WxH@Hz" into c; false if malformed or out of range. */
 bool kms_parse_mode(const char *s, kms_config *c);
 
-lx_status kms_open(lx_display **out, const kms_config *c, const lx_clock *clock, lx_log_fn log,
+hal_status kms_open(hal_display **out, const kms_config *c, const hal_clock *clock, hal_log_fn log,
                    void *log_user, char *err, size_t errlen);
 
 /* What the backend chose, for logs and tests. */
@@ -67,6 +67,6 @@ typedef struct kms_info {
     uint64_t flips_done, modesets, connects;
 } kms_info;
 
-void kms_get_info(lx_display *d, kms_info *info);
+void kms_get_info(hal_display *d, kms_info *info);
 
 #endif /* KMS_H */

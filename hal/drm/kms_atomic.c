@@ -51,7 +51,7 @@ void kms_atomic_setup(kms_dev *k)
         ok = false;
     a->on = ok;
     if (ok)
-        kms_say(k, "atomic modesetting, damage clips on plane %u", a->plane);
+        hal_display_say(&k->d, "atomic modesetting, damage clips on plane %u", a->plane);
 }
 
 void kms_atomic_release(kms_dev *k)
@@ -61,13 +61,13 @@ void kms_atomic_release(kms_dev *k)
     memset(&k->atomic, 0, sizeof k->atomic);
 }
 
-lx_status kms_atomic_show(kms_dev *k, int b, const drmModeClip *clips, int nclips, bool modeset)
+hal_status kms_atomic_show(kms_dev *k, int b, const drmModeClip *clips, int nclips, bool modeset)
 {
     kms_atomic *a = &k->atomic;
     drmModeAtomicReq *req = drmModeAtomicAlloc();
     if (!req) {
         snprintf(k->why, sizeof k->why, "out of memory for an atomic commit");
-        return LX_ERR_NOMEM;
+        return HAL_ERR_NOMEM;
     }
     const uint32_t *pp = a->plane_prop;
     uint32_t blob = 0;
@@ -106,7 +106,7 @@ lx_status kms_atomic_show(kms_dev *k, int b, const drmModeClip *clips, int nclip
             k->modesets++;
         else
             k->flip_pending = true;
-        return LX_OK;
+        return HAL_OK;
     }
     snprintf(k->why, sizeof k->why, "atomic %s: %s", modeset ? "mode set" : "flip", strerror(e));
     errno = e; /* the caller tells a busy CRTC from a refusal */

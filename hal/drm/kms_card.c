@@ -22,9 +22,9 @@
 #include "kms_priv.h"
 
 /* EACCES: another program took the screen (DRM master); it is ours again only after it lets go. */
-lx_status kms_errno_status(int e)
+hal_status kms_errno_status(int e)
 {
-    return e == ENODEV || e == ENXIO || e == ENOENT || e == EACCES ? LX_ERR_NO_DEVICE : LX_ERR_IO;
+    return e == ENODEV || e == ENXIO || e == ENOENT || e == EACCES ? HAL_ERR_NO_DEVICE : HAL_ERR_IO;
 }
 
 static void connector_name(const drmModeConnector *c, char *out, size_t n)
@@ -95,7 +95,7 @@ static uint32_t pick_crtc(int fd, const drmModeRes *res, const drmModeConnector 
 }
 
 /* Chooses connector, mode and CRTC on an open card. */
-static lx_status pick_output(kms_dev *k, drmModeRes *res, char *err, size_t n)
+static hal_status pick_output(kms_dev *k, drmModeRes *res, char *err, size_t n)
 {
     int w = k->cfg.width, h = k->cfg.height;
     if (k->width) { /* reconnecting: the renderer's size is fixed */
@@ -107,7 +107,7 @@ static lx_status pick_output(kms_dev *k, drmModeRes *res, char *err, size_t n)
         if (!c) {
             if (errno == ENODEV) {
                 snprintf(err, n, "%s: reading connector %u: %s", k->path, res->connectors[i], strerror(errno));
-                return LX_ERR_NO_DEVICE;
+                return HAL_ERR_NO_DEVICE;
             }
             continue;
         }
@@ -127,72 +127,72 @@ static lx_status pick_output(kms_dev *k, drmModeRes *res, char *err, size_t n)
                 snprintf(err, n, "%s: connector %s offers no usable mode (it has %s)", k->path, name,
                          modes[0] ? modes : "none");
             drmModeFreeConnector(c);
-            return LX_ERR_CONFIG;
+            return HAL_ERR_CONFIG;
         }
         uint32_t crtc = pick_crtc(k->fd, res, c);
         if (!crtc) {
             snprintf(err, n, "%s: no CRTC can drive connector %s", k->path, name);
             drmModeFreeConnector(c);
-            return LX_ERR_PROTOCOL;
+            return HAL_ERR_PROTOCOL;
         }
         k->mode = c->modes[m];
         k->conn_id = c->connector_id;
         k->crtc_id = crtc;
         snprintf(k->conn_name, sizeof k->conn_name, "%s", name);
         drmModeFreeConnector(c);
-        return LX_OK;
+        return HAL_OK;
     }
     snprintf(err, n, "%s: no connector has a screen connected (%d connectors)", k->path, res->count_connectors);
-    return LX_ERR_NO_DEVICE;
+    return HAL_ERR_NO_DEVICE;
 }
 
 /* Dumb buffers are a must; the plane's formats and their preferred depth say RGB565 or XRGB8888. */
-static lx_status pick_format(kms_dev *k, char *err, size_t n)
+static hal_status pick_format(kms_dev *k, char *err, size_t n)
 {
     uint64_t dumb = 0, depth = 0;
     if (drmGetCap(k->fd, DRM_CAP_DUMB_BUFFER, &dumb) != 0 || !dumb) {
         snprintf(err, n, "%s: the driver offers no dumb buffers", k->path);
-        return errno == ENODEV ? LX_ERR_NO_DEVICE : LX_ERR_PROTOCOL;
+        return errno == ENODEV ? HAL_ERR_NO_DEVICE : HAL_ERR_PROTOCOL;
     }
     bool prefer16 = drmGetCap(k->fd, DRM_CAP_DUMB_PREFERRED_DEPTH, &depth) == 0 && depth == 16;
     return kms_plane_format(k, prefer16, err, n);
 }
 
-static lx_status open_path(kms_dev *k, const char *path, char *err, size_t n)
+static hal_status open_path(kms_dev *k, const char *path, char *err, size_t n)
 {
     snprintf(k->path, sizeof k->path, "%s", path);
     k->fd = open(path, O_RDWR | O_CLOEXEC | O_NONBLOCK);
     if (k->fd < 0) {
         snprintf(err, n, "%s: %s", path, strerror(errno));
-        return LX_ERR_NO_DEVICE;
+        return HAL_ERR_NO_DEVICE;
     }
     drmModeRes *res = drmModeGetResources(k->fd);
-    lx_status s;
+    hal_status s;
     if (res && !drmIsMaster(k->fd)) {
         /* Mode sets and flips would fail with EACCES on every frame. */
         snprintf(err, n, "%s: another program (a desktop or compositor?) holds the screen as DRM master", path);
-        s = LX_ERR_NO_DEVICE;
+        s = HAL_ERR_NO_DEVICE;
     } else if (!res) {
         int e = errno;
         snprintf(err, n, "%s is not a KMS device (%s)", path, strerror(e));
-        s = e == ENODEV ? LX_ERR_NO_DEVICE : LX_ERR_PROTOCOL;
+        s = e == ENODEV ? HAL_ERR_NO_DEVICE : HAL_ERR_PROTOCOL;
     } else {
         s = pick_output(k, res, err, n);
         drmModeFreeResources(res);
     }
-    if (s == LX_OK)
+    if (s == HAL_OK)
         s = pick_format(k, err, n);
-    if (s == LX_OK) {
+    if (s == HAL_OK) {
         drmModeFreeCrtc(k->saved);
         k->saved = drmModeGetCrtc(k->fd, k->crtc_id);
-        return LX_OK;
+        return HAL_OK;
     }
     close(k->fd);
     k->fd = -1;
     return s;
 }
 
-lx_status kms_card_open(kms_dev *k, char *err, size_t errlen)
+hal_status kms_card_open(kms_dev *k, char *err, size_t errlen)
 {
     if (k->cfg.device[0])
         return open_path(k, k->cfg.device, err, errlen);
@@ -202,10 +202,10 @@ lx_status kms_card_open(kms_dev *k, char *err, size_t errlen)
         snprintf(path, sizeof path, "/dev/dri/card%d", i);
         if (access(path, F_OK) != 0)
             continue;
-        lx_status s = open_path(k, path, why, sizeof why);
-        if (s == LX_OK)
+        hal_status s = open_path(k, path, why, sizeof why);
+        if (s == HAL_OK)
             return s;
-        if (s == LX_ERR_CONFIG) {
+        if (s == HAL_ERR_CONFIG) {
             snprintf(err, errlen, "%s", why);
             return s;
         }
@@ -214,10 +214,10 @@ lx_status kms_card_open(kms_dev *k, char *err, size_t errlen)
     }
     snprintf(err, errlen, "no DRM card with a connected screen in /dev/dri/card0..%d (%s)", KMS_MAX_CARDS - 1,
              first[0] ? first : "there is none");
-    return LX_ERR_NO_DEVICE;
+    return HAL_ERR_NO_DEVICE;
 }
 
-lx_status kms_card_probe(kms_dev *k)
+hal_status kms_card_probe(kms_dev *k)
 {
     drmModeConnector *c = drmModeGetConnectorCurrent(k->fd, k->conn_id);
     if (!c) {
@@ -228,9 +228,9 @@ lx_status kms_card_probe(kms_dev *k)
     drmModeFreeConnector(c);
     if (!on) {
         snprintf(k->why, sizeof k->why, "connector %s reports no screen connected", k->conn_name);
-        return LX_ERR_NO_DEVICE;
+        return HAL_ERR_NO_DEVICE;
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
 void kms_card_close(kms_dev *k)

@@ -80,7 +80,7 @@ static bool has_format(const drmModePlane *pl, uint32_t fourcc)
     return false;
 }
 
-lx_status kms_plane_format(kms_dev *k, bool prefer16, char *err, size_t n)
+hal_status kms_plane_format(kms_dev *k, bool prefer16, char *err, size_t n)
 {
     k->plane = 0;
     bool xrgb = true, rgb565 = true;
@@ -101,11 +101,11 @@ lx_status kms_plane_format(kms_dev *k, bool prefer16, char *err, size_t n)
         snprintf(err, n, "%s: the primary plane takes neither XRGB8888 nor RGB565 (it takes %s)", k->path,
                  list[0] ? list : "nothing");
         drmModeFreePlane(pl);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     drmModeFreePlane(pl);
     bool use565 = !xrgb || (prefer16 && rgb565);
     k->fourcc = use565 ? DRM_FORMAT_RGB565 : DRM_FORMAT_XRGB8888;
     k->bpp = use565 ? 16 : 32;
-    return LX_OK;
+    return HAL_OK;
 }

@@ -16,6 +16,7 @@
 #include "kms.h"
 #include "lx_damage.h"
 
+#define KMS_MAX_CLIPS 64 /* bands per DirtyFB; more are merged (the kernel takes 256) */
 #define KMS_MAX_CARDS 8 /* /dev/dri/card0..7 are tried when no device is named */
 
 typedef struct kms_buf {
@@ -37,7 +38,7 @@ typedef struct kms_atomic {
 } kms_atomic;
 
 typedef struct kms_dev {
-    lx_display d;
+    hal_display d;
     kms_config cfg;
     int fd;
     char path[128];
@@ -54,9 +55,9 @@ typedef struct kms_dev {
     bool flips, dirty_fb, flip_pending;
     kms_atomic atomic;
     int width, height;  /* fixed for the life of the display: the source's size */
-    uint8_t *line;      /* one line in the buffer format */
-    uint8_t *rgb888;
-    float *rgb;
+    int back;           /* the buffer the current frame goes into */
+    int nclips;         /* the current frame's damage: bands that differ from the screen */
+    drmModeClip clips[KMS_MAX_CLIPS];
     bool connected;
     uint64_t next_attempt_ns, next_probe_ns;
     uint64_t flips_done, modesets, connects;
@@ -64,29 +65,27 @@ typedef struct kms_dev {
     char why[200];      /* detail of the last failure */
 } kms_dev;
 
-void kms_say(kms_dev *k, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-
-/* LX_ERR_NO_DEVICE for errno values that mean the card or screen went away (or was taken). */
-lx_status kms_errno_status(int e);
+/* HAL_ERR_NO_DEVICE for errno values that mean the card or screen went away (or was taken). */
+hal_status kms_errno_status(int e);
 
 /*
  * Opens the card (the configured one, or the first with a connected
  * connector) and chooses connector, mode (of k->width x k->height once that
  * is fixed), CRTC and pixel format. On failure the fd is closed and err says
- * why; LX_ERR_CONFIG means the connector lacks the mode asked for.
+ * why; HAL_ERR_CONFIG means the connector lacks the mode asked for.
  */
-lx_status kms_card_open(kms_dev *k, char *err, size_t errlen);
+hal_status kms_card_open(kms_dev *k, char *err, size_t errlen);
 /* Puts the CRTC back as it was (if the card is still there) and closes the fd. */
 void kms_card_close(kms_dev *k);
-/* LX_OK while the connector still reports a connected screen. */
-lx_status kms_card_probe(kms_dev *k);
+/* HAL_OK while the connector still reports a connected screen. */
+hal_status kms_card_probe(kms_dev *k);
 
 /*
  * Finds the CRTC's primary plane (k->plane) and chooses the pixel format it
  * takes: XRGB8888, or RGB565 if the plane takes only that or prefer16 and
- * it takes both. LX_ERR_PROTOCOL, naming its formats, if it takes neither.
+ * it takes both. HAL_ERR_PROTOCOL, naming its formats, if it takes neither.
  */
-lx_status kms_plane_format(kms_dev *k, bool prefer16, char *err, size_t n);
+hal_status kms_plane_format(kms_dev *k, bool prefer16, char *err, size_t n);
 /*
  * Looks up the properties `names` of object id (type) into ids (0 = absent)
  * and the value of property `value_of`, if asked. false if the object's
@@ -102,7 +101,7 @@ bool kms_find_props(int fd, uint32_t id, uint32_t type, const char *const *names
 void kms_atomic_setup(kms_dev *k);
 /* One commit showing buffer b: a full mode set if modeset, else a flip with
  * the damage clips and a completion event. */
-lx_status kms_atomic_show(kms_dev *k, int b, const drmModeClip *clips, int nclips, bool modeset);
+hal_status kms_atomic_show(kms_dev *k, int b, const drmModeClip *clips, int nclips, bool modeset);
 /* Frees the mode blob (before the fd is closed). */
 void kms_atomic_release(kms_dev *k);
 

@@ -22,7 +22,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "lx_display.h"
+#include "display.h"
 
 /* Wire functions, also the order of hub75_pins' fields. */
 enum {
@@ -63,7 +63,7 @@ const char *hub75_presets(void);
 void hub75_config_default(hub75_config *c);
 
 /* Checks a configuration; on failure writes a message naming the setting. */
-lx_status hub75_config_check(const hub75_config *c, char *err, size_t errlen);
+hal_status hub75_config_check(const hub75_config *c, char *err, size_t errlen);
 
 /* Row pairs of the panel (panel_h / 2) and address lines they need. */
 int hub75_scan(const hub75_config *c);
@@ -72,16 +72,16 @@ int hub75_addr_bits(const hub75_config *c);
 /*
  * Opens the chip, requests every wired line as an output in one bulk request
  * (OE starts inactive: panel dark) and returns the display. The clock times
- * the bit planes; pass &lx_clock_monotonic on a board.
+ * the bit planes; pass &hal_clock_monotonic on a board.
  */
-lx_status hub75_open(lx_display **out, const hub75_config *c, const lx_clock *clock,
+hal_status hub75_open(hal_display **out, const hub75_config *c, const hal_clock *clock,
                      char *err, size_t errlen);
 
 /*
  * Measures bulk write throughput on an open HUB75 display: `writes` bulk
  * writes that toggle CLK. Returns writes per second (0 on failure).
  */
-double hub75_measure_writes(lx_display *d, int writes);
+double hub75_measure_writes(hal_display *d, int writes);
 
 /*
  * Estimated refresh rate (full panel scans per second) of a configuration for

@@ -84,29 +84,29 @@ int hub75_addr_bits(const hub75_config *c)
     return bits;
 }
 
-lx_status hub75_config_check(const hub75_config *c, char *err, size_t errlen)
+hal_status hub75_config_check(const hub75_config *c, char *err, size_t errlen)
 {
     if (c->panel_h != 16 && c->panel_h != 32 && c->panel_h != 64) {
         snprintf(err, errlen,
                  "hub75 panel height %d: supported are 16 (1/8 scan), 32 (1/16 scan) and 64 (1/32 scan)",
                  c->panel_h);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     if (c->panel_w < 1 || c->panel_w > 1024 || c->panel_w % 8 != 0) {
         snprintf(err, errlen, "hub75 panel width %d: expected a multiple of 8 in 8..1024", c->panel_w);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     if (c->chain < 1 || c->panel_w * c->chain > 4096) {
         snprintf(err, errlen, "hub75 chain %d: expected 1.. (total width at most 4096)", c->chain);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     if (c->planes < 1 || c->planes > HUB75_MAX_PLANES) {
         snprintf(err, errlen, "hub75 planes %d: expected 1..%d", c->planes, HUB75_MAX_PLANES);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     if (c->lsb_ns < 1 || c->lsb_ns > 1000000) {
         snprintf(err, errlen, "hub75 lsb-ns %u: expected 1..1000000", c->lsb_ns);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     int abits = hub75_addr_bits(c);
     for (int f = 0; f < HUB75_NFUNC; f++) {
@@ -117,26 +117,26 @@ lx_status hub75_config_check(const hub75_config *c, char *err, size_t errlen)
         if (p < 0) {
             snprintf(err, errlen, "hub75 pin %s is not set%s", hub75_func_name(f),
                      f == HUB75_E ? " (a 64-row panel scans 1/32 and needs address line E)" : "");
-            return LX_ERR_CONFIG;
+            return HAL_ERR_CONFIG;
         }
         if (p > 511) {
             snprintf(err, errlen, "hub75 pin %s=%d: line offsets are 0..511", hub75_func_name(f), p);
-            return LX_ERR_CONFIG;
+            return HAL_ERR_CONFIG;
         }
         for (int g = 0; g < f; g++) {
             bool gneeded = !(g >= HUB75_A && g <= HUB75_E) || (g - HUB75_A) < abits;
             if (gneeded && c->pins.pin[g] == p) {
                 snprintf(err, errlen, "hub75 pins %s and %s are both line %d", hub75_func_name(g),
                          hub75_func_name(f), p);
-                return LX_ERR_CONFIG;
+                return HAL_ERR_CONFIG;
             }
         }
     }
     if (!c->chip[0]) {
         snprintf(err, errlen, "hub75 gpio-chip is empty");
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
 uint64_t hub75_writes_per_frame(const hub75_config *c)

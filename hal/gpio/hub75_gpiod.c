@@ -33,7 +33,7 @@
 #include "hub75.h"
 
 typedef struct hub75 {
-    lx_display d;
+    hal_display d;
     hub75_config cfg;
     int width, scan, abits;
     struct gpiod_chip *chip;
@@ -95,14 +95,14 @@ static void build_planes(hub75 *h)
     }
 }
 
-static lx_status io_error(hub75 *h, int e)
+static hal_status io_error(hub75 *h, int e)
 {
     snprintf(h->d.err, sizeof h->d.err, "hub75: writing GPIO lines on %s failed: %s", h->cfg.chip,
              strerror(e));
-    return e == ENODEV ? LX_ERR_NO_DEVICE : LX_ERR_IO;
+    return e == ENODEV ? HAL_ERR_NO_DEVICE : HAL_ERR_IO;
 }
 
-static lx_status drive_row_pair(hub75 *h, int r)
+static hal_status drive_row_pair(hub75 *h, int r)
 {
     const int W = h->width;
     int e;
@@ -130,35 +130,35 @@ static lx_status drive_row_pair(hub75 *h, int r)
         h->level[HUB75_LAT] = 0;
         if ((e = put(h)))
             return io_error(h, e);
-        uint64_t t0 = lx_now(h->d.clock);
+        uint64_t t0 = hal_now(h->d.clock);
         h->level[HUB75_OE] = 0;
         if ((e = put(h)))
             return io_error(h, e);
-        lx_wait_until(h->d.clock, t0 + ((uint64_t)h->cfg.lsb_ns << b));
+        hal_wait_until(h->d.clock, t0 + ((uint64_t)h->cfg.lsb_ns << b));
         h->level[HUB75_OE] = 1;
         if ((e = put(h)))
             return io_error(h, e);
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
-static lx_status hub75_present(lx_display *d, const lx_source *src, lx_frame_stats *st)
+static hal_status hub75_present(hal_display *d, const hal_source *src, hal_frame_stats *st)
 {
     hub75 *h = (hub75 *)d;
     if (src->width != h->width || src->height != h->cfg.panel_h) {
         snprintf(d->err, sizeof d->err, "hub75: source is %dx%d, the panel chain is %dx%d",
                  src->width, src->height, h->width, h->cfg.panel_h);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
-    lx_status s = src->begin(src->user, 2);
-    if (s != LX_OK) {
+    hal_status s = src->begin(src->user, 2);
+    if (s != HAL_OK) {
         snprintf(d->err, sizeof d->err, "hub75: the renderer could not start the frame");
         return s;
     }
     uint64_t writes0 = h->writes;
     for (int r = 0; r < h->scan; r++) {
-        if ((s = src->line(src->user, 0, r, h->top)) != LX_OK ||
-            (s = src->line(src->user, 1, r + h->scan, h->bot)) != LX_OK) {
+        if ((s = src->line(src->user, 0, r, h->top)) != HAL_OK ||
+            (s = src->line(src->user, 1, r + h->scan, h->bot)) != HAL_OK) {
             snprintf(d->err, sizeof d->err, "hub75: the renderer failed on row pair %d", r);
             return s;
         }
@@ -167,23 +167,23 @@ static lx_status hub75_present(lx_display *d, const lx_source *src, lx_frame_sta
         s = drive_row_pair(h, r);
         st->writes += h->writes - writes0;
         writes0 = h->writes;
-        if (s != LX_OK)
+        if (s != HAL_OK)
             return s;
         if (d->frame_period_ns) {
             uint64_t due = d->frame_start_ns + (uint64_t)(r + 1) * d->frame_period_ns / (uint64_t)h->scan;
-            if (lx_now(d->clock) > due)
+            if (hal_now(d->clock) > due)
                 st->line_misses++;
         }
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
-static bool hub75_connected(lx_display *d)
+static bool hub75_connected(hal_display *d)
 {
     return ((hub75 *)d)->requested;
 }
 
-static void hub75_close(lx_display *d)
+static void hub75_close(hal_display *d)
 {
     hub75 *h = (hub75 *)d;
     if (h->requested) {
@@ -200,22 +200,29 @@ static void hub75_close(lx_display *d)
     free(h);
 }
 
-static const lx_display_ops hub75_ops = {"gpio", 2, hub75_present, hub75_connected, hub75_close};
+/* The pull lane: a HUB75 panel holds nothing and is rescanned every frame. */
+static const hal_display_api hub75_api = {
+    .name = "gpio",
+    .present = hub75_present,
+    .lanes = 2,
+    .connected = hub75_connected,
+    .close = hub75_close,
+};
 
-lx_status hub75_open(lx_display **out, const hub75_config *c, const lx_clock *clock, char *err,
+hal_status hub75_open(hal_display **out, const hub75_config *c, const hal_clock *clock, char *err,
                      size_t errlen)
 {
-    lx_status s = hub75_config_check(c, err, errlen);
-    if (s != LX_OK)
+    hal_status s = hub75_config_check(c, err, errlen);
+    if (s != HAL_OK)
         return s;
     hub75 *h = calloc(1, sizeof *h);
     if (!h)
-        return LX_ERR_NOMEM;
+        return HAL_ERR_NOMEM;
     h->cfg = *c;
     h->width = c->panel_w * c->chain;
     h->scan = hub75_scan(c);
     h->abits = hub75_addr_bits(c);
-    h->d.ops = &hub75_ops;
+    h->d.api = &hub75_api;
     h->d.width = h->width;
     h->d.height = c->panel_h;
     h->d.clock = clock;
@@ -224,7 +231,7 @@ lx_status hub75_open(lx_display **out, const hub75_config *c, const lx_clock *cl
     h->planes = calloc((size_t)h->width * (size_t)c->planes, 1);
     if (!h->top || !h->bot || !h->planes) {
         hub75_close(&h->d);
-        return LX_ERR_NOMEM;
+        return HAL_ERR_NOMEM;
     }
 
     h->chip = gpiod_chip_open(c->chip);
@@ -233,7 +240,7 @@ lx_status hub75_open(lx_display **out, const hub75_config *c, const lx_clock *cl
         snprintf(err, errlen, "hub75: cannot open GPIO chip %s: %s%s", c->chip, strerror(e),
                  e == ENOTTY || e == ENODEV ? " (not a GPIO character device)" : "");
         hub75_close(&h->d);
-        return LX_ERR_NO_DEVICE;
+        return HAL_ERR_NO_DEVICE;
     }
     unsigned int nchip = gpiod_chip_num_lines(h->chip);
     unsigned int offsets[HUB75_NFUNC];
@@ -248,7 +255,7 @@ lx_status hub75_open(lx_display **out, const hub75_config *c, const lx_clock *cl
             snprintf(err, errlen, "hub75: pin %s=%d, but %s has only lines 0..%u", hub75_func_name(f),
                      p, c->chip, nchip ? nchip - 1 : 0);
             hub75_close(&h->d);
-            return LX_ERR_CONFIG;
+            return HAL_ERR_CONFIG;
         }
         h->bulk_index[f] = h->nwired;
         offsets[h->nwired] = (unsigned)p;
@@ -259,7 +266,7 @@ lx_status hub75_open(lx_display **out, const hub75_config *c, const lx_clock *cl
     if (gpiod_chip_get_lines(h->chip, offsets, (unsigned)h->nwired, &h->bulk) != 0) {
         snprintf(err, errlen, "hub75: cannot look up lines on %s: %s", c->chip, strerror(errno));
         hub75_close(&h->d);
-        return LX_ERR_IO;
+        return HAL_ERR_IO;
     }
     if (gpiod_line_request_bulk_output(&h->bulk, "celfw-hub75", defaults) != 0) {
         int e = errno;
@@ -277,28 +284,28 @@ lx_status hub75_open(lx_display **out, const hub75_config *c, const lx_clock *cl
         snprintf(err, errlen, "hub75: cannot request output lines on %s: %s%s", c->chip,
                  strerror(e), who);
         hub75_close(&h->d);
-        return e == EBUSY ? LX_ERR_IO : LX_ERR_NO_DEVICE;
+        return e == EBUSY ? HAL_ERR_IO : HAL_ERR_NO_DEVICE;
     }
     h->requested = true;
     memcpy(h->last, defaults, (size_t)h->nwired * sizeof(int));
     h->have_last = true;
     *out = &h->d;
-    return LX_OK;
+    return HAL_OK;
 }
 
-double hub75_measure_writes(lx_display *d, int writes)
+double hub75_measure_writes(hal_display *d, int writes)
 {
     hub75 *h = (hub75 *)d;
     if (writes < 2)
         return 0.0;
     h->level[HUB75_OE] = 1;
-    uint64_t t0 = lx_now(d->clock);
+    uint64_t t0 = hal_now(d->clock);
     for (int i = 0; i < writes; i++) {
         h->level[HUB75_CLK] = i & 1;
         if (put(h) != 0)
             return 0.0;
     }
-    uint64_t t1 = lx_now(d->clock);
+    uint64_t t1 = hal_now(d->clock);
     h->level[HUB75_CLK] = 0;
     (void)put(h);
     return t1 > t0 ? (double)writes * 1e9 / (double)(t1 - t0) : 0.0;

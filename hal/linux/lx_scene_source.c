@@ -24,12 +24,12 @@ void lx_scene_source_end(lx_scene_source *s)
         s->err = e;
 }
 
-static lx_status begin(void *user, int lanes)
+static hal_status begin(void *user, int lanes)
 {
     lx_scene_source *s = user;
     lx_scene_source_end(s); /* lane 0's workspace is about to change */
     if (lanes < 1 || lanes > LX_MAX_LANES || !s->scene)
-        return LX_ERR_RENDER;
+        return HAL_ERR_RENDER;
     s->lanes = lanes;
     memset(&s->err, 0, sizeof s->err);
     if (s->pool && lanes == 1) {
@@ -38,19 +38,19 @@ static lx_status begin(void *user, int lanes)
             st = bands_start(s->pool, &s->r[0], LX_BAND_LINES, s->ring_lines, ring_line, s);
         if (st != CS_OK) {
             s->err.status = st;
-            return LX_ERR_RENDER;
+            return HAL_ERR_RENDER;
         }
         s->pooled = true;
         s->pool_next = 0;
-        return LX_OK;
+        return HAL_OK;
     }
     s->pool_next = -1;
     for (int l = 0; l < lanes; l++) {
         cs_status st = cs_frame_begin(&s->r[l], s->ws[l], s->scene, &s->opts, &s->err);
         if (st != CS_OK)
-            return LX_ERR_RENDER;
+            return HAL_ERR_RENDER;
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
 /* Line y from the pool's ring; lines only go forward, as in a lane. */
@@ -68,19 +68,19 @@ static bool pool_line(lx_scene_source *s, int y, float *rgb)
     return true;
 }
 
-static lx_status line(void *user, int lane, int y, float *rgb)
+static hal_status line(void *user, int lane, int y, float *rgb)
 {
     lx_scene_source *s = user;
     if (lane < 0 || lane >= s->lanes)
-        return LX_ERR_RENDER;
+        return HAL_ERR_RENDER;
     if (s->pool_next >= 0) {
         if (!pool_line(s, y, rgb))
-            return LX_ERR_RENDER;
+            return HAL_ERR_RENDER;
     } else {
         cs_status st = cs_render_line(&s->r[lane], s->opts.view_y + y, rgb);
         if (st != CS_OK) {
             s->err.status = st;
-            return LX_ERR_RENDER;
+            return HAL_ERR_RENDER;
         }
         /* A capacity overflow still gives a line (the region is left out); keep
          * the first one so celfw can report it, but carry on showing frames. */
@@ -89,21 +89,21 @@ static lx_status line(void *user, int lane, int y, float *rgb)
     }
     if (s->between_lines)
         s->between_lines(s->between_user);
-    return LX_OK;
+    return HAL_OK;
 }
 
-lx_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_mode aa,
+hal_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_mode aa,
                                int subscanlines)
 {
     memset(s, 0, sizeof *s);
     s->pool_next = -1;
     if (width <= 0 || height <= 0 || width > CS_CFG_MAX_WIDTH || height > CS_CFG_MAX_HEIGHT)
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     for (int l = 0; l < LX_MAX_LANES; l++) {
         s->ws[l] = calloc(1, sizeof(cs_workspace));
         if (!s->ws[l]) {
             lx_scene_source_free(s);
-            return LX_ERR_NOMEM;
+            return HAL_ERR_NOMEM;
         }
     }
     s->opts.width = width;
@@ -115,22 +115,22 @@ lx_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_
     s->src.user = s;
     s->src.begin = begin;
     s->src.line = line;
-    return LX_OK;
+    return HAL_OK;
 }
 
-lx_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, int x, int y)
+hal_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, int x, int y)
 {
     int w = s->src.width, h = s->src.height;
     if (wall_w < 1 || wall_h < 1 || wall_w > CS_CFG_MAX_WALL || wall_h > CS_CFG_MAX_WALL || x < 0 ||
         y < 0 || x > wall_w - w || y > wall_h - h)
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     s->opts.width = wall_w;
     s->opts.height = wall_h;
     s->opts.view_x = x;
     s->opts.view_y = y;
     s->opts.view_w = w;
     s->opts.view_h = h;
-    return LX_OK;
+    return HAL_OK;
 }
 
 void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time)
@@ -147,21 +147,21 @@ cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_er
     return cs_scene_check_render(&s->r[0], s->ws[0], scene, &o, err);
 }
 
-lx_status lx_scene_source_threads(lx_scene_source *s, int threads)
+hal_status lx_scene_source_threads(lx_scene_source *s, int threads)
 {
     if (threads < 1 || threads > BANDS_MAX_THREADS)
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     if (threads == 1 || s->pool)
-        return LX_OK;
+        return HAL_OK;
     s->ring_lines = 2 * threads * LX_BAND_LINES;
     s->ring = malloc((size_t)s->ring_lines * 3u * (size_t)s->src.width * sizeof *s->ring);
     s->pool = s->ring ? bands_new(threads) : NULL;
     if (!s->pool) {
         free(s->ring);
         s->ring = NULL;
-        return LX_ERR_NOMEM;
+        return HAL_ERR_NOMEM;
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
 void lx_scene_source_free(lx_scene_source *s)

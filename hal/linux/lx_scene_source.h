@@ -1,5 +1,5 @@
 /*
- * lx_scene_source.h - an lx_source that renders a cs_scene with the core.
+ * lx_scene_source.h - an hal_source that renders a cs_scene with the core.
  *
  * Each lane has its own cs_renderer and cs_workspace, because the core's
  * active-piece list only moves forward: a HUB75 panel that asks for lines
@@ -19,13 +19,13 @@
 
 #include "bands.h"
 #include "celscan.h"
-#include "lx_display.h"
+#include "display.h"
 
 #define LX_MAX_LANES 2
 #define LX_BAND_LINES 16 /* a band of the thread pool; the ring holds two a thread */
 
 typedef struct lx_scene_source {
-    lx_source src;            /* hand &s->src to a backend */
+    hal_source src;            /* hand &s->src to a backend */
     const cs_scene *scene;    /* what the next begin() renders */
     cs_render_opts opts;
     cs_workspace *ws[LX_MAX_LANES];
@@ -45,15 +45,15 @@ typedef struct lx_scene_source {
 } lx_scene_source;
 
 /* Sets up lanes for width x height output. aa/subscanlines as in cs_render_opts. */
-lx_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_mode aa,
+hal_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa_mode aa,
                                int subscanlines);
 /*
  * Makes the output one board's viewport of a wall_w x wall_h video wall: the
  * window at (x, y) of the source's width x height, rendered bit for bit as
  * the whole wall's render has it (cs_render_opts.view_*). The display's
- * line y is the wall's line y + y. LX_ERR_CONFIG if it does not fit.
+ * line y is the wall's line y + y. HAL_ERR_CONFIG if it does not fit.
  */
-lx_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, int x, int y);
+hal_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, int x, int y);
 /* Chooses the scene and the animation time of the next frame. */
 void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time);
 /* Whether `scene` can be rendered at this source's size (cs_scene_check_render
@@ -63,7 +63,7 @@ cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_er
  * Renders one-lane frames on `threads` worker threads (2..BANDS_MAX_THREADS;
  * 1 leaves the lines on the caller's thread). After init, before frames.
  */
-lx_status lx_scene_source_threads(lx_scene_source *s, int threads);
+hal_status lx_scene_source_threads(lx_scene_source *s, int threads);
 /*
  * Ends the frame: waits for the workers still rendering lines of it (a
  * backend may give up on a frame part way), and keeps its capacity error.

@@ -10,102 +10,96 @@
 
 #include "sim/display_sim.h"
 
-static int sim_get_geometry(const hal_display *dev, hal_display_geometry *geo)
+static hal_status sim_begin_frame(hal_display *d, const hal_window *win)
 {
-    const sim_display_config *cfg = dev->config;
-    const sim_display_data *data = dev->data;
-    if (geo == NULL)
-        return -EINVAL;
-    geo->width = cfg->width;
-    geo->height = cfg->height;
-    geo->pixfmt = cfg->pixfmt;
-    geo->line_bytes = data->line_bytes;
-    return 0;
+    sim_display *s = (sim_display *)d;
+    if (s->in_frame)
+        return hal_display_fail(d, HAL_ERR_SEQUENCE, "a frame begins inside a frame");
+    hal_window all = {0, 0, d->width, d->height};
+    if (win && (win->x0 < 0 || win->y0 < 0 || win->x1 > d->width || win->y1 > d->height ||
+                win->x0 >= win->x1 || win->y0 >= win->y1))
+        return hal_display_fail(d, HAL_ERR_CONFIG, "window %d,%d..%d,%d is not inside %dx%d", win->x0,
+                                win->y0, win->x1, win->y1, d->width, d->height);
+    s->win = win ? *win : all;
+    s->in_frame = 1;
+    s->next_y = s->win.y0;
+    s->rows_written = 0;
+    return HAL_OK;
 }
 
-static int sim_begin_frame(const hal_display *dev)
+static hal_status sim_line_out(hal_display *d, int y, const uint8_t *px, size_t len)
 {
-    sim_display_data *data = dev->data;
-    if (data->in_frame)
-        return -EBUSY;
-    data->in_frame = 1;
-    data->next_y = 0;
-    data->rows_written = 0;
-    return 0;
-}
-
-static int sim_line_out(const hal_display *dev, int y, const uint8_t *bytes, size_t len)
-{
-    const sim_display_config *cfg = dev->config;
-    sim_display_data *data = dev->data;
-    if (!data->in_frame)
-        return -EPERM;
-    if (bytes == NULL || len != data->line_bytes || y < 0 || y >= cfg->height)
-        return -EINVAL;
+    sim_display *s = (sim_display *)d;
+    if (!s->in_frame)
+        return hal_display_fail(d, HAL_ERR_SEQUENCE, "line %d outside a frame", y);
+    size_t want = hal_line_bytes(d->pixfmt, s->win.x1 - s->win.x0);
+    if (px == NULL || len != want || y < s->win.y0 || y >= s->win.y1)
+        return hal_display_fail(d, HAL_ERR_CONFIG, "line %d of %zu bytes: the frame takes rows %d..%d of %zu",
+                                y, len, s->win.y0, s->win.y1 - 1, want);
     /* Rows may be skipped (the core allows it) but never revisited. */
-    if (y < data->next_y)
-        return -EPERM;
-    memcpy(data->image + (size_t)y * data->line_bytes, bytes, len);
-    data->next_y = y + 1;
-    data->rows_written++;
-    return 0;
+    if (y < s->next_y)
+        return hal_display_fail(d, HAL_ERR_SEQUENCE, "line %d after line %d", y, s->next_y - 1);
+    memcpy(s->image + (size_t)y * s->line_bytes + hal_line_bytes(d->pixfmt, s->win.x0), px, len);
+    s->next_y = y + 1;
+    s->rows_written++;
+    return HAL_OK;
 }
 
-static int sim_end_frame(const hal_display *dev)
+static hal_status sim_end_frame(hal_display *d)
 {
-    const sim_display_config *cfg = dev->config;
-    sim_display_data *data = dev->data;
-    if (!data->in_frame)
-        return -EPERM;
-    data->in_frame = 0;
+    sim_display *s = (sim_display *)d;
+    if (!s->in_frame)
+        return hal_display_fail(d, HAL_ERR_SEQUENCE, "a frame ends outside a frame");
+    s->in_frame = 0;
     /* A partial frame would leave stale rows from the last one on the glass. */
-    if (data->rows_written != cfg->height)
-        return -EIO;
-    data->frames_done++;
-    return 0;
+    if (s->rows_written != s->win.y1 - s->win.y0)
+        return hal_display_fail(d, HAL_ERR_IO, "the frame ended with %d of its %d rows", s->rows_written,
+                                s->win.y1 - s->win.y0);
+    s->frames_done++;
+    return HAL_OK;
 }
 
 static const hal_display_api sim_display_api = {
-    .get_geometry = sim_get_geometry,
+    .name = "sim",
     .begin_frame = sim_begin_frame,
     .line_out = sim_line_out,
     .end_frame = sim_end_frame,
 };
 
-size_t sim_display_image_bytes(const sim_display_config *cfg)
+size_t sim_display_image_bytes(int width, int height, cs_pixfmt fmt)
 {
-    if (cfg == NULL || cfg->width <= 0 || cfg->height <= 0)
+    if (width <= 0 || height <= 0)
         return 0;
-    size_t bpp = cs_pixfmt_bytes_per_pixel(cfg->pixfmt);
+    size_t bpp = cs_pixfmt_bytes_per_pixel(fmt);
     if (bpp == 0)
         return 0;
-    size_t w = (size_t)cfg->width, h = (size_t)cfg->height;
+    size_t w = (size_t)width, h = (size_t)height;
     if (w > SIZE_MAX / bpp || w * bpp > SIZE_MAX / h)
         return 0;
     return w * bpp * h;
 }
 
-int sim_display_init(hal_display *dev, const sim_display_config *cfg, sim_display_data *data,
-                     uint8_t *image, size_t image_len)
+hal_status sim_display_init(sim_display *s, int width, int height, cs_pixfmt fmt, uint8_t *image,
+                            size_t image_len)
 {
-    size_t need = sim_display_image_bytes(cfg);
-    if (dev == NULL || data == NULL || image == NULL || need == 0 || image_len < need)
-        return -EINVAL;
-    memset(data, 0, sizeof *data);
+    size_t need = sim_display_image_bytes(width, height, fmt);
+    memset(s, 0, sizeof *s);
+    s->d.api = &sim_display_api;
+    s->d.width = width;
+    s->d.height = height;
+    s->d.pixfmt = fmt;
+    if (image == NULL || need == 0 || image_len < need)
+        return hal_display_fail(&s->d, HAL_ERR_CONFIG, "cannot show %dx%d in format %d with %zu bytes", width,
+                                height, (int)fmt, image_len);
     memset(image, 0, need);
-    data->image = image;
-    data->line_bytes = need / (size_t)cfg->height;
-    dev->api = &sim_display_api;
-    dev->config = cfg;
-    dev->data = data;
-    return 0;
+    s->image = image;
+    s->line_bytes = need / (size_t)height;
+    return HAL_OK;
 }
 
-const uint8_t *sim_display_row(const hal_display *dev, int y)
+const uint8_t *sim_display_row(const sim_display *s, int y)
 {
-    const sim_display_config *cfg = dev->config;
-    const sim_display_data *data = dev->data;
-    if (y < 0 || y >= cfg->height)
+    if (y < 0 || y >= s->d.height)
         return NULL;
-    return data->image + (size_t)y * data->line_bytes;
+    return s->image + (size_t)y * s->line_bytes;
 }

@@ -11,9 +11,9 @@
  * A stalled control request is explained by GET_STATUS, as the kernel does,
  * and so is every SET when the device asks for it (STATUS_ON_SET).
  *
- * Frames are pushed top to bottom. Each rendered line is converted to the
- * device format straight into the band buffer and hashed; a changed line
- * stays in the band, an unchanged one closes the band, which is then sent as
+ * Frames are pushed top to bottom (display.h), each line already in the
+ * device format, and hashed; a changed line is copied into the band buffer
+ * and stays there, an unchanged one closes the band, which is then sent as
  * one full-width rectangle. Bands are bounded by max_band_bytes and by the
  * device's max_buffer_size, so memory never grows with the frame.
  *
@@ -28,7 +28,6 @@
 #include <errno.h>
 #include <libusb.h>
 #include <lz4.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,7 +41,7 @@
 #define GUD_MAX_FULL_FRAME (64u * 1024u * 1024u)
 
 typedef struct gud_host {
-    lx_display d;
+    hal_display d;
     gud_config cfg;
     libusb_context *ctx;
     libusb_device_handle *h;
@@ -58,25 +57,15 @@ typedef struct gud_host {
     int width, height; /* fixed for the life of the display: the source's size */
     size_t pitch;
     lx_damage damage;
-    uint8_t *band, *zbuf, *rgb888;
+    uint8_t *band, *zbuf;
     uint64_t *band_hash;
     int band_cap, band_y0, band_n;
     size_t band_bytes, zcap;
-    float *rgb;
     bool connected;
     uint64_t next_attempt_ns, connects;
     int quiet_failures; /* reconnect attempts since the last message */
     char why[200];      /* detail of the last failed transfer */
 } gud_host;
-
-static void say(gud_host *g, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void say(gud_host *g, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    lx_display_vsay(&g->d, "usb", fmt, ap);
-    va_end(ap);
-}
 
 void gud_config_default(gud_config *c)
 {
@@ -90,19 +79,19 @@ void gud_config_default(gud_config *c)
     c->max_band_bytes = 64u * 1024u; /* a transfer buffer, not a frame: 800x480 RGB565 takes 12 */
 }
 
-static lx_status from_libusb(int r)
+static hal_status from_libusb(int r)
 {
     switch (r) {
     case LIBUSB_ERROR_NO_DEVICE:
     case LIBUSB_ERROR_NOT_FOUND:
-        return LX_ERR_NO_DEVICE;
+        return HAL_ERR_NO_DEVICE;
     case LIBUSB_ERROR_TIMEOUT:
-        return LX_ERR_TIMEOUT;
+        return HAL_ERR_TIMEOUT;
     case LIBUSB_ERROR_PIPE:
     case LIBUSB_ERROR_OVERFLOW:
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     default:
-        return LX_ERR_IO;
+        return HAL_ERR_IO;
     }
 }
 
@@ -131,7 +120,7 @@ static const char *req_name(uint8_t req)
  * A stall (or any SET, if the device asks) is followed by GET_STATUS so the
  * error can say what the device objected to.
  */
-static lx_status ctrl(gud_host *g, bool in, uint8_t req, uint16_t value, uint8_t *buf, uint16_t len,
+static hal_status ctrl(gud_host *g, bool in, uint8_t req, uint16_t value, uint8_t *buf, uint16_t len,
                       int *got)
 {
     uint8_t type = LIBUSB_REQUEST_TYPE_VENDOR | LIBUSB_RECIPIENT_INTERFACE |
@@ -147,7 +136,7 @@ static lx_status ctrl(gud_host *g, bool in, uint8_t req, uint16_t value, uint8_t
         if (s == 1 && st != GUD_STATUS_OK) {
             snprintf(g->why, sizeof g->why, "%s refused by the device: %s", req_name(req),
                      gud_status_name(st));
-            return st == GUD_STATUS_BUSY ? LX_ERR_TIMEOUT : LX_ERR_PROTOCOL;
+            return st == GUD_STATUS_BUSY ? HAL_ERR_TIMEOUT : HAL_ERR_PROTOCOL;
         }
         if (s < 0 && s != LIBUSB_ERROR_PIPE) {
             snprintf(g->why, sizeof g->why, "%s, then GET_STATUS: %s", req_name(req),
@@ -157,7 +146,7 @@ static lx_status ctrl(gud_host *g, bool in, uint8_t req, uint16_t value, uint8_t
         if (r == LIBUSB_ERROR_PIPE) {
             snprintf(g->why, sizeof g->why, "%s stalled (status %s)", req_name(req),
                      s == 1 ? gud_status_name(st) : "unavailable");
-            return LX_ERR_PROTOCOL;
+            return HAL_ERR_PROTOCOL;
         }
     }
     if (r < 0) {
@@ -168,12 +157,12 @@ static lx_status ctrl(gud_host *g, bool in, uint8_t req, uint16_t value, uint8_t
         *got = r;
     else if (r != len) {
         snprintf(g->why, sizeof g->why, "%s moved %d of %u bytes", req_name(req), r, len);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
-static lx_status set_u8(gud_host *g, uint8_t req, uint8_t v)
+static hal_status set_u8(gud_host *g, uint8_t req, uint8_t v)
 {
     return ctrl(g, false, req, 0, &v, 1, NULL);
 }
@@ -219,12 +208,12 @@ static bool find_interface(libusb_device *dev, int *iface, uint8_t *ep)
     return found;
 }
 
-static lx_status choose_format(gud_host *g, char *err, size_t errlen)
+static hal_status choose_format(gud_host *g, char *err, size_t errlen)
 {
     uint8_t f[GUD_FORMATS_MAX];
     int n = 0;
-    lx_status s = ctrl(g, true, GUD_REQ_GET_FORMATS, 0, f, sizeof f, &n);
-    if (s != LX_OK) {
+    hal_status s = ctrl(g, true, GUD_REQ_GET_FORMATS, 0, f, sizeof f, &n);
+    if (s != HAL_OK) {
         snprintf(err, errlen, "reading formats: %s", g->why);
         return s;
     }
@@ -245,7 +234,7 @@ static lx_status choose_format(gud_host *g, char *err, size_t errlen)
         } else {
             snprintf(err, errlen, "format %s was asked for, the device offers: %s",
                      gud_format_name(g->cfg.format), n ? list : "nothing");
-            return LX_ERR_PROTOCOL;
+            return HAL_ERR_PROTOCOL;
         }
     } else if (has565) {
         g->format = GUD_FORMAT_RGB565; /* half the bytes; the kernel prefers it too */
@@ -254,10 +243,10 @@ static lx_status choose_format(gud_host *g, char *err, size_t errlen)
     } else {
         snprintf(err, errlen, "no pixel format celfw can send (RGB565 or XRGB8888); the device offers: %s",
                  n ? list : "nothing");
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     g->bpp = gud_format_bpp(g->format);
-    return LX_OK;
+    return HAL_OK;
 }
 
 /* Whether celfw can render a mode (a pitch of 0 once divided by zero); why not in why. */
@@ -273,30 +262,30 @@ static bool mode_usable(const gud_mode *m, char *why, size_t n)
     return false;
 }
 
-static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, size_t errlen)
+static hal_status choose_mode(gud_host *g, int want_w, int want_h, char *err, size_t errlen)
 {
     uint8_t buf[GUD_CONNECTOR_SIZE * 4];
     int n = 0;
-    lx_status s = ctrl(g, true, GUD_REQ_GET_CONNECTORS, 0, buf, sizeof buf, &n);
-    if (s != LX_OK) {
+    hal_status s = ctrl(g, true, GUD_REQ_GET_CONNECTORS, 0, buf, sizeof buf, &n);
+    if (s != HAL_OK) {
         snprintf(err, errlen, "reading connectors: %s", g->why);
         return s;
     }
     if (n < GUD_CONNECTOR_SIZE) {
         snprintf(err, errlen, "the device reports no connector");
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     uint8_t modes[GUD_MODE_SIZE * 32];
     n = 0;
     s = ctrl(g, true, GUD_REQ_GET_CONNECTOR_MODES, 0, modes, sizeof modes, &n);
-    if (s != LX_OK) {
+    if (s != HAL_OK) {
         snprintf(err, errlen, "reading modes: %s", g->why);
         return s;
     }
     if (n % GUD_MODE_SIZE != 0) {
         snprintf(err, errlen, "the mode list is %d bytes, not a whole number of %d-byte modes", n,
                  GUD_MODE_SIZE);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     /* The configured size if given, else the preferred mode, else the first;
      * never a mode celfw cannot render (a device may list nonsense). */
@@ -325,11 +314,11 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
     }
     if (pick < 0 && count > 0 && !usable) {
         snprintf(err, errlen, "%s", bad); /* the device is broken, not the configuration */
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     if (pick < 0 && count > 0) {
         snprintf(err, errlen, "no %dx%d mode; the device offers %s", want_w, want_h, list);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     if (pick < 0) {
         /* No mode list (an EDID-only device): describe the size asked for. */
@@ -338,14 +327,14 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
             if (g->desc.max_width > CS_CFG_MAX_WIDTH || g->desc.max_height > CS_CFG_MAX_HEIGHT) {
                 snprintf(err, errlen, "the device's size %ux%u is larger than celfw renders (%dx%d at most)",
                          g->desc.max_width, g->desc.max_height, CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
-                return LX_ERR_PROTOCOL;
+                return HAL_ERR_PROTOCOL;
             }
             w = (int)g->desc.max_width;
             h = (int)g->desc.max_height;
         }
         if (!w) {
             snprintf(err, errlen, "the device lists no modes; give the size (--size WxH)");
-            return LX_ERR_CONFIG;
+            return HAL_ERR_CONFIG;
         }
         memset(&g->mode, 0, sizeof g->mode);
         g->mode.hdisplay = g->mode.hsync_start = g->mode.hsync_end = g->mode.htotal = (uint16_t)w;
@@ -353,18 +342,18 @@ static lx_status choose_mode(gud_host *g, int want_w, int want_h, char *err, siz
         g->mode.clock = (uint32_t)((uint64_t)w * (uint64_t)h * 60u / 1000u);
     }
     if (!mode_usable(&g->mode, err, errlen))
-        return LX_ERR_PROTOCOL; /* a size taken from the descriptor */
+        return HAL_ERR_PROTOCOL; /* a size taken from the descriptor */
     if (g->mode.hdisplay < g->desc.min_width || g->mode.hdisplay > g->desc.max_width ||
         g->mode.vdisplay < g->desc.min_height || g->mode.vdisplay > g->desc.max_height) {
         snprintf(err, errlen, "mode %ux%u is outside the device's %ux%u..%ux%u", g->mode.hdisplay,
                  g->mode.vdisplay, g->desc.min_width, g->desc.min_height, g->desc.max_width,
                  g->desc.max_height);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
-static lx_status set_state(gud_host *g, char *err, size_t errlen)
+static hal_status set_state(gud_host *g, char *err, size_t errlen)
 {
     uint8_t st[GUD_STATE_SIZE(1)];
     int nprops = g->rotation_prop ? 1 : 0;
@@ -375,7 +364,7 @@ static lx_status set_state(gud_host *g, char *err, size_t errlen)
         gud_put16(st + GUD_MODE_SIZE + 2, GUD_PROPERTY_ROTATION);
         gud_put64(st + GUD_MODE_SIZE + 4, GUD_ROTATION_0);
     }
-    lx_status s;
+    hal_status s;
     if ((s = ctrl(g, false, GUD_REQ_SET_STATE_CHECK, 0, st, (uint16_t)GUD_STATE_SIZE(nprops), NULL)) ||
         (s = set_u8(g, GUD_REQ_SET_CONTROLLER_ENABLE, 1)) ||
         (s = ctrl(g, false, GUD_REQ_SET_STATE_COMMIT, 0, NULL, 0, NULL)) ||
@@ -384,11 +373,11 @@ static lx_status set_state(gud_host *g, char *err, size_t errlen)
                  g->mode.vdisplay, gud_format_name(g->format), g->why);
         return s;
     }
-    return LX_OK;
+    return HAL_OK;
 }
 
 /* Sizes the band to the device's buffer; allocates on the first connect. */
-static lx_status setup_buffers(gud_host *g, char *err, size_t errlen)
+static hal_status setup_buffers(gud_host *g, char *err, size_t errlen)
 {
     size_t cap = g->cfg.max_band_bytes;
     if (g->desc.max_buffer_size && g->desc.max_buffer_size < cap)
@@ -399,12 +388,12 @@ static lx_status setup_buffers(gud_host *g, char *err, size_t errlen)
         if (cap > GUD_MAX_FULL_FRAME) {
             snprintf(err, errlen, "a full-update frame of %zu bytes is more than celfw buffers (%u)", cap,
                      GUD_MAX_FULL_FRAME);
-            return LX_ERR_PROTOCOL;
+            return HAL_ERR_PROTOCOL;
         }
     }
     if (cap < g->pitch) {
         snprintf(err, errlen, "the device buffer (%zu bytes) cannot take one %zu-byte line", cap, g->pitch);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     int lines = (int)(cap / g->pitch);
     if (lines > g->height)
@@ -423,21 +412,21 @@ static lx_status setup_buffers(gud_host *g, char *err, size_t errlen)
         if (!g->band || !g->zbuf || !g->band_hash) {
             g->band_cap = 0;
             g->band_bytes = 0;
-            return LX_ERR_NOMEM;
+            return HAL_ERR_NOMEM;
         }
     }
     g->band_n = 0;
-    return LX_OK;
+    return HAL_OK;
 }
 
 /* The probe and state setup on an opened, claimed device. */
-static lx_status handshake(gud_host *g, char *err, size_t errlen)
+static hal_status handshake(gud_host *g, char *err, size_t errlen)
 {
     uint8_t raw[GUD_DESCRIPTOR_SIZE];
     int n = 0;
     memset(&g->desc, 0, sizeof g->desc);
-    lx_status s = ctrl(g, true, GUD_REQ_GET_DESCRIPTOR, 0, raw, sizeof raw, &n);
-    if (s != LX_OK) {
+    hal_status s = ctrl(g, true, GUD_REQ_GET_DESCRIPTOR, 0, raw, sizeof raw, &n);
+    if (s != HAL_OK) {
         snprintf(err, errlen, "reading the display descriptor: %s", g->why);
         return s;
     }
@@ -445,57 +434,57 @@ static lx_status handshake(gud_host *g, char *err, size_t errlen)
     gud_descriptor_decode(raw, &desc);
     if (n != GUD_DESCRIPTOR_SIZE || desc.magic != GUD_MAGIC) {
         snprintf(err, errlen, "not a GUD display (descriptor of %d bytes, magic 0x%08x)", n, desc.magic);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     if (desc.version != 1 || !desc.max_width || !desc.max_height || desc.min_width > desc.max_width ||
         desc.min_height > desc.max_height) {
         snprintf(err, errlen, "unusable display descriptor (version %u, %ux%u..%ux%u)", desc.version,
                  desc.min_width, desc.min_height, desc.max_width, desc.max_height);
-        return LX_ERR_PROTOCOL;
+        return HAL_ERR_PROTOCOL;
     }
     g->desc = desc;
     g->full_update = (desc.flags & GUD_FLAG_FULL_UPDATE) != 0;
-    if ((s = choose_format(g, err, errlen)) != LX_OK)
+    if ((s = choose_format(g, err, errlen)) != HAL_OK)
         return s;
     bool offers_lz4 = (desc.compression & GUD_COMPRESSION_LZ4) && !g->full_update;
     if (g->cfg.compression == 1 && !offers_lz4) {
         snprintf(err, errlen, "LZ4 compression was asked for, the device does not offer it");
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     g->lz4 = g->cfg.compression != 0 && offers_lz4;
 
     uint8_t props[GUD_PROPERTY_SIZE * GUD_PROPERTIES_MAX];
     n = 0;
     g->rotation_prop = false;
-    if (ctrl(g, true, GUD_REQ_GET_PROPERTIES, 0, props, sizeof props, &n) == LX_OK)
+    if (ctrl(g, true, GUD_REQ_GET_PROPERTIES, 0, props, sizeof props, &n) == HAL_OK)
         for (int i = 0; i + GUD_PROPERTY_SIZE <= n; i += GUD_PROPERTY_SIZE)
             g->rotation_prop |= gud_get16(props + i) == GUD_PROPERTY_ROTATION;
 
     int want_w = g->width ? g->width : g->cfg.width, want_h = g->height ? g->height : g->cfg.height;
-    if ((s = choose_mode(g, want_w, want_h, err, errlen)) != LX_OK)
+    if ((s = choose_mode(g, want_w, want_h, err, errlen)) != HAL_OK)
         return s;
     if (g->width && (g->mode.hdisplay != g->width || g->mode.vdisplay != g->height)) {
         snprintf(err, errlen, "the display came back as %ux%u, celfw renders %dx%d", g->mode.hdisplay,
                  g->mode.vdisplay, g->width, g->height);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     g->width = g->mode.hdisplay;
     g->height = g->mode.vdisplay;
-    if ((s = set_state(g, err, errlen)) != LX_OK)
+    if ((s = set_state(g, err, errlen)) != HAL_OK)
         return s;
     return setup_buffers(g, err, errlen);
 }
 
 /* Finds, opens and sets up the display. */
-static lx_status connect_device(gud_host *g, char *err, size_t errlen)
+static hal_status connect_device(gud_host *g, char *err, size_t errlen)
 {
     libusb_device **list = NULL;
     ssize_t n = libusb_get_device_list(g->ctx, &list);
     if (n < 0) {
         snprintf(err, errlen, "cannot list USB devices: %s", libusb_error_name((int)n));
-        return LX_ERR_IO;
+        return HAL_ERR_IO;
     }
-    lx_status result = LX_ERR_NO_DEVICE;
+    hal_status result = HAL_ERR_NO_DEVICE;
     if (g->cfg.vid || g->cfg.pid)
         snprintf(err, errlen, "no USB device %04x:%04x", g->cfg.vid, g->cfg.pid);
     else
@@ -512,7 +501,7 @@ static lx_status connect_device(gud_host *g, char *err, size_t errlen)
             if (g->cfg.vid || g->cfg.pid) {
                 snprintf(err, errlen, "USB device %04x:%04x has no vendor-class interface with a bulk OUT endpoint",
                          dd.idVendor, dd.idProduct);
-                result = LX_ERR_PROTOCOL;
+                result = HAL_ERR_PROTOCOL;
             }
             continue;
         }
@@ -544,7 +533,7 @@ static lx_status connect_device(gud_host *g, char *err, size_t errlen)
         g->address = libusb_get_device_address(list[i]);
         char herr[240];
         result = handshake(g, herr, sizeof herr);
-        if (result == LX_OK) {
+        if (result == HAL_OK) {
             g->connected = true;
             g->connects++;
             lx_damage_invalidate(&g->damage, 0, g->height);
@@ -565,49 +554,49 @@ static lx_status connect_device(gud_host *g, char *err, size_t errlen)
 
 static void lost(gud_host *g, const char *during)
 {
-    say(g, "display disconnected (%s during %s); retrying every %u ms", g->why, during,
+    hal_display_say(&g->d, "display disconnected (%s during %s); retrying every %u ms", g->why, during,
         g->cfg.reconnect_ms);
     close_handle(g);
-    g->next_attempt_ns = lx_now(g->d.clock) + (uint64_t)g->cfg.reconnect_ms * 1000000u;
+    g->next_attempt_ns = hal_now(g->d.clock) + (uint64_t)g->cfg.reconnect_ms * 1000000u;
     g->quiet_failures = 0;
 }
 
 /* One SET_BUFFER + bulk OUT. */
-static lx_status send_rect(gud_host *g, const gud_set_buffer *req, const uint8_t *payload, int len)
+static hal_status send_rect(gud_host *g, const gud_set_buffer *req, const uint8_t *payload, int len)
 {
     if (!g->full_update || g->need_set_buffer) {
         uint8_t raw[GUD_SET_BUFFER_SIZE];
         gud_set_buffer_encode(raw, req);
-        lx_status s = ctrl(g, false, GUD_REQ_SET_BUFFER, 0, raw, sizeof raw, NULL);
-        if (s != LX_OK)
+        hal_status s = ctrl(g, false, GUD_REQ_SET_BUFFER, 0, raw, sizeof raw, NULL);
+        if (s != HAL_OK)
             return s;
     }
     int done = 0;
     int r = libusb_bulk_transfer(g->h, g->ep_out, (unsigned char *)payload, len, &done, g->cfg.timeout_ms);
     if (r == 0 && done == len) {
         g->need_set_buffer = false;
-        return LX_OK;
+        return HAL_OK;
     }
     g->need_set_buffer = true;
     if (r == 0) {
         snprintf(g->why, sizeof g->why, "bulk OUT moved %d of %d bytes", done, len);
-        return LX_ERR_IO;
+        return HAL_ERR_IO;
     }
     snprintf(g->why, sizeof g->why, "bulk OUT of %d bytes: %s", len, libusb_error_name(r));
     if (r == LIBUSB_ERROR_PIPE) {
         /* The endpoint halted: clear it so the next transfer can go. */
         int c = libusb_clear_halt(g->h, g->ep_out);
         if (c == LIBUSB_ERROR_NO_DEVICE)
-            return LX_ERR_NO_DEVICE;
+            return HAL_ERR_NO_DEVICE;
     }
     return from_libusb(r);
 }
 
 /* Sends the band of changed lines; on success their hashes become current. */
-static lx_status flush_band(gud_host *g, lx_frame_stats *st)
+static hal_status flush_band(gud_host *g, hal_frame_stats *st)
 {
     if (g->band_n == 0)
-        return LX_OK;
+        return HAL_OK;
     int n = g->band_n;
     g->band_n = 0;
     size_t len = (size_t)n * g->pitch;
@@ -623,120 +612,101 @@ static lx_status flush_band(gud_host *g, lx_frame_stats *st)
             plen = c;
         }
     }
-    lx_status s = LX_ERR_IO;
+    hal_status s = HAL_ERR_IO;
     for (int attempt = 0; attempt <= g->cfg.retries; attempt++) {
         if (attempt)
             st->retries++;
         s = send_rect(g, &req, payload, plen);
-        if (s == LX_OK || s == LX_ERR_NO_DEVICE)
+        if (s == HAL_OK || s == HAL_ERR_NO_DEVICE)
             break;
-        say(g, "rectangle y=%d..%d: %s%s", g->band_y0, g->band_y0 + n - 1, g->why,
+        hal_display_say(&g->d, "rectangle y=%d..%d: %s%s", g->band_y0, g->band_y0 + n - 1, g->why,
             attempt < g->cfg.retries ? "; retrying" : "; giving up until the next frame");
     }
-    if (s == LX_OK) {
+    if (s == HAL_OK) {
         for (int i = 0; i < n; i++)
             lx_damage_commit(&g->damage, g->band_y0 + i, g->band_hash[i]);
         st->rects++;
         st->lines_sent += (uint64_t)n;
         st->bytes_raw += len;
         st->bytes_wire += (uint64_t)plen;
-        return LX_OK;
+        return HAL_OK;
     }
     lx_damage_invalidate(&g->damage, g->band_y0, g->band_y0 + n);
     st->errors++;
-    if (s == LX_ERR_NO_DEVICE) {
+    if (s == HAL_ERR_NO_DEVICE) {
         lost(g, "a frame");
         return s;
     }
-    return LX_OK; /* the frame goes on; these lines travel again next frame */
+    return HAL_OK; /* the frame goes on; these lines travel again next frame */
 }
 
-/* Converts a rendered line to the device format at dst. */
-static void convert(gud_host *g, const float *rgb, uint8_t *dst)
-{
-    if (g->format == GUD_FORMAT_RGB565) {
-        cs_pixfmt_convert(CS_PIX_RGB565_SRGB, rgb, g->width, dst);
-        return;
-    }
-    cs_pixfmt_convert(CS_PIX_RGB888_SRGB, rgb, g->width, g->rgb888);
-    for (int x = 0; x < g->width; x++) { /* XRGB8888, little-endian: B G R X */
-        dst[4 * x] = g->rgb888[3 * x + 2];
-        dst[4 * x + 1] = g->rgb888[3 * x + 1];
-        dst[4 * x + 2] = g->rgb888[3 * x];
-        dst[4 * x + 3] = 0;
-    }
-}
-
-static lx_status gud_present(lx_display *d, const lx_source *src, lx_frame_stats *st)
+/* A frame starts: the display is (re)connected if it was away. */
+static hal_status gud_begin_frame(hal_display *d, const hal_window *win)
 {
     gud_host *g = (gud_host *)d;
+    if (win)
+        return hal_display_fail(d, HAL_ERR_CONFIG, "frames are whole (damage is found per line)");
     if (!g->connected) {
-        uint64_t now = lx_now(d->clock);
-        if (now < g->next_attempt_ns) {
-            snprintf(d->err, sizeof d->err, "usb: display absent");
-            return LX_ERR_NO_DEVICE;
-        }
+        uint64_t now = hal_now(d->clock);
+        if (now < g->next_attempt_ns)
+            return hal_display_fail(d, HAL_ERR_NO_DEVICE, "display absent");
         char err[256];
-        lx_status s = connect_device(g, err, sizeof err);
-        if (s != LX_OK) {
+        hal_status s = connect_device(g, err, sizeof err);
+        if (s != HAL_OK) {
             g->next_attempt_ns = now + (uint64_t)g->cfg.reconnect_ms * 1000000u;
             /* say why now and then, not on every attempt */
             if (g->quiet_failures++ % 20 == 0)
-                say(g, "display not back yet: %s", err);
-            snprintf(d->err, sizeof d->err, "usb: %.240s", err);
-            return LX_ERR_NO_DEVICE;
+                hal_display_say(d, "display not back yet: %s", err);
+            return hal_display_fail(d, HAL_ERR_NO_DEVICE, "%.240s", err);
         }
-        say(g, "display connected: %04x:%04x bus %d address %d, %dx%d %s%s", g->vid, g->pid, g->bus,
-            g->address, g->width, g->height, gud_format_name(g->format), g->lz4 ? " lz4" : "");
+        hal_display_say(d, "display connected: %04x:%04x bus %d address %d, %dx%d %s%s", g->vid, g->pid,
+                        g->bus, g->address, g->width, g->height, gud_format_name(g->format),
+                        g->lz4 ? " lz4" : "");
     }
-    if (src->width != g->width || src->height != g->height) {
-        snprintf(d->err, sizeof d->err, "usb: source is %dx%d, the display %dx%d", src->width,
-                 src->height, g->width, g->height);
-        return LX_ERR_CONFIG;
-    }
-    lx_status s = src->begin(src->user, 1);
-    if (s != LX_OK) {
-        snprintf(d->err, sizeof d->err, "usb: the renderer could not start the frame");
-        return s;
-    }
+    d->pixfmt = g->format == GUD_FORMAT_RGB565 ? CS_PIX_RGB565_SRGB : HAL_PIX_XRGB8888;
     g->band_n = 0;
-    for (int y = 0; y < g->height; y++) {
-        if ((s = src->line(src->user, 0, y, g->rgb)) != LX_OK) {
-            snprintf(d->err, sizeof d->err, "usb: the renderer failed on line %d", y);
-            return s;
-        }
-        st->lines_rendered++;
-        uint8_t *dst = g->band + (size_t)g->band_n * g->pitch;
-        convert(g, g->rgb, dst);
-        uint64_t h = lx_line_hash(dst, g->pitch);
-        if (g->full_update || lx_damage_changed(&g->damage, y, h)) {
-            if (g->band_n == 0)
-                g->band_y0 = y;
-            g->band_hash[g->band_n++] = h;
-            if (g->band_n == g->band_cap && (s = flush_band(g, st)) != LX_OK)
-                break;
-        } else if (g->band_n && (s = flush_band(g, st)) != LX_OK) {
-            break;
-        }
-        if (d->frame_period_ns) {
-            uint64_t due = d->frame_start_ns + (uint64_t)(y + 1) * d->frame_period_ns / (uint64_t)g->height;
-            if (lx_now(d->clock) > due)
-                st->line_misses++;
-        }
+    return HAL_OK;
+}
+
+/* A changed line joins the band; an unchanged one closes it (sent as one rectangle). */
+static hal_status gud_line_out(hal_display *d, int y, const uint8_t *px, size_t len)
+{
+    gud_host *g = (gud_host *)d;
+    if (!g->connected || y < 0 || y >= g->height || len != g->pitch)
+        return hal_display_fail(d, HAL_ERR_SEQUENCE, "line %d of %zu bytes outside a frame of %d lines of %zu",
+                                y, len, g->height, g->pitch);
+    hal_status s = HAL_OK;
+    uint64_t h = lx_line_hash(px, g->pitch);
+    if (g->full_update || lx_damage_changed(&g->damage, y, h)) {
+        if (g->band_n == 0)
+            g->band_y0 = y;
+        memcpy(g->band + (size_t)g->band_n * g->pitch, px, g->pitch);
+        g->band_hash[g->band_n++] = h;
+        if (g->band_n == g->band_cap)
+            s = flush_band(g, &d->st);
+    } else if (g->band_n) {
+        s = flush_band(g, &d->st);
     }
-    if (s == LX_OK)
-        s = flush_band(g, st);
-    if (s == LX_ERR_NO_DEVICE)
-        snprintf(d->err, sizeof d->err, "usb: display disconnected: %s", g->why);
+    if (s == HAL_ERR_NO_DEVICE)
+        return hal_display_fail(d, s, "display disconnected: %s", g->why);
     return s;
 }
 
-static bool gud_connected(lx_display *d)
+static hal_status gud_end_frame(hal_display *d)
+{
+    gud_host *g = (gud_host *)d;
+    hal_status s = flush_band(g, &d->st);
+    if (s == HAL_ERR_NO_DEVICE)
+        return hal_display_fail(d, s, "display disconnected: %s", g->why);
+    return s;
+}
+
+static bool gud_connected(hal_display *d)
 {
     return ((gud_host *)d)->connected;
 }
 
-static void gud_close(lx_display *d)
+static void gud_close(hal_display *d)
 {
     gud_host *g = (gud_host *)d;
     if (g->connected) {
@@ -750,32 +720,38 @@ static void gud_close(lx_display *d)
     free(g->band);
     free(g->zbuf);
     free(g->band_hash);
-    free(g->rgb);
-    free(g->rgb888);
     free(g);
 }
 
-static const lx_display_ops gud_ops = {"usb", 1, gud_present, gud_connected, gud_close};
+static const hal_display_api gud_api = {
+    .name = "usb",
+    .begin_frame = gud_begin_frame,
+    .line_out = gud_line_out,
+    .end_frame = gud_end_frame,
+    .connected = gud_connected,
+    .close = gud_close,
+};
 
-lx_status gud_open(lx_display **out, const gud_config *c, const lx_clock *clock, lx_log_fn log,
+hal_status gud_open(hal_display **out, const gud_config *c, const hal_clock *clock, hal_log_fn log,
                    void *log_user, char *err, size_t errlen)
 {
     if (c->wait && (c->width <= 0 || c->height <= 0)) {
         snprintf(err, errlen, "usb: waiting for an absent display needs its size (--size WxH)");
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     if (c->width < 0 || c->height < 0 || c->width > CS_CFG_MAX_WIDTH || c->height > CS_CFG_MAX_HEIGHT) {
         snprintf(err, errlen, "usb: size %dx%d out of range (%dx%d at most)", c->width, c->height,
                  CS_CFG_MAX_WIDTH, CS_CFG_MAX_HEIGHT);
-        return LX_ERR_CONFIG;
+        return HAL_ERR_CONFIG;
     }
     gud_host *g = calloc(1, sizeof *g);
     if (!g)
-        return LX_ERR_NOMEM;
+        return HAL_ERR_NOMEM;
     g->cfg = *c;
     if (g->cfg.timeout_ms == 0)
         g->cfg.timeout_ms = 1000;
-    g->d.ops = &gud_ops;
+    g->d.api = &gud_api;
+    g->d.pixfmt = HAL_PIX_XRGB8888;
     g->d.clock = clock;
     g->d.log = log;
     g->d.log_user = log_user;
@@ -785,41 +761,39 @@ lx_status gud_open(lx_display **out, const gud_config *c, const lx_clock *clock,
                  r == LIBUSB_ERROR_OTHER ? " (no /dev/bus/usb?)" : "");
         g->ctx = NULL;
         gud_close(&g->d);
-        return LX_ERR_NO_DEVICE;
+        return HAL_ERR_NO_DEVICE;
     }
-    lx_status s = connect_device(g, err, errlen);
+    hal_status s = connect_device(g, err, errlen);
     /* Waiting, a device that is there but unusable (a hostile or broken
      * descriptor, a failed transfer) counts as absent: it may be replaced.
      * A contradiction with the configuration (no mode of the size asked
      * for) is the user's to fix. */
-    bool absent = s == LX_ERR_NO_DEVICE || s == LX_ERR_PROTOCOL || s == LX_ERR_IO || s == LX_ERR_TIMEOUT;
-    if (s != LX_OK && !(c->wait && absent)) {
+    bool absent = s == HAL_ERR_NO_DEVICE || s == HAL_ERR_PROTOCOL || s == HAL_ERR_IO || s == HAL_ERR_TIMEOUT;
+    if (s != HAL_OK && !(c->wait && absent)) {
         char msg[300];
         snprintf(msg, sizeof msg, "usb: %s", err);
         snprintf(err, errlen, "%s", msg);
         gud_close(&g->d);
         return s;
     }
-    if (s != LX_OK) {
+    if (s != HAL_OK) {
         g->width = c->width;
         g->height = c->height;
-        say(g, "no display yet (%s); waiting", err);
+        hal_display_say(&g->d, "no display yet (%s); waiting", err);
     }
     g->d.width = g->width;
     g->d.height = g->height;
-    g->rgb = calloc((size_t)g->width * 3u, sizeof(float));
-    g->rgb888 = calloc((size_t)g->width * 3u, 1);
-    if (!g->rgb || !g->rgb888 || !lx_damage_init(&g->damage, g->height)) {
+    if (!lx_damage_init(&g->damage, g->height)) {
         gud_close(&g->d);
-        return LX_ERR_NOMEM;
+        return HAL_ERR_NOMEM;
     }
     if (!g->connected)
         g->next_attempt_ns = 0;
     *out = &g->d;
-    return LX_OK;
+    return HAL_OK;
 }
 
-void gud_get_info(lx_display *d, gud_info *info)
+void gud_get_info(hal_display *d, gud_info *info)
 {
     gud_host *g = (gud_host *)d;
     memset(info, 0, sizeof *info);

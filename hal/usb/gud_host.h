@@ -13,7 +13,7 @@
  * Failures are values: a stalled transfer is retried after clearing the halt,
  * a timed-out one is retried, and lines that still failed are marked so they
  * travel again next frame. An unplugged device turns present() into a cheap
- * LX_ERR_NO_DEVICE until the device is back, when the handshake runs again
+ * HAL_ERR_NO_DEVICE until the device is back, when the handshake runs again
  * and the whole frame is resent.
  */
 #ifndef GUD_HOST_H
@@ -23,7 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "lx_display.h"
+#include "display.h"
 
 typedef struct gud_config {
     uint16_t vid, pid;      /* 0:0 = any GUD display, found by interface class */
@@ -43,7 +43,7 @@ void gud_config_default(gud_config *c);
 #define GUD_VID_OPENMOKO 0x1d50
 #define GUD_PID_GUD 0x614d
 
-lx_status gud_open(lx_display **out, const gud_config *c, const lx_clock *clock, lx_log_fn log,
+hal_status gud_open(hal_display **out, const gud_config *c, const hal_clock *clock, hal_log_fn log,
                    void *log_user, char *err, size_t errlen);
 
 /* What the backend negotiated, for logs and tests. */
@@ -58,6 +58,6 @@ typedef struct gud_info {
     uint64_t connects; /* successful handshakes so far */
 } gud_info;
 
-void gud_get_info(lx_display *d, gud_info *info);
+void gud_get_info(hal_display *d, gud_info *info);
 
 #endif /* GUD_HOST_H */

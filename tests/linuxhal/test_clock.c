@@ -1,7 +1,7 @@
 /*
  * test_clock.c - celfw's animation clock (celfw_clock.h) over months of uptime.
  *
- * The clock is injected (a virtual lx_clock, vclock.h) and set to 1 day, 30
+ * The clock is injected (a virtual hal_clock, vclock.h) and set to 1 day, 30
  * days and 400 days after boot. Frames are rendered through the same source
  * celfw renders with (lx_scene_source) and compared byte for byte with the
  * frames of a board that has just booted:
@@ -44,9 +44,9 @@ static void frame(const cs_scene *s, float t, uint8_t *out)
 {
     float rgb[W * 3];
     lx_scene_source_set(&src, s, t);
-    lx_status st = src.src.begin(src.src.user, 1);
-    CHECK(st == LX_OK, "begin: %s", lx_status_str(st));
-    for (int y = 0; y < H && st == LX_OK; y++) {
+    hal_status st = src.src.begin(src.src.user, 1);
+    CHECK(st == HAL_OK, "begin: %s", hal_status_str(st));
+    for (int y = 0; y < H && st == HAL_OK; y++) {
         st = src.src.line(src.src.user, 0, y, rgb);
         cs_pixfmt_convert(CS_PIX_RGB565_SRGB, rgb, W, out + (size_t)y * W * 2u);
     }
@@ -59,7 +59,7 @@ static void frame(const cs_scene *s, float t, uint8_t *out)
 static void play(const cs_scene *s, uint64_t commit, int frames, uint64_t period, uint8_t *out)
 {
     _Atomic uint64_t mono = BOOT, wall = 0;
-    lx_clock m = vclock_make(&mono), w = vclock_make(&wall);
+    hal_clock m = vclock_make(&mono), w = vclock_make(&wall);
     celfw_clock c;
     celfw_clock_init(&c, &m, &w, false, 0.0);
     celfw_clock_show(&c, NULL, &anim, 0); /* the --scene celfw starts with */
@@ -92,7 +92,7 @@ static void test_uptime(void)
 
         /* committed at boot, still running: the last key's frame, as 1 s after it */
         _Atomic uint64_t mono = BOOT, wall = 0;
-        lx_clock m = vclock_make(&mono), w = vclock_make(&wall);
+        hal_clock m = vclock_make(&mono), w = vclock_make(&wall);
         celfw_clock c;
         celfw_clock_init(&c, &m, &w, false, 0.0);
         celfw_clock_show(&c, NULL, &motion, 0);
@@ -138,7 +138,7 @@ static void test_realtime(void)
     size_t fb = (size_t)W * H * 2u;
     uint8_t *a = malloc(fb), *b = malloc(fb), *ref = malloc(fb);
     _Atomic uint64_t mono_a = BOOT, mono_b = BOOT + 400 * DAY, wall = epoch - 3 * 1000000000ull;
-    lx_clock ma = vclock_make(&mono_a), mb = vclock_make(&mono_b), w = vclock_make(&wall);
+    hal_clock ma = vclock_make(&mono_a), mb = vclock_make(&mono_b), w = vclock_make(&wall);
     celfw_clock ca, cb;
     celfw_clock_init(&ca, &ma, &w, true, 0.0);
     celfw_clock_init(&cb, &mb, &w, true, 0.0);
@@ -174,7 +174,7 @@ static void test_realtime(void)
 static void test_patches(void)
 {
     _Atomic uint64_t mono = BOOT, wall = 0;
-    lx_clock m = vclock_make(&mono), w = vclock_make(&wall);
+    hal_clock m = vclock_make(&mono), w = vclock_make(&wall);
     celfw_clock c;
     celfw_clock_init(&c, &m, &w, false, 0.0);
     celfw_clock_show(&c, NULL, &motion, 0);
@@ -234,7 +234,7 @@ int main(void)
         return 2;
     }
     celfw_scene_build("anim", &anim, 0.0f);
-    if (lx_scene_source_init(&src, W, H, CS_AA_SUBSCAN, 4) != LX_OK)
+    if (lx_scene_source_init(&src, W, H, CS_AA_SUBSCAN, 4) != HAL_OK)
         return 2;
     test_uptime();
     test_realtime();

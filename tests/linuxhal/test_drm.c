@@ -79,7 +79,7 @@ typedef struct rig {
     fake_drm_opts o;
     fake_drm *card;
     kms_config cfg;
-    lx_display *d;
+    hal_display *d;
     lx_scene_source src;
     cs_scene scene;
 } rig;
@@ -97,13 +97,13 @@ static void rig_defaults(rig *r)
     r->cfg.flip_timeout_ms = 200;
 }
 
-static lx_status rig_open(rig *r, UMockdevTestbed *tb, char *err, size_t errlen)
+static hal_status rig_open(rig *r, UMockdevTestbed *tb, char *err, size_t errlen)
 {
     r->card = fake_drm_add(tb, &r->o);
     err[0] = 0;
-    lx_status s = kms_open(&r->d, &r->cfg, &lx_clock_monotonic, logger, NULL, err, errlen);
-    if (s == LX_OK && lx_scene_source_init(&r->src, r->d->width, r->d->height, CS_AA_SUBSCAN, 4) != LX_OK)
-        s = LX_ERR_NOMEM;
+    hal_status s = kms_open(&r->d, &r->cfg, &hal_clock_monotonic, logger, NULL, err, errlen);
+    if (s == HAL_OK && lx_scene_source_init(&r->src, r->d->width, r->d->height, CS_AA_SUBSCAN, 4) != HAL_OK)
+        s = HAL_ERR_NOMEM;
     return s;
 }
 
@@ -121,7 +121,7 @@ static bool all_freed(fake_drm *card)
 static void rig_close(rig *r, bool opened)
 {
     if (opened) {
-        r->d->ops->close(r->d);
+        hal_display_close(r->d);
         lx_scene_source_free(&r->src);
         CHECK(all_freed(r->card),
               "close left %u dumb buffers, %u framebuffers", fake_drm_live_dumbs(r->card),
@@ -134,21 +134,21 @@ static void rig_close(rig *r, bool opened)
 static bool rig_start(rig *r, UMockdevTestbed *tb)
 {
     char err[320];
-    lx_status s = rig_open(r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s: %s", lx_status_str(s), err);
-    if (s != LX_OK)
+    hal_status s = rig_open(r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s: %s", hal_status_str(s), err);
+    if (s != HAL_OK)
         rig_close(r, false);
-    return s == LX_OK;
+    return s == HAL_OK;
 }
 
 /* Builds scene `name` at time t and presents it. */
-static lx_status show(rig *r, const char *name, float t, lx_frame_stats *st)
+static hal_status show(rig *r, const char *name, float t, hal_frame_stats *st)
 {
     memset(st, 0, sizeof *st);
     if (!celfw_scene_build(name, &r->scene, t))
         abort();
     lx_scene_source_set(&r->src, &r->scene, 0.0f);
-    return r->d->ops->present(r->d, &r->src.src, st);
+    return hal_display_present(r->d, &r->src.src, st);
 }
 
 /* Compares what the CRTC scans out with the core's rendering. Returns mismatching pixels. */
@@ -178,7 +178,7 @@ static void test_frames(UMockdevTestbed *tb)
     rig_defaults(&r);
     if (!rig_start(&r, tb))
         return;
-    lx_status s;
+    hal_status s;
     kms_info info;
     kms_get_info(r.d, &info);
     CHECK(info.width == 96 && info.height == 64 && info.refresh == 60, "preferred mode: got %dx%d@%d",
@@ -186,12 +186,12 @@ static void test_frames(UMockdevTestbed *tb)
     CHECK(!strcmp(info.device, "/dev/dri/card0") && !strcmp(info.connector, "HDMI-A-1"),
           "found %s %s", info.device, info.connector);
     CHECK(info.fourcc == DRM_FORMAT_XRGB8888, "format %08x", info.fourcc);
-    lx_frame_stats st;
+    hal_frame_stats st;
     const struct { const char *scene; float t; } frames[] = {{"demo", 0.0f}, {"anim", 0.3f}, {"anim", 0.7f},
                                                              {"bars", 0.0f}, {"anim", 1.1f}};
     for (size_t i = 0; i < sizeof frames / sizeof frames[0]; i++) {
         s = show(&r, frames[i].scene, frames[i].t, &st);
-        CHECK(s == LX_OK, "frame %zu: %s: %s", i, lx_status_str(s), r.d->err);
+        CHECK(s == HAL_OK, "frame %zu: %s: %s", i, hal_status_str(s), r.d->err);
         int bad = compare(&r);
         CHECK(bad == 0, "frame %zu (%s t=%g): %d pixels differ from the core's rendering", i, frames[i].scene,
               (double)frames[i].t, bad);
@@ -205,8 +205,8 @@ static void test_frames(UMockdevTestbed *tb)
      * back buffer is brought up to date once, then not written at all. */
     for (int i = 0; i < 2; i++) {
         s = show(&r, "anim", 1.1f, &st);
-        CHECK(s == LX_OK && st.lines_sent == 0 && fake_drm_count(r.card, FAKE_DRM_FLIP) == 4,
-              "unchanged frame: %s, %llu lines changed, %u flips", lx_status_str(s),
+        CHECK(s == HAL_OK && st.lines_sent == 0 && fake_drm_count(r.card, FAKE_DRM_FLIP) == 4,
+              "unchanged frame: %s, %llu lines changed, %u flips", hal_status_str(s),
               (unsigned long long)st.lines_sent, fake_drm_count(r.card, FAKE_DRM_FLIP));
     }
     CHECK(st.bytes_raw == 0, "unchanged frame again: %llu bytes written", (unsigned long long)st.bytes_raw);
@@ -218,10 +218,10 @@ static void test_frames(UMockdevTestbed *tb)
     lx_scene_source other;
     lx_scene_source_init(&other, 64, 48, CS_AA_SUBSCAN, 4);
     lx_scene_source_set(&other, &r.scene, 0.0f);
-    s = r.d->ops->present(r.d, &other.src, &st);
-    CHECK(s == LX_ERR_CONFIG && strstr(r.d->err, "64x48"), "size mismatch: %s: %s", lx_status_str(s), r.d->err);
+    s = hal_display_present(r.d, &other.src, &st);
+    CHECK(s == HAL_ERR_CONFIG && strstr(r.d->err, "64x48"), "size mismatch: %s: %s", hal_status_str(s), r.d->err);
     lx_scene_source_free(&other);
-    r.d->ops->close(r.d);
+    hal_display_close(r.d);
     fake_drm_scanout so;
     CHECK(all_freed(r.card) && !fake_drm_get_scanout(r.card, &so),
           "after close the CRTC (off when found) still shows fb %u", so.fb_id);
@@ -231,37 +231,37 @@ static void test_frames(UMockdevTestbed *tb)
 
 static void test_modes(UMockdevTestbed *tb)
 {
-    const struct { const char *spec; lx_status want; int w, h, hz; const char *needle; } cases[] = {
-        {"64x48", LX_OK, 64, 48, 75, NULL},
-        {"64x48@75", LX_OK, 64, 48, 75, NULL},
-        {"96x64@60", LX_OK, 96, 64, 60, NULL},
-        {"64x48@60", LX_ERR_CONFIG, 0, 0, 0, "no mode 64x48@60 (it has 96x64@60, 64x48@75)"},
-        {"100x100", LX_ERR_CONFIG, 0, 0, 0, "no mode 100x100"},
+    const struct { const char *spec; hal_status want; int w, h, hz; const char *needle; } cases[] = {
+        {"64x48", HAL_OK, 64, 48, 75, NULL},
+        {"64x48@75", HAL_OK, 64, 48, 75, NULL},
+        {"96x64@60", HAL_OK, 96, 64, 60, NULL},
+        {"64x48@60", HAL_ERR_CONFIG, 0, 0, 0, "no mode 64x48@60 (it has 96x64@60, 64x48@75)"},
+        {"100x100", HAL_ERR_CONFIG, 0, 0, 0, "no mode 100x100"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         static rig r; /* holds a scene store: too big for a stack */
         rig_defaults(&r);
         CHECK(kms_parse_mode(cases[i].spec, &r.cfg), "parse %s", cases[i].spec);
         char err[320];
-        lx_status s = rig_open(&r, tb, err, sizeof err);
-        CHECK(s == cases[i].want, "mode %s: %s: %s", cases[i].spec, lx_status_str(s), err);
-        if (s == LX_OK) {
+        hal_status s = rig_open(&r, tb, err, sizeof err);
+        CHECK(s == cases[i].want, "mode %s: %s: %s", cases[i].spec, hal_status_str(s), err);
+        if (s == HAL_OK) {
             kms_info info;
             kms_get_info(r.d, &info);
             CHECK(info.width == cases[i].w && info.height == cases[i].h && info.refresh == cases[i].hz,
                   "mode %s chose %dx%d@%d", cases[i].spec, info.width, info.height, info.refresh);
-            lx_frame_stats st;
+            hal_frame_stats st;
             s = show(&r, "demo", 0.0f, &st);
             fake_drm_scanout so = {0};
             fake_drm_get_scanout(r.card, &so);
-            CHECK(s == LX_OK && so.mode_w == cases[i].w && so.mode_h == cases[i].h && so.mode_hz == cases[i].hz,
+            CHECK(s == HAL_OK && so.mode_w == cases[i].w && so.mode_h == cases[i].h && so.mode_hz == cases[i].hz,
                   "mode %s: the CRTC runs %dx%d@%d", cases[i].spec, so.mode_w, so.mode_h, so.mode_hz);
             CHECK(compare(&r) == 0, "mode %s: frame differs", cases[i].spec);
         } else if (cases[i].needle) {
             CHECK(strstr(err, cases[i].needle) != NULL, "mode %s: message '%s'", cases[i].spec, err);
             CHECK(fake_drm_live_dumbs(r.card) == 0, "a refused mode left buffers");
         }
-        rig_close(&r, s == LX_OK);
+        rig_close(&r, s == HAL_OK);
     }
     static const char *bad[] = {"", "64", "64x", "x48", "64x48@", "64x48@0", "64x48@60Hz", "0x48", "64x48x2"};
     kms_config c;
@@ -279,19 +279,19 @@ static void test_rgb565(UMockdevTestbed *tb, bool plane_only)
     else
         r.o.preferred_depth = 16;
     char err[320];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s == LX_OK) {
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s", err);
+    if (s == HAL_OK) {
         kms_info info;
         kms_get_info(r.d, &info);
         CHECK(info.fourcc == DRM_FORMAT_RGB565, "format %08x, want RGB565", info.fourcc);
-        lx_frame_stats st;
+        hal_frame_stats st;
         for (int i = 0; i < 3; i++) {
             s = show(&r, "anim", 0.4f * (float)i, &st);
-            CHECK(s == LX_OK && compare(&r) == 0, "RGB565 frame %d: %s", i, r.d->err);
+            CHECK(s == HAL_OK && compare(&r) == 0, "RGB565 frame %d: %s", i, r.d->err);
         }
     }
-    rig_close(&r, s == LX_OK);
+    rig_close(&r, s == HAL_OK);
 }
 
 /* Bands of lines that differ between two images: the damage a frame must report. */
@@ -320,19 +320,19 @@ static void test_no_flips(UMockdevTestbed *tb, bool dirty)
     r.o.no_dirty = !dirty;
     if (!rig_start(&r, tb))
         return;
-    lx_status s;
-    lx_frame_stats st;
+    hal_status s;
+    hal_frame_stats st;
     s = show(&r, "anim", 0.0f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "no flips, frame 0: %s", r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "no flips, frame 0: %s", r.d->err);
     s = show(&r, "anim", 0.5f, &st); /* the flip is refused: a mode set, then one buffer */
-    CHECK(s == LX_OK && compare(&r) == 0, "no flips, frame 1: %s", r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "no flips, frame 1: %s", r.d->err);
     kms_info info;
     kms_get_info(r.d, &info);
     CHECK(!info.flips && fake_drm_count(r.card, FAKE_DRM_SETCRTC) == 2, "flips %d, %u mode sets", info.flips,
           fake_drm_count(r.card, FAKE_DRM_SETCRTC));
     uint8_t *before = expected(&r.scene, 96, 64, DRM_FORMAT_XRGB8888);
     s = show(&r, "anim", 0.6f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "no flips, frame 2: %s", r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "no flips, frame 2: %s", r.d->err);
     uint8_t *after = expected(&r.scene, 96, 64, DRM_FORMAT_XRGB8888);
     int want[64], got[128];
     int nwant = diff_bands(before, after, 96, 64, want);
@@ -362,25 +362,25 @@ static void test_unplug(UMockdevTestbed *tb)
     rig_defaults(&r);
     if (!rig_start(&r, tb))
         return;
-    lx_status s;
-    lx_frame_stats st;
-    CHECK(show(&r, "demo", 0.0f, &st) == LX_OK && show(&r, "anim", 0.2f, &st) == LX_OK, "frames before unplug");
+    hal_status s;
+    hal_frame_stats st;
+    CHECK(show(&r, "demo", 0.0f, &st) == HAL_OK && show(&r, "anim", 0.2f, &st) == HAL_OK, "frames before unplug");
 
     /* The connector reports nothing connected (HDMI cable pulled). */
     fake_drm_set_connected(r.card, false);
     s = show(&r, "anim", 0.4f, &st);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "reports no screen connected"), "unplugged: %s: %s",
-          lx_status_str(s), r.d->err);
-    CHECK(!r.d->ops->connected(r.d) && all_freed(r.card),
-          "after the loss: connected %d, %u buffers left", r.d->ops->connected(r.d), fake_drm_live_dumbs(r.card));
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, "reports no screen connected"), "unplugged: %s: %s",
+          hal_status_str(s), r.d->err);
+    CHECK(!hal_display_connected(r.d) && all_freed(r.card),
+          "after the loss: connected %d, %u buffers left", hal_display_connected(r.d), fake_drm_live_dumbs(r.card));
     usleep(30 * 1000);
     s = show(&r, "anim", 0.4f, &st); /* still unplugged: the reconnect fails cleanly */
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "no connector has a screen connected"), "still away: %s: %s",
-          lx_status_str(s), r.d->err);
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, "no connector has a screen connected"), "still away: %s: %s",
+          hal_status_str(s), r.d->err);
     fake_drm_set_connected(r.card, true);
     usleep(30 * 1000);
     s = show(&r, "anim", 0.5f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "after replug: %s: %s", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "after replug: %s: %s", hal_status_str(s), r.d->err);
     kms_info info;
     kms_get_info(r.d, &info);
     CHECK(info.connects == 2 && info.connected, "connects %llu", (unsigned long long)info.connects);
@@ -388,29 +388,29 @@ static void test_unplug(UMockdevTestbed *tb)
     /* The card answers ENODEV (the device is gone), mid-run. */
     fake_drm_set_gone(r.card, true);
     s = show(&r, "anim", 0.6f, &st);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, strerror(ENODEV)), "ENODEV: %s: %s", lx_status_str(s),
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, strerror(ENODEV)), "ENODEV: %s: %s", hal_status_str(s),
           r.d->err);
     s = show(&r, "anim", 0.6f, &st); /* before reconnect_ms: cheap, the same answer */
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "screen absent"), "absent: %s: %s", lx_status_str(s),
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, "screen absent"), "absent: %s: %s", hal_status_str(s),
           r.d->err);
     fake_drm_set_gone(r.card, false);
     usleep(30 * 1000);
     s = show(&r, "anim", 0.7f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "after ENODEV: %s: %s", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "after ENODEV: %s: %s", hal_status_str(s), r.d->err);
 
     /* Another program takes the screen (DRM master): lost until it lets go. */
     fake_drm_set_not_master(r.card, true);
     s = show(&r, "bars", 0.0f, &st);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, strerror(EACCES)), "master taken: %s: %s", lx_status_str(s),
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, strerror(EACCES)), "master taken: %s: %s", hal_status_str(s),
           r.d->err);
     usleep(30 * 1000);
     s = show(&r, "bars", 0.0f, &st);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "holds the screen as DRM master"), "still taken: %s: %s",
-          lx_status_str(s), r.d->err);
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, "holds the screen as DRM master"), "still taken: %s: %s",
+          hal_status_str(s), r.d->err);
     fake_drm_set_not_master(r.card, false);
     usleep(30 * 1000);
     s = show(&r, "anim", 0.8f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "master back: %s: %s", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "master back: %s: %s", hal_status_str(s), r.d->err);
     rig_close(&r, true);
 }
 
@@ -422,18 +422,18 @@ static void test_gone_at_flip(UMockdevTestbed *tb)
     r.cfg.probe_ms = 60000;
     if (!rig_start(&r, tb))
         return;
-    lx_status s;
-    lx_frame_stats st;
-    CHECK(show(&r, "demo", 0.0f, &st) == LX_OK, "first frame: %s", r.d->err);
+    hal_status s;
+    hal_frame_stats st;
+    CHECK(show(&r, "demo", 0.0f, &st) == HAL_OK, "first frame: %s", r.d->err);
     fake_drm_set_gone(r.card, true);
     s = show(&r, "bars", 0.0f, &st);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "page flip: No such device"), "gone at the flip: %s: %s",
-          lx_status_str(s), r.d->err);
-    CHECK(!r.d->ops->connected(r.d) && all_freed(r.card), "after the loss: buffers left");
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, "page flip: No such device"), "gone at the flip: %s: %s",
+          hal_status_str(s), r.d->err);
+    CHECK(!hal_display_connected(r.d) && all_freed(r.card), "after the loss: buffers left");
     fake_drm_set_gone(r.card, false);
     usleep(30 * 1000);
     s = show(&r, "bars", 0.0f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "back again: %s: %s", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "back again: %s: %s", hal_status_str(s), r.d->err);
     rig_close(&r, true);
 }
 
@@ -444,18 +444,18 @@ static void test_flip_timeout(UMockdevTestbed *tb)
     r.cfg.flip_timeout_ms = 50;
     if (!rig_start(&r, tb))
         return;
-    lx_status s;
-    lx_frame_stats st;
+    hal_status s;
+    hal_frame_stats st;
     fake_drm_hold_flips(r.card, true);
-    CHECK(show(&r, "anim", 0.0f, &st) == LX_OK && show(&r, "anim", 0.3f, &st) == LX_OK, "mode set and a flip");
+    CHECK(show(&r, "anim", 0.0f, &st) == HAL_OK && show(&r, "anim", 0.3f, &st) == HAL_OK, "mode set and a flip");
     s = show(&r, "anim", 0.6f, &st);
-    CHECK(s == LX_ERR_TIMEOUT && strstr(r.d->err, "page flip not completed after 50 ms"), "stuck flip: %s: %s",
-          lx_status_str(s), r.d->err);
+    CHECK(s == HAL_ERR_TIMEOUT && strstr(r.d->err, "page flip not completed after 50 ms"), "stuck flip: %s: %s",
+          hal_status_str(s), r.d->err);
     s = show(&r, "anim", 0.6f, &st); /* the CRTC is still busy: a frame error, not a crash or a loss */
-    CHECK(s == LX_ERR_IO && strstr(r.d->err, "page flip"), "busy CRTC: %s: %s", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_ERR_IO && strstr(r.d->err, "page flip"), "busy CRTC: %s: %s", hal_status_str(s), r.d->err);
     fake_drm_hold_flips(r.card, false);
     s = show(&r, "anim", 0.9f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "after the vblank: %s: %s", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "after the vblank: %s: %s", hal_status_str(s), r.d->err);
     rig_close(&r, true);
 }
 
@@ -463,22 +463,22 @@ static void test_missing(UMockdevTestbed *tb)
 {
     kms_config c;
     kms_config_default(&c);
-    lx_display *d = NULL;
+    hal_display *d = NULL;
     char err[320];
-    lx_status s = kms_open(&d, &c, &lx_clock_monotonic, logger, NULL, err, sizeof err);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(err, "no DRM card with a connected screen"), "no card: %s: %s",
-          lx_status_str(s), err);
+    hal_status s = kms_open(&d, &c, &hal_clock_monotonic, logger, NULL, err, sizeof err);
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(err, "no DRM card with a connected screen"), "no card: %s: %s",
+          hal_status_str(s), err);
     snprintf(c.device, sizeof c.device, "/dev/dri/card5");
-    s = kms_open(&d, &c, &lx_clock_monotonic, logger, NULL, err, sizeof err);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(err, "/dev/dri/card5"), "named card absent: %s: %s", lx_status_str(s),
+    s = kms_open(&d, &c, &hal_clock_monotonic, logger, NULL, err, sizeof err);
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(err, "/dev/dri/card5"), "named card absent: %s: %s", hal_status_str(s),
           err);
     static rig r; /* holds a scene store: too big for a stack */
     rig_defaults(&r);
     r.o.disconnected = true;
     s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(err, "no connector has a screen connected"), "nothing connected: %s: %s",
-          lx_status_str(s), err);
-    rig_close(&r, s == LX_OK);
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(err, "no connector has a screen connected"), "nothing connected: %s: %s",
+          hal_status_str(s), err);
+    rig_close(&r, s == HAL_OK);
 }
 
 /* A driver with atomic modesetting: flips are commits whose FB_DAMAGE_CLIPS are the changed bands. */
@@ -490,16 +490,16 @@ static void test_atomic(UMockdevTestbed *tb, bool damage_clips)
     r.o.damage_clips = damage_clips;
     if (!rig_start(&r, tb))
         return;
-    lx_status s;
+    hal_status s;
     kms_info info;
     kms_get_info(r.d, &info);
     CHECK(info.atomic == damage_clips, "atomic path %d with damage clips %d", info.atomic, damage_clips);
-    lx_frame_stats st;
+    hal_frame_stats st;
     uint8_t *before = NULL;
     const float times[] = {0.0f, 0.3f, 0.35f, 0.9f};
     for (int i = 0; i < 4; i++) {
         s = show(&r, "anim", times[i], &st);
-        CHECK(s == LX_OK && compare(&r) == 0, "atomic %d, frame %d: %s: %s", damage_clips, i, lx_status_str(s),
+        CHECK(s == HAL_OK && compare(&r) == 0, "atomic %d, frame %d: %s: %s", damage_clips, i, hal_status_str(s),
               r.d->err);
         uint8_t *after = expected(&r.scene, 96, 64, DRM_FORMAT_XRGB8888);
         if (before && damage_clips) {
@@ -529,11 +529,11 @@ static void test_atomic(UMockdevTestbed *tb, bool damage_clips)
     CHECK(info.flips_done == 2, "%llu flip events handled", (unsigned long long)info.flips_done);
     /* A lost screen and its return go through the same commits. */
     fake_drm_set_connected(r.card, false);
-    CHECK(show(&r, "bars", 0.0f, &st) == LX_ERR_NO_DEVICE, "unplugged: %s", r.d->err);
+    CHECK(show(&r, "bars", 0.0f, &st) == HAL_ERR_NO_DEVICE, "unplugged: %s", r.d->err);
     fake_drm_set_connected(r.card, true);
     usleep(30 * 1000);
     s = show(&r, "bars", 0.0f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "replugged: %s: %s", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "replugged: %s: %s", hal_status_str(s), r.d->err);
     rig_close(&r, true);
 }
 
@@ -549,20 +549,20 @@ static void test_scan(UMockdevTestbed *tb)
     b.o.nmodes = 1;
     a.card = fake_drm_add(tb, &a.o);
     char err[320];
-    lx_status s = rig_open(&b, tb, err, sizeof err);
-    CHECK(s == LX_OK, "scan: %s: %s", lx_status_str(s), err);
-    if (s == LX_OK) {
+    hal_status s = rig_open(&b, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "scan: %s: %s", hal_status_str(s), err);
+    if (s == HAL_OK) {
         kms_info info;
         kms_get_info(b.d, &info);
         CHECK(!strcmp(info.device, "/dev/dri/card1") && info.width == 64 && info.refresh == 50,
               "scan chose %s %dx%d@%d", info.device, info.width, info.height, info.refresh);
-        lx_frame_stats st;
+        hal_frame_stats st;
         s = show(&b, "demo", 0.0f, &st);
-        CHECK(s == LX_OK && compare(&b) == 0, "card1 frame: %s", b.d->err);
+        CHECK(s == HAL_OK && compare(&b) == 0, "card1 frame: %s", b.d->err);
         fake_drm_scanout so;
         CHECK(!fake_drm_get_scanout(a.card, &so), "card0 lit");
     }
-    rig_close(&b, s == LX_OK);
+    rig_close(&b, s == HAL_OK);
     fake_drm_free(a.card);
 }
 
@@ -574,62 +574,62 @@ static void test_wait(UMockdevTestbed *tb)
     r.o.disconnected = true;
     r.cfg.wait = true;
     char err[320];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_ERR_CONFIG && strstr(err, "need a size"), "waiting without a size: %s: %s", lx_status_str(s),
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_ERR_CONFIG && strstr(err, "need a size"), "waiting without a size: %s: %s", hal_status_str(s),
           err);
     fake_drm_free(r.card);
     kms_parse_mode("96x64", &r.cfg);
     s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK && !r.d->ops->connected(r.d), "waiting: %s: %s", lx_status_str(s), err);
-    if (s != LX_OK) {
+    CHECK(s == HAL_OK && !hal_display_connected(r.d), "waiting: %s: %s", hal_status_str(s), err);
+    if (s != HAL_OK) {
         rig_close(&r, false);
         return;
     }
-    lx_frame_stats st;
+    hal_frame_stats st;
     s = show(&r, "demo", 0.0f, &st);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "no connector has a screen connected"), "no screen: %s: %s",
-          lx_status_str(s), r.d->err);
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, "no connector has a screen connected"), "no screen: %s: %s",
+          hal_status_str(s), r.d->err);
     fake_drm_set_connected(r.card, true);
     usleep(30 * 1000);
     s = show(&r, "demo", 0.0f, &st);
-    CHECK(s == LX_OK && compare(&r) == 0, "the screen came: %s: %s", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_OK && compare(&r) == 0, "the screen came: %s: %s", hal_status_str(s), r.d->err);
     rig_close(&r, true);
 }
 
 /* Drivers and situations that must be refused with a reason, not crash. */
 static void test_refusals(UMockdevTestbed *tb)
 {
-    const struct { const char *what; fake_drm_opts o; lx_status want; const char *needle; int w; } cases[] = {
-        {"not master", {.modes = {{96, 64, 60, true}}, .nmodes = 1, .not_master = true}, LX_ERR_NO_DEVICE,
+    const struct { const char *what; fake_drm_opts o; hal_status want; const char *needle; int w; } cases[] = {
+        {"not master", {.modes = {{96, 64, 60, true}}, .nmodes = 1, .not_master = true}, HAL_ERR_NO_DEVICE,
          "holds the screen as DRM master", 0},
-        {"short pitch", {.modes = {{96, 64, 60, true}}, .nmodes = 1, .pitch_short = 4}, LX_ERR_PROTOCOL,
+        {"short pitch", {.modes = {{96, 64, 60, true}}, .nmodes = 1, .pitch_short = 4}, HAL_ERR_PROTOCOL,
          "dumb buffer of pitch 380", 0},
-        {"0x0 preferred", {.modes = {{0, 0, 60, true}, {64, 48, 75, false}}, .nmodes = 2}, LX_OK, NULL, 64},
-        {"too wide preferred", {.modes = {{5000, 100, 60, true}, {64, 48, 75, false}}, .nmodes = 2}, LX_OK, NULL,
+        {"0x0 preferred", {.modes = {{0, 0, 60, true}, {64, 48, 75, false}}, .nmodes = 2}, HAL_OK, NULL, 64},
+        {"too wide preferred", {.modes = {{5000, 100, 60, true}, {64, 48, 75, false}}, .nmodes = 2}, HAL_OK, NULL,
          64},
-        {"only unusable modes", {.modes = {{0, 0, 60, true}, {9000, 9000, 30, false}}, .nmodes = 2}, LX_ERR_CONFIG,
+        {"only unusable modes", {.modes = {{0, 0, 60, true}, {9000, 9000, 30, false}}, .nmodes = 2}, HAL_ERR_CONFIG,
          "offers no usable mode (it has 0x0@60, 9000x9000@30)", 0},
-        {"no modes", {.nmodes = 0}, LX_ERR_CONFIG, "offers no usable mode (it has none)", 0},
+        {"no modes", {.nmodes = 0}, HAL_ERR_CONFIG, "offers no usable mode (it has none)", 0},
         {"plane takes NV12 only", {.modes = {{96, 64, 60, true}}, .nmodes = 1, .plane_formats = {DRM_FORMAT_NV12}},
-         LX_ERR_NO_DEVICE, "the primary plane takes neither XRGB8888 nor RGB565 (it takes NV12)", 0},
+         HAL_ERR_NO_DEVICE, "the primary plane takes neither XRGB8888 nor RGB565 (it takes NV12)", 0},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         static rig r; /* holds a scene store: too big for a stack */
         rig_defaults(&r);
         r.o = cases[i].o;
         char err[320];
-        lx_status s = rig_open(&r, tb, err, sizeof err);
+        hal_status s = rig_open(&r, tb, err, sizeof err);
         CHECK(s == cases[i].want && (!cases[i].needle || strstr(err, cases[i].needle)), "%s: %s: %s",
-              cases[i].what, lx_status_str(s), err);
-        if (s == LX_OK) {
-            lx_frame_stats st;
+              cases[i].what, hal_status_str(s), err);
+        if (s == HAL_OK) {
+            hal_frame_stats st;
             CHECK(r.d->width == cases[i].w, "%s: chose width %d", cases[i].what, r.d->width);
             s = show(&r, "demo", 0.0f, &st);
-            CHECK(s == LX_OK && compare(&r) == 0, "%s: frame: %s", cases[i].what, r.d->err);
+            CHECK(s == HAL_OK && compare(&r) == 0, "%s: frame: %s", cases[i].what, r.d->err);
         } else {
             CHECK(all_freed(r.card), "%s: a refused card kept buffers", cases[i].what);
         }
-        rig_close(&r, s == LX_OK);
+        rig_close(&r, s == HAL_OK);
     }
 }
 

@@ -70,14 +70,14 @@ typedef struct rig {
     fake_gud_opts o;
     fake_gud *dev;
     gud_config cfg;
-    lx_display *d;
+    hal_display *d;
     lx_scene_source src;
     int devnum;
 } rig;
 
 static int bus_no = 1;
 
-static lx_status rig_open(rig *r, UMockdevTestbed *tb, char *err, size_t errlen)
+static hal_status rig_open(rig *r, UMockdevTestbed *tb, char *err, size_t errlen)
 {
     r->o.pid = (uint16_t)next_pid++;
     r->devnum = 2;
@@ -85,16 +85,16 @@ static lx_status rig_open(rig *r, UMockdevTestbed *tb, char *err, size_t errlen)
     r->cfg.vid = r->o.vid;
     r->cfg.pid = r->o.pid;
     err[0] = 0;
-    lx_status s = gud_open(&r->d, &r->cfg, &lx_clock_monotonic, logger, NULL, err, errlen);
-    if (s == LX_OK && lx_scene_source_init(&r->src, r->d->width, r->d->height, CS_AA_SUBSCAN, 4) != LX_OK)
-        s = LX_ERR_NOMEM;
+    hal_status s = gud_open(&r->d, &r->cfg, &hal_clock_monotonic, logger, NULL, err, errlen);
+    if (s == HAL_OK && lx_scene_source_init(&r->src, r->d->width, r->d->height, CS_AA_SUBSCAN, 4) != HAL_OK)
+        s = HAL_ERR_NOMEM;
     return s;
 }
 
 static void rig_close(rig *r, bool opened)
 {
     if (opened) {
-        r->d->ops->close(r->d);
+        hal_display_close(r->d);
         lx_scene_source_free(&r->src);
     }
     fake_gud_unplug(r->dev);
@@ -102,11 +102,11 @@ static void rig_close(rig *r, bool opened)
 }
 
 /* Presents the scene; returns the status and fills st. */
-static lx_status show(rig *r, const cs_scene *s, lx_frame_stats *st)
+static hal_status show(rig *r, const cs_scene *s, hal_frame_stats *st)
 {
     memset(st, 0, sizeof *st);
     lx_scene_source_set(&r->src, s, 0.0f);
-    return r->d->ops->present(r->d, &r->src.src, st);
+    return hal_display_present(r->d, &r->src.src, st);
 }
 
 /* Compares the device's panel with the core's rendering. Returns mismatching pixels. */
@@ -134,9 +134,9 @@ static void test_basic(UMockdevTestbed *tb)
     fake_gud_opts_default(&r.o);
     gud_config_default(&r.cfg);
     char err[300];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK)
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s", err);
+    if (s != HAL_OK)
         return rig_close(&r, false);
     gud_info info;
     gud_get_info(r.d, &info);
@@ -150,9 +150,9 @@ static void test_basic(UMockdevTestbed *tb)
           ds.display_on);
 
     celfw_scene_build("demo", &scene, 0.0f);
-    lx_frame_stats st;
+    hal_frame_stats st;
     s = show(&r, &scene, &st);
-    CHECK(s == LX_OK, "present: %s", r.d->err);
+    CHECK(s == HAL_OK, "present: %s", r.d->err);
     CHECK(compare(&r, &scene) == 0, "demo frame on the panel equals the renderer's");
     CHECK(st.lines_sent == 180 && st.bytes_raw == 180u * 320u * 2u, "first frame sends every line (%llu)",
           (unsigned long long)st.lines_sent);
@@ -165,7 +165,7 @@ static void test_basic(UMockdevTestbed *tb)
 
     fake_gud_clear_log(r.dev);
     s = show(&r, &scene, &st);
-    CHECK(s == LX_OK && st.rects == 0 && st.lines_sent == 0 && fake_gud_rects(r.dev, NULL, 0) == 0,
+    CHECK(s == HAL_OK && st.rects == 0 && st.lines_sent == 0 && fake_gud_rects(r.dev, NULL, 0) == 0,
           "an unchanged frame sends nothing (%llu rects)", (unsigned long long)st.rects);
     rig_close(&r, true);
 }
@@ -181,16 +181,16 @@ static void test_xrgb_uncompressed(UMockdevTestbed *tb)
     r.o.height = 120;
     gud_config_default(&r.cfg);
     char err[300];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK)
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s", err);
+    if (s != HAL_OK)
         return rig_close(&r, false);
     gud_info info;
     gud_get_info(r.d, &info);
     CHECK(info.format == GUD_FORMAT_XRGB8888 && !info.lz4, "XRGB8888 without compression");
     celfw_scene_build("bars", &scene, 0.0f);
-    lx_frame_stats st;
-    CHECK(show(&r, &scene, &st) == LX_OK, "present: %s", r.d->err);
+    hal_frame_stats st;
+    CHECK(show(&r, &scene, &st) == HAL_OK, "present: %s", r.d->err);
     CHECK(compare(&r, &scene) == 0, "XRGB8888 frame equals the renderer's");
     CHECK(st.bytes_wire == st.bytes_raw && st.bytes_raw == 200u * 120u * 4u, "raw bytes on the wire");
     rig_close(&r, true);
@@ -205,11 +205,11 @@ static void test_damage(UMockdevTestbed *tb)
     r.o.height = 270;
     gud_config_default(&r.cfg);
     char err[300];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK)
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s", err);
+    if (s != HAL_OK)
         return rig_close(&r, false);
-    lx_frame_stats st;
+    hal_frame_stats st;
     float sy = 270.0f / 180.0f;
     uint64_t lines = 0, raw = 0, wire = 0;
     int frames = 0;
@@ -218,7 +218,7 @@ static void test_damage(UMockdevTestbed *tb)
         celfw_scene_build("anim", &scene, t);
         fake_gud_clear_log(r.dev);
         s = show(&r, &scene, &st);
-        CHECK(s == LX_OK, "anim frame %d: %s", f, r.d->err);
+        CHECK(s == HAL_OK, "anim frame %d: %s", f, r.d->err);
         CHECK(compare(&r, &scene) == 0, "anim frame %d on the panel equals the renderer's", f);
         if (f == 0)
             continue;
@@ -254,13 +254,13 @@ static void test_small_buffer(UMockdevTestbed *tb)
     r.o.max_buffer_size = 320u * 2u * 7u + 100u; /* seven lines */
     gud_config_default(&r.cfg);
     char err[300];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK)
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s", err);
+    if (s != HAL_OK)
         return rig_close(&r, false);
     celfw_scene_build("demo", &scene, 0.0f);
-    lx_frame_stats st;
-    CHECK(show(&r, &scene, &st) == LX_OK, "present: %s", r.d->err);
+    hal_frame_stats st;
+    CHECK(show(&r, &scene, &st) == HAL_OK, "present: %s", r.d->err);
     fake_gud_rect rects[64];
     size_t n = fake_gud_rects(r.dev, rects, 64);
     int big = 0;
@@ -278,11 +278,11 @@ static void test_faults(UMockdevTestbed *tb)
     gud_config_default(&r.cfg);
     r.cfg.timeout_ms = 150;
     char err[300];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK)
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s", err);
+    if (s != HAL_OK)
         return rig_close(&r, false);
-    lx_frame_stats st;
+    hal_frame_stats st;
     fake_gud_stats ds;
 
     /* a stalled bulk endpoint: clear the halt, send again */
@@ -290,7 +290,7 @@ static void test_faults(UMockdevTestbed *tb)
     fake_gud_stall_bulk(r.dev, 1);
     s = show(&r, &scene, &st);
     fake_gud_get_stats(r.dev, &ds);
-    CHECK(s == LX_OK && st.retries >= 1 && st.errors == 0 && ds.stalls == 1 && ds.clear_halts >= 1,
+    CHECK(s == HAL_OK && st.retries >= 1 && st.errors == 0 && ds.stalls == 1 && ds.clear_halts >= 1,
           "stall: status %d, %llu retries, %u clear-halts", s, (unsigned long long)st.retries,
           ds.clear_halts);
     CHECK(compare(&r, &scene) == 0, "frame after a stall equals the renderer's");
@@ -299,7 +299,7 @@ static void test_faults(UMockdevTestbed *tb)
     celfw_scene_build("anim", &scene, 0.5f);
     fake_gud_refuse(r.dev, GUD_REQ_SET_BUFFER, GUD_STATUS_BUSY, 1);
     s = show(&r, &scene, &st);
-    CHECK(s == LX_OK && st.retries >= 1 && st.errors == 0, "refused SET_BUFFER retried");
+    CHECK(s == HAL_OK && st.retries >= 1 && st.errors == 0, "refused SET_BUFFER retried");
     CHECK(compare(&r, &scene) == 0, "frame after a refusal equals the renderer's");
 
     /* a hung endpoint: libusb times out and discards, the retry goes through */
@@ -307,7 +307,7 @@ static void test_faults(UMockdevTestbed *tb)
     fake_gud_hang_bulk(r.dev, 1);
     s = show(&r, &scene, &st);
     fake_gud_get_stats(r.dev, &ds);
-    CHECK(s == LX_OK && st.retries >= 1 && st.errors == 0 && ds.discards >= 1,
+    CHECK(s == HAL_OK && st.retries >= 1 && st.errors == 0 && ds.discards >= 1,
           "timeout: %llu retries, %u discards", (unsigned long long)st.retries, ds.discards);
     CHECK(compare(&r, &scene) == 0, "frame after a timeout equals the renderer's");
 
@@ -315,11 +315,11 @@ static void test_faults(UMockdevTestbed *tb)
     celfw_scene_build("anim", &scene, 1.5f);
     fake_gud_stall_bulk(r.dev, 1 + r.cfg.retries);
     s = show(&r, &scene, &st);
-    CHECK(s == LX_OK && st.errors >= 1, "persistent stall: frame finished with %llu failed bands",
+    CHECK(s == HAL_OK && st.errors >= 1, "persistent stall: frame finished with %llu failed bands",
           (unsigned long long)st.errors);
     CHECK(compare(&r, &scene) != 0, "the failed band is missing from the panel");
     s = show(&r, &scene, &st);
-    CHECK(s == LX_OK && st.errors == 0 && st.lines_sent > 0, "the failed lines are sent again");
+    CHECK(s == HAL_OK && st.errors == 0 && st.lines_sent > 0, "the failed lines are sent again");
     CHECK(compare(&r, &scene) == 0, "and then the panel equals the renderer's");
     rig_close(&r, true);
 }
@@ -331,33 +331,33 @@ static void test_unplug(UMockdevTestbed *tb)
     gud_config_default(&r.cfg);
     r.cfg.reconnect_ms = 30;
     char err[300];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "open: %s", err);
-    if (s != LX_OK)
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s", err);
+    if (s != HAL_OK)
         return rig_close(&r, false);
-    lx_frame_stats st;
+    hal_frame_stats st;
     celfw_scene_build("anim", &scene, 0.2f);
-    CHECK(show(&r, &scene, &st) == LX_OK, "present before unplug");
+    CHECK(show(&r, &scene, &st) == HAL_OK, "present before unplug");
 
     fake_gud_unplug(r.dev);
     celfw_scene_build("anim", &scene, 0.7f);
     s = show(&r, &scene, &st);
-    CHECK(s == LX_ERR_NO_DEVICE && !r.d->ops->connected(r.d), "unplugged: present says %s (%s)",
-          lx_status_str(s), r.d->err);
+    CHECK(s == HAL_ERR_NO_DEVICE && !hal_display_connected(r.d), "unplugged: present says %s (%s)",
+          hal_status_str(s), r.d->err);
     for (int i = 0; i < 5; i++)
         s = show(&r, &scene, &st);
-    CHECK(s == LX_ERR_NO_DEVICE, "still away: %s", lx_status_str(s));
+    CHECK(s == HAL_ERR_NO_DEVICE, "still away: %s", hal_status_str(s));
 
     fake_gud_replug(r.dev, 5);
     for (int i = 0; i < 100; i++) {
         g_usleep(10000);
         s = show(&r, &scene, &st);
-        if (s == LX_OK)
+        if (s == HAL_OK)
             break;
     }
     gud_info info;
     gud_get_info(r.d, &info);
-    CHECK(s == LX_OK && info.connects == 2 && info.address == 5, "reconnected at address %d (%s)",
+    CHECK(s == HAL_OK && info.connects == 2 && info.address == 5, "reconnected at address %d (%s)",
           info.address, r.d->err);
     CHECK(st.lines_sent == 180, "the whole frame is resent after a reconnect (%llu lines)",
           (unsigned long long)st.lines_sent);
@@ -371,9 +371,9 @@ static void expect_open_error(UMockdevTestbed *tb, const char *what, fake_gud_op
     r.o = *o;
     gud_config_default(&r.cfg);
     char err[300];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s != LX_OK && strstr(err, needle), "%s: status %s, message '%s'", what, lx_status_str(s), err);
-    rig_close(&r, s == LX_OK);
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s != HAL_OK && strstr(err, needle), "%s: status %s, message '%s'", what, hal_status_str(s), err);
+    rig_close(&r, s == HAL_OK);
 }
 
 static void test_odd_devices(UMockdevTestbed *tb)
@@ -407,14 +407,14 @@ static void test_odd_devices(UMockdevTestbed *tb)
     r.o.height = 90;
     gud_config_default(&r.cfg);
     char err[300];
-    lx_status s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "mixed formats: %s", err);
-    if (s == LX_OK) {
-        lx_frame_stats st;
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "mixed formats: %s", err);
+    if (s == HAL_OK) {
+        hal_frame_stats st;
         celfw_scene_build("demo", &scene, 0.0f);
-        CHECK(show(&r, &scene, &st) == LX_OK && compare(&r, &scene) == 0, "mixed formats: XRGB8888 frame matches");
+        CHECK(show(&r, &scene, &st) == HAL_OK && compare(&r, &scene) == 0, "mixed formats: XRGB8888 frame matches");
     }
-    rig_close(&r, s == LX_OK);
+    rig_close(&r, s == HAL_OK);
 
     /* an EDID-only device: no mode list, the configured size is used */
     rig q = {0};
@@ -426,13 +426,13 @@ static void test_odd_devices(UMockdevTestbed *tb)
     q.cfg.width = 128;
     q.cfg.height = 64;
     s = rig_open(&q, tb, err, sizeof err);
-    CHECK(s == LX_OK, "no modes, size given: %s", err);
-    if (s == LX_OK) {
-        lx_frame_stats st;
+    CHECK(s == HAL_OK, "no modes, size given: %s", err);
+    if (s == HAL_OK) {
+        hal_frame_stats st;
         celfw_scene_build("bars", &scene, 0.0f);
-        CHECK(show(&q, &scene, &st) == LX_OK && compare(&q, &scene) == 0, "no-modes device frame matches");
+        CHECK(show(&q, &scene, &st) == HAL_OK && compare(&q, &scene) == 0, "no-modes device frame matches");
     }
-    rig_close(&q, s == LX_OK);
+    rig_close(&q, s == HAL_OK);
 
     /* FULL_UPDATE: whole frames, SET_BUFFER only before the first */
     rig f = {0};
@@ -443,9 +443,9 @@ static void test_odd_devices(UMockdevTestbed *tb)
     f.o.height = 48;
     gud_config_default(&f.cfg);
     s = rig_open(&f, tb, err, sizeof err);
-    CHECK(s == LX_OK, "full-update device: %s", err);
-    if (s == LX_OK) {
-        lx_frame_stats st;
+    CHECK(s == HAL_OK, "full-update device: %s", err);
+    if (s == HAL_OK) {
+        hal_frame_stats st;
         celfw_scene_build("demo", &scene, 0.0f);
         show(&f, &scene, &st);
         show(&f, &scene, &st);
@@ -454,7 +454,7 @@ static void test_odd_devices(UMockdevTestbed *tb)
         CHECK(ds.rects == 2 && ds.set_buffers == 1 && st.lines_sent == 48 && compare(&f, &scene) == 0,
               "full update: %u rects, %u SET_BUFFERs", ds.rects, ds.set_buffers);
     }
-    rig_close(&f, s == LX_OK);
+    rig_close(&f, s == HAL_OK);
 }
 
 /*
@@ -524,14 +524,14 @@ static void test_hostile(UMockdevTestbed *tb)
     z.o.max_buffer_size = 0;
     gud_config_default(&z.cfg);
     char err[300];
-    lx_status s = rig_open(&z, tb, err, sizeof err);
-    lx_frame_stats st;
-    CHECK(s == LX_OK, "max buffer 0 (no limit): %s", err);
-    if (s == LX_OK) {
+    hal_status s = rig_open(&z, tb, err, sizeof err);
+    hal_frame_stats st;
+    CHECK(s == HAL_OK, "max buffer 0 (no limit): %s", err);
+    if (s == HAL_OK) {
         celfw_scene_build("demo", &scene, 0.0f);
-        CHECK(show(&z, &scene, &st) == LX_OK && compare(&z, &scene) == 0, "no buffer limit: frame matches");
+        CHECK(show(&z, &scene, &st) == HAL_OK && compare(&z, &scene) == 0, "no buffer limit: frame matches");
     }
-    rig_close(&z, s == LX_OK);
+    rig_close(&z, s == HAL_OK);
 
     /*
      * A device that comes back with another face: first RGB565, then
@@ -548,49 +548,49 @@ static void test_hostile(UMockdevTestbed *tb)
     gud_config_default(&r.cfg);
     r.cfg.reconnect_ms = 10;
     s = rig_open(&r, tb, err, sizeof err);
-    CHECK(s == LX_OK, "replug rig: %s", err);
-    if (s != LX_OK)
+    CHECK(s == HAL_OK, "replug rig: %s", err);
+    if (s != HAL_OK)
         return rig_close(&r, false);
     /* a moving scene, so that every frame talks to the device and finds it gone */
     float t = 0.0f;
     celfw_scene_build("anim", &scene, t);
-    CHECK(show(&r, &scene, &st) == LX_OK && compare(&r, &scene) == 0, "RGB565 frame");
+    CHECK(show(&r, &scene, &st) == HAL_OK && compare(&r, &scene) == 0, "RGB565 frame");
     fake_gud_opts next = r.o;
     next.formats[0] = GUD_FORMAT_XRGB8888;
     fake_gud_unplug(r.dev);
     celfw_scene_build("anim", &scene, t += 0.1f);
-    CHECK(show(&r, &scene, &st) == LX_ERR_NO_DEVICE, "unplugged");
+    CHECK(show(&r, &scene, &st) == HAL_ERR_NO_DEVICE, "unplugged");
     fake_gud_set_opts(r.dev, &next);
     fake_gud_replug(r.dev, 6);
-    for (int i = 0; i < 100 && (s = show(&r, &scene, &st)) != LX_OK; i++)
+    for (int i = 0; i < 100 && (s = show(&r, &scene, &st)) != HAL_OK; i++)
         g_usleep(10000);
     gud_info info;
     gud_get_info(r.d, &info);
-    CHECK(s == LX_OK && info.format == GUD_FORMAT_XRGB8888 && compare(&r, &scene) == 0,
-          "back as XRGB8888: %s, format 0x%02x", lx_status_str(s), info.format);
+    CHECK(s == HAL_OK && info.format == GUD_FORMAT_XRGB8888 && compare(&r, &scene) == 0,
+          "back as XRGB8888: %s, format 0x%02x", hal_status_str(s), info.format);
 
     next.width = 0;
     next.any_size = true;
     fake_gud_unplug(r.dev);
     celfw_scene_build("anim", &scene, t += 0.1f);
-    CHECK(show(&r, &scene, &st) == LX_ERR_NO_DEVICE, "unplugged again");
+    CHECK(show(&r, &scene, &st) == HAL_ERR_NO_DEVICE, "unplugged again");
     fake_gud_set_opts(r.dev, &next);
     fake_gud_replug(r.dev, 7);
     for (int i = 0; i < 10; i++) {
         g_usleep(15000);
         s = show(&r, &scene, &st);
     }
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(r.d->err, "mode 0x48 has no pixels"),
-          "back 0 wide: down, and says why: %s (%s)", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(r.d->err, "mode 0x48 has no pixels"),
+          "back 0 wide: down, and says why: %s (%s)", hal_status_str(s), r.d->err);
 
     next.width = 96;
     next.any_size = false;
     fake_gud_unplug(r.dev);
     fake_gud_set_opts(r.dev, &next);
     fake_gud_replug(r.dev, 8);
-    for (int i = 0; i < 100 && (s = show(&r, &scene, &st)) != LX_OK; i++)
+    for (int i = 0; i < 100 && (s = show(&r, &scene, &st)) != HAL_OK; i++)
         g_usleep(10000);
-    CHECK(s == LX_OK && compare(&r, &scene) == 0, "back whole: %s (%s)", lx_status_str(s), r.d->err);
+    CHECK(s == HAL_OK && compare(&r, &scene) == 0, "back whole: %s (%s)", hal_status_str(s), r.d->err);
     rig_close(&r, true);
 }
 
@@ -600,28 +600,28 @@ static void test_missing(void)
     gud_config_default(&c);
     c.vid = 0x1234;
     c.pid = 0x5678;
-    lx_display *d = NULL;
+    hal_display *d = NULL;
     char err[300] = "";
-    lx_status s = gud_open(&d, &c, &lx_clock_monotonic, NULL, NULL, err, sizeof err);
-    CHECK(s == LX_ERR_NO_DEVICE && strstr(err, "no USB device 1234:5678"), "missing: '%s'", err);
+    hal_status s = gud_open(&d, &c, &hal_clock_monotonic, NULL, NULL, err, sizeof err);
+    CHECK(s == HAL_ERR_NO_DEVICE && strstr(err, "no USB device 1234:5678"), "missing: '%s'", err);
 
     c.wait = true;
-    s = gud_open(&d, &c, &lx_clock_monotonic, NULL, NULL, err, sizeof err);
-    CHECK(s == LX_ERR_CONFIG && strstr(err, "size"), "wait without size: '%s'", err);
+    s = gud_open(&d, &c, &hal_clock_monotonic, NULL, NULL, err, sizeof err);
+    CHECK(s == HAL_ERR_CONFIG && strstr(err, "size"), "wait without size: '%s'", err);
     c.width = 64;
     c.height = 32;
     c.reconnect_ms = 10;
-    s = gud_open(&d, &c, &lx_clock_monotonic, NULL, NULL, err, sizeof err);
-    CHECK(s == LX_OK && !d->ops->connected(d), "wait: opens without the device");
-    if (s == LX_OK) {
+    s = gud_open(&d, &c, &hal_clock_monotonic, NULL, NULL, err, sizeof err);
+    CHECK(s == HAL_OK && !hal_display_connected(d), "wait: opens without the device");
+    if (s == HAL_OK) {
         lx_scene_source src;
         lx_scene_source_init(&src, 64, 32, CS_AA_SUBSCAN, 4);
         celfw_scene_build("demo", &scene, 0.0f);
         lx_scene_source_set(&src, &scene, 0.0f);
-        lx_frame_stats st = {0};
-        CHECK(d->ops->present(d, &src.src, &st) == LX_ERR_NO_DEVICE && st.lines_rendered == 0,
+        hal_frame_stats st = {0};
+        CHECK(hal_display_present(d, &src.src, &st) == HAL_ERR_NO_DEVICE && st.lines_rendered == 0,
               "absent display: nothing rendered");
-        d->ops->close(d);
+        hal_display_close(d);
         lx_scene_source_free(&src);
     }
 }
@@ -637,11 +637,11 @@ static void measure(UMockdevTestbed *tb, int w, int h, uint8_t format)
     r.o.nformats = 1;
     gud_config_default(&r.cfg);
     char err[300];
-    if (rig_open(&r, tb, err, sizeof err) != LX_OK) {
+    if (rig_open(&r, tb, err, sizeof err) != HAL_OK) {
         CHECK(0, "measure open: %s", err);
         return rig_close(&r, false);
     }
-    lx_frame_stats st;
+    hal_frame_stats st;
     celfw_scene_build("demo", &scene, 0.0f);
     show(&r, &scene, &st);
     CHECK(compare(&r, &scene) == 0, "demo %dx%d %s matches", w, h, gud_format_name(format));

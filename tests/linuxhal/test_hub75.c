@@ -63,19 +63,19 @@ typedef struct run_result {
 } run_result;
 
 /* Shows one frame of `s` on an open panel and decodes it with the model. */
-static void run_frame(lx_display *d, fake_gpiochip *chip, const hub75_config *c, const cs_scene *s,
+static void run_frame(hal_display *d, fake_gpiochip *chip, const hub75_config *c, const cs_scene *s,
                       run_result *res)
 {
     int w = c->panel_w * c->chain, h = c->panel_h;
     lx_scene_source src;
-    CHECK(lx_scene_source_init(&src, w, h, CS_AA_SUBSCAN, 4) == LX_OK, "source init");
+    CHECK(lx_scene_source_init(&src, w, h, CS_AA_SUBSCAN, 4) == HAL_OK, "source init");
     lx_scene_source_set(&src, s, 0.0f);
     uint64_t wires0 = fake_gpiochip_wires(chip);
     unsigned sets0 = fake_gpiochip_count(chip, FAKE_GPIO_SET);
     fake_gpiochip_clear_trace(chip);
-    lx_frame_stats st = {0};
-    lx_status ps = d->ops->present(d, &src.src, &st);
-    CHECK(ps == LX_OK, "present: %s (%s)", lx_status_str(ps), d->err);
+    hal_frame_stats st = {0};
+    hal_status ps = hal_display_present(d, &src.src, &st);
+    CHECK(ps == HAL_OK, "present: %s (%s)", hal_status_str(ps), d->err);
 
     const fake_gpio_event *ev;
     size_t n = fake_gpiochip_trace(chip, &ev);
@@ -134,12 +134,12 @@ static void test_frame(UMockdevTestbed *tb, const char *what, int chipno, int pw
     c.planes = planes;
     c.lsb_ns = 150;
     snprintf(c.chip, sizeof c.chip, "/dev/gpiochip%d", chipno);
-    lx_clock clk = vclock_make(&vtime);
-    lx_display *d = NULL;
+    hal_clock clk = vclock_make(&vtime);
+    hal_display *d = NULL;
     char err[256] = "";
-    lx_status s = hub75_open(&d, &c, &clk, err, sizeof err);
-    CHECK(s == LX_OK, "%s: open: %s", what, err);
-    if (s != LX_OK) {
+    hal_status s = hub75_open(&d, &c, &clk, err, sizeof err);
+    CHECK(s == HAL_OK, "%s: open: %s", what, err);
+    if (s != HAL_OK) {
         fake_gpiochip_free(chip);
         return;
     }
@@ -175,7 +175,7 @@ static void test_frame(UMockdevTestbed *tb, const char *what, int chipno, int pw
            ph, chain, pw, ph, planes, (unsigned long long)r.writes, r.mismatches ? "no" : "yes");
     hub75_model_free(&r.m);
 
-    d->ops->close(d);
+    hal_display_close(d);
     /* close(2) of the handle reaches the emulation asynchronously */
     for (int i = 0; i < 200 && fake_gpiochip_handles(chip); i++)
         g_usleep(5000);
@@ -228,20 +228,20 @@ static void test_errors(UMockdevTestbed *tb)
 {
     hub75_config c;
     char err[256];
-    lx_display *d = NULL;
-    lx_clock clk = vclock_make(&vtime);
+    hal_display *d = NULL;
+    hal_clock clk = vclock_make(&vtime);
 
     hub75_config_default(&c);
     snprintf(c.chip, sizeof c.chip, "/dev/gpiochip9");
     err[0] = 0;
-    CHECK(hub75_open(&d, &c, &clk, err, sizeof err) == LX_ERR_NO_DEVICE && strstr(err, "/dev/gpiochip9"),
+    CHECK(hub75_open(&d, &c, &clk, err, sizeof err) == HAL_ERR_NO_DEVICE && strstr(err, "/dev/gpiochip9"),
           "missing chip: '%s'", err);
 
     fake_gpiochip *small = fake_gpiochip_add(tb, 11, 20, "small", &vtime, 0);
     hub75_config_default(&c);
     snprintf(c.chip, sizeof c.chip, "/dev/gpiochip11");
     err[0] = 0;
-    CHECK(hub75_open(&d, &c, &clk, err, sizeof err) == LX_ERR_CONFIG && strstr(err, "lines 0..19"),
+    CHECK(hub75_open(&d, &c, &clk, err, sizeof err) == HAL_ERR_CONFIG && strstr(err, "lines 0..19"),
           "pin beyond chip: '%s'", err);
     fake_gpiochip_free(small);
 
@@ -250,7 +250,7 @@ static void test_errors(UMockdevTestbed *tb)
     hub75_config_default(&c);
     snprintf(c.chip, sizeof c.chip, "/dev/gpiochip12");
     err[0] = 0;
-    CHECK(hub75_open(&d, &c, &clk, err, sizeof err) != LX_OK && strstr(err, "Device or resource busy") &&
+    CHECK(hub75_open(&d, &c, &clk, err, sizeof err) != HAL_OK && strstr(err, "Device or resource busy") &&
               strstr(err, "spi0 CS"),
           "busy line: '%s'", err);
     CHECK(!fake_gpiochip_requested(busy, 17, NULL, 0), "nothing taken after EBUSY");
@@ -259,19 +259,19 @@ static void test_errors(UMockdevTestbed *tb)
     hub75_config_default(&c);
     c.panel_h = 64;
     c.pins.pin[HUB75_E] = -1;
-    CHECK(hub75_config_check(&c, err, sizeof err) == LX_ERR_CONFIG && strstr(err, "pin e"),
+    CHECK(hub75_config_check(&c, err, sizeof err) == HAL_ERR_CONFIG && strstr(err, "pin e"),
           "1/32 scan without E: '%s'", err);
     hub75_config_default(&c);
     c.pins.pin[HUB75_LAT] = c.pins.pin[HUB75_CLK];
-    CHECK(hub75_config_check(&c, err, sizeof err) == LX_ERR_CONFIG && strstr(err, "both line"),
+    CHECK(hub75_config_check(&c, err, sizeof err) == HAL_ERR_CONFIG && strstr(err, "both line"),
           "duplicate pins: '%s'", err);
     hub75_config_default(&c);
     c.panel_h = 48;
-    CHECK(hub75_config_check(&c, err, sizeof err) == LX_ERR_CONFIG && strstr(err, "48"),
+    CHECK(hub75_config_check(&c, err, sizeof err) == HAL_ERR_CONFIG && strstr(err, "48"),
           "odd height: '%s'", err);
     hub75_config_default(&c);
     c.planes = 13;
-    CHECK(hub75_config_check(&c, err, sizeof err) == LX_ERR_CONFIG, "13 planes: '%s'", err);
+    CHECK(hub75_config_check(&c, err, sizeof err) == HAL_ERR_CONFIG, "13 planes: '%s'", err);
 }
 
 /*
@@ -286,11 +286,11 @@ static double syscall_floor_ns(void)
     struct gpiohandle_data hd;
     memset(&hd, 0, sizeof hd);
     const int n = 200000;
-    lx_clock clk = lx_clock_monotonic;
-    uint64_t t0 = lx_now(&clk);
+    hal_clock clk = hal_clock_monotonic;
+    uint64_t t0 = hal_now(&clk);
     for (int i = 0; i < n; i++)
         (void)syscall(SYS_ioctl, fd, GPIOHANDLE_SET_LINE_VALUES_IOCTL, &hd);
-    uint64_t t1 = lx_now(&clk);
+    uint64_t t1 = hal_now(&clk);
     close(fd);
     return (double)(t1 - t0) / n;
 }
@@ -315,13 +315,13 @@ static void report_throughput(UMockdevTestbed *tb)
     hub75_config c;
     hub75_config_default(&c);
     snprintf(c.chip, sizeof c.chip, "/dev/gpiochip13");
-    lx_display *d = NULL;
+    hal_display *d = NULL;
     char err[256];
-    if (hub75_open(&d, &c, &lx_clock_monotonic, err, sizeof err) == LX_OK) {
+    if (hub75_open(&d, &c, &hal_clock_monotonic, err, sizeof err) == HAL_OK) {
         double wps = hub75_measure_writes(d, 4000);
         printf("hub75: emulated chip (umockdev socket round trip): %.0f bulk writes/s = %.2f us/write\n",
                wps, 1e6 / wps);
-        d->ops->close(d);
+        hal_display_close(d);
     }
     fake_gpiochip_free(chip);
     /* what the drive sequence allows at a given cost per write */

@@ -39,18 +39,18 @@ enum { WALL_W = 192, WALL_H = 108, BW = 96, BH = 54 };
 static void board(const cs_scene *scene, float t, int bx, int by, const float *whole)
 {
     lx_scene_source src;
-    CHECK(lx_scene_source_init(&src, BW, BH, CS_AA_SUBSCAN, 16) == LX_OK, "init");
-    CHECK(lx_scene_source_viewport(&src, WALL_W, WALL_H, bx, by) == LX_OK, "viewport %d,%d", bx, by);
+    CHECK(lx_scene_source_init(&src, BW, BH, CS_AA_SUBSCAN, 16) == HAL_OK, "init");
+    CHECK(lx_scene_source_viewport(&src, WALL_W, WALL_H, bx, by) == HAL_OK, "viewport %d,%d", bx, by);
     lx_scene_source_set(&src, scene, t);
-    CHECK(src.src.begin(src.src.user, 2) == LX_OK, "begin");
+    CHECK(src.src.begin(src.src.user, 2) == HAL_OK, "begin");
     float line[3 * BW];
     int bad = 0;
     for (int y = 0; y < BH / 2; y++) {
         for (int lane = 0; lane < 2; lane++) {
             int row = y + lane * BH / 2;
-            lx_status s = src.src.line(src.src.user, lane, row, line);
+            hal_status s = src.src.line(src.src.user, lane, row, line);
             const float *want = whole + ((size_t)(by + row) * WALL_W + (size_t)bx) * 3;
-            if (s != LX_OK || memcmp(line, want, sizeof line) != 0)
+            if (s != HAL_OK || memcmp(line, want, sizeof line) != 0)
                 bad++;
         }
     }
@@ -195,11 +195,11 @@ int main(void)
                 board(scene, times[k], bx, by, whole);
     }
     lx_scene_source src;
-    CHECK(lx_scene_source_init(&src, BW, BH, CS_AA_SUBSCAN, 16) == LX_OK, "init");
-    CHECK(lx_scene_source_viewport(&src, WALL_W, WALL_H, WALL_W - BW + 1, 0) == LX_ERR_CONFIG,
+    CHECK(lx_scene_source_init(&src, BW, BH, CS_AA_SUBSCAN, 16) == HAL_OK, "init");
+    CHECK(lx_scene_source_viewport(&src, WALL_W, WALL_H, WALL_W - BW + 1, 0) == HAL_ERR_CONFIG,
           "a viewport past the wall's right edge");
-    CHECK(lx_scene_source_viewport(&src, WALL_W, WALL_H, 0, -1) == LX_ERR_CONFIG, "negative y");
-    CHECK(lx_scene_source_viewport(&src, BW - 1, BH, 0, 0) == LX_ERR_CONFIG,
+    CHECK(lx_scene_source_viewport(&src, WALL_W, WALL_H, 0, -1) == HAL_ERR_CONFIG, "negative y");
+    CHECK(lx_scene_source_viewport(&src, BW - 1, BH, 0, 0) == HAL_ERR_CONFIG,
           "a wall narrower than the board");
     lx_scene_source_free(&src);
     free(scene);

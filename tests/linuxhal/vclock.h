@@ -10,7 +10,7 @@
 #include <stdatomic.h>
 #include <stdint.h>
 
-#include "lx_clock.h"
+#include "clock.h"
 
 static uint64_t vclock_now(void *user)
 {
@@ -25,9 +25,9 @@ static void vclock_wait_until(void *user, uint64_t t)
     }
 }
 
-static inline lx_clock vclock_make(_Atomic uint64_t *c)
+static inline hal_clock vclock_make(_Atomic uint64_t *c)
 {
-    lx_clock k = {c, vclock_now, vclock_wait_until};
+    hal_clock k = {c, vclock_now, vclock_wait_until};
     return k;
 }
 

@@ -1,5 +1,6 @@
 /*
- * lx_clock.c - the clocks behind celfw (monotonic; realtime), and status strings.
+ * clock_host.c - the host's clocks (clock.h): monotonic, which paces and
+ * times everything, and realtime, a video wall's shared time.
  *
  * nanosleep() on a loaded board overshoots by tens of microseconds, far more
  * than the shortest HUB75 bit plane, so the wait sleeps only while the target
@@ -8,10 +9,10 @@
 #include <errno.h>
 #include <time.h>
 
-#include "lx_display.h"
+#include "clock.h"
 
 /* Below this the scheduler's wake-up latency would overshoot the target. */
-#define LX_SPIN_NS 80000u
+#define HOST_SPIN_NS 80000u
 
 static uint64_t mono_now(void *user)
 {
@@ -24,8 +25,8 @@ static uint64_t mono_now(void *user)
 static void mono_wait_until(void *user, uint64_t t)
 {
     uint64_t now = mono_now(user);
-    if (t > now + LX_SPIN_NS) {
-        uint64_t d = t - now - LX_SPIN_NS;
+    if (t > now + HOST_SPIN_NS) {
+        uint64_t d = t - now - HOST_SPIN_NS;
         struct timespec ts = {(time_t)(d / 1000000000u), (long)(d % 1000000000u)};
         nanosleep(&ts, NULL);
     }
@@ -33,7 +34,7 @@ static void mono_wait_until(void *user, uint64_t t)
     }
 }
 
-const lx_clock lx_clock_monotonic = {NULL, mono_now, mono_wait_until};
+const hal_clock hal_clock_monotonic = {NULL, mono_now, mono_wait_until};
 
 static uint64_t real_now(void *user)
 {
@@ -51,19 +52,4 @@ static void real_wait_until(void *user, uint64_t t)
     }
 }
 
-const lx_clock lx_clock_realtime = {NULL, real_now, real_wait_until};
-
-const char *lx_status_str(lx_status st)
-{
-    switch (st) {
-    case LX_OK: return "ok";
-    case LX_ERR_CONFIG: return "bad configuration";
-    case LX_ERR_NO_DEVICE: return "device absent";
-    case LX_ERR_IO: return "I/O error";
-    case LX_ERR_TIMEOUT: return "timed out";
-    case LX_ERR_PROTOCOL: return "protocol error";
-    case LX_ERR_RENDER: return "render error";
-    case LX_ERR_NOMEM: return "out of memory";
-    }
-    return "unknown status";
-}
+const hal_clock hal_clock_realtime = {NULL, real_now, real_wait_until};

@@ -1,0 +1,140 @@
+/*
+ * display_host.c - what every host display backend shares (display.h): the
+ * status words, the one formatter of error messages and log lines ("name:
+ * message", so no backend formats its own), pixel conversion including the
+ * XRGB8888 layout the core lacks, and the frame driver that shows a
+ * hal_source on any backend, push or pull. Deadline accounting lives here
+ * once, not in each backend.
+ */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "display.h"
+
+const char *hal_status_str(hal_status st)
+{
+    switch (st) {
+    case HAL_OK: return "ok";
+    case HAL_ERR_CONFIG: return "bad configuration";
+    case HAL_ERR_NO_DEVICE: return "device absent";
+    case HAL_ERR_IO: return "I/O error";
+    case HAL_ERR_TIMEOUT: return "timed out";
+    case HAL_ERR_PROTOCOL: return "protocol error";
+    case HAL_ERR_RENDER: return "render error";
+    case HAL_ERR_NOMEM: return "out of memory";
+    case HAL_ERR_SEQUENCE: return "call out of sequence";
+    }
+    return "unknown status";
+}
+
+size_t hal_line_bytes(hal_pixfmt fmt, int width)
+{
+    if (width < 0)
+        return 0;
+    size_t bpp = fmt == HAL_PIX_XRGB8888 ? 4u : cs_pixfmt_bytes_per_pixel((cs_pixfmt)fmt);
+    return bpp * (size_t)width;
+}
+
+/*
+ * XRGB8888: the line is converted to RGB888 in the destination itself and
+ * then spread to four bytes a pixel from the right end, so no scratch line is
+ * needed: pixel x's three source bytes start at 3x, its four at 4x >= 3x, and
+ * every pixel to its right was already moved.
+ */
+void hal_pixfmt_convert(hal_pixfmt fmt, const float *rgb, int width, uint8_t *dst)
+{
+    if (fmt != HAL_PIX_XRGB8888) {
+        cs_pixfmt_convert((cs_pixfmt)fmt, rgb, width, dst);
+        return;
+    }
+    cs_pixfmt_convert(CS_PIX_RGB888_SRGB, rgb, width, dst);
+    for (int x = width - 1; x >= 0; x--) {
+        uint8_t r = dst[3 * x], g = dst[3 * x + 1], b = dst[3 * x + 2];
+        dst[4 * x] = b;
+        dst[4 * x + 1] = g;
+        dst[4 * x + 2] = r;
+        dst[4 * x + 3] = 0;
+    }
+}
+
+hal_status hal_display_fail(hal_display *d, hal_status st, const char *fmt, ...)
+{
+    int n = snprintf(d->err, sizeof d->err, "%s: ", d->api->name);
+    if (n < 0 || (size_t)n >= sizeof d->err)
+        return st;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(d->err + n, sizeof d->err - (size_t)n, fmt, ap);
+    va_end(ap);
+    return st;
+}
+
+void hal_display_say(const hal_display *d, const char *fmt, ...)
+{
+    if (!d->log)
+        return;
+    char msg[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    d->log(d->log_user, "%s: %s", d->api->name, msg);
+}
+
+static void add_stats(hal_frame_stats *a, const hal_frame_stats *b)
+{
+    a->lines_rendered += b->lines_rendered;
+    a->lines_sent += b->lines_sent;
+    a->rects += b->rects;
+    a->bytes_raw += b->bytes_raw;
+    a->bytes_wire += b->bytes_wire;
+    a->writes += b->writes;
+    a->line_misses += b->line_misses;
+    a->retries += b->retries;
+    a->errors += b->errors;
+}
+
+/* The push lane: every line rendered, converted and handed to line_out. */
+static hal_status push_frame(hal_display *d, const hal_source *src, float *rgb, uint8_t *px)
+{
+    size_t len = hal_line_bytes(d->pixfmt, d->width);
+    hal_status s = src->begin(src->user, 1);
+    if (s != HAL_OK)
+        return hal_display_fail(d, s, "the renderer could not start the frame");
+    for (int y = 0; y < d->height; y++) {
+        if ((s = src->line(src->user, 0, y, rgb)) != HAL_OK)
+            return hal_display_fail(d, s, "the renderer failed on line %d", y);
+        d->st.lines_rendered++;
+        hal_pixfmt_convert(d->pixfmt, rgb, d->width, px);
+        if ((s = d->api->line_out(d, y, px, len)) != HAL_OK)
+            return s;
+        if (d->frame_period_ns && d->clock) {
+            uint64_t due = d->frame_start_ns + (uint64_t)(y + 1) * d->frame_period_ns / (uint64_t)d->height;
+            if (hal_now(d->clock) > due)
+                d->st.line_misses++;
+        }
+    }
+    return hal_display_end_frame(d);
+}
+
+hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_stats *st)
+{
+    if (d->api->present)
+        return d->api->present(d, src, st);
+    d->st = (hal_frame_stats){0};
+    /* begin_frame first: a display that was away learns its size there. */
+    hal_status s = hal_display_begin_frame(d, NULL);
+    if (s == HAL_OK && (src->width != d->width || src->height != d->height))
+        s = hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, the display %dx%d", src->width,
+                             src->height, d->width, d->height);
+    if (s == HAL_OK) {
+        float *rgb = malloc((size_t)d->width * 3u * sizeof *rgb);
+        uint8_t *px = malloc(hal_line_bytes(d->pixfmt, d->width) + 4u);
+        s = rgb && px ? push_frame(d, src, rgb, px) : hal_display_fail(d, HAL_ERR_NOMEM, "no line buffer");
+        free(rgb);
+        free(px);
+    }
+    add_stats(st, &d->st);
+    return s;
+}
