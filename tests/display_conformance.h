@@ -1,0 +1,191 @@
+/*
+ * display_conformance.h - the conformance case every display backend passes.
+ *
+ * A backend is driven only through the contract of hal/display.h (the frame
+ * driver hal_display_present, fed by the same hal_source celfw uses), with
+ * the same scenes and frames, and what it then shows is read back by the
+ * test's own means (the sim's memory, an emulated USB display's panel, an
+ * emulated DRM card's scanout buffer, a HUB75 panel model fed by an
+ * emulated GPIO chip). Its CRC-32 must equal the CRC of the core's own
+ * render (one in-order pass of cs_render_line) put in the backend's format:
+ * in the panel format that is exactly `celsim --crc`, which
+ * test_display_conformance checks against the celsim program itself.
+ * Errors are reported the same way by every backend: a source of another
+ * size is HAL_ERR_CONFIG, a device gone is HAL_ERR_NO_DEVICE, a failed
+ * write HAL_ERR_IO, each with a message in d->err that starts with the
+ * backend's name and a colon.
+ *
+ * Header-only, like testlib.h (its CHECKs count into the including
+ * program): a test program includes it once, after testlib.h, and calls
+ * conf_frames and conf_geometry_error with a conf_backend describing its
+ * backend. The scenes are read from scenes/ (tests run from the top folder).
+ */
+#ifndef DISPLAY_CONFORMANCE_H
+#define DISPLAY_CONFORMANCE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "celscan.h"
+#include "display.h"
+#include "lx_scene_source.h"
+#include "scene_json.h"
+#include "testlib.h"
+
+#define CONF_SUBSCANLINES 4 /* the sources' and the reference's anti-aliasing */
+
+/* The conformance frames: scene files and times (every backend shows them all). */
+typedef struct conf_frame {
+    const char *scene;
+    float time;
+} conf_frame;
+
+static const conf_frame conf_frame_list[] = {
+    {"scenes/demo.json", 0.0f},
+    {"scenes/demo.json", 1.5f},
+    {"scenes/beta-stack.json", 0.0f},
+    {"scenes/motion.json", 0.75f},
+};
+#define CONF_NFRAMES ((int)(sizeof conf_frame_list / sizeof conf_frame_list[0]))
+
+/* Puts width pixels of linear floats in the backend's shown layout at dst. */
+typedef void (*conf_encode_fn)(const void *user, const float *rgb, int width, uint8_t *dst);
+
+typedef struct conf_backend {
+    hal_display *d;
+    size_t line_bytes;        /* bytes of a shown line (0: hal_line_bytes of d->pixfmt) */
+    conf_encode_fn encode;    /* NULL: hal_pixfmt_convert to d->pixfmt */
+    const void *encode_user;
+    /* Copies what the display shows now (d->height lines of line_bytes) to
+     * frame; false if it cannot be read. NULL: a display that shows nothing,
+     * whose frames are only counted. */
+    bool (*shown)(void *user, uint8_t *frame);
+    void *user;
+} conf_backend;
+
+static TL_UNUSED size_t conf_line_bytes(const conf_backend *b)
+{
+    return b->line_bytes ? b->line_bytes : hal_line_bytes(b->d->pixfmt, b->d->width);
+}
+
+/* The truth: CRC-32 of the scene at time t rendered in one in-order pass of
+ * the core and encoded as the backend shows it, rows top to bottom. */
+static TL_UNUSED uint32_t conf_reference_crc(const cs_scene *s, float t, int w, int h, size_t line_bytes,
+                                             void (*encode)(const void *, const float *, int, uint8_t *),
+                                             const void *user)
+{
+    static cs_workspace ws;
+    cs_render_opts o = cs_render_defaults(w, h);
+    o.aa = CS_AA_SUBSCAN;
+    o.subscanlines = CONF_SUBSCANLINES;
+    o.blend = CS_BLEND_LINEAR;
+    o.time = t;
+    cs_renderer r;
+    cs_error e;
+    float *rgb = calloc((size_t)w * 3u, sizeof *rgb);
+    uint8_t *px = calloc(line_bytes + 4u, 1);
+    uint32_t crc = 0;
+    if (!rgb || !px || cs_frame_begin(&r, &ws, s, &o, &e) != CS_OK) {
+        crc = 0xFFFFFFFFu; /* matches no shown frame: the CHECK names the case */
+    } else {
+        for (int y = 0; y < h; y++) {
+            cs_render_line(&r, y, rgb);
+            encode(user, rgb, w, px);
+            crc = cs_crc32(crc, px, line_bytes);
+        }
+    }
+    free(rgb);
+    free(px);
+    return crc;
+}
+
+static TL_UNUSED void conf_encode_fmt(const void *user, const float *rgb, int width, uint8_t *dst)
+{
+    hal_pixfmt_convert(*(const hal_pixfmt *)user, rgb, width, dst);
+}
+
+/* Loads a conformance scene; false (with a CHECK failed) if it cannot. */
+static TL_UNUSED bool conf_load(const char *path, cs_scene *s)
+{
+    char err[256];
+    return CHECK(scene_json_load(path, s, err, sizeof err) == 0, "load %s: %s", path, err);
+}
+
+/*
+ * Shows every conformance frame through hal_display_present and compares
+ * what the display shows with the core's render: one CHECK per frame (and
+ * one for the source). `name` labels the messages.
+ */
+static TL_UNUSED void conf_frames(const conf_backend *b, const char *name)
+{
+    hal_display *d = b->d;
+    size_t lb = conf_line_bytes(b);
+    lx_scene_source src;
+    if (!CHECK(lx_scene_source_init(&src, d->width, d->height, CS_AA_SUBSCAN, CONF_SUBSCANLINES) == HAL_OK,
+               "%s: conformance source of %dx%d", name, d->width, d->height))
+        return;
+    uint8_t *frame = malloc(lb * (size_t)d->height);
+    hal_pixfmt fmt = d->pixfmt;
+    static cs_scene scene;
+    for (int i = 0; i < CONF_NFRAMES; i++) {
+        const conf_frame *f = &conf_frame_list[i];
+        if (!conf_load(f->scene, &scene))
+            continue;
+        lx_scene_source_set(&src, &scene, f->time);
+        hal_frame_stats st = {0};
+        hal_status s = hal_display_present(d, &src.src, &st);
+        lx_scene_source_end(&src);
+        uint32_t want = b->encode ? conf_reference_crc(&scene, f->time, d->width, d->height, lb, b->encode,
+                                                       b->encode_user)
+                                  : conf_reference_crc(&scene, f->time, d->width, d->height, lb,
+                                                       conf_encode_fmt, &fmt);
+        if (!b->shown) {
+            CHECK(s == HAL_OK && st.lines_rendered == (uint64_t)d->height,
+                  "%s: %s at t=%g: %s, %llu of %d lines taken", name, f->scene, (double)f->time,
+                  hal_status_str(s), (unsigned long long)st.lines_rendered, d->height);
+            continue;
+        }
+        bool read = s == HAL_OK && frame && b->shown(b->user, frame);
+        uint32_t got = read ? cs_crc32(0, frame, lb * (size_t)d->height) : 0;
+        CHECK(read && got == want, "%s: %s at t=%g %dx%d: shown crc32 %08X, the core's %08X (%s: %s)", name,
+              f->scene, (double)f->time, d->width, d->height, (unsigned)got, (unsigned)want,
+              hal_status_str(s), s == HAL_OK ? "" : d->err);
+    }
+    free(frame);
+    lx_scene_source_free(&src);
+}
+
+/* status is want and d->err is "NAME: ..." containing needle (if given). */
+static TL_UNUSED bool conf_error_is(const hal_display *d, hal_status status, hal_status want,
+                                    const char *needle)
+{
+    size_t n = strlen(d->api->name);
+    return status == want && strncmp(d->err, d->api->name, n) == 0 && d->err[n] == ':' &&
+           (!needle || strstr(d->err, needle));
+}
+
+/* A source one pixel wider than the display: HAL_ERR_CONFIG naming both sizes, nothing shown. */
+static TL_UNUSED void conf_geometry_error(const conf_backend *b, const char *name)
+{
+    hal_display *d = b->d;
+    lx_scene_source src;
+    if (!CHECK(lx_scene_source_init(&src, d->width + 1, d->height, CS_AA_SUBSCAN, CONF_SUBSCANLINES) == HAL_OK,
+               "%s: source", name))
+        return;
+    static cs_scene scene;
+    if (conf_load(conf_frame_list[0].scene, &scene)) {
+        lx_scene_source_set(&src, &scene, 0.0f);
+        hal_frame_stats st = {0};
+        hal_status s = hal_display_present(d, &src.src, &st);
+        char size[32];
+        snprintf(size, sizeof size, "%dx%d", d->width + 1, d->height);
+        CHECK(conf_error_is(d, s, HAL_ERR_CONFIG, size) && st.lines_rendered == 0,
+              "%s: a %s source: %s: %s (%llu lines)", name, size, hal_status_str(s), d->err,
+              (unsigned long long)st.lines_rendered);
+    }
+    lx_scene_source_free(&src);
+}
+
+#endif /* DISPLAY_CONFORMANCE_H */

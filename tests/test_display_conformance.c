@@ -1,0 +1,268 @@
+/*
+ * test_display_conformance.c - the display conformance case for the
+ * backends that need no emulated device: the simulator's display (hal/sim),
+ * the null display (hal/host/null.c) and the template (hal/template), which
+ * is what a new backend copies, so it must pass what every backend passes.
+ *
+ * The shared case (display_conformance.h) first proves its own truth: the
+ * reference CRC of every conformance frame in the panel format equals what
+ * the celsim program prints with --crc (the definition of a frame's CRC),
+ * run as a separate process. Then each backend shows the frames through the
+ * contract and must show exactly that; errors (a source of another size, a
+ * line out of order, a bad window, a failed flush) come back as the same
+ * hal_status with a "name: ..." message. Windows (frames that touch only
+ * rows y0..y1 and columns x0..x1) change what is inside and nothing else.
+ * The GUD, DRM and HUB75 backends run the same case inside their emulated
+ * device rigs (tests/linuxhal/test_gud.c, test_drm.c, test_hub75.c).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testlib.h"
+
+#include "display_conformance.h"
+#include "display_template.h"
+#include "sim/display_sim.h"
+
+#define W 120
+#define H 68
+
+static const char *celsim = "build/host/celsim";
+
+/* The reference equals `celsim render --crc` for every conformance frame, at two sizes. */
+static void test_reference_is_celsim(void)
+{
+    static cs_scene scene;
+    hal_pixfmt panel = CS_PANEL_PIXFMT;
+    const int sizes[2][2] = {{W, H}, {97, 41}};
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < CONF_NFRAMES; i++) {
+            const conf_frame *f = &conf_frame_list[i];
+            int w = sizes[k][0], h = sizes[k][1];
+            if (!conf_load(f->scene, &scene))
+                continue;
+            uint32_t want = conf_reference_crc(&scene, f->time, w, h, hal_line_bytes(panel, w),
+                                               conf_encode_fmt, &panel);
+            char cmd[512], line[128] = "";
+            snprintf(cmd, sizeof cmd, "%s render %s --size %dx%d --time %g --aa %d --crc", celsim, f->scene, w,
+                     h, (double)f->time, CONF_SUBSCANLINES);
+            FILE *p = popen(cmd, "r");
+            unsigned got = 0;
+            bool read = p && fgets(line, sizeof line, p) && sscanf(line, "frame crc32 %x", &got) == 1;
+            if (p)
+                pclose(p);
+            CHECK(read && got == want, "%s: celsim says %s, the reference %08X", cmd, line, (unsigned)want);
+        }
+}
+
+static bool sim_shown(void *user, uint8_t *frame)
+{
+    sim_display *s = user;
+    for (int y = 0; y < s->d.height; y++)
+        memcpy(frame + (size_t)y * s->line_bytes, sim_display_row(s, y), s->line_bytes);
+    return true;
+}
+
+static void test_sim(void)
+{
+    static const cs_pixfmt fmts[] = {CS_PIX_RGB565_SRGB, CS_PIX_RGB888_SRGB, CS_PIX_RGB16_LINEAR};
+    for (size_t i = 0; i < sizeof fmts / sizeof fmts[0]; i++) {
+        size_t n = sim_display_image_bytes(W, H, fmts[i]);
+        uint8_t *img = malloc(n);
+        sim_display s;
+        if (!CHECK(sim_display_init(&s, W, H, fmts[i], img, n) == HAL_OK, "sim init: %s", s.d.err))
+            continue;
+        conf_backend b = {.d = &s.d, .shown = sim_shown, .user = &s};
+        char name[32];
+        snprintf(name, sizeof name, "sim format %d", (int)fmts[i]);
+        conf_frames(&b, name);
+        conf_geometry_error(&b, name);
+        free(img);
+    }
+}
+
+static void test_null(void)
+{
+    hal_display *d;
+    if (!CHECK(hal_null_open(&d, W, H, &hal_clock_monotonic) == HAL_OK, "null open"))
+        return;
+    conf_backend b = {.d = d};
+    conf_frames(&b, "null");
+    conf_geometry_error(&b, "null");
+    hal_display_close(d);
+}
+
+/* The template's frame buffer, with guard bytes after each row's pixels (pitch > line). */
+typedef struct tpl_rig {
+    tpl_config cfg;
+    tpl_display t;
+    int flush_fail; /* the next flushes that fail */
+    int flushes;
+    hal_window last;
+} tpl_rig;
+
+static bool tpl_flush(void *user, const hal_window *win)
+{
+    tpl_rig *r = user;
+    r->flushes++;
+    r->last = *win;
+    if (r->flush_fail > 0) {
+        r->flush_fail--;
+        return false;
+    }
+    return true;
+}
+
+static bool tpl_shown(void *user, uint8_t *frame)
+{
+    tpl_rig *r = user;
+    size_t lb = hal_line_bytes(r->cfg.pixfmt, r->cfg.width);
+    for (int y = 0; y < r->cfg.height; y++)
+        memcpy(frame + (size_t)y * lb, r->cfg.fb + (size_t)y * r->cfg.pitch, lb);
+    return true;
+}
+
+static bool tpl_rig_open(tpl_rig *r, hal_pixfmt fmt)
+{
+    memset(r, 0, sizeof *r);
+    size_t lb = hal_line_bytes(fmt, W);
+    r->cfg = (tpl_config){W, H, fmt, malloc((lb + 16u) * H), lb + 16u, tpl_flush, r};
+    memset(r->cfg.fb, 0xA5, (lb + 16u) * H);
+    return CHECK(tpl_open(&r->t, &r->cfg, &hal_clock_monotonic) == HAL_OK, "template open: %s", r->t.d.err);
+}
+
+/* Bytes of the template's guard areas (after each row's pixels) still 0xA5. */
+static bool guards_intact(const tpl_rig *r)
+{
+    size_t lb = hal_line_bytes(r->cfg.pixfmt, r->cfg.width);
+    for (int y = 0; y < r->cfg.height; y++)
+        for (size_t i = lb; i < r->cfg.pitch; i++)
+            if (r->cfg.fb[(size_t)y * r->cfg.pitch + i] != 0xA5)
+                return false;
+    return true;
+}
+
+static void test_template(void)
+{
+    static const hal_pixfmt fmts[] = {HAL_PIX_XRGB8888, CS_PIX_RGB565_SRGB, CS_PIX_RGB332_SRGB};
+    for (size_t i = 0; i < sizeof fmts / sizeof fmts[0]; i++) {
+        tpl_rig r;
+        if (!tpl_rig_open(&r, fmts[i]))
+            continue;
+        conf_backend b = {.d = &r.t.d, .shown = tpl_shown, .user = &r};
+        char name[32];
+        snprintf(name, sizeof name, "template format 0x%x", (unsigned)fmts[i]);
+        conf_frames(&b, name);
+        conf_geometry_error(&b, name);
+        CHECK(r.flushes == CONF_NFRAMES && r.last.y1 == H && guards_intact(&r),
+              "%s: a whole-frame flush per frame (%d), guards intact", name, r.flushes);
+        free(r.cfg.fb);
+    }
+}
+
+/* A failed write (the flush) is HAL_ERR_IO through the frame driver, and the next frame goes. */
+static void test_failed_write(void)
+{
+    tpl_rig r;
+    if (!tpl_rig_open(&r, CS_PANEL_PIXFMT))
+        return;
+    lx_scene_source src;
+    TL_MUST(lx_scene_source_init(&src, W, H, CS_AA_SUBSCAN, CONF_SUBSCANLINES));
+    static cs_scene scene;
+    if (conf_load(conf_frame_list[0].scene, &scene)) {
+        lx_scene_source_set(&src, &scene, 0.0f);
+        hal_frame_stats st = {0};
+        r.flush_fail = 1;
+        hal_status s = hal_display_present(&r.t.d, &src.src, &st);
+        CHECK(conf_error_is(&r.t.d, s, HAL_ERR_IO, "flushing rows 0..67 failed"), "failed flush: %s: %s",
+              hal_status_str(s), r.t.d.err);
+        s = hal_display_present(&r.t.d, &src.src, &st);
+        CHECK(s == HAL_OK && st.lines_rendered == 2u * H, "the next frame goes: %s", hal_status_str(s));
+    }
+    lx_scene_source_free(&src);
+    free(r.cfg.fb);
+}
+
+/* Out-of-order calls: the same HAL_ERR_SEQUENCE from every strict backend. */
+static void test_sequence_errors(void)
+{
+    uint8_t line[W * 4] = {0};
+    size_t n = sim_display_image_bytes(W, H, CS_PANEL_PIXFMT);
+    uint8_t *img = malloc(n);
+    sim_display s;
+    tpl_rig r;
+    if (!CHECK(sim_display_init(&s, W, H, CS_PANEL_PIXFMT, img, n) == HAL_OK, "sim init") ||
+        !tpl_rig_open(&r, CS_PANEL_PIXFMT)) {
+        free(img);
+        return;
+    }
+    hal_display *ds[2] = {&s.d, &r.t.d};
+    size_t lb = hal_line_bytes(CS_PANEL_PIXFMT, W);
+    for (int i = 0; i < 2; i++) {
+        hal_display *d = ds[i];
+        hal_status st = hal_display_begin_frame(d, NULL);
+        CHECK(st == HAL_OK, "%s: begin", d->api->name);
+        st = hal_display_line_out(d, 5, line, lb);
+        CHECK(st == HAL_OK, "%s: line 5", d->api->name);
+        st = hal_display_line_out(d, 5, line, lb);
+        CHECK(conf_error_is(d, st, HAL_ERR_SEQUENCE, "line 5"), "%s: line 5 twice: %s: %s", d->api->name,
+              hal_status_str(st), d->err);
+        st = hal_display_line_out(d, H, line, lb);
+        CHECK(st != HAL_OK && conf_error_is(d, st, st, "line 68"), "%s: line %d past the end: %s: %s",
+              d->api->name, H, hal_status_str(st), d->err);
+        hal_window bad = {0, 10, W + 1, 20};
+        hal_display_end_frame(d);
+        st = hal_display_begin_frame(d, &bad);
+        CHECK(conf_error_is(d, st, HAL_ERR_CONFIG, "not inside"), "%s: window wider than the display: %s: %s",
+              d->api->name, hal_status_str(st), d->err);
+    }
+    free(img);
+    free(r.cfg.fb);
+}
+
+/* A windowed frame changes its window and nothing else, on both panels that keep their picture. */
+static void test_window(void)
+{
+    tpl_rig r;
+    if (!tpl_rig_open(&r, CS_PANEL_PIXFMT))
+        return;
+    size_t lb = hal_line_bytes(CS_PANEL_PIXFMT, W);
+    hal_window win = {10, 20, 50, 30};
+    size_t wb = hal_line_bytes(CS_PANEL_PIXFMT, win.x1 - win.x0);
+    uint8_t *before = malloc(r.cfg.pitch * H), line[W * 2];
+    memcpy(before, r.cfg.fb, r.cfg.pitch * H);
+    memset(line, 0x3C, sizeof line);
+    hal_status s = hal_display_begin_frame(&r.t.d, &win);
+    for (int y = win.y0; y < win.y1 && s == HAL_OK; y += 2) /* rows may be skipped */
+        s = hal_display_line_out(&r.t.d, y, line, wb);
+    if (s == HAL_OK)
+        s = hal_display_end_frame(&r.t.d);
+    int wrong = 0;
+    for (int y = 0; y < H; y++)
+        for (size_t x = 0; x < lb; x++) {
+            size_t i = (size_t)y * r.cfg.pitch + x;
+            bool in = y >= win.y0 && y < win.y1 && (y - win.y0) % 2 == 0 && x >= wb / (size_t)(win.x1 - win.x0) *
+                      (size_t)win.x0 && x < wb / (size_t)(win.x1 - win.x0) * (size_t)win.x0 + wb;
+            wrong += r.cfg.fb[i] != (in ? 0x3C : before[i]);
+        }
+    CHECK(s == HAL_OK && wrong == 0 && r.last.y0 == 20 && r.last.y1 == 30 && r.last.x0 == 10,
+          "window 10,20..50,30: %d wrong bytes, flushed rows %d..%d (%s)", wrong, r.last.y0, r.last.y1,
+          r.t.d.err);
+    free(before);
+    free(r.cfg.fb);
+}
+
+int main(void)
+{
+    if (getenv("CELSIM"))
+        celsim = getenv("CELSIM");
+    TL_RUN(test_reference_is_celsim);
+    TL_RUN(test_sim);
+    TL_RUN(test_null);
+    TL_RUN(test_template);
+    TL_RUN(test_failed_write);
+    TL_RUN(test_sequence_errors);
+    TL_RUN(test_window);
+    return tl_summary("test_display_conformance");
+}
