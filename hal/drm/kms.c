@@ -288,30 +288,27 @@ static void add_damage(drmModeClip *clips, int *n, int y, int width)
 static hal_status reconnect(kms_dev *k)
 {
     uint64_t now = hal_now(k->d.clock);
-    if (now < k->next_attempt_ns) {
-        snprintf(k->d.err, sizeof k->d.err, "drm: screen absent (%.200s)", k->why);
-        return HAL_ERR_NO_DEVICE;
-    }
+    if (now < k->next_attempt_ns)
+        return hal_display_fail(&k->d, HAL_ERR_NO_DEVICE, "screen absent (%.200s)", k->why);
     char err[256];
     if (connect_card(k, err, sizeof err) != HAL_OK) {
         k->next_attempt_ns = now + (uint64_t)k->cfg.reconnect_ms * 1000000u;
         if (k->quiet_failures++ % 20 == 0) /* say why now and then, not on every attempt */
             hal_display_say(&k->d, "screen not back yet: %s", err);
-        snprintf(k->d.err, sizeof k->d.err, "drm: %.240s", err);
-        return HAL_ERR_NO_DEVICE;
+        return hal_display_fail(&k->d, HAL_ERR_NO_DEVICE, "%.240s", err);
     }
-    hal_display_say(&k->d, "screen connected: %s connector %s, %dx%d@%u %s", k->path, k->conn_name, k->width, k->height,
-            k->mode.vrefresh, k->bpp == 16 ? "RGB565" : "XRGB8888");
+    hal_display_say(&k->d, "screen connected: %s connector %s, %dx%d@%u %s", k->path, k->conn_name, k->width,
+                    k->height, k->mode.vrefresh, k->bpp == 16 ? "RGB565" : "XRGB8888");
     return HAL_OK;
 }
 
 static hal_status fail(kms_dev *k, hal_status s, const char *during)
 {
     if (s == HAL_ERR_NO_DEVICE) {
-        snprintf(k->d.err, sizeof k->d.err, "drm: screen lost: %.200s", k->why);
+        hal_display_fail(&k->d, s, "screen lost: %.200s", k->why);
         lost(k, during);
     } else {
-        snprintf(k->d.err, sizeof k->d.err, "drm: %.240s", k->why);
+        hal_display_fail(&k->d, s, "%.240s", k->why);
     }
     return s;
 }

@@ -97,9 +97,8 @@ static void build_planes(hub75 *h)
 
 static hal_status io_error(hub75 *h, int e)
 {
-    snprintf(h->d.err, sizeof h->d.err, "hub75: writing GPIO lines on %s failed: %s", h->cfg.chip,
-             strerror(e));
-    return e == ENODEV ? HAL_ERR_NO_DEVICE : HAL_ERR_IO;
+    return hal_display_fail(&h->d, e == ENODEV ? HAL_ERR_NO_DEVICE : HAL_ERR_IO,
+                            "writing HUB75 lines on %s failed: %s", h->cfg.chip, strerror(e));
 }
 
 static hal_status drive_row_pair(hub75 *h, int r)
@@ -145,23 +144,17 @@ static hal_status drive_row_pair(hub75 *h, int r)
 static hal_status hub75_present(hal_display *d, const hal_source *src, hal_frame_stats *st)
 {
     hub75 *h = (hub75 *)d;
-    if (src->width != h->width || src->height != h->cfg.panel_h) {
-        snprintf(d->err, sizeof d->err, "hub75: source is %dx%d, the panel chain is %dx%d",
-                 src->width, src->height, h->width, h->cfg.panel_h);
-        return HAL_ERR_CONFIG;
-    }
+    if (src->width != h->width || src->height != h->cfg.panel_h)
+        return hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, the HUB75 panel chain %dx%d", src->width,
+                                src->height, h->width, h->cfg.panel_h);
     hal_status s = src->begin(src->user, 2);
-    if (s != HAL_OK) {
-        snprintf(d->err, sizeof d->err, "hub75: the renderer could not start the frame");
-        return s;
-    }
+    if (s != HAL_OK)
+        return hal_display_fail(d, s, "the renderer could not start the frame");
     uint64_t writes0 = h->writes;
     for (int r = 0; r < h->scan; r++) {
         if ((s = src->line(src->user, 0, r, h->top)) != HAL_OK ||
-            (s = src->line(src->user, 1, r + h->scan, h->bot)) != HAL_OK) {
-            snprintf(d->err, sizeof d->err, "hub75: the renderer failed on row pair %d", r);
-            return s;
-        }
+            (s = src->line(src->user, 1, r + h->scan, h->bot)) != HAL_OK)
+            return hal_display_fail(d, s, "the renderer failed on row pair %d", r);
         st->lines_rendered += 2;
         build_planes(h);
         s = drive_row_pair(h, r);

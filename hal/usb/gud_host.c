@@ -246,6 +246,7 @@ static hal_status choose_format(gud_host *g, char *err, size_t errlen)
         return HAL_ERR_PROTOCOL;
     }
     g->bpp = gud_format_bpp(g->format);
+    g->d.pixfmt = g->format == GUD_FORMAT_RGB565 ? CS_PIX_RGB565_SRGB : HAL_PIX_XRGB8888;
     return HAL_OK;
 }
 
@@ -663,7 +664,6 @@ static hal_status gud_begin_frame(hal_display *d, const hal_window *win)
                         g->bus, g->address, g->width, g->height, gud_format_name(g->format),
                         g->lz4 ? " lz4" : "");
     }
-    d->pixfmt = g->format == GUD_FORMAT_RGB565 ? CS_PIX_RGB565_SRGB : HAL_PIX_XRGB8888;
     g->band_n = 0;
     return HAL_OK;
 }
@@ -751,7 +751,7 @@ hal_status gud_open(hal_display **out, const gud_config *c, const hal_clock *clo
     if (g->cfg.timeout_ms == 0)
         g->cfg.timeout_ms = 1000;
     g->d.api = &gud_api;
-    g->d.pixfmt = HAL_PIX_XRGB8888;
+    g->d.pixfmt = HAL_PIX_XRGB8888; /* until a device says what it takes */
     g->d.clock = clock;
     g->d.log = log;
     g->d.log_user = log_user;

@@ -29,6 +29,8 @@
 #include "lx_scene_source.h"
 #include "testlib.h"
 
+#include "display_conformance.h"
+
 static cs_workspace ws;
 
 static void logger(void *user, const char *fmt, ...)
@@ -700,6 +702,44 @@ static void test_celfw(UMockdevTestbed *tb)
     fake_drm_free(r.card);
 }
 
+/* What the CRTC scans out, for the conformance case. */
+static bool drm_shown(void *user, uint8_t *frame)
+{
+    rig *r = user;
+    fake_drm_scanout so;
+    if (!fake_drm_get_scanout(r->card, &so))
+        return false;
+    size_t lb = hal_line_bytes(r->d->pixfmt, r->d->width);
+    for (int y = 0; y < r->d->height; y++)
+        memcpy(frame + (size_t)y * lb, so.pixels + (size_t)y * so.pitch, lb);
+    return true;
+}
+
+/* The conformance case every backend passes, in XRGB8888 and RGB565; then a card gone. */
+static void test_conformance(UMockdevTestbed *tb)
+{
+    for (int k = 0; k < 2; k++) {
+        static rig r; /* holds a scene store: too big for a stack */
+        rig_defaults(&r);
+        if (k)
+            r.o.preferred_depth = 16;
+        if (!rig_start(&r, tb))
+            return;
+        conf_backend b = {.d = r.d, .shown = drm_shown, .user = &r};
+        const char *name = k ? "drm RGB565" : "drm XRGB8888";
+        CHECK(r.d->pixfmt == (k ? CS_PIX_RGB565_SRGB : HAL_PIX_XRGB8888), "%s: format %#x", name, r.d->pixfmt);
+        conf_frames(&b, name);
+        conf_geometry_error(&b, name);
+        fake_drm_set_gone(r.card, true);
+        hal_frame_stats st;
+        hal_status s = show(&r, "demo", 0.0f, &st);
+        CHECK(conf_error_is(r.d, s, HAL_ERR_NO_DEVICE, strerror(ENODEV)), "%s: card gone: %s: %s", name,
+              hal_status_str(s), r.d->err);
+        fake_drm_set_gone(r.card, false);
+        rig_close(&r, true);
+    }
+}
+
 int main(void)
 {
     UMockdevTestbed *tb = umockdev_testbed_new();
@@ -722,6 +762,7 @@ int main(void)
     test_atomic(tb, true);
     test_atomic(tb, false);
     test_refusals(tb);
+    test_conformance(tb);
     test_celfw(tb);
     g_object_unref(tb);
     return tl_summary("test_drm");

@@ -6,7 +6,8 @@
  * rectangles (LZ4-decoding them) into its panel memory. That memory must
  * equal the scene rendered directly with the core in this test and converted
  * to the negotiated format. Also: damage (only changed lines travel), stalls,
- * timeouts, refusals, unplug/replug, odd formats and missing devices.
+ * timeouts, refusals, unplug/replug, odd formats and missing devices; and
+ * the display conformance case (display_conformance.h) in both formats.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -18,6 +19,8 @@
 #include "gud_wire.h"
 #include "lx_scene_source.h"
 #include "testlib.h"
+
+#include "display_conformance.h"
 
 static cs_scene scene;
 static cs_workspace ws;
@@ -651,6 +654,42 @@ static void measure(UMockdevTestbed *tb, int w, int h, uint8_t format)
     rig_close(&r, true);
 }
 
+/* What the emulated panel shows, for the conformance case. */
+static bool gud_shown(void *user, uint8_t *frame)
+{
+    rig *r = user;
+    fake_gud_framebuffer(r->dev, frame, hal_line_bytes(r->d->pixfmt, r->d->width) * (size_t)r->d->height);
+    return true;
+}
+
+/* The conformance case every backend passes, in RGB565 and XRGB8888; then a device gone. */
+static void test_conformance(UMockdevTestbed *tb)
+{
+    for (int k = 0; k < 2; k++) {
+        rig r = {0};
+        fake_gud_opts_default(&r.o);
+        r.o.formats[0] = k ? GUD_FORMAT_XRGB8888 : GUD_FORMAT_RGB565;
+        r.o.nformats = 1;
+        gud_config_default(&r.cfg);
+        char err[300];
+        hal_status s = rig_open(&r, tb, err, sizeof err);
+        CHECK(s == HAL_OK, "conformance open: %s", err);
+        if (s != HAL_OK)
+            return rig_close(&r, false);
+        conf_backend b = {.d = r.d, .shown = gud_shown, .user = &r};
+        const char *name = k ? "usb XRGB8888" : "usb RGB565";
+        conf_frames(&b, name);
+        conf_geometry_error(&b, name);
+        fake_gud_unplug(r.dev);
+        hal_frame_stats st;
+        celfw_scene_build("demo", &scene, 0.0f);
+        s = show(&r, &scene, &st);
+        CHECK(conf_error_is(r.d, s, HAL_ERR_NO_DEVICE, "disconnected"), "%s: device gone: %s: %s", name,
+              hal_status_str(s), r.d->err);
+        rig_close(&r, true);
+    }
+}
+
 int main(void)
 {
     UMockdevTestbed *tb = umockdev_testbed_new();
@@ -674,6 +713,7 @@ int main(void)
     test_unplug(tb);
     test_odd_devices(tb);
     test_hostile(tb);
+    test_conformance(tb);
     measure(tb, 480, 272, GUD_FORMAT_RGB565);
     measure(tb, 800, 480, GUD_FORMAT_RGB565);
     measure(tb, 800, 480, GUD_FORMAT_XRGB8888);

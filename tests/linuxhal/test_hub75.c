@@ -6,7 +6,8 @@
  * recorded wire changes go through hub75_model, a panel simulation that
  * knows nothing of the driver, and the image it decodes must equal the
  * scene rendered directly with the core in this test (one renderer, lines
- * in order), quantised to the panel's bit depth.
+ * in order), quantised to the panel's bit depth. The display conformance
+ * case (display_conformance.h) runs on the same rig: HUB75 is the pull lane.
  */
 #include <errno.h>
 #include <fcntl.h>
@@ -25,6 +26,8 @@
 #include "hub75_model.h"
 #include "lx_scene_source.h"
 #include "testlib.h"
+
+#include "display_conformance.h"
 #include "vclock.h"
 
 static _Atomic uint64_t vtime;
@@ -337,6 +340,69 @@ static void report_throughput(UMockdevTestbed *tb)
     }
 }
 
+/* The conformance rig: the chip's trace since the last frame read, decoded by the panel model. */
+typedef struct conf_rig {
+    fake_gpiochip *chip;
+    hub75_config c;
+    uint64_t wires0;
+} conf_rig;
+
+/* The panel's "format": each channel quantised to `planes` bits of linear light, as 16-bit words. */
+static void hub75_encode(const void *user, const float *rgb, int width, uint8_t *dst)
+{
+    const hub75_config *c = user;
+    float max = (float)((1u << c->planes) - 1u);
+    for (int i = 0; i < 3 * width; i++) {
+        uint16_t v = (uint16_t)floorf(fminf(fmaxf(rgb[i], 0.0f), 1.0f) * max + 0.5f);
+        memcpy(dst + 2 * i, &v, 2);
+    }
+}
+
+static bool hub75_shown(void *user, uint8_t *frame)
+{
+    conf_rig *r = user;
+    const fake_gpio_event *ev;
+    size_t n = fake_gpiochip_trace(r->chip, &ev);
+    hub75_model m;
+    hub75_model_init(&m, &r->c, r->wires0);
+    for (size_t i = 0; i < n; i++)
+        hub75_model_feed(&m, &ev[i]);
+    int dark = hub75_model_image(&m, r->c.planes, (uint16_t *)(void *)frame);
+    hub75_model_free(&m);
+    r->wires0 = fake_gpiochip_wires(r->chip);
+    fake_gpiochip_clear_trace(r->chip);
+    return dark == 0;
+}
+
+/* The conformance case every backend passes, through the pull lane. */
+static void test_conformance(UMockdevTestbed *tb)
+{
+    conf_rig r;
+    r.chip = fake_gpiochip_add(tb, 7, 28, "pinctrl-fake", &vtime, 100);
+    hub75_config_default(&r.c);
+    r.c.panel_w = 64;
+    r.c.panel_h = 32;
+    r.c.planes = 6;
+    r.c.lsb_ns = 150;
+    snprintf(r.c.chip, sizeof r.c.chip, "/dev/gpiochip7");
+    hal_clock clk = vclock_make(&vtime);
+    hal_display *d = NULL;
+    char err[256] = "";
+    hal_status s = hub75_open(&d, &r.c, &clk, err, sizeof err);
+    if (CHECK(s == HAL_OK, "conformance open: %s", err)) {
+        r.wires0 = fake_gpiochip_wires(r.chip);
+        fake_gpiochip_clear_trace(r.chip);
+        conf_backend b = {.d = d, .line_bytes = 64u * 3u * 2u, .encode = hub75_encode, .encode_user = &r.c,
+                          .shown = hub75_shown, .user = &r};
+        conf_frames(&b, "gpio HUB75");
+        conf_geometry_error(&b, "gpio HUB75");
+        hal_display_close(d);
+        for (int i = 0; i < 200 && fake_gpiochip_handles(r.chip); i++)
+            g_usleep(5000);
+    }
+    fake_gpiochip_free(r.chip);
+}
+
 int main(void)
 {
     UMockdevTestbed *tb = umockdev_testbed_new();
@@ -351,6 +417,7 @@ int main(void)
     test_frame(tb, "64x64 1/32", 4, 64, 64, 1, 4, "bars", 0.0f);
     test_bulk_pitfall(tb);
     test_errors(tb);
+    test_conformance(tb);
     report_throughput(tb);
     g_object_unref(tb);
     return tl_summary("test_hub75");
