@@ -47,7 +47,7 @@ extern "C" {
 #endif
 
 #if !defined(HAL_ERR_LEN)
-#define HAL_ERR_LEN 256 /* bytes of d->err, the last error's message */
+#define HAL_ERR_LEN 256 /* bytes of d->err, the last error's message (an MCU build sets it small) */
 #endif
 
 typedef enum hal_status {
@@ -136,7 +136,8 @@ struct hal_display {
     uint64_t frame_start_ns, frame_period_ns; /* deadlines; period 0: none */
     hal_log_fn log;           /* where backends' messages go; may be NULL */
     void *log_user;
-    hal_frame_stats st;       /* the backend's counts for the current frame */
+    hal_frame_stats *st;      /* where a frame's counts go: set by hal_display_present for
+                               * its frame (a pointer, so an MCU panel pays 4 bytes of RAM) */
     char err[HAL_ERR_LEN];    /* the last error: "name: what, where" */
 };
 

@@ -31,7 +31,7 @@ FW_BOARDS := $(patsubst firmware/boards/%/board.mk,%,$(wildcard firmware/boards/
 FW_QEMU_BOARD := mps2-an386
 
 FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c firmware/fw_print.c \
-                 firmware/fw_args.c firmware/fw_mem.c \
+                 firmware/fw_args.c firmware/fw_mem.c firmware/fw_clock.c \
                  firmware/scenes/fw_scenes.c hal/mcu/mcu_display.c
 # No C library and no heap: -nostdlib, -ffreestanding; GCC may not invent
 # memcpy/memset calls (-fno-tree-loop-distribute-patterns); sqrtf is one
@@ -58,9 +58,10 @@ FW_LINE_SRC := core/cs_cross.c core/cs_coverage.c core/cs_composite.c core/cs_li
 FW_COLD_SRC := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_edit.c \
                core/cs_anim.c core/cs_frame.c core/cs_nurbs.c core/cs_paint.c core/cs_status.c firmware/fw_render.c \
                firmware/main_mcu.c firmware/fw_stream.c firmware/fw_print.c firmware/fw_args.c \
-               firmware/fw_mem.c firmware/scenes/fw_scenes.c \
+               firmware/fw_mem.c firmware/fw_clock.c firmware/scenes/fw_scenes.c \
                $(wildcard firmware/boards/*/board.c firmware/boards/stm32f4/*.c) \
-               firmware/boards/cortex-m/cm_startup.c hal/mcu/rx_ring.c hal/mcu/semihost.c
+               firmware/boards/cortex-m/cm_startup.c hal/mcu/rx_ring.c hal/mcu/semihost.c \
+               hal/mcu/panel_semihost.c
 FW_CFLAGS := -std=c11 -g $(FP_FLAGS) $(WARN) -ffreestanding -fno-builtin \
         -fno-tree-loop-distribute-patterns -fno-stack-protector -fno-common \
         -ffunction-sections -fdata-sections -MMD -MP
@@ -78,7 +79,8 @@ FW_LD_$(1) := $$(BOARD_LDSCRIPT)
 FW_STACK_$(1) := $$(BOARD_STACK)
 FW_QEMU_$(1) := $$(BOARD_QEMU)
 FW_INC_$(1) := -Icore -Ifirmware -Ifirmware/scenes -Ifirmware/boards -Ifirmware/boards/cortex-m \
-        -Ifirmware/boards/$(1) -Ifirmware/boards/stm32f4 -Ihal/mcu -DCS_CFG_FILE='"cs_board_config.h"'
+        -Ifirmware/boards/$(1) -Ifirmware/boards/stm32f4 -Ihal/mcu -Ihal -DHAL_ERR_LEN=4 \
+        -DCS_CFG_FILE='"cs_board_config.h"'
 FW_OBJ_$(1) := $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(CORE_SRC) $(FW_COMMON_SRC) $$(BOARD_SRC))
 
 $$(eval $$(call flags_record,fw-$(1),$(ARM_CC) $$(FW_CPU_$(1)) $(OPT) $(FW_COLD_OPT) $(FW_CFLAGS) \

@@ -6,8 +6,9 @@
  * recording panel receives are hashed with zlib's crc32 and must equal the
  * backend's CRC; the bytes themselves must be the RGB565 little-endian
  * encoding of known colours (black, white, pure primaries, whose codes are
- * exact); a failing panel is reported once while the frame and its CRC
- * still complete; bad arguments are refused. On tests/testlib.h; it ends
+ * exact); the panel (a display of hal/display.h) gets each frame as a
+ * window of its glass; a failing panel is reported once while the frame and
+ * its CRC still complete; bad arguments are refused. On tests/testlib.h; it ends
  * with `test_mcu_display: N passed, M failed`.
  */
 #include <stdio.h>
@@ -23,38 +24,40 @@
 #define H 3
 
 typedef struct recorder {
+    hal_display d; /* first: the operations get &r->d */
     uint8_t bytes[H][2 * W];
     int lines, begins, ends;
     int fail_at_line; /* -1: never */
-    uint32_t last_frame;
+    hal_window last_win;
 } recorder;
 
-static int rec_begin(void *ctx, uint32_t frame, int width, int height)
+static hal_status rec_begin(hal_display *d, const hal_window *win)
 {
-    recorder *r = ctx;
+    recorder *r = (recorder *)d;
     r->begins++;
-    r->last_frame = frame;
-    return width == W && height == H ? 0 : -1;
+    r->last_win = win ? *win : (hal_window){-1, -1, -1, -1};
+    return win && win->x1 <= W && win->y1 <= H ? HAL_OK : HAL_ERR_CONFIG;
 }
 
-static int rec_line(void *ctx, int y, const uint8_t *px, size_t bytes)
+static hal_status rec_line(hal_display *d, int y, const uint8_t *px, size_t bytes)
 {
-    recorder *r = ctx;
+    recorder *r = (recorder *)d;
     if (y == r->fail_at_line)
-        return -5;
+        return HAL_ERR_IO;
     if (y >= 0 && y < H && bytes == sizeof r->bytes[0])
         memcpy(r->bytes[y], px, bytes);
     r->lines++;
-    return 0;
+    return HAL_OK;
 }
 
-static int rec_end(void *ctx)
+static hal_status rec_end(hal_display *d)
 {
-    ((recorder *)ctx)->ends++;
-    return 0;
+    ((recorder *)d)->ends++;
+    return HAL_OK;
 }
 
-static const mcu_panel_api rec_api = {rec_begin, rec_line, rec_end};
+static const hal_display_api rec_api = {
+    .name = "recorder", .begin_frame = rec_begin, .line_out = rec_line, .end_frame = rec_end};
 
 /* Line y: pixel x is black, white, red, green or blue by (x + y) % 5. */
 static void make_line(int y, float *rgb)
@@ -86,10 +89,10 @@ int main(void)
     recorder rec;
     memset(&rec, 0, sizeof rec);
     rec.fail_at_line = -1;
-    mcu_panel panel = {"recorder", W, H, &rec_api, &rec};
+    rec.d = (hal_display){.api = &rec_api, .width = W, .height = H, .pixfmt = CS_PANEL_PIXFMT};
     uint8_t line_bytes[2 * W];
     mcu_display d;
-    mcu_display_init(&d, &panel, line_bytes);
+    mcu_display_init(&d, &rec.d, line_bytes);
 
     uint32_t crc = draw_frame(&d);
     uLong ref = crc32(0L, Z_NULL, 0);
@@ -104,12 +107,15 @@ int main(void)
             CHECK(got == expected_code(x, y), "pixel %d,%d: %04X, expected %04X", x, y, got,
                   expected_code(x, y));
         }
-    CHECK(d.frames == 1 && d.panel_error == 0, "frames %u error %d", d.frames, d.panel_error);
+    CHECK(d.frames == 1 && d.panel_error == HAL_OK, "frames %u error %d", d.frames, d.panel_error);
 
-    /* The same frame again: same CRC, and the panel sees frame number 1. */
+    /* The same frame again: same CRC, and the panel gets the frame as its window. */
     uint32_t again = draw_frame(&d);
     CHECK(again == crc, "second frame CRC %08X differs from %08X", again, crc);
-    CHECK(rec.last_frame == 1, "panel got frame number %u", rec.last_frame);
+    CHECK(rec.begins == 2 && rec.last_win.x0 == 0 && rec.last_win.y0 == 0 && rec.last_win.x1 == W &&
+              rec.last_win.y1 == H,
+          "frame %d: window %d,%d..%d,%d", rec.begins, rec.last_win.x0, rec.last_win.y0, rec.last_win.x1,
+          rec.last_win.y1);
 
     /* A panel failing on line 1: reported, later lines not sent, the frame
      * and its CRC still complete. */
@@ -117,7 +123,7 @@ int main(void)
     rec.lines = 0;
     uint32_t broken = draw_frame(&d);
     CHECK(broken == crc, "CRC with a failing panel %08X, expected %08X", broken, crc);
-    CHECK(d.panel_error == -5, "panel error %d, expected -5", d.panel_error);
+    CHECK(d.panel_error == HAL_ERR_IO, "panel error %d, expected HAL_ERR_IO", d.panel_error);
     CHECK(rec.lines == 1, "%d lines reached the panel after its failure, expected 1", rec.lines);
     rec.fail_at_line = -1;
 

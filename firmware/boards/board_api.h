@@ -31,11 +31,15 @@ const struct rx_ring *board_link_ring(void);
 /* Monotonic time in microseconds since board_init. */
 uint64_t board_time_us(void);
 
+/* The same timer as the one clock interface, hal/clock.h (firmware/fw_clock.c). */
+extern const hal_clock board_clock;
+
 /* Arguments from the host (QEMU's -append via semihosting), or "". */
 const char *board_cmdline(void);
 
-/* The panel that finished lines go to. */
-const mcu_panel *board_panel(void);
+/* The panel that finished lines go to: a display of hal/display.h taking
+ * CS_PANEL_PIXFMT lines, its size the glass's. */
+hal_display *board_panel(void);
 
 /* Ends the program with an exit status: the emulator exits with it; real
  * hardware resets. Fault handlers call it too, with a non-zero status. */

@@ -332,6 +332,8 @@ static hal_status kms_begin_frame(hal_display *d, const hal_window *win)
         return fail(k, s, "a page flip");
     k->back = k->front < 0 ? 0 : k->flips ? 1 - k->front : k->front;
     k->nclips = 0;
+    if (!d->st)
+        d->st = &k->unpresented; /* pushed without hal_display_present: counts go nowhere */
     return HAL_OK;
 }
 
@@ -351,13 +353,13 @@ static hal_status kms_line_out(hal_display *d, int y, const uint8_t *px, size_t 
     if (lx_damage_changed(&b->held, y, h)) {
         memcpy(b->map + (size_t)y * k->pitch, px, row);
         lx_damage_commit(&b->held, y, h);
-        d->st.bytes_raw += row;
+        d->st->bytes_raw += row;
         if (b == f)
             on_screen = false; /* single buffer: written where it is scanned out */
     }
     if (!on_screen) {
         add_damage(k->clips, &k->nclips, y, k->width);
-        d->st.lines_sent++;
+        d->st->lines_sent++;
     }
     return HAL_OK;
 }
@@ -367,11 +369,11 @@ static hal_status kms_end_frame(hal_display *d)
     kms_dev *k = (kms_dev *)d;
     if (k->front >= 0 && k->nclips == 0)
         return HAL_OK; /* the screen already shows this frame */
-    d->st.rects += (uint64_t)k->nclips;
+    d->st->rects += (uint64_t)k->nclips;
     hal_status s = show(k, k->back, k->clips, k->nclips);
     if (s != HAL_OK) {
         if (s != HAL_ERR_NO_DEVICE)
-            d->st.errors++;
+            d->st->errors++;
         return fail(k, s, "a frame");
     }
     k->front = k->back;

@@ -62,6 +62,7 @@ typedef struct kms_dev {
     uint64_t next_attempt_ns, next_probe_ns;
     uint64_t flips_done, modesets, connects;
     int quiet_failures;
+    hal_frame_stats unpresented;
     char why[200];      /* detail of the last failure */
 } kms_dev;
 

@@ -82,21 +82,9 @@ void hal_display_say(const hal_display *d, const char *fmt, ...)
     d->log(d->log_user, "%s: %s", d->api->name, msg);
 }
 
-static void add_stats(hal_frame_stats *a, const hal_frame_stats *b)
-{
-    a->lines_rendered += b->lines_rendered;
-    a->lines_sent += b->lines_sent;
-    a->rects += b->rects;
-    a->bytes_raw += b->bytes_raw;
-    a->bytes_wire += b->bytes_wire;
-    a->writes += b->writes;
-    a->line_misses += b->line_misses;
-    a->retries += b->retries;
-    a->errors += b->errors;
-}
-
 /* The push lane: every line rendered, converted and handed to line_out. */
-static hal_status push_frame(hal_display *d, const hal_source *src, float *rgb, uint8_t *px)
+static hal_status push_frame(hal_display *d, const hal_source *src, hal_frame_stats *st, float *rgb,
+                             uint8_t *px)
 {
     size_t len = hal_line_bytes(d->pixfmt, d->width);
     hal_status s = src->begin(src->user, 1);
@@ -105,14 +93,14 @@ static hal_status push_frame(hal_display *d, const hal_source *src, float *rgb, 
     for (int y = 0; y < d->height; y++) {
         if ((s = src->line(src->user, 0, y, rgb)) != HAL_OK)
             return hal_display_fail(d, s, "the renderer failed on line %d", y);
-        d->st.lines_rendered++;
+        st->lines_rendered++;
         hal_pixfmt_convert(d->pixfmt, rgb, d->width, px);
         if ((s = d->api->line_out(d, y, px, len)) != HAL_OK)
             return s;
         if (d->frame_period_ns && d->clock) {
             uint64_t due = d->frame_start_ns + (uint64_t)(y + 1) * d->frame_period_ns / (uint64_t)d->height;
             if (hal_now(d->clock) > due)
-                d->st.line_misses++;
+                st->line_misses++;
         }
     }
     return hal_display_end_frame(d);
@@ -122,8 +110,9 @@ hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_
 {
     if (d->api->present)
         return d->api->present(d, src, st);
-    d->st = (hal_frame_stats){0};
-    /* begin_frame first: a display that was away learns its size there. */
+    d->st = st;
+    /* Backends add their counts (rectangles, bytes) to *d->st during the frame.
+     * begin_frame first: a display that was away learns its size there. */
     hal_status s = hal_display_begin_frame(d, NULL);
     if (s == HAL_OK && (src->width != d->width || src->height != d->height))
         s = hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, the display %dx%d", src->width,
@@ -131,10 +120,10 @@ hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_
     if (s == HAL_OK) {
         float *rgb = malloc((size_t)d->width * 3u * sizeof *rgb);
         uint8_t *px = malloc(hal_line_bytes(d->pixfmt, d->width) + 4u);
-        s = rgb && px ? push_frame(d, src, rgb, px) : hal_display_fail(d, HAL_ERR_NOMEM, "no line buffer");
+        s = rgb && px ? push_frame(d, src, st, rgb, px) : hal_display_fail(d, HAL_ERR_NOMEM, "no line buffer");
         free(rgb);
         free(px);
     }
-    add_stats(st, &d->st);
+    d->st = NULL;
     return s;
 }

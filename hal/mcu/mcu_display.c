@@ -9,14 +9,14 @@
  */
 #include "mcu_display.h"
 
-void mcu_display_init(mcu_display *d, const mcu_panel *panel, uint8_t *pixels)
+void mcu_display_init(mcu_display *d, hal_display *panel, uint8_t *pixels)
 {
     d->panel = panel;
     d->pixels = pixels;
     d->width = d->height = 0;
     d->crc = 0;
     d->frames = 0;
-    d->panel_error = 0;
+    d->panel_error = HAL_OK;
 }
 
 cs_status mcu_display_begin(mcu_display *d, int width, int height)
@@ -26,10 +26,11 @@ cs_status mcu_display_begin(mcu_display *d, int width, int height)
     d->width = width;
     d->height = height;
     d->crc = 0;
-    d->panel_error = 0;
-    const mcu_panel *p = d->panel;
-    if (p && p->api->begin_frame)
-        d->panel_error = p->api->begin_frame(p->ctx, d->frames, width, height);
+    d->panel_error = HAL_OK;
+    if (d->panel) {
+        const hal_window win = {0, 0, width, height};
+        d->panel_error = hal_display_begin_frame(d->panel, &win);
+    }
     return CS_OK;
 }
 
@@ -50,18 +51,16 @@ cs_status mcu_display_line_px(mcu_display *d, int y, const uint8_t *pixels)
         return CS_ERR_ARG;
     size_t bytes = (size_t)d->width * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
     d->crc = cs_crc32(d->crc, pixels, bytes);
-    const mcu_panel *p = d->panel;
-    if (p && d->panel_error == 0)
-        d->panel_error = p->api->line_out(p->ctx, y, pixels, bytes);
+    if (d->panel && d->panel_error == HAL_OK)
+        d->panel_error = hal_display_line_out(d->panel, y, pixels, bytes);
     return CS_OK;
 }
 
 uint32_t mcu_display_end(mcu_display *d)
 {
-    const mcu_panel *p = d->panel;
-    if (p && p->api->end_frame) {
-        int e = p->api->end_frame(p->ctx);
-        if (d->panel_error == 0)
+    if (d->panel) {
+        hal_status e = hal_display_end_frame(d->panel);
+        if (d->panel_error == HAL_OK)
             d->panel_error = e;
     }
     d->frames++;

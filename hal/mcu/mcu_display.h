@@ -5,15 +5,14 @@
  * cs_line_sink). This backend turns each into the panel's pixel format
  * (CS_PANEL_PIXFMT: RGB565, little-endian), keeps a running CRC-32 of the
  * frame exactly as `celsim --crc` computes it (rows top to bottom), and
- * passes the bytes to the board's panel driver: an SPI or 8080 bus on a
- * real part, or a semihosting file on QEMU so that tests can compare
- * pixels.
+ * passes the bytes to the board's panel: an SPI or 8080 bus on a real
+ * part, or a semihosting file on QEMU so that tests can compare pixels.
  *
- * A panel is a const table of operations plus its own context, in the
- * manner of Zephyr's display drivers; optional operations may be NULL.
- * This is the MCU side's own small interface; an adapter to hal/display.h
- * (the host's display-out ops) is a few lines, as both are geometry +
- * format + begin/line/end.
+ * A panel is a display of the one contract, hal/display.h (a hal_display
+ * first in the panel's state, a const table of operations in flash). Only
+ * its inline wrappers are used here, so the contract costs an MCU build
+ * no code of its own; firmware builds set HAL_ERR_LEN small, as panels
+ * report by status alone.
  */
 #ifndef MCU_DISPLAY_H
 #define MCU_DISPLAY_H
@@ -22,35 +21,22 @@
 #include <stdint.h>
 
 #include "celscan.h"
-
-typedef struct mcu_panel_api {
-    /* A frame of width x height starts; `frame` counts frames from 0. */
-    int (*begin_frame)(void *ctx, uint32_t frame, int width, int height);
-    /* Line y in the panel format, `bytes` long. Required. */
-    int (*line_out)(void *ctx, int y, const uint8_t *pixels, size_t bytes);
-    int (*end_frame)(void *ctx);
-} mcu_panel_api;
-
-typedef struct mcu_panel {
-    const char *name;
-    int width, height;       /* native geometry */
-    const mcu_panel_api *api;
-    void *ctx;
-} mcu_panel;
+#include "display.h"
 
 typedef struct mcu_display {
-    const mcu_panel *panel;
+    hal_display *panel;      /* takes lines in CS_PANEL_PIXFMT */
     uint8_t *pixels;         /* one line in CS_PANEL_PIXFMT, width * 2 bytes */
     int width, height;       /* of the frame being drawn */
     uint32_t crc;            /* CRC-32 of the frame's lines so far */
     uint32_t frames;         /* frames completed */
-    int panel_error;         /* first non-zero result of the panel this frame */
+    hal_status panel_error;  /* the panel's first failure this frame */
 } mcu_display;
 
 /* `pixels` must hold a line of the widest frame in the panel format; it may
  * be NULL if only mcu_display_line_px is used. */
-void mcu_display_init(mcu_display *d, const mcu_panel *panel, uint8_t *pixels);
+void mcu_display_init(mcu_display *d, hal_display *panel, uint8_t *pixels);
 
+/* A frame of width x height starts: the panel's window (0,0)..(width,height). */
 cs_status mcu_display_begin(mcu_display *d, int width, int height);
 
 /* The cs_line_sink: `user` is the mcu_display. */

@@ -9,8 +9,15 @@
 
 #include "semihost.h"
 
-void panel_semihost_init(panel_semihost *p, const char *dir)
+static const hal_display_api panel_semihost_api;
+
+void panel_semihost_init(panel_semihost *p, const char *dir, int width, int height)
 {
+    p->d.api = &panel_semihost_api;
+    p->d.width = width;
+    p->d.height = height;
+    p->d.pixfmt = CS_PANEL_PIXFMT;
+    p->frame = 0;
     size_t i = 0;
     if (dir)
         for (; dir[i] && i + 1 < sizeof p->dir; i++)
@@ -44,35 +51,40 @@ static void frame_path(panel_semihost *p, uint32_t frame)
     p->path[n] = 0;
 }
 
-static int begin_frame(void *ctx, uint32_t frame, int width, int height)
+/* The file holds the lines as they come: a window's rows, or the frame's. */
+static hal_status begin_frame(hal_display *d, const hal_window *win)
 {
-    panel_semihost *p = ctx;
-    (void)width;
-    (void)height;
+    panel_semihost *p = (panel_semihost *)d;
+    (void)win;
     if (!p->dir[0])
-        return 0;
-    frame_path(p, frame);
+        return HAL_OK;
+    frame_path(p, p->frame++);
     p->handle = sh_open(p->path, 5 /* "wb" */);
-    return p->handle < 0 ? -1 : 0;
+    return p->handle < 0 ? HAL_ERR_IO : HAL_OK;
 }
 
-static int line_out(void *ctx, int y, const uint8_t *pixels, size_t bytes)
+static hal_status line_out(hal_display *d, int y, const uint8_t *pixels, size_t bytes)
 {
-    panel_semihost *p = ctx;
+    panel_semihost *p = (panel_semihost *)d;
     (void)y;
     if (p->handle < 0)
-        return 0;
-    return sh_write(p->handle, pixels, bytes);
+        return HAL_OK;
+    return sh_write(p->handle, pixels, bytes) ? HAL_ERR_IO : HAL_OK;
 }
 
-static int end_frame(void *ctx)
+static hal_status end_frame(hal_display *d)
 {
-    panel_semihost *p = ctx;
+    panel_semihost *p = (panel_semihost *)d;
     if (p->handle < 0)
-        return 0;
+        return HAL_OK;
     int r = sh_close(p->handle);
     p->handle = -1;
-    return r;
+    return r ? HAL_ERR_IO : HAL_OK;
 }
 
-const mcu_panel_api panel_semihost_api = {begin_frame, line_out, end_frame};
+static const hal_display_api panel_semihost_api = {
+    .name = "semihost",
+    .begin_frame = begin_frame,
+    .line_out = line_out,
+    .end_frame = end_frame,
+};

@@ -12,14 +12,14 @@
 #include "mcu_display.h"
 
 typedef struct panel_semihost {
+    hal_display d;    /* first: the operations get &p->d */
     char dir[96];     /* host directory for dumps; empty: no dumps */
     int handle;       /* semihosting handle of the open frame, or -1 */
+    uint32_t frame;   /* the number of the next frame's file */
     char path[128];
 } panel_semihost;
 
-extern const mcu_panel_api panel_semihost_api;
-
-/* Copies `dir` (may be NULL or empty) into the panel. */
-void panel_semihost_init(panel_semihost *p, const char *dir);
+/* Sets p up as a width x height panel dumping to `dir` (may be NULL or empty). */
+void panel_semihost_init(panel_semihost *p, const char *dir, int width, int height);
 
 #endif /* PANEL_SEMIHOST_H */

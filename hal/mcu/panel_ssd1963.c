@@ -42,9 +42,15 @@ static void window(panel_ssd1963 *p, int x0, int y0, int x1, int y1)
     command(p, CMD_SET_PAGE, page, 4);
 }
 
-void panel_ssd1963_init(panel_ssd1963 *p)
+static const hal_display_api panel_ssd1963_api;
+
+void panel_ssd1963_init(panel_ssd1963 *p, int width, int height)
 {
-    int hd = p->width - 1, vd = p->height - 1;
+    p->d.api = &panel_ssd1963_api;
+    p->d.width = width;
+    p->d.height = height;
+    p->d.pixfmt = CS_PANEL_PIXFMT;
+    int hd = width - 1, vd = height - 1;
     command(p, CMD_SOFT_RESET, 0, 0);
     p->delay_us(5000);
     /* VCO = 10 MHz x (M + 1) = 300 MHz (M = 0x1D; 250..800 MHz allowed),
@@ -75,24 +81,31 @@ void panel_ssd1963_init(panel_ssd1963 *p)
     command(p, CMD_DISPLAY_ON, 0, 0);
 }
 
-static int begin_frame(void *ctx, uint32_t frame, int width, int height)
+/* The window's rows and columns become the controller's write window. */
+static hal_status begin_frame(hal_display *d, const hal_window *win)
 {
-    panel_ssd1963 *p = ctx;
-    (void)frame;
-    if (width > p->width || height > p->height)
-        return -1;
-    window(p, 0, 0, width - 1, height - 1);
+    panel_ssd1963 *p = (panel_ssd1963 *)d;
+    const hal_window all = {0, 0, d->width, d->height};
+    if (!win)
+        win = &all;
+    if (win->x0 < 0 || win->y0 < 0 || win->x1 > d->width || win->y1 > d->height)
+        return HAL_ERR_CONFIG;
+    window(p, win->x0, win->y0, win->x1 - 1, win->y1 - 1);
     *p->cmd = CMD_WRITE_MEMORY;
-    return 0;
+    return HAL_OK;
 }
 
-static int line_out(void *ctx, int y, const uint8_t *pixels, size_t bytes)
+static hal_status line_out(hal_display *d, int y, const uint8_t *pixels, size_t bytes)
 {
-    panel_ssd1963 *p = ctx;
+    panel_ssd1963 *p = (panel_ssd1963 *)d;
     (void)y;
     for (size_t i = 0; i + 1 < bytes; i += 2)
         *p->data = (uint16_t)(pixels[i] | pixels[i + 1] << 8); /* RGB565, little-endian */
-    return 0;
+    return HAL_OK;
 }
 
-const mcu_panel_api panel_ssd1963_api = {begin_frame, line_out, 0};
+static const hal_display_api panel_ssd1963_api = {
+    .name = "ssd1963",
+    .begin_frame = begin_frame,
+    .line_out = line_out,
+};

@@ -14,17 +14,17 @@
 #include "mcu_display.h"
 
 typedef struct panel_ssd1963 {
+    hal_display d;            /* first: the operations get &p->d; d.width, d.height: the glass */
     volatile uint16_t *cmd;   /* bus address with D/C = 0 */
     volatile uint16_t *data;  /* bus address with D/C = 1 */
     void (*delay_us)(uint32_t us);
-    int width, height;        /* glass geometry */
 } panel_ssd1963;
 
-extern const mcu_panel_api panel_ssd1963_api;
-
-/* Resets and configures the controller for a 4.3" 480x272 TFT (PLL from a
- * 10 MHz crystal to 100 MHz, 9 MHz pixel clock, RGB565 on a 16-bit bus)
- * and turns the display on. */
-void panel_ssd1963_init(panel_ssd1963 *p);
+/* Resets and configures the controller for a 4.3" width x height (480x272)
+ * TFT (PLL from a 10 MHz crystal to 100 MHz, 9 MHz pixel clock, RGB565 on a
+ * 16-bit bus) and turns the display on; cmd, data and delay_us are set. A
+ * frame's window (display.h) becomes the controller's column and page
+ * address window, so only its pixels cross the bus. */
+void panel_ssd1963_init(panel_ssd1963 *p, int width, int height);
 
 #endif /* PANEL_SSD1963_H */

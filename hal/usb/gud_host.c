@@ -64,6 +64,7 @@ typedef struct gud_host {
     bool connected;
     uint64_t next_attempt_ns, connects;
     int quiet_failures; /* reconnect attempts since the last message */
+    hal_frame_stats unpresented;
     char why[200];      /* detail of the last failed transfer */
 } gud_host;
 
@@ -664,6 +665,8 @@ static hal_status gud_begin_frame(hal_display *d, const hal_window *win)
                         g->bus, g->address, g->width, g->height, gud_format_name(g->format),
                         g->lz4 ? " lz4" : "");
     }
+    if (!d->st)
+        d->st = &g->unpresented; /* pushed without hal_display_present: counts go nowhere */
     g->band_n = 0;
     return HAL_OK;
 }
@@ -683,9 +686,9 @@ static hal_status gud_line_out(hal_display *d, int y, const uint8_t *px, size_t 
         memcpy(g->band + (size_t)g->band_n * g->pitch, px, g->pitch);
         g->band_hash[g->band_n++] = h;
         if (g->band_n == g->band_cap)
-            s = flush_band(g, &d->st);
+            s = flush_band(g, d->st);
     } else if (g->band_n) {
-        s = flush_band(g, &d->st);
+        s = flush_band(g, d->st);
     }
     if (s == HAL_ERR_NO_DEVICE)
         return hal_display_fail(d, s, "display disconnected: %s", g->why);
@@ -695,7 +698,7 @@ static hal_status gud_line_out(hal_display *d, int y, const uint8_t *px, size_t 
 static hal_status gud_end_frame(hal_display *d)
 {
     gud_host *g = (gud_host *)d;
-    hal_status s = flush_band(g, &d->st);
+    hal_status s = flush_band(g, d->st);
     if (s == HAL_ERR_NO_DEVICE)
         return hal_display_fail(d, s, "display disconnected: %s", g->why);
     return s;

@@ -48,8 +48,6 @@
 
 static char cmdline[256];
 static panel_semihost dump_panel;
-static mcu_panel panel = {"semihost-dump", BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT,
-                          &panel_semihost_api, &dump_panel};
 static uint32_t timer_last;
 static uint64_t timer_ticks;
 
@@ -87,7 +85,7 @@ void board_init(void)
         cmdline[0] = 0;
     char dir[96];
     fw_arg(cmdline, "dump", dir, sizeof dir);
-    panel_semihost_init(&dump_panel, dir);
+    panel_semihost_init(&dump_panel, dir, BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT);
     uint32_t drop = 0;
     if (fw_arg(cmdline, "rxdrop", dir, sizeof dir))
         fw_parse_u32(dir, &drop);
@@ -135,9 +133,9 @@ const char *board_cmdline(void)
     return cmdline;
 }
 
-const mcu_panel *board_panel(void)
+hal_display *board_panel(void)
 {
-    return &panel;
+    return &dump_panel.d;
 }
 
 void board_exit(int status)

@@ -15,8 +15,6 @@
 
 static char cmdline[256];
 static panel_semihost dump_panel;
-static mcu_panel panel = {"semihost-dump", BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT,
-                          &panel_semihost_api, &dump_panel};
 
 void board_init(void)
 {
@@ -26,7 +24,7 @@ void board_init(void)
         cmdline[0] = 0;
     char arg[96];
     fw_arg(cmdline, "dump", arg, sizeof arg);
-    panel_semihost_init(&dump_panel, arg);
+    panel_semihost_init(&dump_panel, arg, BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT);
     uint32_t drop = 0;
     if (fw_arg(cmdline, "rxdrop", arg, sizeof arg))
         fw_parse_u32(arg, &drop);
@@ -43,9 +41,9 @@ const char *board_cmdline(void)
     return cmdline;
 }
 
-const mcu_panel *board_panel(void)
+hal_display *board_panel(void)
 {
-    return &panel;
+    return &dump_panel.d;
 }
 
 void board_exit(int status)

@@ -23,14 +23,10 @@
 #define PORT_E 4u
 
 static panel_ssd1963 tft;
-static mcu_panel panel = {"ssd1963", BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, &panel_ssd1963_api,
-                          &tft};
 
 static void delay_us(uint32_t us)
 {
-    uint64_t end = board_time_us() + us;
-    while (board_time_us() < end)
-        ;
+    hal_wait_until(&board_clock, hal_now(&board_clock) + (uint64_t)us * 1000u);
 }
 
 void board_init(void)
@@ -49,9 +45,7 @@ void board_init(void)
     tft.cmd = (volatile uint16_t *)0x60000000u;
     tft.data = (volatile uint16_t *)0x60020000u;
     tft.delay_us = delay_us;
-    tft.width = BOARD_PANEL_WIDTH;
-    tft.height = BOARD_PANEL_HEIGHT;
-    panel_ssd1963_init(&tft);
+    panel_ssd1963_init(&tft, BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT);
 }
 
 void board_console_write(const char *text)
@@ -64,9 +58,9 @@ const char *board_cmdline(void)
     return "";
 }
 
-const mcu_panel *board_panel(void)
+hal_display *board_panel(void)
 {
-    return &panel;
+    return &tft.d;
 }
 
 void board_exit(int status)
