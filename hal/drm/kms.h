@@ -7,8 +7,9 @@
  * connector lacks is refused, naming the modes it has). It scans out two
  * dumb buffers in turn (double buffering): lines are written into the back
  * buffer, in XRGB8888 or in RGB565 (when the primary plane takes only
- * that, or the driver prefers 16-bit dumb buffers), as celfw pulls them, and the back buffer is shown with a page
- * flip: an atomic commit whose FB_DAMAGE_CLIPS name the changed bands where
+ * that, or the driver prefers 16-bit dumb buffers), as they are pushed
+ * (hal/display.h: begin_frame, line_out, end_frame), and the back buffer
+ * is shown with a page flip: an atomic commit whose FB_DAMAGE_CLIPS name the changed bands where
  * the driver has atomic modesetting and that property, else a legacy flip.
  * A driver that refuses flips gets one buffer, and the changed bands go to
  * it as DirtyFB damage clips if it takes them.
@@ -22,7 +23,7 @@
  * such as a desktop, holds as DRM master), a connector with nothing
  * connected, a connector that reports disconnected mid-run (checked every
  * probe_ms) or ioctls that fail with ENODEV (the card went away) turn
- * present() into a cheap HAL_ERR_NO_DEVICE; the backend retries every
+ * each frame's begin_frame into a cheap HAL_ERR_NO_DEVICE; the backend retries every
  * reconnect_ms and repaints the whole frame once the screen is back. With
  * `wait` it starts that way too, when the screen is not there at start.
  */
