@@ -9,8 +9,8 @@
  * reads (then every recorded wire change carries an exact time).
  *
  * Clocks: hal_clock_monotonic and hal_clock_realtime on a POSIX host
- * (hal/host/clock_host.c); on a microcontroller the board's timer
- * (firmware/boards/board_api.h, board_clock).
+ * (hal/host/clock_host.c); on a microcontroller board_clock, the board's
+ * timer (declared in firmware/boards/board_api.h, made in firmware/fw_clock.c).
  */
 #ifndef HAL_CLOCK_H
 #define HAL_CLOCK_H
