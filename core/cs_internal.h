@@ -11,7 +11,7 @@
 
 #include <float.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 
 /* Identical bytes on every target need every float operation rounded to
  * float as it happens: x87 code (i386 without SSE) keeps excess precision
@@ -322,7 +322,7 @@ static inline float cs__solve_level_from(const float *num, const float *den, int
  * writes the next segment to *out, or returns false after the last. The
  * arrays and the map must outlive the iteration.
  */
-/* cs__contour_iter is in celscan.h: the frame keeps it in the workspace
+/* cs__contour_iter is in celscan_private.h: the frame keeps it in the workspace
  * (cs_frame_data), off the stack. */
 cs_status cs__contour_begin(cs__contour_iter *it, const cs_point *points, const float *intervals,
                             int count, int degree, const cs_affine *to_device, uint16_t region,
