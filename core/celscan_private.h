@@ -296,7 +296,7 @@ typedef struct cs_stream {
     uint32_t rec_len, rec_pos, fixed_len, fill, word;
     uint32_t float_count, float_index, base, count, width, slot;
     float key_time;
-    uint16_t rec_type;
+    uint8_t rec_kind;           /* the record's row in cs__rec_kinds (cs_stream_apply.c) */
     uint8_t state, parse, mode, rec_flags;
     uint8_t win_pos, win_count, queued;
     bool has_scene, commit_ready, in_garbage, seen_commit, txn_failed;
