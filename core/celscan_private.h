@@ -258,6 +258,12 @@ typedef char cs__index_fits_[(CS_CFG_MAX_PIECES <= (cs_index)-1 &&
 /* A region's active pieces are numbered in 16 bits (cs_crossing.piece). */
 typedef char cs__piece_fits_[CS_CFG_MAX_PIECES <= 65536 ? 1 : -1];
 
+/* A run of a cache line (cs_cache): pixels [x, x+len) share the (E, T) map. */
+typedef struct cs_cache_run {
+    uint16_t x, len;        /* pixels [x, x+len) share the map */
+    float E[3], T[3];
+} cs_cache_run;
+
 /* The context of one frame. Set up by cs_frame_begin; fields are private. */
 typedef struct cs_renderer {
     const cs_scene *scene;
