@@ -27,7 +27,6 @@
 #include "../host-sim/scene_json.h"
 #include "../tools/svg/sv.h"
 #include "../tools/svg/sv_gradient.h"
-#include "celscan_private.h"
 #include "svg_test.h"
 
 #define N 64

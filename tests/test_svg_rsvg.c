@@ -28,7 +28,6 @@
 
 #include "../tools/svg/sv.h"
 #include "../tools/svg/sv_render.h"
-#include "celscan_private.h"
 #include "svg_test.h"
 
 extern char **environ;
