@@ -16,12 +16,13 @@
  *     transaction was cut short because a sender restarted (a new header
  *     inside a body drops the old transaction instead of eating the new
  *     one). A header's length field is trusted only once its CRC matched.
- *   - Records are applied to the back scene store as they stream in
- *     (cs_stream_apply.c), through the same cs_scene_* calls the JSON
- *     loader uses, so a stream and its JSON give identical stores. Bulk
- *     data (control points, keys) is read straight into the free end of the
- *     store's arrays, or in place for a same-size point update, and then
- *     checked and adopted by those calls, so no record size needs a buffer.
+ *   - Records are read and applied to the back scene store as they stream
+ *     in, each by its type's row in one table (cs_stream_apply.c), through
+ *     the same cs_scene_* calls the JSON loader uses, so a stream and its
+ *     JSON give identical stores. Bulk data (control points, keys) is read
+ *     straight into the free end of the store's arrays, or in place for a
+ *     same-size point update, and then checked and adopted by those calls,
+ *     so no record size needs a buffer.
  *     A patch transaction first copies the front scene into the back store.
  *   - Nothing of a transaction becomes visible until its CRC trailer has
  *     matched and every record was accepted; then feeding pauses with
@@ -245,8 +246,8 @@ static void finish_record(cs_stream *s)
 {
     cs_error where;
     cs__error(&where, CS_OK, -1, -1, -1, -1);
-    cs_status (*apply)(cs_stream *, cs_error *) = cs__rec_kinds[s->rec_kind].apply;
-    cs_status st = apply ? apply(s, &where) : CS_OK;
+    const cs__rec_kind *k = &cs__rec_kinds[s->rec_kind];
+    cs_status st = k->apply ? k->apply(s, &where) : CS_OK;
     if (st != CS_OK) {
         where.status = st;
         fail(s, st, cs_status_str(st), &where);
