@@ -174,11 +174,11 @@ HOST_TEST_REF_OBJ := $(patsubst tests/%.c,$(HOST)/tests/%.o,$(TEST_REF_SRC))
 ASAN_TEST_REF_OBJ := $(patsubst tests/%.c,$(ASAN)/tests/%.o,$(TEST_REF_SRC))
 ASAN_CORE_OBJ := $(patsubst core/%.c,$(ASAN)/core/%.o,$(CORE_SRC))
 
-# tests/README.md lists every test file (tests/readme_check.sh).
+# tests/README.md lists every test file, and its example program passes (tests/readme_check.sh).
 .PHONY: test-unit test-asan test-readme
-test-readme:
-	$(Q)sh tests/readme_check.sh
-TEST_CMDS += "sh tests/readme_check.sh"
+test-readme: $(HOST)/libcelscan.a
+	$(Q)sh tests/readme_check.sh $(HOST)/libcelscan.a
+TEST_CMDS += "sh tests/readme_check.sh $(HOST)/libcelscan.a"
 
 .SECONDARY: $(patsubst %,%.o,$(HOST_TESTS) $(ASAN_TESTS)) $(HOST_TEST_REF_OBJ) $(ASAN_TEST_REF_OBJ)
 test-unit: $(HOST_TESTS)

@@ -21,7 +21,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "cli_num.h"
 
 #define PI 3.14159265358979323846

@@ -23,7 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 
 #include "outline.h"
 #include "peer_agg.h"

@@ -26,7 +26,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "cli_num.h"
 
 static cs_scene scene;

@@ -2,26 +2,19 @@
  * celscan.h - the public API of the celscan core renderer.
  *
  * celscan scan-converts stacks of cels (transparent sheets of painted regions
- * bounded by closed NURBS curves) one display line at a time, following Willis
- * & Oddy, "Rendering NURB Regions for 2D Animation" (Eurographics '92). Every
- * curve becomes rational polynomial segments (X(u), Y(u), W(u)); each
- * scanline is intersected analytically with the segments; crossings become
- * spans with real endpoints; spans become exact horizontal coverage; cels are
- * composited front to back in the beta colour model. No frame buffer exists:
- * working memory is O(width).
+ * bounded by closed NURBS curves) one display line at a time, after Willis &
+ * Oddy, "Rendering NURB Regions for 2D Animation" (Eurographics '92): curves
+ * become rational polynomial segments, each scanline meets them analytically,
+ * spans get exact horizontal coverage, and cels are composited front to back
+ * in the beta colour model. No frame buffer: working memory is O(width).
  *
  * The core is freestanding: no libc, no libm, no allocation, no mutable
- * globals. The caller owns all memory:
- *   - cs_scene      the scene store (what a commit makes visible), with its
- *                   keyframe tracks; a board keeps two for the stream,
- *   - cs_workspace  per-render scratch (segment arena, line buffers),
- *   - cs_renderer   the small context tying them together for one frame,
- *   - cs_stream     the cel stream decoder's state (docs/STREAM.md).
- * Capacities are compile-time configuration (cs_config.h).
- *
- * Every function that can fail returns a cs_status; CS_OK is zero. Where the
- * failure has a location (a cel, region, contour, point), a cs_error filled by
- * the call says where.
+ * globals. The caller owns all memory, in the four structs declared below
+ * and laid out in celscan_private.h (included by a caller that places them
+ * or reads a scene's arrays); capacities are compile-time configuration
+ * (cs_config.h). Every function that can fail returns a cs_status (CS_OK is
+ * zero) and, where the failure has a location, fills a cs_error. This header
+ * says what each call does; docs/API.md says the rest (why, and the cases).
  */
 #ifndef CELSCAN_H
 #define CELSCAN_H
@@ -35,6 +28,11 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+typedef struct cs_scene cs_scene;         /* the scene store, with its keyframe tracks */
+typedef struct cs_workspace cs_workspace; /* per-render scratch (segment arena, line buffers) */
+typedef struct cs_renderer cs_renderer;   /* the small context of one frame */
+typedef struct cs_stream cs_stream;       /* the cel stream decoder (docs/STREAM.md) */
 
 /* ---------------------------------------------------------------- status */
 
@@ -89,12 +87,8 @@ typedef enum cs_status {
 /* A short English description of a status ("weight not > 0"). Never NULL. */
 const char *cs_status_str(cs_status status);
 
-/*
- * Where a failure happened. Indices are -1 where they do not apply: a bad
- * control point of cel 2, region 0, contour 1, point 4 has cel=2 region=0
- * contour=1 item=4. `item` indexes points, or knot intervals for
- * CS_ERR_INTERVAL / CS_ERR_ZERO_RUN.
- */
+/* Where a failure happened, -1 where an index does not apply; `item` is a
+ * point, or a knot interval for CS_ERR_INTERVAL / CS_ERR_ZERO_RUN. */
 typedef struct cs_error {
     cs_status status;
     int32_t cel, region, contour, item;
@@ -109,29 +103,18 @@ typedef struct cs_point {
     float x, y, w;
 } cs_point;
 
-/*
- * A beta-model paint, every component in linear light, 0..1.
- * Seen by the camera it maps light L from behind to
- *   E + T*L with E = beta*pigment*F + (1-beta)*medium*B, T = (1-beta)*medium.
- */
+/* A beta-model paint, linear light 0..1: it maps light L from behind to E + T*L,
+ * E = beta*pigment*F + (1-beta)*medium*B, T = (1-beta)*medium. */
 typedef struct cs_paint {
     float pigment[3];
     float medium[3];
     float beta;
 } cs_paint;
 
-/*
- * Functional paints. Any of a paint's three fields may be a function of
- * position instead of a constant: a linear or radial gradient, or a small
- * bilinear colour map (the paper's "colouring mapped from a colour space").
- * Geometry is in the cel's own canvas units, so it moves with the cel
- * transform. Values are linear light in 0..1; a beta function uses value[0].
- */
-typedef enum cs_paint_field {
-    CS_FIELD_PIGMENT = 0,
-    CS_FIELD_MEDIUM = 1,
-    CS_FIELD_BETA = 2
-} cs_paint_field;
+/* Functional paints: a paint field as a gradient or colour map of position in
+ * the cel's canvas units; values linear light 0..1 (beta: value[0]). */
+typedef enum cs_paint_field { CS_FIELD_PIGMENT = 0, CS_FIELD_MEDIUM = 1, CS_FIELD_BETA = 2 }
+    cs_paint_field;
 
 typedef enum cs_func_kind {
     CS_FUNC_LINEAR = 1, /* geom: x0 y0 x1 y1; t = 0 at (x0,y0), 1 at (x1,y1) */
@@ -150,13 +133,9 @@ typedef struct cs_stop {
     float value[3]; /* linear light 0..1 */
 } cs_stop;
 
-/*
- * LINEAR and RADIAL interpolate between stops (1..CS_CFG_MAX_STOPS) at t.
- * MAP places the unit square at origin o with edges u and v (canvas units);
- * stops[row * map_cols + col] is the value at o + u*col/(cols-1) +
- * v*row/(rows-1), rows = stop_count / map_cols, and between nodes values are
- * interpolated bilinearly. Spread applies to t (MAP: to both axes).
- */
+/* LINEAR, RADIAL: stops (1..CS_CFG_MAX_STOPS) interpolated at t. MAP: stops
+ * [row * map_cols + col] on the grid o + u*col/(cols-1) + v*row/(rows-1),
+ * bilinear between nodes (docs/API.md). Spread applies to t (MAP: both axes). */
 typedef struct cs_paint_func {
     uint8_t kind;       /* cs_func_kind */
     uint8_t spread;     /* cs_spread */
@@ -166,19 +145,8 @@ typedef struct cs_paint_func {
     cs_stop stops[CS_CFG_MAX_STOPS];
 } cs_paint_func;
 
-/* A closed periodic NURBS: points[first .. first+count) of the scene. */
-typedef struct cs_contour {
-    uint32_t first_point;
-    uint16_t point_count;
-    uint8_t degree;
-    uint8_t operand;   /* CSG operand it belongs to (0 unless set) */
-} cs_contour;
-
-/*
- * CSG programs are RPN: a token >= 0 pushes "inside operand n" (the region's
- * fill rule applied to the winding of the contours of operand n), a
- * negative token pops b then a and pushes the operator applied to a, b.
- */
+/* CSG programs are RPN: a token n >= 0 pushes "inside operand n" (the fill
+ * rule on its contours' winding); an operator pops b, a and pushes a op b. */
 enum {
     CS_CSG_UNION = -1,      /* a or b */
     CS_CSG_INTERSECT = -2,  /* a and b */
@@ -186,218 +154,84 @@ enum {
     CS_CSG_XOR = -4         /* a xor b */
 };
 
-typedef struct cs_region {
-    uint32_t first_contour;
-    uint16_t contour_count;
-    uint8_t fill_rule; /* cs_fill_rule */
-    uint8_t csg_len;   /* 0: one fill over all contours; else RPN length */
-    cs_paint paint;
-    uint16_t func[3];  /* per cs_paint_field: 0 constant, else 1 + index in scene funcs */
-    uint8_t csg[CS_CFG_MAX_CSG]; /* operand n as n, operator k (-k in the API) as 0x80|k */
-} cs_region;
-
 /* An affine map x' = a x + c y + e, y' = b x + d y + f (SVG order a b c d e f). */
 typedef struct cs_affine {
     float a, b, c, d, e, f;
 } cs_affine;
 
-typedef struct cs_cel {
-    uint32_t first_region;
-    uint16_t region_count;
-    bool has_front;   /* false: the front light defaults to the stack's */
-    uint8_t parent;   /* cel group: the cel whose transform and opacity apply after this
-                         cel's own (cs_scene_set_cel_parent); CS_NO_PARENT: none. One byte,
-                         in what was padding: cels number at most 255 */
-    cs_affine transform;
-    float front[3];   /* linear light multipliers */
-    float back[3];    /* lights only this cel's own paint; default black */
-} cs_cel;
-
 /* No parent (cs_cel.parent): the cel is in no group. */
 #define CS_NO_PARENT 0xFFu
 
 /*
- * What a keyframe track animates, and the floats of one key (its width):
- *   CS_TRACK_TRANSFORM     a cel's transform          a b c d e f         6
- *   CS_TRACK_CEL_LIGHTS    a cel's lights             front[3] back[3]    6
- *   CS_TRACK_PAINT         a region's paint           pigment[3] medium[3] beta  7
- *   CS_TRACK_POINTS        a contour's control points x y w per point     3 * points
- *   CS_TRACK_STACK_LIGHTS  the stack's lights         front[3] back[3]    6
- *   CS_TRACK_BACKGROUND    the background card        rgb[3] (linear)     3
- *   CS_TRACK_TRS           a cel's transform as parts px py ax ay sx sy       10
- *                          rot skew skew_axis opacity
- * The target is the cel, region or contour index in the store (regions and
- * contours counted over the whole scene), or 0 for the stack-wide kinds. An
- * animated cel front light replaces the stack default, as a static one does.
- *
- * A TRS track interpolates a cel's transform by its parts, so a turn keeps
- * its size: M = T(p) R(rot) K(skew, skew_axis) S(sx, sy) T(-a), angles in
- * degrees (positive turns x towards y), K = R(axis) [1 tan(skew); 0 1]
- * R(-axis), |skew| <= 85. It replaces the cel's transform (static or
- * CS_TRACK_TRANSFORM) while it has keys. `opacity` (0..1) multiplies the
- * beta of the cel's paints (and, through cel groups, of its children's).
+ * What a keyframe track animates (its target: a cel, region or contour index
+ * over the whole store, 0 for the stack), and the floats of one key:
+ *   TRANSFORM     a b c d e f (6)          CEL_LIGHTS, STACK_LIGHTS  front[3] back[3] (6)
+ *   PAINT         pigment[3] medium[3] beta (7)   BACKGROUND  rgb[3] (3)
+ *   POINTS        x y w per point (3 * points)
+ *   TRS           px py ax ay sx sy rot skew skew_axis opacity (10): the
+ *                 transform by its parts, so a turn keeps its size (docs/API.md)
  */
 typedef enum cs_track_kind {
-    CS_TRACK_TRANSFORM = 0,
-    CS_TRACK_CEL_LIGHTS = 1,
-    CS_TRACK_PAINT = 2,
-    CS_TRACK_POINTS = 3,
-    CS_TRACK_STACK_LIGHTS = 4,
-    CS_TRACK_BACKGROUND = 5,
-    CS_TRACK_TRS = 6,
-    CS_TRACK_KIND_COUNT_
+    CS_TRACK_TRANSFORM = 0, CS_TRACK_CEL_LIGHTS = 1, CS_TRACK_PAINT = 2, CS_TRACK_POINTS = 3,
+    CS_TRACK_STACK_LIGHTS = 4, CS_TRACK_BACKGROUND = 5, CS_TRACK_TRS = 6, CS_TRACK_KIND_COUNT_
 } cs_track_kind;
 
-/*
- * Interpolation between two keys, with s = (t - t0) / (t1 - t0) in [0,1]:
- * linear uses s, smooth uses smoothstep 3s^2 - 2s^3 (zero velocity at the
- * keys), hold keeps the earlier key's value until the next key. Before the
- * first key and after the last the value holds.
- *
- * CS_EASE_CUBIC gives every key segment its own easing: each key's values
- * are preceded by four floats x1 y1 x2 y2, the CSS / Lottie cubic Bezier
- * from (0,0) to (1,1) through (x1,y1), (x2,y2) that eases the segment from
- * that key to the next (x1, x2 in 0..1, y1, y2 in -2..3); x1 = -1 with
- * y1 = x2 = y2 = 0 makes the segment a hold. The eased s may leave 0..1
- * (overshoot) on transform, TRS and points tracks; on the others it is
- * clamped to 0..1.
- */
+/* Between keys, s = (t - t0) / (t1 - t0): linear s, smooth 3s^2 - 2s^3, hold the
+ * earlier key; CUBIC: each key's values follow x1 y1 x2 y2, the CSS / Lottie
+ * cubic Bezier to the next key (docs/API.md). Values hold outside the keys. */
 typedef enum cs_ease {
-    CS_EASE_LINEAR = 0,
-    CS_EASE_SMOOTH = 1,
-    CS_EASE_HOLD = 2,
-    CS_EASE_CUBIC = 3,
-    CS_EASE_COUNT_
+    CS_EASE_LINEAR = 0, CS_EASE_SMOOTH = 1, CS_EASE_HOLD = 2, CS_EASE_CUBIC = 3, CS_EASE_COUNT_
 } cs_ease;
 /* Floats of easing before each key's values on a CS_EASE_CUBIC track. */
 #define CS_EASE_CUBIC_FLOATS 4
 
-/* A track's keys: times key_times[first_key ..], values key_values[first_value ..]. */
-typedef struct cs_track {
-    uint32_t target;
-    uint32_t first_key;
-    uint32_t first_value;
-    uint32_t width;      /* floats per key: the value's, plus CS_EASE_CUBIC_FLOATS on a
-                            CS_EASE_CUBIC track */
-    uint16_t key_count;
-    uint8_t kind;        /* cs_track_kind */
-    uint8_t ease;        /* cs_ease */
-} cs_track;
-
-/*
- * The scene store. Cels, regions, contours and points are in front-to-back
- * order: cel 0 is front-most, and within a cel region 0 is front-most.
- * Build it with cs_scene_init and the cs_scene_add_* calls; each call
- * validates its input completely before it changes the store, so a rejected
- * call leaves the scene exactly as it was.
- *
- * Tracks are kept sorted by (kind, target), at most one per pair, so the
- * renderer finds a cel's or contour's track by binary search.
- */
-typedef struct cs_scene {
-    float canvas_w, canvas_h;
-    bool has_background;
-    uint8_t blend;       /* cs_blend the scene asks for (imported SVG: sRGB); see cs_render_opts */
-    uint64_t epoch_ns;   /* wall-clock time of animation time 0, ns since 1970 UTC; 0: none */
-    float background[3]; /* linear light */
-    float stack_front[3];
-    float stack_back[3];
-    uint32_t cel_count, region_count, contour_count, point_count, func_count;
-    uint32_t track_count, key_count, value_count;
-    uint32_t open_track; /* the track cs_scene_add_key appends to; UINT32_MAX: none */
-    cs_cel cels[CS_CFG_MAX_CELS];
-    cs_region regions[CS_CFG_MAX_REGIONS];
-    cs_contour contours[CS_CFG_MAX_CONTOURS];
-    cs_point points[CS_CFG_MAX_POINTS];
-    float intervals[CS_CFG_MAX_POINTS]; /* knot interval k of each contour, parallel to points */
-    cs_paint_func funcs[CS_CFG_MAX_FUNCS];
-    cs_track tracks[CS_CFG_MAX_TRACKS];
-    float key_times[CS_CFG_MAX_KEYS];
-    float key_values[CS_CFG_MAX_KEY_VALUES];
-} cs_scene;
+/* ------------------------------------------------------ building a scene */
+/* Cel 0 is front-most, and within a cel region 0. A rejected call leaves the
+ * scene exactly as it was. */
 
 /* Empties the scene and sets its canvas. Lights default to front 1, back 0. */
 cs_status cs_scene_init(cs_scene *scene, float canvas_w, float canvas_h);
-
 /* An opaque card lit by the stack front light stands behind every cel. */
 cs_status cs_scene_set_background(cs_scene *scene, const float rgb_linear[3]);
 cs_status cs_scene_set_lights(cs_scene *scene, const float front[3], const float back[3]);
-
-/*
- * Appends a cel behind those already present. `front` may be NULL (use the
- * stack front light), `back` may be NULL (black).
- */
+/* Appends a cel behind the others. `front` NULL: the stack's; `back` NULL: black. */
 cs_status cs_scene_add_cel(cs_scene *scene, const cs_affine *transform, const float front[3],
                            const float back[3], cs_error *err);
-
 /* Appends a region to the last cel, behind its earlier regions. */
 cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint *paint,
                               cs_error *err);
-
-/*
- * Appends a closed periodic NURBS contour of `degree` (1..3) with `count`
- * control points to the last region. `intervals` holds `count` knot intervals
- * (t(k+1) - t(k) = intervals[k mod count]) or is NULL for all ones. At most
- * degree-1 zero intervals may stand in a row, cyclically.
- */
+/* Appends a closed periodic NURBS of `degree` (1..3) to the last region; `intervals`:
+ * `count` knot intervals, NULL for all ones; at most degree-1 zeros in a row. */
 cs_status cs_scene_add_contour(cs_scene *scene, int degree, int count, const cs_point *points,
                                const float *intervals, cs_error *err);
-
-/*
- * Makes field `field` of the last region's paint the function `fn` (copied
- * into the scene; setting a field again replaces its function). The
- * region's constant value for that field is then unused. Rejects stops out
- * of order or range, degenerate geometry (p0 = p1, r <= 0, focal point not
- * strictly inside the circle, a map with parallel edges) with CS_ERR_FUNC.
- */
+/* Makes `field` of the last region's paint the function `fn` (copied; again:
+ * replaced). Bad stops or degenerate geometry: CS_ERR_FUNC. */
 cs_status cs_scene_set_region_func(cs_scene *scene, cs_paint_field field, const cs_paint_func *fn,
                                    cs_error *err);
-
-/*
- * Gives the last region a CSG program of `len` (1..CS_CFG_MAX_CSG) RPN
- * tokens: operands 0..CS_CFG_MAX_OPERANDS-1 and CS_CSG_* operators. The
- * program must leave exactly one value on the stack. err->item names the
- * offending token.
- */
+/* Gives the last region a CSG program of `len` (1..CS_CFG_MAX_CSG) tokens that
+ * leaves one value on the stack; err->item names a bad token. */
 cs_status cs_scene_set_region_csg(cs_scene *scene, const int *rpn, int len, cs_error *err);
-
 /* Puts the last contour into CSG operand `operand` (default 0). */
 cs_status cs_scene_set_contour_operand(cs_scene *scene, int operand, cs_error *err);
+
 /* ------------------------------------------------------------ animation */
 
-/*
- * Adds a keyframe track for `target` (see cs_track_kind) with no keys yet;
- * cs_scene_add_key then appends its keys. A track of the same kind and
- * target already present is replaced. The target must exist; a points track
- * needs a contour of at most CS_CFG_MAX_ANIM_POINTS points. Errors name the
- * target (cel, region, contour) in `err`.
- */
+/* Adds a track with no keys yet for an existing target, replacing one of the
+ * same kind and target; cs_scene_add_key appends its keys. */
 cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t target, cs_ease ease,
                              cs_error *err);
-
-/*
- * Appends a key to the track added last. `values` holds the track's width
- * in floats (cs_scene_track_width; on a CS_EASE_CUBIC track preceded by
- * the key's four easing floats), checked as the static value would be:
- * finite transforms within the coordinate limit, lights >= 0, paints in
- * 0..1, points as for cs_scene_add_contour. Times are finite and strictly
- * increasing; `err->item` is the key's index on failure.
- */
+/* Appends a key to the track added last: cs_scene_track_width floats, checked
+ * as static values are; times strictly increasing (err->item: the key). */
 cs_status cs_scene_add_key(cs_scene *scene, float time, const float *values, cs_error *err);
-
 /* Floats per key of a track of `kind` on `target`, or 0 if there cannot be one. */
 uint32_t cs_scene_track_width(const cs_scene *scene, cs_track_kind kind, uint32_t target);
-
 /* Removes the track of `kind` on `target`, if there is one (no track is not an error). */
 cs_status cs_scene_remove_track(cs_scene *scene, cs_track_kind kind, uint32_t target,
                                 cs_error *err);
 
 /* ------------------------------------------------------------- editing */
-/*
- * Changes to a built scene, what the cel stream's patch records do. Each
- * validates like the builder calls and leaves the store unchanged on error.
- * Regions and contours are indexed over the whole scene.
- */
+/* Changes to a built scene (what stream patches do), validated as the builder
+ * calls are. Regions and contours are indexed over the whole scene. */
 cs_status cs_scene_set_canvas(cs_scene *scene, float canvas_w, float canvas_h);
 cs_status cs_scene_clear_background(cs_scene *scene);
 cs_status cs_scene_set_transform(cs_scene *scene, uint32_t cel, const cs_affine *transform,
@@ -407,27 +241,14 @@ cs_status cs_scene_set_cel_lights(cs_scene *scene, uint32_t cel, const float fro
                                   const float back[3], cs_error *err);
 cs_status cs_scene_set_paint(cs_scene *scene, uint32_t region, cs_fill_rule rule,
                              const cs_paint *paint, cs_error *err);
-/*
- * New control points for a contour of the same point count; `intervals`
- * NULL keeps its knot intervals. `points`/`intervals` may be the store's own
- * arrays for that contour (checked in place).
- */
+/* New points for a contour of the same count (`intervals` NULL: kept); they
+ * may be the store's own arrays. */
 cs_status cs_scene_set_points(cs_scene *scene, uint32_t contour, int count,
                               const cs_point *points, const float *intervals, cs_error *err);
-/*
- * Removes a cel with its regions, contours, points and every track on them;
- * later cels, regions and contours move down one index.
- */
+/* Removes a cel with its regions, contours, points and tracks; later ones move down. */
 cs_status cs_scene_remove_cel(cs_scene *scene, uint32_t cel, cs_error *err);
-/*
- * Cel groups: makes cel `parent` the group of cel `cel` (CS_NO_PARENT: none).
- * The cel's device transform is then the parent's (with its parent's, and
- * so on) times its own, and its paints' beta is multiplied by the opacity
- * of every TRS track up the chain. A parent is usually a cel with no
- * regions. Refused with CS_ERR_GROUP if it would make a cycle or a chain of
- * more than CS_CFG_MAX_GROUP_DEPTH cels. Removing a cel leaves its children
- * without a parent.
- */
+/* Cel groups: cel `cel` moves and fades with cel `parent` (CS_NO_PARENT: none);
+ * a cycle or a chain deeper than CS_CFG_MAX_GROUP_DEPTH is CS_ERR_GROUP. */
 cs_status cs_scene_set_cel_parent(cs_scene *scene, uint32_t cel, uint32_t parent, cs_error *err);
 /* Moves cel `from` to stack position `to` (0 = front-most); others keep their order. */
 cs_status cs_scene_move_cel(cs_scene *scene, uint32_t from, uint32_t to, cs_error *err);
@@ -450,13 +271,8 @@ typedef enum cs_blend {
 
 /* The blending space the scene asks for: CS_BLEND_LINEAR (the default) or CS_BLEND_SRGB. */
 cs_status cs_scene_set_blend(cs_scene *scene, cs_blend blend);
-
-/*
- * The wall-clock instant (ns since 1970-01-01 UTC) at which the scene's
- * animation time is 0, or 0 for none. The renderer never reads it: a board
- * whose clock follows the wall clock (celfw --clock realtime) shows time
- * now - epoch, so the boards of a video wall show the same instant.
- */
+/* The wall-clock instant (ns since 1970 UTC) of animation time 0, 0 for none:
+ * for boards that share a clock; the renderer never reads it. */
 cs_status cs_scene_set_epoch(cs_scene *scene, uint64_t epoch_ns);
 
 typedef struct cs_render_opts {
@@ -465,204 +281,20 @@ typedef struct cs_render_opts {
     int subscanlines;   /* for CS_AA_SUBSCAN: 1..CS_CFG_MAX_SUBSCANLINES */
     float time;         /* seconds, for animation */
     cs_blend blend;     /* zero (linear) unless asked */
-    bool no_early_out;  /* true: composite every cel even where the stack is already
-                           opaque. Bit-identical output, only slower: for tests and
-                           for measuring what front-to-back skipping saves. */
-    bool no_grey;       /* true: keep transmittance per channel even when every paint of
-                           the frame transmits grey. Bit-identical output, only slower:
-                           for tests and for measuring what the grey path saves. */
-    /* The viewport: the window [view_x, view_x + view_w) x [view_y, view_y + view_h)
-     * of the width x height output is all that is rendered (one board of a video
-     * wall). The frame is prepared in the whole output's device coordinates, so
-     * every pixel of the window comes out with the bits the whole render gives
-     * it (see cs_coverage.c for the one condition, for a window narrower than the
-     * output: --aa N with N a power of two);
-     * lines are view_w pixels (<= CS_CFG_MAX_WIDTH) while the whole may be up to
-     * CS_CFG_MAX_WALL on a side. Line y and the sink's y count from view_y.
-     * The frame holds only the contours, segments and pieces that reach the
-     * window's rows, so a full-width band of rows is also how a small board
-     * renders a scene larger than its segment arena, band by band.
-     * view_w = view_h = 0: the whole output. */
+    bool no_early_out;  /* true: composite even where the stack is opaque (same bits, slower) */
+    bool no_grey;       /* true: no grey-transmittance path (same bits, slower) */
+    /* The viewport: only [view_x, +view_w) x [view_y, +view_h) of the output is
+     * rendered, with the whole render's bits (docs/API.md); lines are view_w
+     * wide and count from view_y. view_w = view_h = 0: the whole output. */
     int view_x, view_y, view_w, view_h;
 } cs_render_opts;
 
-/*
- * Options with every field set: width x height, 16 sub-scanlines, time 0,
- * linear blending, early-out on. Start from this rather than filling the
- * struct field by field, so that fields added later get their defaults.
- */
+/* Options with every field set (16 sub-scanlines, time 0, linear blending):
+ * start from these, so that fields added later get their defaults. */
 cs_render_opts cs_render_defaults(int width, int height);
-
-/*
- * One rational polynomial segment in device space: for u in [0,1)
- * x(u) = ox + X(u)/W(u), y(u) = oy + Y(u)/W(u), with X(u) = sum x[i] u^i.
- * The origin (ox, oy) is the whole pixel at the segment's start (on the
- * curve), so the coefficients hold the segment's own extent rather than
- * its distance from the screen's corner: a float coefficient's rounding
- * then scales with the segment's size, not with where it is, which the
- * exact-area bound needs on the tallest screens (BENCHMARKS.md).
- */
-typedef struct cs_segment {
-    float x[4], y[4], w[4];
-    int16_t ox, oy;    /* the origin, in pixels (clamped far off screen: any origin is exact) */
-    uint16_t px_lo, px_hi; /* pixels [px_lo, px_hi) that x(u) over [0,1] can touch (its
-                              Bezier hull widened by half a pixel), set by the frame */
-    uint16_t region;   /* index into scene regions */
-    uint8_t degree;
-    bool rational;     /* W varies (w[1..3] not all 0): else x = X / w[0] */
-} cs_segment;
-
-/* Index of a segment or piece in the workspace (CS_CFG_INDEX_TYPE). */
-typedef CS_CFG_INDEX_TYPE cs_index;
-
-/*
- * A y-monotone piece of a segment, u in [u0, u1], y from y_top to y_bot
- * (y_top < y_bot). The end y values are shared exactly with the neighbouring
- * pieces of the contour, so a half-open test y_top <= y < y_bot gives every
- * closed contour an even number of crossings on every scanline.
- */
-typedef struct cs_piece {
-    float u0, u1;
-    float y_top, y_bot;
-    cs_index segment;
-    uint16_t region;   /* copied from the segment: spares an indirection per line */
-    uint8_t operand;   /* winding counter it moves: always 0 without CSG */
-    int8_t dir;        /* +1 if y grows with u, -1 if it falls */
-} cs_piece;
-
-/* A crossing of a piece with a sub-scanline. Aligned to
- * CS_CFG_CROSSING_ALIGN (cs_config.h says why). */
-typedef struct cs_crossing {
-    _Alignas(CS_CFG_CROSSING_ALIGN) float x;
-    float guess;      /* where the piece's root on the next sub-scanline is sought;
-                         interpolated, x on the line's first sub-scanline */
-    float a1, a2, a3; /* interpolated, x on sub-scanline k is guess + k (a1 + k (a2 + k a3));
-                         a3 is NaN when not (cs_cross.c: interp_setup) */
-    uint16_t piece;   /* the piece's place in its region's active list (cs_cross.c) */
-    int8_t dir;
-    uint8_t operand;  /* which winding counter of the region it moves (CSG) */
-} cs_crossing;
-
-/* One end of an arc within a band, for exact-area coverage (cs_exact.c):
- * the point's parameter and x, and the derivatives that place the arc's
- * inner Bezier control points without another evaluation. */
-typedef struct cs_exact_end {
-    float u, x;
-    float dx, dy;         /* x'(u), y'(u) */
-    float w, dwr;         /* W(u), and W'(u) / W(u): 0 for polynomial segments */
-} cs_exact_end;
-
-/* A piece's end at the last row boundary placed, kept for the next row
- * (cs_exact.c): y is that boundary, or -1 before any. */
-typedef struct cs_exact_level {
-    float y;
-    cs_exact_end end;
-} cs_exact_level;
-
-/* Where one active piece is within the current band of a pixel row, for
- * exact-area coverage (cs_exact.c). */
-typedef struct cs_exact_piece {
-    cs_exact_end top, bot; /* the arc's ends at the band's top and bottom */
-    float u_row;          /* u where the piece leaves the row (its end, or the row's bottom) */
-    float dmin, dmax;     /* the arc lies within [dmin, dmax] of its chord, horizontally */
-    float xmin, xmax;     /* x range of the arc's control polygon */
-    float key;            /* x order within the band: x_top + x_bot */
-    uint32_t piece;
-    bool monotone;        /* control polygon x-monotone, so the arc is */
-    bool row_arc;         /* top, bot and the bounds are those of the whole row's arc */
-    bool hidden;          /* behind opaque pixels: only its height counts (cs_exact.c) */
-} cs_exact_piece;
-
-/* A contour being converted to segments one knot span at a time
- * (cs_nurbs.c). Private to the core; it lives in the workspace rather than
- * on the stack, which a 64 KiB board keeps small. */
-typedef struct cs__contour_iter {
-    const cs_point *points;
-    const float *intervals;
-    const cs_affine *to_device;
-    float ymin, ymax;       /* the control points' device y range */
-    int count, degree, j;   /* j: the next knot span to look at */
-    uint16_t region;
-    bool have_basis;        /* basis holds the segment matrix for knots `last` */
-    float basis[4][4], last[8];
-} cs__contour_iter;
-
-/*
- * A prepared frame: what cs_frame_begin computes once and every line only
- * reads. Contents are private to the core.
- */
-typedef struct cs_frame_data {
-    cs_segment segments[CS_CFG_MAX_SEGMENTS];
-    cs_piece pieces[CS_CFG_MAX_PIECES];
-    cs_index order[CS_CFG_MAX_PIECES];   /* pieces sorted by y_top */
-    uint16_t region_cel[CS_CFG_MAX_REGIONS];
-    float region_E[CS_CFG_MAX_REGIONS][3];
-    float region_T[CS_CFG_MAX_REGIONS][3];
-    float func_xf[CS_CFG_MAX_FUNCS][6];   /* device pixel -> function space, per frame */
-    float cel_opacity[CS_CFG_MAX_CELS];   /* TRS opacity up the group chain, per frame */
-    cs__contour_iter contour;             /* the contour being converted (preparation only) */
-} cs_frame_data;
-
-/*
- * Per-render scratch memory. Contents are private to the core.
- */
-typedef struct cs_workspace {
-    cs_frame_data frame; /* the frame prepared in this workspace */
-    /* The frame the lines read: this workspace's own (cs_frame_begin), or
-     * another's (cs_frame_share), which is then only read. */
-    const cs_segment *segments;
-    const cs_piece *pieces;
-    const cs_index *order;
-    const uint16_t *region_cel;
-    const float (*region_E)[3];
-    const float (*region_T)[3];
-    const float (*func_xf)[6];
-    const float *cel_opacity;
-    cs_index active[CS_CFG_MAX_PIECES];  /* active pieces of the line, in piece order */
-    cs_index scratch[CS_CFG_MAX_PIECES]; /* sort scratch */
-    cs_crossing crossings[CS_CFG_MAX_CROSSINGS];
-#if CS_CFG_EXACT
-    cs_exact_piece exact[CS_CFG_MAX_CROSSINGS]; /* a region's pieces on one row (exact AA) */
-    uint32_t exact_order[CS_CFG_MAX_CROSSINGS];  /* those in the band, in x order */
-    cs_exact_level level_memo[CS_CFG_MAX_PIECES]; /* per piece: its last row bottom */
-#endif
-    float area[CS_CFG_MAX_WIDTH + 2];     /* partial coverage of the region, per pixel */
-    float cover[CS_CFG_MAX_WIDTH + 2];    /* coverage deltas, prefix-summed */
-    uint32_t touched[(CS_CFG_MAX_WIDTH + 2 + 31) / 32]; /* area/cover entries written */
-    /* The line as runs (cs_runs.h): run_end and the values below are read
-     * at run starts only, which run_starts marks. */
-    uint32_t run_starts[(CS_CFG_MAX_WIDTH + 32) / 32];
-    uint32_t opaque_bits[(CS_CFG_MAX_WIDTH + 32) / 32]; /* pixels whose stack is opaque */
-    uint16_t run_end[CS_CFG_MAX_WIDTH + 1]; /* x fits 16 bits: see below */
-    float used[CS_CFG_MAX_WIDTH];         /* coverage claimed in the cel so far */
-    float cel_E[CS_CFG_MAX_WIDTH * 3];
-    float cel_A[CS_CFG_MAX_WIDTH * 3];    /* 1 - T of the cel */
-    float stack_E[CS_CFG_MAX_WIDTH * 3];  /* the stack: emitted light, then the pixel */
-    float stack_T[CS_CFG_MAX_WIDTH * 3];
-    cs_point anim_points[CS_CFG_MAX_ANIM_POINTS]; /* one animated contour at frame time */
-} cs_workspace;
-
-/* A cel's parent is one byte (cs_cel.parent), CS_NO_PARENT excluded. */
-typedef char cs__cels_fit_parent_[CS_CFG_MAX_CELS < CS_NO_PARENT ? 1 : -1];
-
-/* Pixel positions are kept in 16 bits (run_end). */
-typedef char cs__width_fits_[CS_CFG_MAX_WIDTH < 65535 ? 1 : -1];
-
-/* Indices must be able to count every piece and segment. */
-typedef char cs__index_fits_[(CS_CFG_MAX_PIECES <= (cs_index)-1 &&
-                              CS_CFG_MAX_SEGMENTS <= (cs_index)-1) ? 1 : -1];
-/* A region's active pieces are numbered in 16 bits (cs_crossing.piece). */
-typedef char cs__piece_fits_[CS_CFG_MAX_PIECES <= 65536 ? 1 : -1];
-/*
- * A cel range pre-combined into run-length (E, T) maps per line (the
- * paper's "static background rendered once"). Lives in a caller's buffer;
- * see cs_cache_build. Fields are read-only for the caller.
- */
-typedef struct cs_cache_run {
-    uint16_t x, len;        /* pixels [x, x+len) share the map */
-    float E[3], T[3];
-} cs_cache_run;
-
+/* A cel range pre-combined into runs of (E, T) maps per line, in a caller's
+ * buffer (cs_cache_build). Fields are read-only for the caller. */
+typedef struct cs_cache_run cs_cache_run; /* one run (celscan_private.h) */
 typedef struct cs_cache {
     cs_status status;       /* CS_OK once built and usable */
     size_t bytes_used;      /* of the buffer */
@@ -674,117 +306,36 @@ typedef struct cs_cache {
     bool grey;              /* every run's T is grey (the same on all channels) */
 } cs_cache;
 
-/* The context of one frame. Set up by cs_frame_begin; fields are private. */
-typedef struct cs_renderer {
-    const cs_scene *scene;
-    cs_workspace *ws;
-    cs_render_opts opts;
-    uint32_t segment_count, piece_count, active_count, next_order;
-    float behind[3];     /* light arriving from behind the whole stack */
-    float sx, sy;        /* canvas to device scale */
-    int next_line;
-    cs_error sticky;     /* first capacity error met while rendering lines */
-    uint32_t cel_begin, cel_end;  /* cels rendered live: [begin, end) minus the cache's */
-    const cs_cache *cache;        /* pre-combined cels composited in their place, or NULL */
-    uint32_t opaque_px;           /* pixels of the line whose stack is opaque */
-    int32_t vx, vy, vw, vh;       /* the window rendered (the whole output without a viewport);
-                                     line pixel i is device column vx + i */
-    float clip_lo, clip_hi;       /* crossings are clamped to these device x (see cs_cross.c) */
-    bool record;                  /* the early-out is on: opaque runs are skipped */
-    bool grey;                    /* every T of the frame is grey: kept in channel 0 alone */
-    bool rows_only;               /* a viewport: the frame keeps only the pieces, segments and
-                                     contours its rows need (cs_frame.c) */
-} cs_renderer;
-
-/*
- * Prepares a frame: evaluates the scene at opts->time (every track sampled,
- * see cs_track_kind and cs_ease), transforms control
- * points to device space, converts every contour to segments and splits them
- * into y-monotone pieces. On failure `err` says which contour.
- */
+/* Prepares a frame: samples every track at opts->time, converts the contours
+ * to device-space segments and y-monotone pieces. `err`: which contour. */
 cs_status cs_frame_begin(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                          const cs_render_opts *opts, cs_error *err);
-
-/*
- * Whether `scene` can be rendered with `opts` (its canvas scaled to the
- * output size within the coordinate limit, its segments and pieces within
- * the workspace's capacities): prepares trial frames in r and ws (scratch,
- * as for cs_frame_begin) at opts->time and, if the scene has keys, at its
- * earliest and latest key time. Meant for a commit: a board checks the
- * scene a stream brings before it swaps it in, so a scene that cannot
- * render is refused once instead of failing frame after frame. Time
- * between keys is not sampled (at most three trials, whatever the keys).
- */
+/* Whether `scene` renders with `opts`: trial frames in r and ws at opts->time
+ * and its first and last key time, before a commit is swapped in. */
 cs_status cs_scene_check_render(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                                 const cs_render_opts *opts, cs_error *err);
-
-/*
- * As cs_frame_begin, but cels [cache->cel_first, +cel_count) are not
- * scan-converted: their pre-combined lines from `cache` are composited in
- * their place in the stack. `cache` may be NULL (render every cel). A cache
- * that was not built successfully, or for other width, height, AA or blend
- * options, is refused with CS_ERR_STATE: the caller falls back to NULL. The
- * cache does not know about animation: it is the caller's promise that the
- * cached cels (and the lights they use) did not change since the build.
- * A frame with a viewport takes no cache (CS_ERR_STATE).
- */
+/* As cs_frame_begin, with the cached cels' runs composited in their place
+ * (NULL: none). A cache built for other options is CS_ERR_STATE. */
 cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
                                 const cs_render_opts *opts, const cs_cache *cache,
                                 cs_error *err);
-
-/*
- * Makes `r` a renderer of the frame `prepared` holds (set up by
- * cs_frame_begin or cs_frame_begin_cached), with its own workspace `ws` for
- * the lines: the frame's segments, pieces and paints stay in the prepared
- * renderer's workspace and are only read, so several renderers, each with
- * its workspace, can render lines of one frame at once (a band of lines
- * each, on threads), and give the bytes one renderer would. `r` starts at
- * the top of the frame with no capacity error; any lines may follow, in
- * increasing order. The prepared workspace must not begin another frame
- * while `r` renders. CS_ERR_ARG for a null pointer or a workspace already
- * the prepared one's; CS_ERR_STATE if `prepared` is itself a share.
- */
+/* Makes `r` a renderer of the frame `prepared` holds, with its own workspace
+ * for the lines: threads render bands of one frame with one renderer's bytes. */
 cs_status cs_frame_share(cs_renderer *r, cs_workspace *ws, const cs_renderer *prepared);
-
-/*
- * Renders cels [cel_first, cel_first+cel_count) of `scene` alone at `opts`
- * and stores each line as runs of (E, T) maps in `buffer` (any alignment;
- * `size` bytes). Uses `ws` as scratch, so not while a frame is being
- * rendered with it. If the runs do not fit, returns CS_ERR_CAP_CACHE with
- * cache->bytes_needed set to the size that would have fitted, and the cache
- * is unusable (cache->status != CS_OK): render those cels directly.
- * Options with a viewport are refused (CS_ERR_ARG).
- */
+/* Renders cels [cel_first, +cel_count) alone into runs in `buffer` (ws: scratch).
+ * Too small: CS_ERR_CAP_CACHE, with cache->bytes_needed the size that fits. */
 cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspace *ws,
                          const cs_scene *scene, const cs_render_opts *opts, uint32_t cel_first,
                          uint32_t cel_count, cs_error *err);
-
-/*
- * Renders line y (0 = top) into rgb_linear (3*width floats, linear light).
- * The line is built as runs of equal pixels in the workspace and expanded
- * into rgb_linear at the end; a display is better served by
- * cs_render_line_runs and cs_line_pixels, which convert once per run.
- * Lines must be requested in increasing order (the active list only moves
- * forward); skipping lines is allowed. A capacity overflow on the line is
- * recorded in r->sticky and the line is still produced, with the overflowing
- * region left out of that sub-scanline.
- */
+/* Renders line y (0 = top, increasing; skips allowed) into 3*width linear floats.
+ * A capacity overflow leaves the region out and is kept for cs_frame_error. */
 cs_status cs_render_line(cs_renderer *r, int y, float *rgb_linear);
-
-/*
- * The first capacity error met while rendering lines of this frame (status
- * CS_OK if none): which cel and region overflowed, with item = the line.
- */
+/* The frame's first capacity error (CS_OK if none): cel, region, item = line. */
 cs_error cs_frame_error(const cs_renderer *r);
-
 /* Where finished lines go: the seam the display HAL plugs into. */
 typedef cs_status (*cs_line_sink)(void *user, int y, const float *rgb_linear, int width);
-
-/*
- * Renders every line of the frame in order into `line` (3*width floats) and
- * hands each to `sink`. Stops at the first error of the sink. Returns the
- * sticky capacity error, if any, after the whole frame was produced.
- */
+/* Renders every line into `line` (3*width floats) for `sink`; stops at the sink's
+ * first error, else returns the frame's capacity error, if any. */
 cs_status cs_render_frame(cs_renderer *r, float *line, cs_line_sink sink, void *user);
 
 /* ---------------------------------------------------------- pixel output */
@@ -802,73 +353,33 @@ typedef enum cs_pixfmt {
 #define CS_PANEL_PIXFMT CS_PIX_RGB565_SRGB
 
 size_t cs_pixfmt_bytes_per_pixel(cs_pixfmt fmt);
-
-/*
- * Converts one line of linear RGB floats (clamped to 0..1) to `fmt`. `out`
- * may be the memory of `rgb_linear` itself (every format is smaller than
- * the floats, and each pixel is read before its bytes are written), so a
- * board can convert in place and keep no separate line of panel pixels.
- */
+/* Converts a line of linear floats (clamped to 0..1) to `fmt`; `out` may be
+ * `rgb_linear` itself (in place). */
 void cs_pixfmt_convert(cs_pixfmt fmt, const float *rgb_linear, int width, uint8_t *out);
-
-/*
- * As cs_pixfmt_convert (in place too), with ordered dithering for line y: an 8x8 Bayer
- * threshold by pixel position spreads the rounding of each channel so that
- * smooth gradients do not band on low-depth panels. Deterministic (no
- * state); a value exactly on an output level is never disturbed. For
- * CS_PIX_RGB16_LINEAR it is the same as cs_pixfmt_convert.
- */
+/* As cs_pixfmt_convert, with 8x8 Bayer dithering for line y (no state). */
 void cs_pixfmt_convert_dither(cs_pixfmt fmt, const float *rgb_linear, int width, int y,
                               uint8_t *out);
-
-/*
- * Renders line y into the renderer's own run list, without writing pixels:
- * the line is then read with cs_line_pixels or cs_line_run until the next
- * line is rendered. Same ordering rules and errors as cs_render_line, which
- * is this followed by expanding the runs into floats.
- */
+/* Renders line y as runs, read with cs_line_pixels or cs_line_run until the
+ * next line; ordering and errors as cs_render_line. */
 cs_status cs_render_line_runs(cs_renderer *r, int y);
-
-/* The rendered line in pixel format `fmt` (width * bytes-per-pixel bytes
- * of `out`): the bytes cs_pixfmt_convert would make of cs_render_line's
- * floats, converted once per run of equal pixels. */
+/* The rendered line in `fmt`: cs_pixfmt_convert's bytes, converted once per run. */
 void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out);
-
-/*
- * As cs_line_pixels, into memory of the workspace that is idle between
- * lines (the cel accumulators), so that a board needs no line buffer of its
- * own. The pointer is valid until the next line is rendered.
- */
+/* As cs_line_pixels, into workspace memory idle between lines; valid until the next. */
 const uint8_t *cs_line_pixels_scratch(cs_renderer *r, cs_pixfmt fmt);
-
 /* cs_render_line_runs, then cs_line_pixels. */
 cs_status cs_render_line_px(cs_renderer *r, int y, cs_pixfmt fmt, uint8_t *out);
-
-/*
- * The run of the rendered line that starts at pixel x: its colour (linear
- * light) in rgb_linear, and the pixel after it as the return value. Runs
- * are walked from x = 0 to the width: for (x = 0; x < w; x = next) ...
- */
+/* The run starting at pixel x: its linear colour, and the pixel after it
+ * returned (for (x = 0; x < w; x = next) ...). */
 int cs_line_run(const cs_renderer *r, int x, float rgb_linear[3]);
-
 /* sRGB encoding of one linear value in 0..1, as a 16-bit code (0..65535). */
 uint16_t cs_srgb_encode16(float linear);
-
 /* Linear light of an sRGB-encoded value in 0..1 (the inverse of the above). */
 float cs_srgb_decode(float encoded);
+
 /* ------------------------------------------------------------ cel stream */
-/*
- * The streaming decoder of the cel stream (docs/STREAM.md). It takes bytes
- * in any chunking, with fixed memory (this struct and two scene stores), and
- * builds the next scene in the back store while the front store stays on
- * display. A transaction that decodes, validates and passes its CRC ends in
- * CS_STREAM_COMMIT; the caller then calls cs_stream_swap between frames.
- * A damaged, truncated, oversized or invalid transaction is dropped whole
- * and reported (CS_STREAM_ERROR, cs_stream_last_error); the front scene is
- * untouched and the decoder resynchronises on the next transaction header.
- *
- * The fields are private; the struct is public so the caller can place it.
- */
+/* The cel stream decoder (docs/STREAM.md): bytes in any chunking into the back
+ * store while the front one is shown; a valid transaction ends in
+ * CS_STREAM_COMMIT (then cs_stream_swap), a bad one is dropped and reported. */
 typedef struct cs_stream_error {
     cs_status status;    /* CS_ERR_STREAM_* or the scene validation status */
     uint64_t offset;     /* stream offset of the dropped transaction (or skipped bytes) */
@@ -883,104 +394,34 @@ typedef enum cs_stream_event {
     CS_STREAM_ERROR = 2   /* something was dropped: see cs_stream_last_error */
 } cs_stream_event;
 
-typedef struct cs_stream {
-    cs_scene *front, *back;
-    uint64_t offset;            /* stream offset of the next byte */
-    uint64_t txn_offset;        /* start of the current transaction */
-    uint64_t rec_offset;        /* start of the current record */
-    uint64_t garbage_offset;    /* start of the current run of skipped bytes */
-    uint64_t skipped;           /* bytes outside transactions, in total */
-    uint64_t skip_left;         /* bytes left of a transaction being skipped */
-    uint64_t env_end;           /* where the open signed envelope's trailer starts, or 0 */
-    uint32_t commits, dropped;  /* transactions committed and dropped, in total */
-    uint32_t body_len, body_pos, crc, trailer;
-    uint32_t rec_len, rec_pos, fixed_len, fill, word;
-    uint32_t float_count, float_index, base, count, width, slot;
-    float key_time;
-    uint16_t rec_type;
-    uint8_t state, parse, mode, rec_flags;
-    uint8_t win_pos, win_count, queued;
-    bool has_scene, commit_ready, in_garbage, seen_commit, txn_failed;
-    uint8_t win[16];            /* the last 16 bytes: header detection */
-    uint8_t buf[52];            /* a record header or a record's fixed part */
-    cs_stream_error txn_err;    /* first failure inside the current transaction */
-    cs_stream_error queue[2];   /* errors not yet returned */
-    cs_stream_error last;       /* the error of the last CS_STREAM_ERROR */
-} cs_stream;
-
-/*
- * Starts a decoder on two scene stores. If `front_valid`, `front` holds a
- * scene already on display (e.g. one built into the firmware) that patch
- * transactions may change; otherwise the first transaction must define a
- * whole scene. `back` is scratch until a commit. CS_ERR_ARG if a pointer is
- * NULL or the two stores are one.
- */
+/* Starts a decoder on two stores; `front_valid`: `front` is a scene on display
+ * that patches may change. `back` is scratch until a commit. */
 cs_status cs_stream_init(cs_stream *s, cs_scene *front, bool front_valid, cs_scene *back);
-
-/*
- * Consumes bytes until they run out or something happens; *used says how
- * many were consumed. After CS_STREAM_COMMIT no byte is consumed until
- * cs_stream_swap; after CS_STREAM_ERROR feeding may go on at once (call
- * again with the rest, even if that is nothing: a second error may wait).
- */
+/* Consumes bytes until they run out or an event (*used: how many). After an
+ * ERROR call again with the rest, even if empty: a second error may wait. */
 cs_stream_event cs_stream_feed(cs_stream *s, const uint8_t *data, size_t len, size_t *used);
-
 /* End of input: reports a transaction cut short or trailing bytes, then resets to hunting. */
 cs_stream_event cs_stream_finish(cs_stream *s);
-
-/*
- * The link lost bytes between the last byte fed and the next one (a UART
- * receive overrun, a full receive buffer): an open transaction is dropped
- * (CS_ERR_STREAM_GAP, `at` the offset of the gap, which counts the bytes
- * fed, not the ones lost), and the decoder hunts for the next header, so
- * no header or transaction is ever pieced together across the gap. A
- * commit waiting for cs_stream_swap or an error waiting to be returned is
- * returned first; call again until CS_STREAM_MORE.
- */
+/* The link lost bytes here (a UART overrun): an open transaction is dropped
+ * (CS_ERR_STREAM_GAP) and nothing is pieced together across the gap. Call
+ * until CS_STREAM_MORE. */
 cs_stream_event cs_stream_gap(cs_stream *s);
-
 /* Makes the ready commit the front scene (between frames). CS_ERR_STATE if none is ready. */
 cs_status cs_stream_swap(cs_stream *s);
-
-/*
- * Drops the ready commit instead of swapping it in (the caller found it
- * unusable, e.g. cs_scene_check_render failed): the front scene stays, the
- * transaction counts as dropped, and cs_stream_last_error reports `status`
- * with `what` (which must outlive the next feed) and `where`, at the end of
- * the transaction. CS_ERR_STATE if no commit is ready.
- */
+/* Drops the ready commit instead (e.g. cs_scene_check_render failed): reported
+ * as the last error with `what` (which must outlive the next feed). */
 cs_status cs_stream_refuse(cs_stream *s, cs_status status, const char *what, const cs_error *where);
-
-/*
- * Whether the back store is in use: a transaction is being decoded into it,
- * or a commit in it waits for cs_stream_swap. Between transactions the
- * back store holds nothing the decoder needs (every transaction starts it
- * afresh, from SCENE or from a copy of the front), so a board short of RAM
- * may lend it out while this is false, e.g. let it share memory with the
- * render workspace and render only while the decoder is not busy. The
- * decoder writes to the back store only inside cs_stream_feed.
- */
+/* Whether the back store is in use (a transaction open or a commit waiting);
+ * while not, a board short of RAM may lend it out. */
 bool cs_stream_busy(const cs_stream *s);
-
 /* The scene on display: the last swapped-in commit, or NULL if there is none. */
 const cs_scene *cs_stream_scene(const cs_stream *s);
-
 /* The error behind the last CS_STREAM_ERROR. */
 const cs_stream_error *cs_stream_last_error(const cs_stream *s);
-
-/*
- * A decoder error as one line of text, the way every program reports it:
- *   <status>[: <explanation>][ (cel c, region r, contour k, item i)]
- *       (transaction at byte N dropped)      or      (skipping from byte N)
- * where N is base + e->offset (base: bytes before the decoder started). The
- * fault's own offset (base + e->at) is left to the caller's prefix. The text
- * is cut to fit len bytes, NUL included; returns the length it needed.
- */
+/* A decoder error as the one line every program prints (docs/API.md), offsets
+ * plus `base`; cut to fit len bytes, NUL included; returns the length needed. */
 size_t cs_stream_error_text(const cs_stream_error *e, uint64_t base, char *buf, size_t len);
-
-/* ----------------------------------------------------------------- misc */
-
-/* CRC-32 (IEEE 802.3, reflected, as zlib). Start with crc = 0. */
+/* CRC-32 (IEEE 802.3, reflected, as zlib) of frames and streams. Start with crc = 0. */
 uint32_t cs_crc32(uint32_t crc, const void *data, size_t len);
 
 #ifdef __cplusplus

@@ -110,7 +110,7 @@ static void remove_track_at(cs_scene *scene, uint32_t i)
     scene->key_count -= nk;
     scene->value_count -= nv;
     for (uint32_t j = i; j + 1 < scene->track_count; j++)
-        cs__copy_track(&scene->tracks[j], &scene->tracks[j + 1]);
+        CS__COPY(&scene->tracks[j], &scene->tracks[j + 1]);
     scene->track_count--;
     for (uint32_t j = 0; j < scene->track_count; j++) {
         cs_track *u = &scene->tracks[j];
@@ -191,7 +191,7 @@ cs_status cs_scene_add_track(cs_scene *scene, cs_track_kind kind, uint32_t targe
     if (replace)
         remove_track_at(scene, i);
     for (uint32_t j = scene->track_count; j > i; j--)
-        cs__copy_track(&scene->tracks[j], &scene->tracks[j - 1]);
+        CS__COPY(&scene->tracks[j], &scene->tracks[j - 1]);
     cs_track *t = &scene->tracks[i];
     t->kind = (uint8_t)kind;
     t->ease = (uint8_t)ease;
@@ -361,13 +361,13 @@ void cs__tracks_sort(cs_scene *scene)
     /* Insertion sort: few tracks, usually already in order, and stable. */
     for (uint32_t i = 1; i < scene->track_count; i++) {
         cs_track t;
-        cs__copy_track(&t, &scene->tracks[i]);
+        CS__COPY(&t, &scene->tracks[i]);
         uint32_t j = i;
         while (j > 0 && track_cmp(&scene->tracks[j - 1], t.kind, t.target) > 0) {
-            cs__copy_track(&scene->tracks[j], &scene->tracks[j - 1]);
+            CS__COPY(&scene->tracks[j], &scene->tracks[j - 1]);
             j--;
         }
-        cs__copy_track(&scene->tracks[j], &t);
+        CS__COPY(&scene->tracks[j], &t);
     }
     scene->open_track = UINT32_MAX;
 }

@@ -20,70 +20,6 @@
  */
 #include "cs_internal.h"
 
-static void copy_affine(cs_affine *dst, const cs_affine *src)
-{
-    dst->a = src->a;
-    dst->b = src->b;
-    dst->c = src->c;
-    dst->d = src->d;
-    dst->e = src->e;
-    dst->f = src->f;
-}
-
-static void copy_cel(cs_cel *dst, const cs_cel *src)
-{
-    dst->first_region = src->first_region;
-    dst->region_count = src->region_count;
-    dst->has_front = src->has_front;
-    copy_affine(&dst->transform, &src->transform);
-    cs__copy3(dst->front, src->front);
-    cs__copy3(dst->back, src->back);
-    dst->parent = src->parent;
-}
-
-static void copy_region(cs_region *dst, const cs_region *src)
-{
-    dst->first_contour = src->first_contour;
-    dst->contour_count = src->contour_count;
-    dst->fill_rule = src->fill_rule;
-    cs__copy_paint(&dst->paint, &src->paint);
-    for (int k = 0; k < 3; k++)
-        dst->func[k] = src->func[k];
-    dst->csg_len = src->csg_len;
-    for (int k = 0; k < CS_CFG_MAX_CSG; k++)
-        dst->csg[k] = src->csg[k];
-}
-
-static void copy_func(cs_paint_func *dst, const cs_paint_func *src)
-{
-    dst->kind = src->kind;
-    dst->spread = src->spread;
-    dst->stop_count = src->stop_count;
-    dst->map_cols = src->map_cols;
-    for (int k = 0; k < 6; k++)
-        dst->geom[k] = src->geom[k];
-    for (int i = 0; i < CS_CFG_MAX_STOPS; i++) {
-        dst->stops[i].offset = src->stops[i].offset;
-        for (int k = 0; k < 3; k++)
-            dst->stops[i].value[k] = src->stops[i].value[k];
-    }
-}
-
-static void copy_contour(cs_contour *dst, const cs_contour *src)
-{
-    dst->first_point = src->first_point;
-    dst->point_count = src->point_count;
-    dst->degree = src->degree;
-    dst->operand = src->operand;
-}
-
-static void copy_point(cs_point *dst, const cs_point *src)
-{
-    dst->x = src->x;
-    dst->y = src->y;
-    dst->w = src->w;
-}
-
 cs_status cs_scene_set_canvas(cs_scene *scene, float canvas_w, float canvas_h)
 {
     if (!scene)
@@ -120,7 +56,7 @@ cs_status cs_scene_set_transform(cs_scene *scene, uint32_t cel, const cs_affine 
     cs_status st = cs__check_affine(transform, &item);
     cs__error(err, st, st == CS_OK ? -1 : (int32_t)cel, -1, -1, item);
     if (st == CS_OK)
-        copy_affine(&scene->cels[cel].transform, transform);
+        CS__COPY(&scene->cels[cel].transform, transform);
     return st;
 }
 
@@ -180,7 +116,7 @@ cs_status cs_scene_set_paint(cs_scene *scene, uint32_t region, cs_fill_rule rule
     }
     cs_region *r = &scene->regions[region];
     r->fill_rule = (uint8_t)rule;
-    cs__copy_paint(&r->paint, paint);
+    CS__COPY(&r->paint, paint);
     cs__error(err, CS_OK, -1, -1, -1, -1);
     return CS_OK;
 }
@@ -217,7 +153,7 @@ cs_status cs_scene_set_points(cs_scene *scene, uint32_t contour, int count,
     }
     /* In place when the caller passed the store's own arrays: same index. */
     for (int i = 0; i < count; i++) {
-        copy_point(&scene->points[c->first_point + (uint32_t)i], &points[i]);
+        CS__COPY(&scene->points[c->first_point + (uint32_t)i], &points[i]);
         if (intervals)
             scene->intervals[c->first_point + (uint32_t)i] = intervals[i];
     }
@@ -245,8 +181,7 @@ static uint32_t shift_start(uint32_t start, uint32_t first, uint32_t n)
  */
 static void remove_func_slot(cs_scene *scene, uint32_t k)
 {
-    for (uint32_t i = k; i + 1 < scene->func_count; i++)
-        copy_func(&scene->funcs[i], &scene->funcs[i + 1]);
+    CS__COPY_N(&scene->funcs[k], &scene->funcs[k + 1], scene->func_count - k - 1u);
     scene->func_count--;
     for (uint32_t r = 0; r < scene->region_count; r++)
         for (int f = 0; f < 3; f++)
@@ -291,19 +226,15 @@ cs_status cs_scene_remove_cel(cs_scene *scene, uint32_t cel, cs_error *err)
     cs__tracks_remove_range(scene, CS__FAM_REGION, fr, nr);
     cs__tracks_remove_range(scene, CS__FAM_CONTOUR, fc, nc);
 
-    for (uint32_t i = cel; i + 1 < scene->cel_count; i++)
-        copy_cel(&scene->cels[i], &scene->cels[i + 1]);
+    /* Each array closes up over the removed range, forward (cs__copy_bytes). */
+    CS__COPY_N(&scene->cels[cel], &scene->cels[cel + 1], scene->cel_count - cel - 1u);
     scene->cel_count--;
-    for (uint32_t i = fr; i + nr < scene->region_count; i++)
-        copy_region(&scene->regions[i], &scene->regions[i + nr]);
+    CS__COPY_N(&scene->regions[fr], &scene->regions[fr + nr], scene->region_count - fr - nr);
     scene->region_count -= nr;
-    for (uint32_t i = fc; i + nc < scene->contour_count; i++)
-        copy_contour(&scene->contours[i], &scene->contours[i + nc]);
+    CS__COPY_N(&scene->contours[fc], &scene->contours[fc + nc], scene->contour_count - fc - nc);
     scene->contour_count -= nc;
-    for (uint32_t i = fp; i + np < scene->point_count; i++) {
-        copy_point(&scene->points[i], &scene->points[i + np]);
-        scene->intervals[i] = scene->intervals[i + np];
-    }
+    CS__COPY_N(&scene->points[fp], &scene->points[fp + np], scene->point_count - fp - np);
+    CS__COPY_N(&scene->intervals[fp], &scene->intervals[fp + np], scene->point_count - fp - np);
     scene->point_count -= np;
 
     for (uint32_t i = 0; i < scene->cel_count; i++) {
@@ -395,14 +326,13 @@ cs_status cs_scene_move_cel(cs_scene *scene, uint32_t from, uint32_t to, cs_erro
         return CS_ERR_INDEX;
     }
     cs_cel moving;
-    copy_cel(&moving, &scene->cels[from]);
+    CS__COPY(&moving, &scene->cels[from]);
     if (from < to)
-        for (uint32_t i = from; i < to; i++)
-            copy_cel(&scene->cels[i], &scene->cels[i + 1]);
+        CS__COPY_N(&scene->cels[from], &scene->cels[from + 1], to - from);
     else
-        for (uint32_t i = from; i > to; i--)
-            copy_cel(&scene->cels[i], &scene->cels[i - 1]);
-    copy_cel(&scene->cels[to], &moving);
+        for (uint32_t i = from; i > to; i--) /* upwards: a backward loop */
+            CS__COPY(&scene->cels[i], &scene->cels[i - 1]);
+    CS__COPY(&scene->cels[to], &moving);
     for (uint32_t i = 0; i < scene->cel_count; i++)
         if (scene->cels[i].parent != CS_NO_PARENT)
             scene->cels[i].parent = (uint8_t)moved_index(scene->cels[i].parent, from, to);
@@ -433,26 +363,17 @@ void cs_scene_copy(cs_scene *dst, const cs_scene *src)
     dst->contour_count = src->contour_count;
     dst->point_count = src->point_count;
     dst->func_count = src->func_count;
-    for (uint32_t i = 0; i < src->func_count; i++)
-        copy_func(&dst->funcs[i], &src->funcs[i]);
     dst->track_count = src->track_count;
     dst->key_count = src->key_count;
     dst->value_count = src->value_count;
     dst->open_track = src->open_track;
-    for (uint32_t i = 0; i < src->cel_count; i++)
-        copy_cel(&dst->cels[i], &src->cels[i]);
-    for (uint32_t i = 0; i < src->region_count; i++)
-        copy_region(&dst->regions[i], &src->regions[i]);
-    for (uint32_t i = 0; i < src->contour_count; i++)
-        copy_contour(&dst->contours[i], &src->contours[i]);
-    for (uint32_t i = 0; i < src->point_count; i++) {
-        copy_point(&dst->points[i], &src->points[i]);
-        dst->intervals[i] = src->intervals[i];
-    }
-    for (uint32_t i = 0; i < src->track_count; i++)
-        cs__copy_track(&dst->tracks[i], &src->tracks[i]);
-    for (uint32_t i = 0; i < src->key_count; i++)
-        dst->key_times[i] = src->key_times[i];
-    for (uint32_t i = 0; i < src->value_count; i++)
-        dst->key_values[i] = src->key_values[i];
+    CS__COPY_N(dst->funcs, src->funcs, src->func_count);
+    CS__COPY_N(dst->cels, src->cels, src->cel_count);
+    CS__COPY_N(dst->regions, src->regions, src->region_count);
+    CS__COPY_N(dst->contours, src->contours, src->contour_count);
+    CS__COPY_N(dst->points, src->points, src->point_count);
+    CS__COPY_N(dst->intervals, src->intervals, src->point_count);
+    CS__COPY_N(dst->tracks, src->tracks, src->track_count);
+    CS__COPY_N(dst->key_times, src->key_times, src->key_count);
+    CS__COPY_N(dst->key_values, src->key_values, src->value_count);
 }

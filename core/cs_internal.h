@@ -11,7 +11,7 @@
 
 #include <float.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 
 /* Identical bytes on every target need every float operation rounded to
  * float as it happens: x87 code (i386 without SSE) keeps excess precision
@@ -24,25 +24,23 @@ static inline float cs__absf(float v) { return v < 0.0f ? -v : v; }
 static inline float cs__minf(float a, float b) { return a < b ? a : b; }
 static inline float cs__maxf(float a, float b) { return a > b ? a : b; }
 /*
- * Field-by-field copies: a struct assignment may become a memcpy call, which
- * the freestanding core must not make (tools/check_core_symbols.sh).
+ * Copies: a struct assignment may become a memcpy call, which the
+ * freestanding core must not make (tools/check_core_symbols.sh), so a copy of
+ * the store's structs is this one byte loop. It runs forward, so it also
+ * shifts an array down over itself (dst before src). CS__COPY_N copies n
+ * elements of one type (the unevaluated comparison makes a mix of types a
+ * compile-time warning); CS__COPY one.
  */
+void cs__copy_bytes(void *dst, const void *src, size_t bytes);
+#define CS__COPY_N(dst, src, n) \
+    cs__copy_bytes((dst), (src), (size_t)(n) * sizeof *(dst) + 0u * sizeof((dst) == (src)))
+#define CS__COPY(dst, src) CS__COPY_N(dst, src, 1u)
+
 static inline void cs__copy3(float *dst, const float *src)
 {
     dst[0] = src[0];
     dst[1] = src[1];
     dst[2] = src[2];
-}
-
-static inline void cs__copy_track(cs_track *dst, const cs_track *src)
-{
-    dst->target = src->target;
-    dst->first_key = src->first_key;
-    dst->first_value = src->first_value;
-    dst->width = src->width;
-    dst->key_count = src->key_count;
-    dst->kind = src->kind;
-    dst->ease = src->ease;
 }
 
 /* For a function written once for two cases told apart by a constant
@@ -121,7 +119,6 @@ cs_status cs__check_paint(const cs_paint *p);
 cs_status cs__check_point(const cs_point *p);
 cs_status cs__check_contour(int degree, int count, const cs_point *pts, const float *intervals,
                             int32_t *item);
-void cs__copy_paint(cs_paint *dst, const cs_paint *src);
 
 /* Removes the tracks whose target of `kind`'s family lies in [first, first+count)
  * and renumbers the later targets down by `count` (cs_anim.c). */
@@ -322,7 +319,7 @@ static inline float cs__solve_level_from(const float *num, const float *den, int
  * writes the next segment to *out, or returns false after the last. The
  * arrays and the map must outlive the iteration.
  */
-/* cs__contour_iter is in celscan.h: the frame keeps it in the workspace
+/* cs__contour_iter is in celscan_private.h: the frame keeps it in the workspace
  * (cs_frame_data), off the stack. */
 cs_status cs__contour_begin(cs__contour_iter *it, const cs_point *points, const float *intervals,
                             int count, int degree, const cs_affine *to_device, uint16_t region,

@@ -178,11 +178,12 @@ cs_status cs__check_paint(const cs_paint *p)
     return CS_OK;
 }
 
-void cs__copy_paint(cs_paint *dst, const cs_paint *src)
+void cs__copy_bytes(void *dst, const void *src, size_t bytes)
 {
-    cs__copy3(dst->pigment, src->pigment);
-    cs__copy3(dst->medium, src->medium);
-    dst->beta = src->beta;
+    unsigned char *d = dst;
+    const unsigned char *s = src;
+    for (size_t i = 0; i < bytes; i++)
+        d[i] = s[i];
 }
 
 cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint *paint,
@@ -223,7 +224,7 @@ cs_status cs_scene_add_region(cs_scene *scene, cs_fill_rule rule, const cs_paint
     r->first_contour = scene->contour_count;
     r->contour_count = 0;
     r->fill_rule = (uint8_t)rule;
-    cs__copy_paint(&r->paint, paint);
+    CS__COPY(&r->paint, paint);
     r->csg_len = 0;
     for (int k = 0; k < 3; k++)
         r->func[k] = 0;

@@ -16,12 +16,13 @@
  *     transaction was cut short because a sender restarted (a new header
  *     inside a body drops the old transaction instead of eating the new
  *     one). A header's length field is trusted only once its CRC matched.
- *   - Records are applied to the back scene store as they stream in
- *     (cs_stream_apply.c), through the same cs_scene_* calls the JSON
- *     loader uses, so a stream and its JSON give identical stores. Bulk
- *     data (control points, keys) is read straight into the free end of the
- *     store's arrays, or in place for a same-size point update, and then
- *     checked and adopted by those calls, so no record size needs a buffer.
+ *   - Records are read and applied to the back scene store as they stream
+ *     in, each by its type's row in one table (cs_stream_apply.c), through
+ *     the same cs_scene_* calls the JSON loader uses, so a stream and its
+ *     JSON give identical stores. Bulk data (control points, keys) is read
+ *     straight into the free end of the store's arrays, or in place for a
+ *     same-size point update, and then checked and adopted by those calls,
+ *     so no record size needs a buffer.
  *     A patch transaction first copies the front scene into the back store.
  *   - Nothing of a transaction becomes visible until its CRC trailer has
  *     matched and every record was accepted; then feeding pauses with
@@ -33,49 +34,7 @@
  */
 #include "cs_stream_internal.h"
 
-/* Bytes of a record's fixed part, or -1 for a type this version does not know. */
-static int fixed_size(uint32_t type)
-{
-    switch (type) {
-    case CS_REC_COMMIT:
-    case CS_REC_NO_BACKGROUND:
-        return 0;
-    case CS_REC_CEL_REMOVE:
-    case CS_REC_BLEND:
-    case CS_REC_REGION_CSG:
-    case CS_REC_CONTOUR_OPERAND:
-        return 4;
-    case CS_REC_SCENE:
-    case CS_REC_CANVAS:
-    case CS_REC_CEL_MOVE:
-    case CS_REC_TRACK_REMOVE:
-    case CS_REC_EPOCH:
-    case CS_REC_CEL_PARENT:
-        return 8;
-    case CS_REC_BACKGROUND:
-    case CS_REC_CONTOUR:
-    case CS_REC_CONTOUR_POINTS:
-        return 12;
-    case CS_REC_TRACK:
-        return 16;
-    case CS_REC_LIGHTS:
-        return 24;
-    case CS_REC_CEL_TRANSFORM:
-        return 28;
-    case CS_REC_REGION:
-    case CS_REC_CEL_LIGHTS:
-        return 32;
-    case CS_REC_REGION_PAINT:
-        return 36;
-    case CS_REC_REGION_FUNC:
-        return 44;
-    case CS_REC_CEL:
-        return 52;
-    default:
-        return -1;
-    }
-}
-
+/* CEL has the largest fixed part (cs__rec_kinds). */
 _Static_assert(sizeof(((cs_stream *)0)->buf) >= 52, "buf holds the largest fixed part");
 /* A CSG program is kept in buf after its 4-byte length, one byte a token. */
 _Static_assert(sizeof(((cs_stream *)0)->buf) >= 4 + CS_CFG_MAX_CSG, "buf holds a CSG program");
@@ -136,7 +95,7 @@ cs_status cs_stream_init(cs_stream *s, cs_scene *front, bool front_valid, cs_sce
     s->rec_len = s->rec_pos = s->fixed_len = s->fill = s->word = 0;
     s->float_count = s->float_index = s->base = s->count = s->width = s->slot = 0;
     s->key_time = 0.0f;
-    s->rec_type = 0;
+    s->rec_kind = 0;
     s->state = ST_HUNT;
     s->parse = P_HDR;
     s->mode = M_NONE;
@@ -281,13 +240,14 @@ static bool prepare(cs_stream *s, uint32_t type)
     return true;
 }
 
-/* Applies a record whose fields are all in (fixed part and floats):
- * cs__stream_apply, in cs_stream_apply.c. */
+/* Applies a record whose fields are all in (fixed part and floats) by its
+ * row's function (cs_stream_apply.c). */
 static void finish_record(cs_stream *s)
 {
     cs_error where;
     cs__error(&where, CS_OK, -1, -1, -1, -1);
-    cs_status st = cs__stream_apply(s, &where);
+    const cs__rec_kind *k = &cs__rec_kinds[s->rec_kind];
+    cs_status st = k->apply ? k->apply(s, &where) : CS_OK;
     if (st != CS_OK) {
         where.status = st;
         fail(s, st, cs_status_str(st), &where);
@@ -357,7 +317,7 @@ static bool begin_func(cs_stream *s)
 
 /* CONTOUR (points into the free end of the store) or CONTOUR_POINTS (in
  * place): checks the counts and flags, and says where the floats go. */
-static bool begin_points(cs_stream *s, uint64_t *floats)
+static bool begin_points(cs_stream *s, bool in_place, uint64_t *floats)
 {
     cs_scene *sc = s->back;
     const uint8_t *b = s->buf;
@@ -367,7 +327,7 @@ static bool begin_points(cs_stream *s, uint64_t *floats)
         return false;
     }
     s->rec_flags = (uint8_t)flags;
-    if (s->rec_type == CS_REC_CONTOUR) {
+    if (!in_place) {
         /* Points are read into the free end of the store. */
         if (count > UINT16_MAX || count > CS_CFG_MAX_POINTS - sc->point_count) {
             cs_error where;
@@ -436,11 +396,12 @@ static void begin_floats(cs_stream *s)
     cs_scene *sc = s->back;
     const uint8_t *b = s->buf;
     uint64_t floats = 0;
+    uint8_t layout = cs__rec_kinds[s->rec_kind].layout;
     s->rec_flags = 0;
-    switch (s->rec_type) {
-    case CS_REC_CEL:
-    case CS_REC_CEL_LIGHTS: {
-        uint32_t flags = cs__rd_u32(s->rec_type == CS_REC_CEL ? b : b + 4);
+    switch (layout) {
+    case L_FLAGS_AT0:
+    case L_FLAGS_AT4: {
+        uint32_t flags = cs__rd_u32(layout == L_FLAGS_AT0 ? b : b + 4);
         if (flags & ~CS_WIRE_CEL_HAS_FRONT) {
             fail(s, CS_ERR_STREAM_RECORD, "reserved flag bits set", 0);
             return;
@@ -448,21 +409,21 @@ static void begin_floats(cs_stream *s)
         s->rec_flags = (uint8_t)flags;
         break;
     }
-    case CS_REC_CONTOUR:
-    case CS_REC_CONTOUR_POINTS:
-        if (!begin_points(s, &floats))
+    case L_POINTS_NEW:
+    case L_POINTS_AT:
+        if (!begin_points(s, layout == L_POINTS_AT, &floats))
             return;
         break;
-    case CS_REC_TRACK:
+    case L_KEYS:
         if (!begin_track(s, &floats))
             return;
         break;
-    case CS_REC_REGION_FUNC:
+    case L_STOPS:
         if (!begin_func(s))
             return;
         floats = 4u * (uint64_t)s->count;
         break;
-    case CS_REC_REGION_CSG:
+    case L_TOKENS:
         s->count = cs__rd_u32(b);
         if (s->count < 1 || s->count > CS_CFG_MAX_CSG) {
             cs_error where;
@@ -494,9 +455,9 @@ static void put_word(cs_stream *s, uint32_t w)
     cs_scene *sc = s->back;
     uint32_t i = s->float_index;
     float v = cs__word_f32(w);
-    switch (s->rec_type) {
-    case CS_REC_CONTOUR:
-    case CS_REC_CONTOUR_POINTS:
+    switch (cs__rec_kinds[s->rec_kind].layout) {
+    case L_POINTS_NEW:
+    case L_POINTS_AT:
         if (i < 3u * s->count) {
             cs_point *p = &sc->points[s->base + i / 3u];
             if (i % 3u == 0)
@@ -509,7 +470,7 @@ static void put_word(cs_stream *s, uint32_t w)
             sc->intervals[s->base + (i - 3u * s->count)] = v;
         }
         break;
-    case CS_REC_TRACK:
+    case L_KEYS:
         if (s->slot == 0) {
             s->key_time = v;
         } else {
@@ -524,7 +485,7 @@ static void put_word(cs_stream *s, uint32_t w)
                 fail(s, st, cs_status_str(st), &where);
         }
         break;
-    case CS_REC_REGION_FUNC: {
+    case L_STOPS: {
         cs_stop *stop = &sc->funcs[s->base].stops[i / 4u];
         if (i % 4u == 0)
             stop->offset = v;
@@ -532,7 +493,7 @@ static void put_word(cs_stream *s, uint32_t w)
             stop->value[i % 4u - 1u] = v;
         break;
     }
-    case CS_REC_REGION_CSG: {
+    case L_TOKENS: {
         /* Operand n as n, operator k (-k on the wire, an i32) as 0x80|k, as
          * the store keeps them; anything else as 0xFF, which the check
          * refuses with this token's index. */
@@ -555,7 +516,6 @@ static void begin_record(cs_stream *s)
 {
     uint32_t type = (uint32_t)s->buf[0] | (uint32_t)s->buf[1] << 8;
     uint32_t len = cs__rd_u32(s->buf + 2);
-    s->rec_type = (uint16_t)type;
     s->rec_len = len;
     s->rec_pos = 0;
     s->fill = 0;
@@ -571,19 +531,21 @@ static void begin_record(cs_stream *s)
         fail(s, CS_ERR_STREAM_RECORD, "record of an unknown class", 0);
         return;
     }
-    int fixed = fixed_size(type);
-    if (fixed < 0 || type == CS_REC_PAD) {
-        /* A newer type of a known class: skippable by definition. */
+    int kind = cs__rec_kind_find(type);
+    if (kind < 0) {
+        /* PAD, or a newer type of a known class: skippable by definition. */
         s->parse = len ? P_SKIP : P_HDR;
         return;
     }
+    s->rec_kind = (uint8_t)kind;
     if (!prepare(s, type))
         return;
-    if ((uint32_t)fixed > len) {
+    uint32_t fixed = cs__rec_kinds[kind].fixed;
+    if (fixed > len) {
         fail(s, CS_ERR_STREAM_RECORD, "record shorter than its fields", 0);
         return;
     }
-    s->fixed_len = (uint32_t)fixed;
+    s->fixed_len = fixed;
     if (fixed == 0)
         begin_floats(s);
     else

@@ -31,6 +31,7 @@
 
 #include "board.h"
 #include "board_api.h"
+#include "celscan_private.h"
 #include "fw_print.h"
 #include "mcu_display.h"
 

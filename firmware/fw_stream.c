@@ -14,6 +14,7 @@
 #include "fw_stream.h"
 
 #include "board_api.h"
+#include "celscan_private.h"
 #include "fw_print.h"
 #include "fw_render.h"
 #include "rx_ring.h"

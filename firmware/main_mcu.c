@@ -31,7 +31,7 @@
  */
 #include "board.h"
 #include "board_api.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "cm_startup.h"
 #include "fw_args.h"
 #include "fw_print.h"

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "bands.h"
+#include "celscan_private.h"
 
 typedef struct worker {
     bands *pool;

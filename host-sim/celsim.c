@@ -34,7 +34,7 @@
 #include <string.h>
 
 #include "cels_read.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "cli.h"
 #include "cli_num.h"
 #include "clock.h"

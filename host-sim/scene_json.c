@@ -37,6 +37,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "celscan_private.h"
 #include "scene_json.h"
 #include "paint_json.h"
 

@@ -99,7 +99,8 @@ install-programs: $(INSTALL_PROGRAMS)
 install-lib: $(LIB_ARCHIVES)
 	$(Q)install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(DATADIR)/pkgconfig \
 		$(DESTDIR)$(LIBDIR)/cmake/celscan $(DESTDIR)$(INCLUDEDIR)/celscan
-	$(Q)install -m 0644 core/celscan.h core/cs_config.h $(MCU_CFG) $(DESTDIR)$(INCLUDEDIR)/celscan/
+	$(Q)install -m 0644 core/celscan.h core/celscan_private.h core/cs_config.h $(MCU_CFG) \
+		$(DESTDIR)$(INCLUDEDIR)/celscan/
 	$(Q)install -m 0644 $(LIB_HOST) $(DESTDIR)$(LIBDIR)/
 	$(Q)$(foreach v,$(LIB_MCU_VARIANTS),install -D -m 0644 $(BUILD)/lib/$(v)/libcelscan.a \
 		$(DESTDIR)$(CROSSLIBDIR)/$(v)/libcelscan.a &&) true

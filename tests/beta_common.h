@@ -16,7 +16,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "shapes.h"
 #include "testlib.h"
 

@@ -19,7 +19,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "ref/ref.h"
 #include "testlib.h"
 

@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "lottie/lt.h"
 #include "scene_json.h"
 

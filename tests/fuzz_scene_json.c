@@ -23,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "scene_json.h"
 
 #define FUZZ_NAME "fuzz_scene_json"

@@ -32,6 +32,7 @@
 #include "celfw_frame.h"
 #include "celfw_stream.h"
 #include "celfw_trust.h"
+#include "celscan_private.h"
 #include "sign_test_key.h"
 
 #define FUZZ_NAME "fuzz_sign"

@@ -26,7 +26,7 @@
 #include <string.h>
 
 #include "cels_write.h"
-#include "celscan.h"
+#include "celscan_private.h"
 
 #define FUZZ_NAME "fuzz_stream"
 #include "fuzz_check.h"

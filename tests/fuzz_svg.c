@@ -24,7 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "scene_json.h"
 #include "sv.h"
 

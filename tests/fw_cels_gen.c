@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "cels_write.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "fw_tracks_scene.h"
 
 int main(int argc, char **argv)

@@ -31,7 +31,7 @@
 #include <string.h>
 
 #include "cels_read.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "fw_scenes.h"
 #include "fw_tracks_scene.h"
 

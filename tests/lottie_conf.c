@@ -37,7 +37,7 @@
 #include "../host-sim/scene_json.h"
 #include "../tools/cels_write.h"
 #include "../tools/lottie/lt.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "testlib.h"
 
 #define BOARD_STORE 16384

@@ -22,7 +22,7 @@
 
 #include "../host-sim/scene_json.h"
 #include "../tools/lottie/lt.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "testlib.h"
 
 static double now(void)

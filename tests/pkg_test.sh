@@ -31,7 +31,8 @@ for f in etc/celscan/celfw.conf lib/systemd/system/celfw.service lib/udev/rules.
         usr/lib/sysusers.d/celscan.conf usr/share/man/man1/celfw.1.gz usr/share/man/man1/celc.1.gz \
         usr/share/man/man1/celsim.1.gz usr/share/man/man5/celfw.conf.5.gz \
         usr/share/doc/celscan/examples/celfw.conf.example usr/share/doc/celscan/copyright \
-        usr/include/celscan/celscan.h usr/include/celscan/cs_config.h \
+        usr/include/celscan/celscan.h usr/include/celscan/celscan_private.h \
+        usr/include/celscan/cs_config.h \
         usr/include/celscan/cs_config_480x272.h usr/lib/celscan/cortex-m4f/libcelscan.a \
         usr/lib/celscan/rv32imafc/libcelscan.a usr/share/pkgconfig/celscan-cortex-m4f.pc \
         usr/share/pkgconfig/celscan-rv32imafc.pc; do

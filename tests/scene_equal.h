@@ -16,7 +16,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 
 static bool scene_eq_bits(const void *a, const void *b, size_t n)
 {

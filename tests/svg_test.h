@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 
+#include "celscan_private.h" /* the tests place and read scene stores */
 #define TL_SHARED
 #include "testlib.h"
 

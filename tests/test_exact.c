@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "exact_ref.h"
 
 #define PI 3.14159265358979323846

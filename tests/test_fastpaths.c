@@ -18,7 +18,7 @@
  */
 #include <string.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "testlib.h"
 
 enum { W = 40, H = 4 };

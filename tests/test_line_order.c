@@ -21,7 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 #include "shapes.h"
 #include "testlib.h"
 

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "celscan_private.h"
 #include "paint_json.h"
 
 #include "testlib.h"

@@ -42,7 +42,7 @@
 #include "cels_sign.h"
 #include "celc_publish.h"
 #include "cels_write.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "cli.h"
 #include "lottie/lt.h"
 #include "scene_json.h"

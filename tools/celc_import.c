@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "celc_import.h"
+#include "celscan_private.h"
 #include "cli_num.h"
 #include "cels_write.h"
 #include "svg/sv.h"

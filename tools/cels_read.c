@@ -5,6 +5,7 @@
  * chunk size only trades system calls against nothing.
  */
 #include "cels_read.h"
+#include "celscan_private.h"
 
 #include <errno.h>
 #include <string.h>

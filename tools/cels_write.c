@@ -12,6 +12,7 @@
  * and contour operands included (class 5 records, format 1.1).
  */
 #include "cels_write.h"
+#include "celscan_private.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -3,7 +3,7 @@
  * cel stream bytes in, frames out through the board's own line sink.
  *
  * An example of firmware built against an installed celscan (libcelscan.a,
- * celscan.h): it holds the two scene stores, the stream decoder and the
+ * celscan_private.h: the layouts of the structs it places): it holds the two scene stores, the stream decoder and the
  * render workspace in one struct the board places (statically: the core
  * never allocates), swaps in a committed scene between frames, and renders
  * each frame line by line, converting every line to RGB565 for the panel
@@ -14,7 +14,7 @@
 #ifndef SIGN_H
 #define SIGN_H
 
-#include <celscan.h>
+#include <celscan_private.h>
 
 /* The board's panel: receives line y as width RGB565 pixels, little-endian. */
 typedef void (*sign_panel_write)(void *user, int y, const uint8_t *rgb565, int width);

@@ -50,6 +50,7 @@
 #include "celfw_stream.h"
 #include "celfw_trust.h"
 #include "celfw_wall.h"
+#include "celscan_private.h"
 #include "gud_host.h"
 #include "hub75.h"
 #include "kms.h"

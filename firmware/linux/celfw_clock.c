@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "celfw_clock.h"
+#include "celscan_private.h"
 
 #define NS 1000000000u
 

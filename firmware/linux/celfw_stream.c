@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "celfw_stream.h"
+#include "celscan_private.h"
 
 struct celfw_stream {
     cs_stream st;

@@ -18,7 +18,7 @@
 #define LX_SCENE_SOURCE_H
 
 #include "bands.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "display.h"
 
 #define LX_MAX_LANES 2

@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <sys/types.h>
 
-#include "celscan.h"
+#include "celscan_private.h"
 
 typedef struct child {
     pid_t pid;

@@ -14,6 +14,7 @@
 #include "../../host-sim/scene_json.h"
 #include "../cels_write.h"
 #include "../cli_num.h"
+#include "celscan_private.h"
 #include "lt.h"
 
 static int usage(void)

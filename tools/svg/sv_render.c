@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "celscan_private.h"
 #include "sv_render.h"
 
 cs_status sv_render_rgb8(const cs_scene *scene, int w, int h, cs_aa_mode aa, int subscanlines,

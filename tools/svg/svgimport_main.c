@@ -15,6 +15,7 @@
 #include "../celc_import.h"
 #include "../cli.h"
 #include "../cli_num.h"
+#include "celscan_private.h"
 #include "sv.h"
 #include "sv_import.h"
 #include "sv_render.h"
