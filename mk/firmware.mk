@@ -62,7 +62,7 @@ FW_OPT = $(OPT)
 FW_COLD_OPT := -Os
 FW_LINE_OPT = $(OPT) -finline-limit=20
 FW_LINE_SRC := core/cs_cross.c core/cs_coverage.c core/cs_composite.c core/cs_line.c \
-               core/cs_poly.c core/cs_pixfmt.c
+               core/cs_poly.c core/cs_pixfmt.c core/cs_crc32.c
 FW_COLD_SRC := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_edit.c \
                core/cs_anim.c core/cs_frame.c core/cs_nurbs.c core/cs_paint.c core/cs_status.c firmware/fw_render.c \
                firmware/main_mcu.c firmware/fw_stream.c firmware/fw_print.c firmware/fw_args.c \
