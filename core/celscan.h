@@ -983,6 +983,47 @@ size_t cs_stream_error_text(const cs_stream_error *e, uint64_t base, char *buf, 
 /* CRC-32 (IEEE 802.3, reflected, as zlib). Start with crc = 0. */
 uint32_t cs_crc32(uint32_t crc, const void *data, size_t len);
 
+/* --------------------------------------------------------------- damage */
+
+/* A window of the output: columns [x0, x1) of rows [y0, y1); empty when x0 >= x1. */
+typedef struct cs_rect {
+    int x0, y0, x1, y1;
+} cs_rect;
+
+/*
+ * What the last frame showed, cel by cel, so that the next frame can render
+ * only what changed (cs_frame_damage). The caller places it; the fields are
+ * private: a signature of each cel's state at the frame's time (transform,
+ * opacity, lights, paints, contours and control points, as sampled) and the
+ * rows and columns its contours' control points reach.
+ */
+typedef struct cs_damage {
+    uint32_t valid;       /* 0: the next frame is damaged everywhere */
+    uint32_t frame_sig;   /* size, AA, blending, background, stack lights */
+    uint32_t cel_count;
+    struct {
+        uint32_t sig;
+        int16_t x0, y0, x1, y1; /* output pixels the cel can touch; empty when x0 >= x1 */
+    } cels[CS_CFG_MAX_CELS];
+} cs_damage;
+
+/* Forgets the last frame: the next cs_frame_damage reports the whole output. */
+void cs_damage_reset(cs_damage *d);
+
+/*
+ * The window of the opts->width x opts->height output that can differ from
+ * the frame last passed to this call with `d` (the whole output the first
+ * time, after cs_damage_reset, or when the size, AA, blending, background or
+ * stack lights changed): the union of the old and the new extents of every
+ * cel whose state changed, or that came or went. A window rendered with it
+ * as the viewport (opts.view_*) gives the whole render's bits, so a frame is
+ * the last frame with that window replaced. Columns start at 0 unless the
+ * AA makes a narrower window exact (CS_AA_NONE, or sub-scanlines a power of
+ * two). An empty window: nothing changed. opts' own viewport is not used.
+ */
+cs_status cs_frame_damage(cs_damage *d, const cs_scene *scene, const cs_render_opts *opts,
+                          cs_rect *window);
+
 #ifdef __cplusplus
 }
 #endif

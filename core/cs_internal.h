@@ -147,6 +147,13 @@ static inline uint32_t cs__track_lead(const cs_track *tr)
 }
 /* A TRS key (CS_TRACK_TRS) as the affine map it stands for (cs_anim.c). */
 void cs__trs_affine(const float *v, float m[6]);
+/* Track `tr` sampled at time t into out[0 .. width - lead) (cs_frame.c). */
+void cs__track_sample(const cs_scene *scene, const cs_track *tr, float t, float *out);
+/* Cel ci's world transform (into m) and opacity at time t, its groups' included. */
+float cs__cel_world(const cs_scene *scene, uint32_t ci, float t, float *m);
+/* Region ri's paint at time t under opacity: its own, or one made in *animated. */
+const cs_paint *cs__region_paint(const cs_scene *scene, uint32_t ri, float t, float opacity,
+                                 cs_paint *animated);
 /* (1-s) a + s b: exactly a at s = 0 and b at s = 1, between them (to rounding) otherwise. */
 static inline float cs__lerp(float a, float b, float s) { return (1.0f - s) * a + s * b; }
 
