@@ -1003,7 +1003,9 @@ typedef struct cs_damage {
     uint32_t cel_count;
     struct {
         uint32_t sig;
-        int16_t x0, y0, x1, y1; /* output pixels the cel can touch; empty when x0 >= x1 */
+        /* The output pixels the cel can touch, in units of (max(width, height) + 254) / 255
+         * pixels rounded outward (8 bytes a cel on a board); empty when x0 >= x1. */
+        uint8_t x0, y0, x1, y1;
     } cels[CS_CFG_MAX_CELS];
 } cs_damage;
 

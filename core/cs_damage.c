@@ -50,14 +50,14 @@ static void box_add(box *b, const float *dev, float x, float y)
 }
 
 /* A device coordinate as a pixel edge in 0..limit, `pad` pixels outward. */
-static int16_t edge(float v, int32_t pad, int32_t limit)
+static int32_t edge(float v, int32_t pad, int32_t limit)
 {
     if (!(v > -1e6f))
         return 0;
     if (!(v < 1e6f))
-        return (int16_t)limit;
+        return limit;
     int32_t i = cs__floori(v) + pad;
-    return (int16_t)(i < 0 ? 0 : i > limit ? limit : i);
+    return i < 0 ? 0 : i > limit ? limit : i;
 }
 
 /* Contour ki's control points (as sampled at t, when a points track moves
@@ -99,7 +99,7 @@ static uint32_t contour_state(const cs_scene *scene, uint32_t ki, float t, const
 
 /* Cel ci at time t: its signature, and its extent in output pixels. */
 static uint32_t cel_state(const cs_scene *scene, uint32_t ci, float t, float sx, float sy,
-                          int32_t width, int32_t height, int16_t ext[4])
+                          int32_t width, int32_t height, int32_t ext[4])
 {
     const cs_cel *cel = &scene->cels[ci];
     float m[7];
@@ -128,8 +128,8 @@ static uint32_t cel_state(const cs_scene *scene, uint32_t ci, float t, float sx,
     }
     if (b.all) {
         ext[0] = ext[1] = 0;
-        ext[2] = (int16_t)width;
-        ext[3] = (int16_t)height;
+        ext[2] = width;
+        ext[3] = height;
     } else if (b.x0 > b.x1) {
         ext[0] = ext[1] = ext[2] = ext[3] = 0; /* no contours: no pixels */
     } else {
@@ -166,7 +166,7 @@ void cs_damage_reset(cs_damage *d)
         d->valid = 0;
 }
 
-static void grow(cs_rect *w, const int16_t *e)
+static void grow(cs_rect *w, const int32_t *e)
 {
     if (e[0] >= e[2] || e[1] >= e[3])
         return;
@@ -193,26 +193,35 @@ cs_status cs_frame_damage(cs_damage *d, const cs_scene *scene, const cs_render_o
     bool all = !d->valid || fsig != d->frame_sig;
     window->x0 = window->y0 = window->x1 = window->y1 = 0;
     uint32_t old_count = all ? 0u : d->cel_count;
+    /* Extents are kept in units of u pixels, rounded outward: a byte each. */
+    int32_t u = ((w > h ? w : h) + 254) / 255;
     for (uint32_t ci = 0; ci < scene->cel_count || ci < old_count; ci++) {
-        int16_t ext[4] = {0, 0, 0, 0};
+        int32_t ext[4] = {0, 0, 0, 0};
         uint32_t sig = 0;
-        if (ci < scene->cel_count)
+        if (ci < scene->cel_count) {
             sig = cel_state(scene, ci, opts->time, sx, sy, w, h, ext);
+            ext[0] /= u, ext[1] /= u;
+            ext[2] = (ext[2] + u - 1) / u, ext[3] = (ext[3] + u - 1) / u;
+        }
         if (ci >= old_count || ci >= scene->cel_count || sig != d->cels[ci].sig) {
             if (ci < old_count) {
-                int16_t was[4] = {d->cels[ci].x0, d->cels[ci].y0, d->cels[ci].x1, d->cels[ci].y1};
+                int32_t was[4] = {d->cels[ci].x0, d->cels[ci].y0, d->cels[ci].x1, d->cels[ci].y1};
                 grow(window, was);
             }
             grow(window, ext);
         }
         if (ci < scene->cel_count) {
             d->cels[ci].sig = sig;
-            d->cels[ci].x0 = ext[0];
-            d->cels[ci].y0 = ext[1];
-            d->cels[ci].x1 = ext[2];
-            d->cels[ci].y1 = ext[3];
+            d->cels[ci].x0 = (uint8_t)ext[0];
+            d->cels[ci].y0 = (uint8_t)ext[1];
+            d->cels[ci].x1 = (uint8_t)ext[2];
+            d->cels[ci].y1 = (uint8_t)ext[3];
         }
     }
+    /* Back to pixels, within the output. */
+    window->x0 *= u, window->y0 *= u;
+    window->x1 = window->x1 * u < w ? window->x1 * u : w;
+    window->y1 = window->y1 * u < h ? window->y1 * u : h;
     d->valid = 1;
     d->frame_sig = fsig;
     d->cel_count = scene->cel_count;

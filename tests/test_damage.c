@@ -21,8 +21,8 @@
 
 #include "common.h"
 
-#define W 88
-#define H 66
+#define W 264 /* over 255: extents are kept in units of 2 pixels */
+#define H 48
 #define FRAMES 16
 
 static cs_scene *scene;
