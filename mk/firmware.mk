@@ -57,14 +57,15 @@ FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c f
 # the panel's): 4.5 KB less flash and 3.6 % fewer instructions per board
 # demo line (firmware/README.md). fw_mem.c stays outside LTO: the memcpy and
 # memset that code generation itself calls must exist as ordinary symbols
-# when the LTO objects are compiled (-u keeps them through --gc-sections).
+# when the LTO objects are compiled (-u keeps those two through --gc-sections).
 FW_OPT = $(OPT)
 FW_COLD_OPT := -Os
 FW_LINE_OPT = $(OPT) -finline-limit=20
 FW_LINE_SRC := core/cs_cross.c core/cs_coverage.c core/cs_composite.c core/cs_line.c \
                core/cs_poly.c core/cs_pixfmt.c core/cs_crc32.c
 FW_COLD_SRC := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_edit.c \
-               core/cs_anim.c core/cs_frame.c core/cs_nurbs.c core/cs_paint.c core/cs_status.c firmware/fw_render.c \
+               core/cs_anim.c core/cs_frame.c core/cs_nurbs.c core/cs_paint.c core/cs_status.c \
+               core/cs_damage.c firmware/fw_render.c \
                firmware/main_mcu.c firmware/fw_stream.c firmware/fw_print.c firmware/fw_args.c \
                firmware/fw_mem.c firmware/scenes/fw_scenes.c \
                $(wildcard firmware/boards/*/board.c firmware/boards/stm32f4/*.c) \
@@ -72,7 +73,7 @@ FW_COLD_SRC := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_e
 FW_CFLAGS := -std=c11 -g $(FP_FLAGS) $(WARN) -ffreestanding -fno-builtin \
         -fno-tree-loop-distribute-patterns -fno-stack-protector -fno-common \
         -ffunction-sections -fdata-sections -MMD -MP -flto
-FW_LDFLAGS := -nostdlib -flto -Wl,-u,memcpy,-u,memset,-u,memmove,-u,memcmp -Wl,--gc-sections \
+FW_LDFLAGS := -nostdlib -flto -Wl,-u,memcpy,-u,memset -Wl,--gc-sections \
         -Llinker -Wl,--no-warn-rwx-segments
 
 define FW_BOARD_RULES

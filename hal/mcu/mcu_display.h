@@ -18,6 +18,7 @@
 #ifndef MCU_DISPLAY_H
 #define MCU_DISPLAY_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -29,6 +30,15 @@ typedef struct mcu_panel_api {
     /* Line y in the panel format, `bytes` long. Required. */
     int (*line_out)(void *ctx, int y, const uint8_t *pixels, size_t bytes);
     int (*end_frame)(void *ctx);
+    /* Optional: only columns [x0, x1) of rows [y0, y1) of this frame are
+     * sent (after begin_frame, before the lines; lines are then x1 - x0
+     * pixels, and y still counts the frame's rows); the panel keeps the rest
+     * of its picture. Without it, only whole frames can be shown. */
+    int (*set_window)(void *ctx, int x0, int y0, int x1, int y1);
+    /* Optional: row y of the picture the panel now holds, `bytes` long, read
+     * back into buf (after end_frame): the whole frame's CRC of a frame that
+     * sent only a window. */
+    int (*read_row)(void *ctx, int y, uint8_t *buf, size_t bytes);
 } mcu_panel_api;
 
 typedef struct mcu_panel {
@@ -42,6 +52,7 @@ typedef struct mcu_display {
     const mcu_panel *panel;
     uint8_t *pixels;         /* one line in CS_PANEL_PIXFMT, width * 2 bytes */
     int width, height;       /* of the frame being drawn */
+    int x0, y0, x1, y1;      /* its window: what is sent (mcu_display_window) */
     uint32_t crc;            /* CRC-32 of the frame's lines so far */
     uint32_t frames;         /* frames completed */
     int panel_error;         /* first non-zero result of the panel this frame */
@@ -56,7 +67,25 @@ cs_status mcu_display_begin(mcu_display *d, int width, int height);
 /* The cs_line_sink: `user` is the mcu_display. */
 cs_status mcu_display_line(void *user, int y, const float *rgb_linear, int width);
 
-/* Line y already in CS_PANEL_PIXFMT (d->width pixels), e.g. from
+/*
+ * Sends only columns [x0, x1) of rows [y0, y1) of this frame (call it after
+ * mcu_display_begin, before the lines; lines are then x1 - x0 pixels), the
+ * panel keeping the rest; an empty window sends nothing. The running CRC
+ * then covers the window's bytes; mcu_display_frame_crc gives the whole
+ * frame's. CS_ERR_ARG for a window outside the frame; a panel that cannot
+ * take a window (no set_window) reports a panel error.
+ */
+cs_status mcu_display_window(mcu_display *d, int x0, int y0, int x1, int y1);
+
+/*
+ * After mcu_display_end: the CRC-32 of the whole frame the panel now holds,
+ * rows top to bottom, as `celsim --crc` computes it, read back row by row
+ * into `row` (a line in the panel format). False if the panel cannot read
+ * back (no read_row) or failed.
+ */
+bool mcu_display_frame_crc(const mcu_display *d, uint8_t *row, uint32_t *crc);
+
+/* Line y already in CS_PANEL_PIXFMT (the window's width), e.g. from
  * cs_line_pixels_scratch: hashed and sent as mcu_display_line does. */
 cs_status mcu_display_line_px(mcu_display *d, int y, const uint8_t *pixels);
 

@@ -18,6 +18,7 @@ void panel_semihost_init(panel_semihost *p, const char *dir)
     p->dir[i] = 0;
     p->handle = -1;
     p->path[0] = 0;
+    p->whole = false;
 }
 
 /* path = dir + "/frame" + two or more digits + ".rgb565" */
@@ -47,32 +48,87 @@ static void frame_path(panel_semihost *p, uint32_t frame)
 static int begin_frame(void *ctx, uint32_t frame, int width, int height)
 {
     panel_semihost *p = ctx;
-    (void)width;
-    (void)height;
     if (!p->dir[0])
         return 0;
+    /* The last frame's file stays open until now: a window starts from it. */
+    bool whole = p->handle >= 0 && p->whole;
+    uint32_t last = p->frame;
+    int last_w = p->width, last_h = p->height;
+    if (p->handle >= 0)
+        sh_close(p->handle);
+    p->whole = false;
+    p->x0 = -1;
+    p->frame = frame;
+    p->width = width;
+    p->height = height;
     frame_path(p, frame);
-    p->handle = sh_open(p->path, 5 /* "wb" */);
-    return p->handle < 0 ? -1 : 0;
+    p->handle = sh_open(p->path, 7 /* "w+b": read back too */);
+    if (p->handle < 0)
+        return -1;
+    /* Remember whether the last frame can be the base of a window. */
+    p->whole = whole && last_w == width && last_h == height && last + 1u == frame;
+    return 0;
+}
+
+/* The last frame's picture copied into the open file, 64 bytes at a time
+ * (a few kilobytes of stack are all a board has). */
+static int copy_last(panel_semihost *p)
+{
+    frame_path(p, p->frame - 1u);
+    int from = sh_open(p->path, 1 /* "rb" */);
+    if (from < 0)
+        return -1;
+    uint8_t buf[64];
+    int r = 0;
+    for (size_t left = (size_t)p->width * (size_t)p->height * 2u; r == 0 && left > 0;) {
+        size_t n = left < sizeof buf ? left : sizeof buf;
+        r = sh_read(from, buf, n) == 0 && sh_write(p->handle, buf, n) == 0 ? 0 : -1;
+        left -= n;
+    }
+    sh_close(from);
+    return r;
+}
+
+static int set_window(void *ctx, int x0, int y0, int x1, int y1)
+{
+    panel_semihost *p = ctx;
+    (void)y0;
+    (void)x1;
+    (void)y1;
+    if (p->handle < 0)
+        return 0;
+    if (!p->whole) /* no picture to keep */
+        return -1;
+    p->x0 = x0;
+    return copy_last(p);
 }
 
 static int line_out(void *ctx, int y, const uint8_t *pixels, size_t bytes)
 {
     panel_semihost *p = ctx;
-    (void)y;
     if (p->handle < 0)
         return 0;
+    if (p->x0 >= 0 &&
+        sh_seek(p->handle, ((size_t)y * (size_t)p->width + (size_t)p->x0) * 2u) != 0)
+        return -1;
     return sh_write(p->handle, pixels, bytes);
 }
 
 static int end_frame(void *ctx)
 {
     panel_semihost *p = ctx;
-    if (p->handle < 0)
-        return 0;
-    int r = sh_close(p->handle);
-    p->handle = -1;
-    return r;
+    p->whole = p->handle >= 0;
+    return 0;
 }
 
-const mcu_panel_api panel_semihost_api = {begin_frame, line_out, end_frame};
+static int read_row(void *ctx, int y, uint8_t *buf, size_t bytes)
+{
+    panel_semihost *p = ctx;
+    if (p->handle < 0 || !p->whole)
+        return -1;
+    if (sh_seek(p->handle, (size_t)y * bytes) != 0)
+        return -1;
+    return sh_read(p->handle, buf, bytes);
+}
+
+const mcu_panel_api panel_semihost_api = {begin_frame, line_out, end_frame, set_window, read_row};

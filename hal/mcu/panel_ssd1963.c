@@ -95,4 +95,16 @@ static int line_out(void *ctx, int y, const uint8_t *pixels, size_t bytes)
     return 0;
 }
 
-const mcu_panel_api panel_ssd1963_api = {begin_frame, line_out, 0};
+/* Only a window of the frame (cs_frame_damage): the controller's frame
+ * memory keeps the rest of the picture. */
+static int set_window(void *ctx, int x0, int y0, int x1, int y1)
+{
+    panel_ssd1963 *p = ctx;
+    if (x0 >= x1 || y0 >= y1)
+        return 0; /* nothing changed: nothing to send */
+    window(p, x0, y0, x1 - 1, y1 - 1);
+    *p->cmd = CMD_WRITE_MEMORY;
+    return 0;
+}
+
+const mcu_panel_api panel_ssd1963_api = {begin_frame, line_out, 0, set_window, 0};
