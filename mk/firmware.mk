@@ -180,7 +180,8 @@ qemu-run: firmware-$(FW_RUN_BOARD) $(if $(STREAM),$(HOST)/celc)
 
 # The full demo (rendered in bands), the reduced board demo, the animated
 # scene and the beta stack, streamed, at 480x272 with 5 and 16
-# sub-scanlines; then the built-in jobs.
+# sub-scanlines; then the built-in jobs; then 2 s of the board's animated
+# scene (scenes/board-anim.json) at 60 frames a second with damage.
 FW_INSN := $(BUILD)/$(FW_QEMU_BOARD)/insn
 qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen $(HOST)/celc
 	@mkdir -p $(FW_INSN)/streams
@@ -193,6 +194,10 @@ qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen
 		$(FW_INSN)/streams/demo-board.cels \
 		$(FW_INSN)/streams/tracks.cels $(FW_INSN)/streams/beta-stack.cels
 	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/builtin
+	$(Q)$(HOST)/celc compile scenes/board-anim.json -o $(FW_INSN)/streams/board-anim.cels
+	$(Q)tools/qemu-insn/measure.sh $(FW_QEMU_ELF) $(HOST)/libinsncount.so $(FW_INSN)/anim \
+		"frames=480x272@0:5 repeat=120 step_ms=17 damage=1 render=end" \
+		$(FW_INSN)/streams/board-anim.cels
 
 # firmware-all: every board's image builds and fits its flash and RAM
 # budgets (qemu-test boots the boards that QEMU models: mps2-an386 and
