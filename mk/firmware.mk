@@ -203,3 +203,7 @@ qemu-insn: firmware-$(FW_QEMU_BOARD) $(HOST)/libinsncount.so $(HOST)/fw_cels_gen
 # budgets (qemu-test boots the boards that QEMU models: mps2-an386 and
 # netduinoplus2, which runs the stm32f407-ssd1963 board's STM32 drivers).
 TEST_TARGETS += test-mcu-display test-rx-ring $(addprefix qemu-test-,$(FW_QEMU_BOARDS)) firmware-all
+
+# celsim's damage report (--repeat N --time-step S), the host side of the
+# boards' damage (tests/cli_damage.sh).
+TEST_CMDS += "sh tests/cli_damage.sh $(HOST)"
