@@ -424,6 +424,23 @@ size_t cs_stream_error_text(const cs_stream_error *e, uint64_t base, char *buf, 
 /* CRC-32 (IEEE 802.3, reflected, as zlib) of frames and streams. Start with crc = 0. */
 uint32_t cs_crc32(uint32_t crc, const void *data, size_t len);
 
+/* --------------------------------------------------------------- damage */
+
+/* A window of the output: columns [x0, x1) of rows [y0, y1); empty when x0 >= x1. */
+typedef struct cs_rect {
+    int x0, y0, x1, y1;
+} cs_rect;
+
+/* What the last frame showed, cel by cel (layout in celscan_private.h). */
+typedef struct cs_damage cs_damage;
+void cs_damage_reset(cs_damage *d); /* the next cs_frame_damage reports everything */
+
+/* The window of the output that can differ from the frame last passed with
+ * `d`: rendered as the viewport, it gives the whole render's bits there. An
+ * empty window: nothing changed. docs/API.md has the rules. */
+cs_status cs_frame_damage(cs_damage *d, const cs_scene *scene, const cs_render_opts *opts,
+                          cs_rect *window);
+
 #ifdef __cplusplus
 }
 #endif

@@ -313,6 +313,25 @@ typedef struct cs_stream {
     cs_stream_error last;       /* the error of the last CS_STREAM_ERROR */
 } cs_stream;
 
+/*
+ * What the last frame showed, cel by cel, so that the next frame can render
+ * only what changed (cs_frame_damage). The caller places it; the fields are
+ * private: a signature of each cel's state at the frame's time (transform,
+ * opacity, lights, paints, contours and control points, as sampled) and the
+ * rows and columns its contours' control points reach.
+ */
+struct cs_damage {
+    uint32_t valid;       /* 0: the next frame is damaged everywhere */
+    uint32_t frame_sig;   /* size, AA, blending, background, stack lights */
+    uint32_t cel_count;
+    struct {
+        uint32_t sig;
+        /* The output pixels the cel can touch, in units of (max(width, height) + 254) / 255
+         * pixels rounded outward (8 bytes a cel on a board); empty when x0 >= x1. */
+        uint8_t x0, y0, x1, y1;
+    } cels[CS_CFG_MAX_CELS];
+};
+
 #ifdef __cplusplus
 }
 #endif

@@ -320,7 +320,7 @@ static cs_affine affine_inverse(const cs_affine *m)
 }
 
 /* Samples track `tr` at time t into out[0 .. width). */
-static void sample(const cs_scene *scene, const cs_track *tr, float t, float *out)
+void cs__track_sample(const cs_scene *scene, const cs_track *tr, float t, float *out)
 {
     uint32_t i0, i1;
     float s;
@@ -341,7 +341,7 @@ static float cel_local(const cs_scene *scene, uint32_t ci, float t, float *m)
 #if CS_CFG_ANIM_PARTS
     if ((tr = cs__track_find(scene, CS_TRACK_TRS, ci)) != 0 && tr->key_count) {
         float v[10];
-        sample(scene, tr, t, v);
+        cs__track_sample(scene, tr, t, v);
         cs__trs_affine(v, m);
         return cs__clampf(v[9], 0.0f, 1.0f);
     }
@@ -353,13 +353,13 @@ static float cel_local(const cs_scene *scene, uint32_t ci, float t, float *m)
     m[4] = cel->transform.e;
     m[5] = cel->transform.f;
     if ((tr = cs__track_find(scene, CS_TRACK_TRANSFORM, ci)) != 0 && tr->key_count)
-        sample(scene, tr, t, m);
+        cs__track_sample(scene, tr, t, m);
     return 1.0f;
 }
 
 /* Cel ci's transform and opacity with its groups': parent after child, up
  * the chain (at most CS_CFG_MAX_GROUP_DEPTH long, cs_scene_set_cel_parent). */
-static float cel_world(const cs_scene *scene, uint32_t ci, float t, float *m)
+float cs__cel_world(const cs_scene *scene, uint32_t ci, float t, float *m)
 {
     float opacity = cel_local(scene, ci, t, m);
     uint32_t p = scene->cels[ci].parent;
@@ -496,10 +496,10 @@ static void frame_lights(cs_renderer *r, const cs_scene *scene, float t, float s
     cs__copy3(bg, scene->background);
     const cs_track *tr = cs__track_find(scene, CS_TRACK_STACK_LIGHTS, 0);
     if (tr && tr->key_count)
-        sample(scene, tr, t, stack);
+        cs__track_sample(scene, tr, t, stack);
     tr = cs__track_find(scene, CS_TRACK_BACKGROUND, 0);
     if (tr && tr->key_count)
-        sample(scene, tr, t, bg);
+        cs__track_sample(scene, tr, t, bg);
     bool srgb = r->opts.blend == CS_BLEND_SRGB;
     for (int k = 0; k < 3; k++) {
         float card = srgb ? cs__encode(bg[k]) : bg[k];
@@ -509,14 +509,14 @@ static void frame_lights(cs_renderer *r, const cs_scene *scene, float t, float s
 
 /* Region ri's paint at time t under its cel's opacity: its own, or one
  * made in *animated when a track or the opacity changes it. */
-static const cs_paint *region_paint(const cs_scene *scene, uint32_t ri, float t, float opacity,
+const cs_paint *cs__region_paint(const cs_scene *scene, uint32_t ri, float t, float opacity,
                                     cs_paint *animated)
 {
     const cs_paint *paint = &scene->regions[ri].paint;
     const cs_track *tr = cs__track_find(scene, CS_TRACK_PAINT, ri);
     if (tr != 0 && tr->key_count) {
         float v[7];
-        sample(scene, tr, t, v);
+        cs__track_sample(scene, tr, t, v);
         for (int k = 0; k < 3; k++) {
             animated->pigment[k] = cs__clampf(v[k], 0.0f, 1.0f);
             animated->medium[k] = cs__clampf(v[3 + k], 0.0f, 1.0f);
@@ -624,13 +624,13 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
             continue; /* composited from the cache's runs instead */
         const cs_cel *cel = &scene->cels[ci];
         float m[6];
-        float opacity = cel_world(scene, ci, t, m);
+        float opacity = cs__cel_world(scene, ci, t, m);
         fd->cel_opacity[ci] = opacity;
         float lights[6];
         cs__copy3(lights, cel->has_front ? cel->front : stack);
         cs__copy3(lights + 3, cel->back);
         if ((tr = cs__track_find(scene, CS_TRACK_CEL_LIGHTS, ci)) != 0 && tr->key_count)
-            sample(scene, tr, t, lights);
+            cs__track_sample(scene, tr, t, lights);
         cs_affine dev = {m[0] * r->sx, m[1] * r->sy, m[2] * r->sx,
                          m[3] * r->sy, m[4] * r->sx, m[5] * r->sy};
         cs_affine inv = affine_inverse(&dev);
@@ -638,7 +638,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
             const cs_region *reg = &scene->regions[ri];
             fd->region_cel[ri] = (uint16_t)ci;
             cs_paint animated;
-            const cs_paint *paint = region_paint(scene, ri, t, opacity, &animated);
+            const cs_paint *paint = cs__region_paint(scene, ri, t, opacity, &animated);
             region_map(paint, lights, lights + 3, srgb, fd->region_E[ri], fd->region_T[ri]);
             grey = grey && region_grey(scene, reg, paint, fd->region_T[ri]);
             for (int f = 0; f < 3; f++)

@@ -144,6 +144,13 @@ static inline uint32_t cs__track_lead(const cs_track *tr)
 }
 /* A TRS key (CS_TRACK_TRS) as the affine map it stands for (cs_anim.c). */
 void cs__trs_affine(const float *v, float m[6]);
+/* Track `tr` sampled at time t into out[0 .. width - lead) (cs_frame.c). */
+void cs__track_sample(const cs_scene *scene, const cs_track *tr, float t, float *out);
+/* Cel ci's world transform (into m) and opacity at time t, its groups' included. */
+float cs__cel_world(const cs_scene *scene, uint32_t ci, float t, float *m);
+/* Region ri's paint at time t under opacity: its own, or one made in *animated. */
+const cs_paint *cs__region_paint(const cs_scene *scene, uint32_t ri, float t, float opacity,
+                                 cs_paint *animated);
 /* (1-s) a + s b: exactly a at s = 0 and b at s = 1, between them (to rounding) otherwise. */
 static inline float cs__lerp(float a, float b, float s) { return (1.0f - s) * a + s * b; }
 
@@ -421,6 +428,35 @@ static inline uint32_t cs__srgb8(float linear)
     uint32_t c = (uint32_t)(cs__srgb_encode(linear) * 255.0f + 0.5f);
     return c > 255u ? 255u : c;
 #endif
+}
+
+/* The RGB565 channel codes min(M, (uint32)(cs__srgb_encode(v) * M + 0.5)),
+ * M = 31 or 63, from the thresholds where the code changes: a cell of the
+ * square root gives the code of its first float, and the code rises by at
+ * most two within a cell (tables made by tools/gen_rgb565_table.c running
+ * that arithmetic on every float; tests/test_pixfmt.c checks every float). */
+#define CS_RGB5_CELLS 32u
+#define CS_RGB6_CELLS 64u
+extern const uint8_t cs__rgb5_cell[CS_RGB5_CELLS + 1u], cs__rgb6_cell[CS_RGB6_CELLS + 1u];
+extern const float cs__rgb5_step[32], cs__rgb6_step[64];
+static inline uint32_t cs__code_by_step(float linear, uint32_t max, float cells,
+                                        const uint8_t *cell, const float *step)
+{
+    if (!(linear > 0.0f))
+        return 0u;
+    if (linear >= 1.0f)
+        return max;
+    uint32_t c = cell[(int32_t)(cs__sqrtf(linear) * cells)];
+    c += linear >= step[c] ? 1u : 0u;
+    return c + (linear >= step[c] ? 1u : 0u);
+}
+static inline uint32_t cs__rgb5(float linear)
+{
+    return cs__code_by_step(linear, 31u, (float)CS_RGB5_CELLS, cs__rgb5_cell, cs__rgb5_step);
+}
+static inline uint32_t cs__rgb6(float linear)
+{
+    return cs__code_by_step(linear, 63u, (float)CS_RGB6_CELLS, cs__rgb6_cell, cs__rgb6_step);
 }
 
 /*

@@ -20,7 +20,10 @@
  *
  * Rounded 8-bit sRGB, the commonest output, takes its codes from a table
  * made by running this very arithmetic on every float (cs__srgb8): the
- * same bytes for a comparison in place of an interpolation.
+ * same bytes for a comparison in place of an interpolation. Rounded RGB565,
+ * the boards' panel format, likewise takes each channel's code from the
+ * thresholds where the arithmetic's code changes (cs__rgb5, cs__rgb6: a
+ * cell lookup and two comparisons), and its runs have a loop of their own.
  *
  * Flat artwork makes long runs of bit-identical pixels, and the encoding
  * (a square root and a table interpolation per channel) costs more than the
@@ -104,6 +107,12 @@ static const packed_layout rgb565 = {{31.0f, 63.0f, 31.0f}, {11, 5, 0}, 2};
 static const packed_layout rgb444 = {{15.0f, 15.0f, 15.0f}, {8, 4, 0}, 2};
 static const packed_layout rgb332 = {{7.0f, 7.0f, 3.0f}, {5, 2, 0}, 1};
 
+/* The rounded RGB565 pixel of linear r g b, from the threshold tables. */
+static inline uint32_t rgb565_of(const float *px)
+{
+    return cs__rgb5(px[0]) << 11 | cs__rgb6(px[1]) << 5 | cs__rgb5(px[2]);
+}
+
 static inline void convert_packed(const packed_layout *L, const float *rgb, int width, int y,
                                   uint8_t *out)
 {
@@ -121,9 +130,12 @@ static inline void convert_packed(const packed_layout *L, const float *rgb, int 
             last[1] = g;
             last[2] = b;
             float bias = y < 0 ? 0.5f : (float)(2u * row[(uint32_t)x & 7u] + 1u) * (1.0f / 128.0f);
-            v = code(cs__srgb_encode(px[0]), L->max[0], bias) << L->shift[0] |
-                code(cs__srgb_encode(px[1]), L->max[1], bias) << L->shift[1] |
-                code(cs__srgb_encode(px[2]), L->max[2], bias) << L->shift[2];
+            if (y < 0 && L == &rgb565)
+                v = rgb565_of(px);
+            else
+                v = code(cs__srgb_encode(px[0]), L->max[0], bias) << L->shift[0] |
+                    code(cs__srgb_encode(px[1]), L->max[1], bias) << L->shift[1] |
+                    code(cs__srgb_encode(px[2]), L->max[2], bias) << L->shift[2];
         }
         if (L->bytes == 1) {
             out[x] = (uint8_t)v;
@@ -229,6 +241,30 @@ static inline void fill_rgb888(uint8_t *p, uint32_t n, uint32_t c0, uint32_t c1,
     }
 }
 
+/* n pixels of the RGB565 value v at p, little-endian: short runs pixel by
+ * pixel, long ones two pixels (a word) a step. */
+static inline void fill_rgb565(uint8_t *p, uint32_t n, uint32_t v)
+{
+    for (uint32_t w = v | v << 16; n >= 4u; n -= 4u, p += 8) {
+        put32(p, w);
+        put32(p + 4, w);
+    }
+    for (; n > 0u; n--, p += 2) {
+        p[0] = (uint8_t)v;
+        p[1] = (uint8_t)(v >> 8);
+    }
+}
+
+/* A whole line of runs in RGB565, the boards' panel format. */
+static void runs_rgb565(const float *rgb, const uint16_t *run_end, uint32_t width, uint8_t *out)
+{
+    for (uint32_t s = 0; s < width;) {
+        uint32_t e = run_end[s];
+        fill_rgb565(out + 2u * s, e - s, rgb565_of(&rgb[3 * s]));
+        s = e;
+    }
+}
+
 /*
  * A whole line of runs in 8-bit sRGB, the format of PNGs, GUD bridges and
  * the bench: the common case, so it has a loop of its own rather than a
@@ -252,6 +288,10 @@ void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1
     if (fmt == CS_PIX_RGB888_SRGB) { /* convert() on one pixel, without its loop */
         fill_rgb888(out + 3u * x0, x1 - x0, cs__srgb8(rgb[0]), cs__srgb8(rgb[1]),
                     cs__srgb8(rgb[2]));
+        return;
+    }
+    if (fmt == CS_PIX_RGB565_SRGB) {
+        fill_rgb565(out + 2u * x0, x1 - x0, rgb565_of(rgb));
         return;
     }
     uint8_t one[6];
@@ -287,6 +327,10 @@ void cs__pixfmt_runs(cs_pixfmt fmt, const float *rgb, const uint16_t *run_end, u
 {
     if (fmt == CS_PIX_RGB888_SRGB) {
         runs_rgb888(rgb, run_end, width, out);
+        return;
+    }
+    if (fmt == CS_PIX_RGB565_SRGB) {
+        runs_rgb565(rgb, run_end, width, out);
         return;
     }
     for (uint32_t s = 0; s < width; s = run_end[s])

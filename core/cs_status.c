@@ -1,13 +1,11 @@
 /*
- * cs_status.c - status descriptions and the CRC-32 shared by the core.
+ * cs_status.c - status descriptions and the stream error line.
  *
  * The strings are what users read in celsim's and the firmware's error
  * messages, so they say what was expected, not just that something failed.
  * cs_stream_error_text puts a decoder error in the one line that celsim,
  * celc, celfw and the MCU firmware print (no libc here, so it formats its
- * numbers itself).
- * The CRC is the one the cel stream and the frame checks use (IEEE 802.3,
- * as zlib); a 16-entry table keeps it small enough for any MCU.
+ * numbers itself). The CRC-32 is in cs_crc32.c.
  */
 #include "cs_internal.h"
 
@@ -149,21 +147,4 @@ TEXT_COLD size_t cs_stream_error_text(const cs_stream_error *e, uint64_t base, c
     if (len > 0)
         buf[t.n < len ? t.n : len - 1] = '\0';
     return t.n;
-}
-
-uint32_t cs_crc32(uint32_t crc, const void *data, size_t len)
-{
-    static const uint32_t nibble[16] = {
-        0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu, 0x76DC4190u, 0x6B6B51F4u,
-        0x4DB26158u, 0x5005713Cu, 0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
-        0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu,
-    };
-    const uint8_t *p = (const uint8_t *)data;
-    crc = ~crc;
-    for (size_t i = 0; i < len; i++) {
-        crc ^= p[i];
-        crc = (crc >> 4) ^ nibble[crc & 15u];
-        crc = (crc >> 4) ^ nibble[crc & 15u];
-    }
-    return ~crc;
 }

@@ -45,6 +45,11 @@ static union {
     cs_scene staging;
 } work __attribute__((section(".noinit.work")));
 static cs_renderer renderer;
+/* With damage on, what the last frame showed: a frame renders and sends
+ * only the window that changed (cs_frame_damage), the panel keeping the
+ * rest of its picture. */
+static cs_damage damage;
+static bool damage_on;
 /* No line buffer: each line is rendered into the core's runs and converted
  * to panel pixels in workspace memory that is idle between lines
  * (cs_line_pixels_scratch). */
@@ -84,6 +89,29 @@ static uint32_t crc_line_floats(uint32_t crc, const cs_renderer *r, int width)
 static int band_count;
 static unsigned frame_bands, most_segments, most_pieces;
 
+/* The window of the frame to render: the damage, or the whole frame. Not
+ * inlined: its stack is free again before the lines are rendered (the
+ * deepest path). */
+static __attribute__((noinline)) cs_status frame_window(const cs_scene *scene,
+                                                        const cs_render_opts *opts, cs_rect *win)
+{
+    win->x0 = win->y0 = 0;
+    win->x1 = opts->width;
+    win->y1 = opts->height;
+    return damage_on ? cs_frame_damage(&damage, scene, opts, win) : CS_OK;
+}
+
+void fw_render_damage(bool on)
+{
+    damage_on = on;
+    cs_damage_reset(&damage);
+}
+
+void fw_render_forget(void)
+{
+    cs_damage_reset(&damage);
+}
+
 /* Rows per band when a frame of `height` rows is cut into `bands`. */
 static int band_rows(int height, int bands)
 {
@@ -91,21 +119,23 @@ static int band_rows(int height, int bands)
 }
 
 /*
- * Prepares the band of rows from y of the frame `opts` asks for (its own
- * viewport, if any, is not used: the firmware renders whole frames), the
- * frame cut into *bands equal bands (the last cut at the bottom); while
- * the arena overflows, into one band more.
+ * Prepares the band of rows from y of the window `win` of the frame `opts`
+ * asks for (its own viewport, if any, is not used: the firmware renders
+ * whole frames or their damage), the window cut into *bands equal bands
+ * (the last cut at the bottom); while the arena overflows, into one band
+ * more.
  */
-static cs_status begin_band(const cs_scene *scene, const cs_render_opts *opts, int y, int *bands,
-                            cs_error *err)
+static cs_status begin_band(const cs_scene *scene, const cs_render_opts *opts, const cs_rect *win,
+                            int y, int *bands, cs_error *err)
 {
+    int height = win->y1 - win->y0;
     for (;;) {
-        int rows = band_rows(opts->height, *bands);
+        int rows = band_rows(height, *bands);
         cs_render_opts o = *opts;
-        o.view_x = 0;
-        o.view_w = opts->width;
+        o.view_x = win->x0;
+        o.view_w = win->x1 - win->x0;
         o.view_y = y;
-        o.view_h = rows < opts->height - y ? rows : opts->height - y;
+        o.view_h = rows < win->y1 - y ? rows : win->y1 - y;
         cs_status st = cs_frame_begin(&renderer, &work.ws, scene, &o, err);
         if ((st != CS_ERR_CAP_SEGMENTS && st != CS_ERR_CAP_PIECES) || rows == 1) {
             if (st == CS_OK) {
@@ -118,20 +148,20 @@ static cs_status begin_band(const cs_scene *scene, const cs_render_opts *opts, i
             return st;
         }
         /* The next count that makes the bands shorter (rows never grow). */
-        while (*bands < opts->height && band_rows(opts->height, *bands) == rows)
+        while (*bands < height && band_rows(height, *bands) == rows)
             (*bands)++;
     }
 }
 
 /* Renders rows [y, y + rows) of the band prepared in `renderer`. */
-static cs_status render_lines(const cs_render_opts *opts, int y0, int rows)
+static cs_status render_lines(const cs_rect *win, int y0, int rows)
 {
     for (int y = y0; y < y0 + rows; y++) {
         cs_status st = cs_render_line_runs(&renderer, y);
         if (st != CS_OK)
             return st;
         if (float_crc_on)
-            float_crc = crc_line_floats(float_crc, &renderer, opts->width);
+            float_crc = crc_line_floats(float_crc, &renderer, win->x1 - win->x0);
         fw_mark_line_rendered();
         st = mcu_display_line_px(&display, y,
                                  cs_line_pixels_scratch(&renderer, CS_PANEL_PIXFMT));
@@ -142,17 +172,17 @@ static cs_status render_lines(const cs_render_opts *opts, int y0, int rows)
     return cs_frame_error(&renderer).status;
 }
 
-/* The frame in `bands` bands, the first already prepared; *err says what
+/* The window in `bands` bands, the first already prepared; *err says what
  * a later band's preparation refused. */
-static cs_status render_bands(const cs_scene *scene, const cs_render_opts *opts, int bands,
-                              cs_error *err)
+static cs_status render_bands(const cs_scene *scene, const cs_render_opts *opts,
+                              const cs_rect *win, int bands, cs_error *err)
 {
     cs_status st = CS_OK;
-    for (int y = 0, rows = 0; st == CS_OK && y < opts->height; y += rows) {
-        if (y > 0 && (st = begin_band(scene, opts, y, &bands, err)) != CS_OK)
+    for (int y = win->y0, rows = 0; st == CS_OK && y < win->y1; y += rows) {
+        if (y > win->y0 && (st = begin_band(scene, opts, win, y, &bands, err)) != CS_OK)
             break;
-        rows = band_rows(opts->height, bands);
-        st = render_lines(opts, y, rows < opts->height - y ? rows : opts->height - y);
+        rows = band_rows(win->y1 - win->y0, bands);
+        st = render_lines(win, y, rows < win->y1 - y ? rows : win->y1 - y);
         if (st != CS_OK)
             *err = cs_frame_error(&renderer);
     }
@@ -202,30 +232,45 @@ int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *lab
     int bands = band_count > 1 ? band_count - 1 : 1;
     frame_bands = most_segments = most_pieces = 0;
     fw_mark_frame_begin();
-    cs_status st = begin_band(scene, opts, 0, &bands, &err);
+    cs_rect win;
+    cs_status st = frame_window(scene, opts, &win);
+    bool empty = win.x0 >= win.x1 || win.y0 >= win.y1;
+    if (st == CS_OK && !empty)
+        st = begin_band(scene, opts, &win, win.y0, &bands, &err);
     fw_mark_frame_ready();
     if (st != CS_OK) {
+        cs_damage_reset(&damage); /* the panel may not show the last frame's picture */
         fw_report_error(label, "frame", st, &err);
         return 1;
     }
     float_crc = 0;
-    st = mcu_display_begin(&display, opts->width, opts->height);
-    if (st == CS_OK)
-        st = render_bands(scene, opts, bands, &err);
+    const hal_window panel_win = {win.x0, win.y0, win.x1, win.y1};
+    st = mcu_display_begin(&display, opts->width, opts->height, &panel_win);
+    if (st == CS_OK && !empty)
+        st = render_bands(scene, opts, &win, bands, &err);
     uint32_t crc = mcu_display_end(&display);
     fw_mark_frame_end();
     uint64_t t1 = board_time_us();
+    if (st != CS_OK || display.panel_error)
+        cs_damage_reset(&damage);
     if (st != CS_OK) {
         fw_report_error(label, "render", st, &err);
         return 1;
     }
     if (quiet)
         return display.panel_error ? 1 : 0;
-    fw_print("frame crc32 %08X\n", (unsigned)crc);
+    /* With damage, the whole frame's CRC is read back from the panel (not
+     * counted in the frame's instructions); a panel that cannot read back
+     * gives the CRC of the window's bytes. */
+    bool whole = !damage_on || mcu_display_frame_crc(&display, (uint8_t *)(void *)&work, &crc);
+    fw_print("%s crc32 %08X\n", whole ? "frame" : "window", (unsigned)crc);
     if (float_crc_on)
         fw_print("float crc32 %08X\n", (unsigned)float_crc);
-    fw_print("%s segments %u pieces %u bands %u render_us %llu%s\n", label, most_segments,
+    fw_print("%s segments %u pieces %u bands %u render_us %llu%s", label, most_segments,
              most_pieces, frame_bands,
              (unsigned long long)(t1 - t0), display.panel_error ? " panel-error" : "");
+    if (damage_on)
+        fw_print(" window %d %d %d %d", win.x0, win.y0, win.x1, win.y1);
+    fw_print("\n");
     return display.panel_error ? 1 : 0;
 }

@@ -40,6 +40,18 @@ uint32_t fw_render_work_bytes(void);
  */
 int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *label, bool quiet);
 
+/*
+ * Damage on: each frame renders and sends only the window that can differ
+ * from the frame before (cs_frame_damage; the panel keeps the rest), and
+ * prints the whole frame's CRC read back from the panel where it can
+ * (`frame crc32`), else the window's (`window crc32`), and the window on
+ * its statistics line. Turning it on or off forgets the last frame.
+ */
+void fw_render_damage(bool on);
+
+/* The next frame is damaged everywhere (a new scene was committed). */
+void fw_render_forget(void);
+
 /* Frames completed so far (the panel's frame number of the next one). */
 uint32_t fw_render_frames(void);
 

@@ -108,6 +108,7 @@ static int parse_req(const char *s, int n, fw_frame_req *f)
     f->width = (uint16_t)w;
     f->height = (uint16_t)h;
     f->subscan = (uint8_t)aa;
+    f->repeat = f->step_ms = 0;
     for (int i = 0; i < tend - at - 1; i++)
         f->time_text[i] = s[at + 1 + i];
     f->time_text[tend - at - 1] = 0;
@@ -162,6 +163,7 @@ static void adopt_commit(void)
     base += fed;
     fed = 0;
     cs_stream_init(&stream, front_store, true, fw_render_staging());
+    fw_render_forget(); /* a new scene: the next frame is drawn whole */
     commits++;
     const cs_scene *s = front_store;
     fw_print("stream commit %u at byte %llu: %u cels, %u regions, %u contours, %u points, "
@@ -261,15 +263,26 @@ static int render_requests(const fw_frame_req *reqs, int n)
     if (!scene)
         return 0;
     for (int i = 0; i < n; i++) {
-        char label[16];
-        fw_format(label, sizeof label, "frame %u", (unsigned)fw_render_frames());
-        char aa[8] = "none";
-        if (reqs[i].subscan)
-            fw_format(aa, sizeof aa, "%u", (unsigned)reqs[i].subscan);
-        fw_print("%s size %ux%u time %s aa %s commit %u\n", label, (unsigned)reqs[i].width,
-                 (unsigned)reqs[i].height, reqs[i].time_text, aa, (unsigned)commits);
-        cs_render_opts o = fw_frame_opts(&reqs[i]);
-        failed += fw_render(scene, &o, label, false);
+        /* A repeated request: frames at its time (in whole milliseconds)
+         * plus k steps, each time the float of its decimal text. */
+        uint32_t ms = (uint32_t)(reqs[i].time * 1000.0f + 0.5f);
+        for (uint32_t k = 0; k < (reqs[i].repeat ? reqs[i].repeat : 1u); k++) {
+            char label[16], aa[8] = "none", when[16];
+            fw_format(label, sizeof label, "frame %u", (unsigned)fw_render_frames());
+            if (reqs[i].subscan)
+                fw_format(aa, sizeof aa, "%u", (unsigned)reqs[i].subscan);
+            cs_render_opts o = fw_frame_opts(&reqs[i]);
+            if (reqs[i].repeat) {
+                uint32_t t = ms + k * reqs[i].step_ms;
+                o.time = (float)t / 1000.0f;
+                fw_format(when, sizeof when, "%u.%03u", (unsigned)(t / 1000u),
+                          (unsigned)(t % 1000u));
+            }
+            fw_print("%s size %ux%u time %s aa %s commit %u\n", label, (unsigned)reqs[i].width,
+                     (unsigned)reqs[i].height, reqs[i].repeat ? when : reqs[i].time_text, aa,
+                     (unsigned)commits);
+            failed += fw_render(scene, &o, label, false);
+        }
     }
     return failed;
 }

@@ -34,6 +34,8 @@ typedef struct fw_frame_req {
     uint8_t subscan;      /* sub-scanlines; 0 means CS_AA_NONE */
     float time;           /* seconds: the float strtof gives for time_text */
     char time_text[12];   /* as given, for the log and the host reference */
+    uint16_t repeat;      /* 0: once at `time`; else this many frames from `time` in whole */
+    uint16_t step_ms;     /* milliseconds, step_ms apart (repeat=, step_ms=) */
 } fw_frame_req;
 
 #define FW_MAX_FRAME_REQS 8

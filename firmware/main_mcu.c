@@ -19,6 +19,10 @@
  *                    celsim); default: the panel at t=0
  *   render=each|end  frames after every stream event (default), or once at
  *                    the end of the stream
+ *   repeat=N step_ms=M   render each of frames= N times, M ms apart (times in
+ *                    whole milliseconds from the frame's own)
+ *   damage=1         render and send only what changed since the last frame
+ *                    (cs_frame_damage; the panel keeps the rest)
  *   idle_ms=N        give up on the link after N ms without a byte (5000)
  *   jobs=all|I,J,..  which built-in jobs to render (default all, none with stream=)
  *   scene=NAME size=WxH time_ms=T aa=N   one built-in frame of your choosing
@@ -278,7 +282,7 @@ static int commands(const char *cmd)
 
     if (stream) {
         fw_frame_req reqs[FW_MAX_FRAME_REQS] = {
-            {BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, 16, 0.0f, "0"}};
+            {BOARD_PANEL_WIDTH, BOARD_PANEL_HEIGHT, 16, 0.0f, "0", 0, 0}};
         int count = 1;
         uint32_t idle_ms = 5000;
         bool each = !(fw_arg(cmd, "render", arg, sizeof arg) && arg[0] == 'e' && arg[1] == 'n');
@@ -286,6 +290,16 @@ static int commands(const char *cmd)
             count = fw_frames_parse(arg, reqs, FW_MAX_FRAME_REQS);
         if (fw_arg(cmd, "idle_ms", arg, sizeof arg) && !fw_parse_u32(arg, &idle_ms))
             count = -1;
+        uint32_t repeat = 0, step_ms = 0;
+        if ((fw_arg(cmd, "repeat", arg, sizeof arg) &&
+             (!fw_parse_u32(arg, &repeat) || repeat > 10000u)) ||
+            (fw_arg(cmd, "step_ms", arg, sizeof arg) &&
+             (!fw_parse_u32(arg, &step_ms) || step_ms > 60000u)))
+            count = -1;
+        for (int i = 0; i < count; i++) {
+            reqs[i].repeat = (uint16_t)repeat;
+            reqs[i].step_ms = (uint16_t)step_ms;
+        }
         if (count < 0) {
             failed++;
         } else {
@@ -306,6 +320,7 @@ int main(void)
     const char *cmd = board_cmdline();
     char fcrc[4];
     fw_render_init(fw_arg(cmd, "fcrc", fcrc, sizeof fcrc) && fcrc[0] == '1');
+    fw_render_damage(fw_arg(cmd, "damage", fcrc, sizeof fcrc) && fcrc[0] == '1');
 #else
     fw_render_init(false);
 #endif
@@ -326,6 +341,7 @@ int main(void)
              (unsigned)cm_stack_size());
     fw_print("celfw: %u frames, %d failed\n", (unsigned)fw_render_frames(), failed);
 #ifdef BOARD_DEMO_LOOP
+    fw_render_damage(true); /* the glass keeps its picture: send what changed */
     play(0);
 #endif
     return failed ? 1 : 0;

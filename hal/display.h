@@ -114,6 +114,9 @@ typedef hal_status (*hal_end_frame_fn)(hal_display *d);
  * d->frame_start_ns + (y+1) * d->frame_period_ns / d->height; later lines
  * count as misses. */
 typedef hal_status (*hal_present_fn)(hal_display *d, const hal_source *src, hal_frame_stats *st);
+/* Row y of the picture a display that keeps its picture now holds, len
+ * bytes in d->pixfmt: the whole frame's CRC after a frame sent as a window. */
+typedef hal_status (*hal_read_row_fn)(hal_display *d, int y, uint8_t *px, size_t len);
 typedef bool (*hal_connected_fn)(hal_display *d);
 typedef void (*hal_close_fn)(hal_display *d);
 
@@ -124,6 +127,7 @@ typedef struct hal_display_api {
     hal_end_frame_fn end_frame;     /* optional */
     hal_present_fn present;         /* optional: the pull lane */
     int lanes;                      /* lanes present pulls with (1 or 2) */
+    hal_read_row_fn read_row;       /* optional: reading the picture back */
     hal_connected_fn connected;     /* optional: NULL means always there */
     hal_close_fn close;             /* optional: blanks and frees what open took */
 } hal_display_api;
@@ -156,6 +160,12 @@ static inline hal_status hal_display_line_out(hal_display *d, int y, const uint8
 static inline hal_status hal_display_end_frame(hal_display *d)
 {
     return d->api->end_frame ? d->api->end_frame(d) : HAL_OK;
+}
+
+/* A display that cannot read its picture back says HAL_ERR_CONFIG. */
+static inline hal_status hal_display_read_row(hal_display *d, int y, uint8_t *px, size_t len)
+{
+    return d->api->read_row ? d->api->read_row(d, y, px, len) : HAL_ERR_CONFIG;
 }
 
 static inline bool hal_display_connected(hal_display *d)

@@ -2,7 +2,7 @@
  * celsim.c - the host simulator: render a scene the way a board would.
  *
  *   celsim render SCENE [-o OUT.png] [--size WxH] [--time T] [--aa none|N|exact]
- *                 [--encoding srgb|linear] [--repeat N] [--blend linear|srgb] [--crc]
+ *                 [--encoding srgb|linear] [--repeat N [--time-step S]] [--blend linear|srgb] [--crc]
  *                 [--threads N]
  *
  * SCENE is authoring JSON (.json, with its "animate" tracks) or a cel stream
@@ -70,6 +70,10 @@ static const char usage_text[] =
     "  --encoding srgb|linear  8-bit sRGB PNG (default), or 16-bit linear-light PNG\n"
     "  --repeat N              render N times; print the median render time as\n"
     "                          'X.XXX ms/frame' (rendering only, not loading or writing)\n"
+    "  --time-step S           with --repeat: N frames S seconds apart from --time; print\n"
+    "                          each frame's damage (the window that can differ from the\n"
+    "                          frame before, cs_frame_damage: what a board redraws) and\n"
+    "                          the pixels that leaves to render per frame\n"
     "  --blend linear|srgb     compositing space: linear light, or sRGB-encoded as SVG renderers\n"
     "                          blend (default: what the scene asks, \"canvas\": {\"blend\": ...})\n"
     "  --crc                   print 'frame crc32 XXXXXXXX' of the frame in the panel\n"
@@ -91,6 +95,7 @@ typedef struct options {
     int subscanlines;
     bool linear;
     int repeat;        /* 0: not timing */
+    double time_step;  /* --time-step: the repeats are frames this many seconds apart */
     cs_blend blend;    /* CS_BLEND_SCENE unless --blend says */
     bool crc;
     int threads;       /* 1: the lines on the calling thread, as a board renders them */
@@ -125,7 +130,7 @@ static int parse_render_args(int argc, char **argv, options *o)
         const char *v;
         static const char *const valued[] = {"-o",       "--output",   "--size",    "--time",
                                              "--aa",     "--encoding", "--repeat",  "--blend",
-                                             "--viewport", "--threads"};
+                                             "--viewport", "--threads", "--time-step"};
         const char *name = NULL;
         for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
             if (is_option(a, valued[k]))
@@ -157,6 +162,10 @@ static int parse_render_args(int argc, char **argv, options *o)
             if (!cli_real(v, '\0', -1e9, 1e9, &t))
                 return cli_usage_error("--time expects seconds (a number), got '%s'", v);
             o->time = (float)t;
+        } else if (name && strcmp(name, "--time-step") == 0) {
+            if (!cli_real(v, '\0', 1e-6, 1e6, &o->time_step))
+                return cli_usage_error("--time-step expects seconds between frames (a positive "
+                                   "number), got '%s'", v);
         } else if (name && strcmp(name, "--aa") == 0) {
             if (!cli_aa(v, &o->aa, &o->subscanlines)) {
                 return cli_usage_error("--aa expects none, exact or a number of sub-scanlines "
@@ -202,6 +211,8 @@ static int parse_render_args(int argc, char **argv, options *o)
     }
     if (o->scene == NULL)
         return cli_usage_error("render needs a SCENE file (see celsim --help)");
+    if (o->time_step > 0 && o->repeat == 0)
+        return cli_usage_error("--time-step needs --repeat N (the number of frames)");
     if (o->out == NULL && !o->crc && o->repeat == 0)
         return cli_usage_error("render needs -o OUT.png (or --crc or --repeat)");
     /* A line is at most CS_CFG_MAX_WIDTH pixels; only a viewport's whole may be wider. */
@@ -425,10 +436,23 @@ static int render(const options *o, sim_state *s)
     cs_renderer r;
     int rc = FRAME_DRIVE_OK;
     uint32_t crc = 0;
+    cs_damage damage;
+    cs_damage_reset(&damage);
+    double damaged = 0;
     for (int k = 0; k < runs; k++) {
         /* Hash only the first frame: every run renders the same bytes, and the
          * median of the timings shrugs off the one slower run. */
         d.panel = k == 0 ? s->panel : NULL;
+        if (o->time_step > 0) {
+            ro.time = (float)((double)o->time + o->time_step * k);
+            cs_rect w;
+            if (cs_frame_damage(&damage, s->scene, &ro, &w) == CS_OK) {
+                long px = w.x0 < w.x1 ? (long)(w.x1 - w.x0) * (w.y1 - w.y0) : 0;
+                printf("frame %d time %.6g damage %d,%d..%d,%d %ld pixels\n", k, (double)ro.time,
+                       w.x0, w.y0, w.x1, w.y1, px);
+                damaged += (double)px;
+            }
+        }
         uint64_t t0 = hal_now(&hal_clock_monotonic);
         rc = frame_drive_render(&d, &r, s->ws, s->scene, &ro);
         uint64_t t1 = hal_now(&hal_clock_monotonic);
@@ -461,6 +485,10 @@ static int render(const options *o, sim_state *s)
         printf("frame crc32 %08X\n", (unsigned)crc);
     if (o->repeat > 0)
         printf("%.3f ms/frame\n", median(s->times, runs));
+    if (o->time_step > 0)
+        printf("damage: %.0f pixels rendered per frame on average (%.1f %% of %dx%d)\n",
+               damaged / runs, 100.0 * damaged / runs / ((double)ro.width * ro.height), ro.width,
+               ro.height);
 
     if (o->out != NULL) {
         char err[1024];

@@ -14,6 +14,8 @@
  * Rounded 8-bit sRGB comes from tables (cs__srgb8) that must give exactly
  * the code of the interpolating encoder: checked at both floats around
  * every step and cell boundary of the tables, and on a sweep of floats.
+ * The RGB565 channel codes come from threshold tables (cs__rgb5, cs__rgb6),
+ * compared with the interpolating encoder on every float in [0, 1].
  */
 #include <string.h>
 
@@ -239,6 +241,15 @@ static void test_crc32(void)
             if (off + n <= sizeof buf && cs_crc32(0, buf + off, n) != crc_bitwise(0, buf + off, n))
                 bad++;
     CHECK(bad == 0, "crc32 differs from the bitwise reference on %d random buffers", bad);
+    /* Every entry of the byte table, from a zero and a busy register. */
+    bad = 0;
+    for (uint32_t b = 0; b < 256u; b++) {
+        uint8_t one = (uint8_t)b;
+        if (cs_crc32(0, &one, 1) != crc_bitwise(0, &one, 1) ||
+            cs_crc32(0x5A5AC3C3u, &one, 1) != crc_bitwise(0x5A5AC3C3u, &one, 1))
+            bad++;
+    }
+    CHECK(bad == 0, "crc32 of a single byte differs from the bitwise reference for %d bytes", bad);
 }
 
 static uint32_t srgb8_interpolated(float v)
@@ -294,11 +305,66 @@ static void test_srgb8_table(void)
               (double)odd[k], cs__srgb8(odd[k]), srgb8_interpolated(odd[k]));
 }
 
+static uint32_t packed_interpolated(float v, uint32_t max)
+{
+    uint32_t c = (uint32_t)(cs__srgb_encode(v) * (float)max + 0.5f);
+    return c > max ? max : c;
+}
+
+/*
+ * The RGB565 threshold tables against the interpolating encoder on every
+ * float in [0, 1], both depths: a proof, not a sample (about 10 s). Under
+ * the sanitizers, which make it minutes, every 61st float and the floats
+ * around every threshold and cell boundary.
+ */
+static void test_rgb565_table(void)
+{
+#ifdef __SANITIZE_ADDRESS__
+    const uint32_t stride = 61u;
+#else
+    const uint32_t stride = 1u;
+#endif
+    uint32_t bad = 0, checked = 0;
+    float first_bad = 0.0f;
+    for (uint32_t b = 0u; b <= 0x3F800000u; b += stride) {
+        float v = float_at(b);
+        checked++;
+        if ((cs__rgb5(v) != packed_interpolated(v, 31u) ||
+             cs__rgb6(v) != packed_interpolated(v, 63u)) && bad++ == 0)
+            first_bad = v;
+    }
+    for (uint32_t k = 0; k < 64u; k++) {
+        float points[4] = {cs__rgb6_step[k], k < 32u ? cs__rgb5_step[k] : 0.5f,
+                           (float)((double)k / 64.0 * ((double)k / 64.0)),
+                           (float)((double)k / 32.0 * ((double)k / 32.0))};
+        for (int p = 0; p < 4; p++) {
+            uint32_t c = bits_of(points[p]);
+            for (uint32_t d = c < 4u ? 0u : c - 4u; d <= c + 4u; d++) {
+                float v = float_at(d);
+                checked++;
+                if ((cs__rgb5(v) != packed_interpolated(v, 31u) ||
+                     cs__rgb6(v) != packed_interpolated(v, 63u)) && bad++ == 0)
+                    first_bad = v;
+            }
+        }
+    }
+    CHECK(bad == 0, "RGB565 tables differ from the encoder at %u of %u floats (first %a)",
+          (unsigned)bad, (unsigned)checked, (double)first_bad);
+    const float odd[] = {0.0f, -0.0f, -1.0f, 1.0f, 2.0f, 1e-40f, NAN, -NAN, INFINITY, -INFINITY,
+                         0.99999994f, 3e38f};
+    for (size_t k = 0; k < sizeof odd / sizeof odd[0]; k++)
+        CHECK(cs__rgb5(odd[k]) == packed_interpolated(odd[k], 31u) &&
+                  cs__rgb6(odd[k]) == packed_interpolated(odd[k], 63u),
+              "rgb565 codes of %g: %u %u, not %u %u", (double)odd[k], cs__rgb5(odd[k]),
+              cs__rgb6(odd[k]), packed_interpolated(odd[k], 31u), packed_interpolated(odd[k], 63u));
+}
+
 int main(int argc, char **argv)
 {
     (void)argc;
     TL_RUN(test_srgb_encode16);
     TL_RUN(test_srgb8_table);
+    TL_RUN(test_rgb565_table);
     TL_RUN(test_packed_formats);
     TL_RUN(test_in_place);
     TL_RUN(test_crc32);

@@ -33,9 +33,9 @@ vectors=$(sec .vectors) text=$(sec .text) extab=$(sec .ARM.extab) exidx=$(sec .A
 stack=$(sec .stack) data=$(sec .data) bss=$(sec .bss) noinit=$(sec .noinit)
 flash=$((vectors + text + extab + exidx + data))
 ram=$((stack + data + bss + noinit))
-scene=$(arm-none-eabi-nm -S "$elf" | awk "$HEX"' $4 == "scene_store" {print hex($2)}')
+scene=$(arm-none-eabi-nm -S "$elf" | awk "$HEX"' ($4 == "scene_store" || $4 ~ /^scene_store\.lto_priv\./) {print hex($2)}')
 scene=${scene:-0}
-work=$(arm-none-eabi-nm -S "$elf" | awk "$HEX"' $4 == "work" {print hex($2)}')
+work=$(arm-none-eabi-nm -S "$elf" | awk "$HEX"' ($4 == "work" || $4 ~ /^work\.lto_priv\./) {print hex($2)}')
 work=${work:-0}
 # Read-only data alone, for the report: the .rodata input sections the map
 # file lists as placed (GNU ld puts the size on the next line after a long

@@ -45,6 +45,10 @@
 #    Last, the board plays (play=8: the loop it runs on glass, frames at the
 #    board clock's time) while the beta stack and the demo stream in; every
 #    frame equals the host's render of what it shows at the printed instant.
+#    Then damage: 20 frames of scenes/board-anim.json (aa 5 and aa 16) that
+#    render and send only what changed (damage=1); each frame's dump (the
+#    last one with the window patched in) and its CRC read back from the
+#    panel equal the host's whole render of that instant.
 #
 # 4. Faults. The stack stays within its size, and a deliberate crash (stack
 #    overflow into the MPU guard, undefined instruction, division by zero)
@@ -398,6 +402,38 @@ while read -r f t k crc fcrc; do
     esac
     compare_frame "$what" "" "$crc" "$fcrc" "$cmd"
 done <"$p/frames.txt"
+
+# ----------------------------------------------------------- damage
+# Frames that render and send only what changed (damage=1, cs_frame_damage):
+# every frame as the panel then holds it - its dump, the last frame's with
+# the window patched in, and the whole frame's CRC read back from it - must
+# equal the host's whole render of that instant. Two sequences of the
+# board's animated scene: aa 5 (windows of whole rows) and aa 16 (a power
+# of two: windows narrower than the rows).
+echo "qemu-test: damage"
+d=$out/damage
+mkdir -p "$d/frames" "$d/ref"
+gen scenes/board-anim.json "$d/anim.cels"
+boot "$d/console.log" "frames=480x272@0:5,480x272@0.5:16 repeat=10 step_ms=50 damage=1" \
+    "render=end dump=$d/frames stream=$(wc -c <"$d/anim.cels")" <"$d/anim.cels"
+awk '/^frame [0-9]+ size / {f = $2; size = $4; t = $6; aa = $8; crc = ""; next}
+     /^frame crc32 / && f != "" {crc = $3; next}
+     / window [0-9]+ [0-9]+ [0-9]+ [0-9]+$/ && f != "" && crc != "" {
+         print f, size, t, aa, crc, $(NF - 3), $(NF - 2), $(NF - 1), $NF; f = ""}' \
+    "$d/console.log" >"$d/frames.txt"
+part=$(awk '!($6 == 0 && $7 == 0 && $8 == 480 && $9 == 272)' "$d/frames.txt" | wc -l)
+narrow=$(awk '$4 == 16 && $6 > 0' "$d/frames.txt" | wc -l)
+if [ "$(wc -l <"$d/frames.txt")" -eq 20 ] && [ "$part" -ge 16 ] && [ "$narrow" -ge 1 ]; then
+    ok "20 frames with damage, $part of them a window, $narrow narrower than the rows"
+else
+    bad "damage: $(wc -l <"$d/frames.txt") frames (want 20), $part windows, $narrow narrow ones"
+fi
+while read -r f size t aa crc x0 y0 x1 y1; do
+    compare_frame "damaged frame $f (t=$t aa $aa, window $x0,$y0..$x1,$y1)" \
+        "$(printf '%s/frames/frame%02d.rgb565' "$d" "$f")" "$crc" "" \
+        "$host/fw_host_ref --cels $d/anim.cels --size $size --time $t --aa $aa --crc --dump $d/ref/frame$f.rgb565" \
+        "$d/ref/frame$f.rgb565"
+done <"$d/frames.txt"
 
 # ------------------------------------------------------------ 4. faults
 # A crash must end the run with 128 + the exception number, not hang it.

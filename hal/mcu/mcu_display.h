@@ -17,6 +17,7 @@
 #ifndef MCU_DISPLAY_H
 #define MCU_DISPLAY_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -27,6 +28,7 @@ typedef struct mcu_display {
     hal_display *panel;      /* takes lines in CS_PANEL_PIXFMT */
     uint8_t *pixels;         /* one line in CS_PANEL_PIXFMT, width * 2 bytes */
     int width, height;       /* of the frame being drawn */
+    hal_window win;          /* its window: what is sent */
     uint32_t crc;            /* CRC-32 of the frame's lines so far */
     uint32_t frames;         /* frames completed */
     hal_status panel_error;  /* the panel's first failure this frame */
@@ -36,13 +38,29 @@ typedef struct mcu_display {
  * be NULL if only mcu_display_line_px is used. */
 void mcu_display_init(mcu_display *d, hal_display *panel, uint8_t *pixels);
 
-/* A frame of width x height starts: the panel's window (0,0)..(width,height). */
-cs_status mcu_display_begin(mcu_display *d, int width, int height);
+/*
+ * A frame of width x height starts. `win` NULL: the whole frame is sent;
+ * else only its columns [x0, x1) of rows [y0, y1) (lines are then x1 - x0
+ * pixels, y still counting the frame's rows), the panel keeping the rest of
+ * its picture; an empty window sends no line. The running CRC covers the
+ * bytes sent; mcu_display_frame_crc gives the whole frame's. CS_ERR_SIZE
+ * for an empty frame, CS_ERR_ARG for a window outside it; a panel that
+ * cannot take a window reports a panel error.
+ */
+cs_status mcu_display_begin(mcu_display *d, int width, int height, const hal_window *win);
 
 /* The cs_line_sink: `user` is the mcu_display. */
 cs_status mcu_display_line(void *user, int y, const float *rgb_linear, int width);
 
-/* Line y already in CS_PANEL_PIXFMT (d->width pixels), e.g. from
+/*
+ * After mcu_display_end: the CRC-32 of the whole frame the panel now holds,
+ * rows top to bottom, as `celsim --crc` computes it, read back row by row
+ * into `row` (a line in the panel format). False if the panel cannot read
+ * back (no read_row) or failed.
+ */
+bool mcu_display_frame_crc(mcu_display *d, uint8_t *row, uint32_t *crc);
+
+/* Line y already in CS_PANEL_PIXFMT (the window's width), e.g. from
  * cs_line_pixels_scratch: hashed and sent as mcu_display_line does. */
 cs_status mcu_display_line_px(mcu_display *d, int y, const uint8_t *pixels);
 

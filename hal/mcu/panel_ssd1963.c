@@ -90,6 +90,8 @@ static hal_status begin_frame(hal_display *d, const hal_window *win)
         win = &all;
     if (win->x0 < 0 || win->y0 < 0 || win->x1 > d->width || win->y1 > d->height)
         return HAL_ERR_CONFIG;
+    if (win->x0 >= win->x1 || win->y0 >= win->y1)
+        return HAL_OK; /* nothing changed: nothing to send, the glass keeps its picture */
     window(p, win->x0, win->y0, win->x1 - 1, win->y1 - 1);
     *p->cmd = CMD_WRITE_MEMORY;
     return HAL_OK;

@@ -9,6 +9,8 @@
 #define SYS_CLOSE 0x02
 #define SYS_WRITE0 0x04
 #define SYS_WRITE 0x05
+#define SYS_READ 0x06
+#define SYS_SEEK 0x0A
 #define SYS_GET_CMDLINE 0x15
 #define SYS_EXIT 0x18
 #define SYS_EXIT_EXTENDED 0x20
@@ -59,6 +61,18 @@ int sh_write(int handle, const void *buf, size_t len)
 {
     uintptr_t block[3] = {(uintptr_t)handle, (uintptr_t)buf, len};
     return sh_call(SYS_WRITE, block) == 0 ? 0 : -1;
+}
+
+int sh_read(int handle, void *buf, size_t len)
+{
+    uintptr_t block[3] = {(uintptr_t)handle, (uintptr_t)buf, len};
+    return sh_call(SYS_READ, block) == 0 ? 0 : -1; /* the host returns the bytes not read */
+}
+
+int sh_seek(int handle, size_t pos)
+{
+    uintptr_t block[2] = {(uintptr_t)handle, pos};
+    return sh_call(SYS_SEEK, block) == 0 ? 0 : -1;
 }
 
 void sh_write0(const char *text)

@@ -16,12 +16,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* Opens a host file; mode as fopen: 0 "r", 1 "rb", 4 "w", 5 "wb", 8 "a".
- * Returns a handle >= 0 or -1. */
+/* Opens a host file; mode as fopen: 0 "r", 1 "rb", 4 "w", 5 "wb", 7 "w+b",
+ * 8 "a". Returns a handle >= 0 or -1. */
 int sh_open(const char *path, int mode);
 int sh_close(int handle);
 /* Writes all of buf; 0 on success. */
 int sh_write(int handle, const void *buf, size_t len);
+/* Reads all of len bytes into buf; 0 on success. */
+int sh_read(int handle, void *buf, size_t len);
+/* Moves to byte pos from the start of the file; 0 on success. */
+int sh_seek(int handle, size_t pos);
 /* Writes a NUL-terminated string to the debug console. */
 void sh_write0(const char *text);
 /* The command line the host passed (QEMU: -append); 0 on success. */

@@ -76,14 +76,31 @@ for rec in log:
         cur["end"] = c
         frames.append(cur)
 print("instructions executed (QEMU insncount plugin, exact; Cortex-M4F, -O2):")
-for job, f in zip(jobs, frames):
+def show(job, f):
     n = len(f["render"])
     r, o = f["render"], f["output"]
     tot = f["end"] - f["begin"]
     print("  %s" % job)
     print("    frame %12d  = prep %d + render %d + output %d" %
           (tot, f["ready"] - f["begin"], sum(r), sum(o)))
-    print("    per line (%d lines): render mean %d, min %d, max %d; output %d; all %d" %
-          (n, sum(r) // n, min(r), max(r), sum(o) // n, (sum(r) + sum(o)) // n))
+    if n:
+        print("    per line (%d lines): render mean %d, min %d, max %d; output %d; all %d" %
+              (n, sum(r) // n, min(r), max(r), sum(o) // n, (sum(r) + sum(o)) // n))
+    else:
+        print("    no lines (nothing changed)")
+if len(frames) <= 16:
+    for job, f in zip(jobs, frames):
+        show(job, f)
+else:
+    # A sequence (repeat=, damage=1): the first frame, then the whole run.
+    show(jobs[0], frames[0])
+    tots = [f["end"] - f["begin"] for f in frames]
+    lines = [len(f["render"]) for f in frames]
+    rest = tots[1:]
+    print("  %d frames, %s .. %s: mean %d instructions per frame (%d after the first), "
+          "min %d, max %d; %d lines rendered per frame on average (of %d)" %
+          (len(tots), jobs[0].split(" t=")[-1].split()[0], jobs[-1].split(" t=")[-1].split()[0],
+           sum(tots) // len(tots), sum(rest) // len(rest), min(tots), max(tots),
+           sum(lines) // len(lines), max(lines)))
 print("  whole run: %d instructions" % total)
 PY
