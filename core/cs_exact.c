@@ -341,22 +341,21 @@ static float next_cut(const cs__exact_ctx *cx, const uint32_t *cl, uint32_t nc, 
  */
 static bool run_cluster(cs__exact_ctx *cx, uint32_t *cl, uint32_t nc, int32_t *w, bool inside)
 {
-    int32_t w_out[CS_CFG_MAX_OPERANDS];
+    /* The first band with arcs writes w_out; the others' winding is the
+     * same and goes to wb. Without one, w stays as it was. */
+    int32_t w_out[CS_CFG_MAX_OPERANDS], wb[CS_CFG_MAX_OPERANDS];
+    for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
+        w_out[k] = w[k];
     bool got = false;
     float ya = cx->row_top;
     while (ya < cx->row_bot) {
         float yb = next_cut(cx, cl, nc, ya);
-        int32_t wb[CS_CFG_MAX_OPERANDS];
-        if (run_band(cx, cl, nc, ya, yb, w, inside, wb) > 0 && !got) {
-            for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
-                w_out[k] = wb[k];
+        if (run_band(cx, cl, nc, ya, yb, w, inside, got ? wb : w_out) > 0)
             got = true;
-        }
         ya = yb;
     }
-    if (got)
-        for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
-            w[k] = w_out[k];
+    for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++)
+        w[k] = w_out[k];
     return cs__region_inside(cx->region, w);
 }
 
@@ -409,6 +408,8 @@ static bool winding_constant(const cs__exact_ctx *cx, const uint32_t *cl, uint32
 {
     const cs_workspace *ws = cx->ws;
     int32_t d0[CS_CFG_MAX_OPERANDS];
+    for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) /* set by the first band; for -O3's sake */
+        d0[k] = 0;
     float ya = cx->row_top;
     bool first = true;
     while (ya < cx->row_bot) {
