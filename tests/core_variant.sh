@@ -31,7 +31,8 @@ if "$celsim" render scenes/demo.json --crc --core x86-64-v3 >/dev/null 2>"$tmp/v
                 cmp -s "$tmp/baseline.png" "$tmp/x86-64-v3.png"; then
                 ok
             else
-                bad "$s --aa $aa: x86-64-v3 $(cat "$tmp/x86-64-v3.crc"), baseline $(cat "$tmp/baseline.crc")"
+                bad "$s --aa $aa: x86-64-v3 $(cat "$tmp/x86-64-v3.crc")," \
+                    "baseline $(cat "$tmp/baseline.crc")"
             fi
         done
     done
@@ -48,13 +49,18 @@ fi
 # An unknown build is a usage error that names it.
 "$celsim" render scenes/demo.json --crc --core pentium >/dev/null 2>"$tmp/usage.err"
 rc=$?
-if [ "$rc" -eq 2 ] && grep -q "pentium" "$tmp/usage.err"; then ok; else bad "--core pentium: exit $rc"; fi
+if [ "$rc" -eq 2 ] && grep -q "pentium" "$tmp/usage.err"; then
+    ok
+else
+    bad "--core pentium: exit $rc"
+fi
 
 # A bad CELSCAN_CORE is named on stderr and the CPU chooses; the frame is the same.
 "$celsim" render scenes/demo.json --crc --core baseline >"$tmp/want.crc" 2>/dev/null
 CELSCAN_CORE=pentium "$celsim" render scenes/demo.json --crc >"$tmp/env.crc" 2>"$tmp/env.err"
 rc=$?
-if [ "$rc" -eq 0 ] && grep -q "CELSCAN_CORE=pentium" "$tmp/env.err" && cmp -s "$tmp/want.crc" "$tmp/env.crc"; then
+if [ "$rc" -eq 0 ] && grep -q "CELSCAN_CORE=pentium" "$tmp/env.err" &&
+    cmp -s "$tmp/want.crc" "$tmp/env.crc"; then
     ok
 else
     bad "CELSCAN_CORE=pentium: exit $rc, $(cat "$tmp/env.err")"

@@ -27,30 +27,30 @@
 #endif
 
 /* The frame's entry points: return type, name, parameters, arguments. */
-#define CORE_VARIANT_FUNCS(X)                                                                    \
-    X(cs_status, cs_frame_begin,                                                                 \
-      (cs_renderer * r, cs_workspace * ws, const cs_scene * scene, const cs_render_opts * opts,  \
-       cs_error * err),                                                                          \
-      (r, ws, scene, opts, err))                                                                 \
-    X(cs_status, cs_frame_begin_cached,                                                          \
-      (cs_renderer * r, cs_workspace * ws, const cs_scene * scene, const cs_render_opts * opts,  \
-       const cs_cache * cache, cs_error * err),                                                  \
-      (r, ws, scene, opts, cache, err))                                                          \
-    X(cs_status, cs_cache_build,                                                                 \
-      (cs_cache * cache, void *buffer, size_t size, cs_workspace *ws, const cs_scene *scene,     \
-       const cs_render_opts *opts, uint32_t cel_first, uint32_t cel_count, cs_error *err),       \
-      (cache, buffer, size, ws, scene, opts, cel_first, cel_count, err))                         \
-    X(cs_status, cs_render_line, (cs_renderer * r, int y, float *rgb_linear), (r, y, rgb_linear)) \
-    X(cs_status, cs_render_line_runs, (cs_renderer * r, int y), (r, y))                          \
-    X(cs_status, cs_render_line_px, (cs_renderer * r, int y, cs_pixfmt fmt, uint8_t *out),       \
-      (r, y, fmt, out))                                                                          \
-    X(cs_status, cs_render_frame, (cs_renderer * r, float *line, cs_line_sink sink, void *user), \
-      (r, line, sink, user))                                                                     \
-    X(const uint8_t *, cs_line_pixels_scratch, (cs_renderer * r, cs_pixfmt fmt), (r, fmt))     \
+#define CORE_VARIANT_FUNCS(X)                                                                      \
+    X(cs_status, cs_frame_begin,                                                                   \
+      (cs_renderer *r, cs_workspace *ws, const cs_scene *scene, const cs_render_opts *opts,        \
+       cs_error *err),                                                                             \
+      (r, ws, scene, opts, err))                                                                   \
+    X(cs_status, cs_frame_begin_cached,                                                            \
+      (cs_renderer *r, cs_workspace *ws, const cs_scene *scene, const cs_render_opts *opts,        \
+       const cs_cache *cache, cs_error *err),                                                      \
+      (r, ws, scene, opts, cache, err))                                                            \
+    X(cs_status, cs_cache_build,                                                                   \
+      (cs_cache *cache, void *buffer, size_t size, cs_workspace *ws, const cs_scene *scene,        \
+       const cs_render_opts *opts, uint32_t cel_first, uint32_t cel_count, cs_error *err),         \
+      (cache, buffer, size, ws, scene, opts, cel_first, cel_count, err))                           \
+    X(cs_status, cs_render_line, (cs_renderer *r, int y, float *rgb_linear), (r, y, rgb_linear))   \
+    X(cs_status, cs_render_line_runs, (cs_renderer *r, int y), (r, y))                             \
+    X(cs_status, cs_render_line_px, (cs_renderer *r, int y, cs_pixfmt fmt, uint8_t *out),          \
+      (r, y, fmt, out))                                                                            \
+    X(cs_status, cs_render_frame, (cs_renderer *r, float *line, cs_line_sink sink, void *user),    \
+      (r, line, sink, user))                                                                       \
+    X(const uint8_t *, cs_line_pixels_scratch, (cs_renderer *r, cs_pixfmt fmt), (r, fmt))          \
     X(int, cs_line_run, (const cs_renderer *r, int x, float rgb_linear[3]), (r, x, rgb_linear))
 
 /* cs_line_pixels returns nothing, so it cannot share the forwarders' `return f(...)`. */
-#define CORE_VARIANT_VOID(X) \
+#define CORE_VARIANT_VOID(X)                                                                       \
     X(void, cs_line_pixels, (const cs_renderer *r, cs_pixfmt fmt, uint8_t *out), (r, fmt, out))
 
 #define ALL_FUNCS(X) CORE_VARIANT_FUNCS(X) CORE_VARIANT_VOID(X)
