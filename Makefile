@@ -119,8 +119,8 @@ CELSIM_SRC := $(sort $(wildcard host-sim/*.c)) $(sort $(wildcard hal/sim/*.c hal
         tools/cli.c tools/cli_num.c
 CELSIM_OBJ := $(patsubst %.c,$(HOST)/obj/%.o,$(CELSIM_SRC))
 
-$(HOST)/celsim: $(CELSIM_OBJ) $(HOST)/libcelscan.a
-	$(Q)$(CC) -o $@ $(CELSIM_OBJ) $(HOST)/libcelscan.a $(PKG_LIBS) -lm -pthread
+$(HOST)/celsim: $(CELSIM_OBJ) $(HOST)/libcelscan_host.a
+	$(Q)$(CC) -o $@ $(CELSIM_OBJ) $(HOST)/libcelscan_host.a $(PKG_LIBS) -lm -pthread
 
 HOST_PROGRAMS += $(HOST)/celsim
 

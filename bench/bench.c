@@ -621,6 +621,7 @@ typedef struct beam_result {
     double worst_us, median_us, prep_us;
     int worst_line;
     int fifo_lines; /* lines of render-ahead buffer that keep the display fed; 0: none do */
+    int fifo2;      /* the same for two threads taking the lines in turn */
 } beam_result;
 
 /* One sweep of a frame, every line timed on its own (render + pixel
@@ -678,8 +679,48 @@ static int beam_fifo_lines(const double *t_us, int h, double period)
     return 1 + (int)ceil(best / period);
 }
 
+/*
+ * The smallest FIFO of K lines with which `threads` threads, taking the
+ * lines in turn (line n on thread n mod threads, as a board with that many
+ * cores would race the beam), keep up, found by running it: the display
+ * takes line n at n periods; line n may start once its thread has finished
+ * line n - threads and the display has taken line n - K (at the start, K
+ * lines before the display starts), and takes t[n]. Returns 0 if no K up
+ * to h does, or a thread's lines take longer than the frame. With one thread it is beam_fifo_lines' K (the self-test
+ * compares the two); with more it assumes that the cores render as fast
+ * side by side as one alone.
+ */
+static int beam_fifo_simulated(const double *t, int h, double period, int threads)
+{
+    /* As beam_fifo_lines: a thread whose lines take longer in total than
+     * the frame's active lines falls behind, whatever lead the blanking
+     * (or a FIFO filled before the frame) gives it. */
+    for (int j = 0; j < threads; j++) {
+        double sum = 0.0;
+        for (int n = j; n < h; n += threads)
+            sum += t[n];
+        if (sum > (double)h * period)
+            return 0;
+    }
+    double *done = malloc((size_t)h * sizeof *done);
+    int found = 0;
+    for (int k = threads; k <= h && found == 0; k++) {
+        bool kept_up = true;
+        for (int n = 0; n < h && kept_up; n++) {
+            double slot_free = (double)(n - k) * period;
+            double thread_free = n >= threads ? done[n - threads] : slot_free;
+            done[n] = (thread_free > slot_free ? thread_free : slot_free) + t[n];
+            kept_up = done[n] <= (double)n * period;
+        }
+        if (kept_up)
+            found = k;
+    }
+    free(done);
+    return found;
+}
+
 /* The median per line over the runs, the slowest of those, and the buffer
- * the medians need (beam_fifo_lines). */
+ * the medians need on one thread (beam_fifo_lines) and on two. */
 static void beam_summarize(int h, int runs, double period, double *s, double *prep,
                            beam_result *res)
 {
@@ -694,6 +735,7 @@ static void beam_summarize(int h, int runs, double period, double *s, double *pr
         }
     }
     res->fifo_lines = beam_fifo_lines(med, h, period);
+    res->fifo2 = beam_fifo_simulated(med, h, period, 2);
     res->median_us = bench_median(med, h);
     res->prep_us = 1e6 * bench_median(prep, runs);
     free(med);
@@ -707,6 +749,15 @@ static const struct {
     const char *name;
 } beam_modes[] = {{CS_AA_SUBSCAN, 5, "aa 5"}, {CS_AA_SUBSCAN, 16, "aa 16"}, {CS_AA_EXACT, 1, "exact"}};
 #define BEAM_MODES (sizeof beam_modes / sizeof beam_modes[0])
+
+/* A buffer size for the table: lines, or that none keeps up (0). */
+static void beam_fifo_text(int lines, char *buf, size_t size)
+{
+    if (lines > 0)
+        snprintf(buf, size, "%d", lines);
+    else
+        snprintf(buf, size, "none keeps up");
+}
 #define BEAM_DISPLAYS (sizeof displays / sizeof displays[0])
 
 static void run_beam(const config *cfg)
@@ -717,8 +768,9 @@ static void run_beam(const config *cfg)
         "runs per line\n\n",
         runs);
     out("| scene | display | mode | worst line us | at line | median line us | line period us "
-        "| margin us | buffer lines | frame prep us |\n");
-    out("|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+        "| margin us | buffer lines | frame prep us | 2 threads: margin us | 2 threads: buffer "
+        "lines |\n");
+    out("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (int i = 0; i < SCENE_COUNT; i++) {
         if (!cfg->scenes[i])
             continue;
@@ -750,16 +802,16 @@ static void run_beam(const config *cfg)
                     beam_result r;
                     beam_summarize(displays[d].h, runs, displays[d].period_us, s[d][m],
                                    prep[d][m], &r);
-                    char fifo[32];
-                    if (r.fifo_lines > 0)
-                        snprintf(fifo, sizeof fifo, "%d", r.fifo_lines);
-                    else
-                        snprintf(fifo, sizeof fifo, "none keeps up");
-                    out("| %s | %s | %s | %.2f | %d | %.2f | %.1f | %+.2f%s | %s | %.0f |\n",
+                    char fifo[32], fifo2[32];
+                    beam_fifo_text(r.fifo_lines, fifo, sizeof fifo);
+                    beam_fifo_text(r.fifo2, fifo2, sizeof fifo2);
+                    double p = displays[d].period_us;
+                    out("| %s | %s | %s | %.2f | %d | %.2f | %.1f | %+.2f%s | %s | %.0f | %+.2f%s "
+                        "| %s |\n",
                         scene_defs[i].title, displays[d].name, beam_modes[m].name, r.worst_us,
-                        r.worst_line, r.median_us, displays[d].period_us,
-                        displays[d].period_us - r.worst_us,
-                        r.worst_us > displays[d].period_us ? " **over**" : "", fifo, r.prep_us);
+                        r.worst_line, r.median_us, p, p - r.worst_us,
+                        r.worst_us > p ? " **over**" : "", fifo, r.prep_us, 2.0 * p - r.worst_us,
+                        r.worst_us > 2.0 * p ? " **over**" : "", fifo2);
                 }
                 free(s[d][m]);
                 free(prep[d][m]);
@@ -775,7 +827,12 @@ static void run_beam(const config *cfg)
         "active lines. The 5 runs "
         "of each line are interleaved with those of the other displays and modes. Frame prep "
         "(cs_frame_begin: NURBS to monotone pieces) runs in the vertical blanking, 45 lines "
-        "(666 us) at 1080p60. The Animation row is its frame at t = 0.\n");
+        "(666 us) at 1080p60. The Animation row is its frame at t = 0. The 2-thread columns are "
+        "for two threads taking the lines in turn (line n on thread n mod 2), as two cores of a "
+        "board would race the beam: a line then has two line periods (margin = 2 periods - "
+        "worst line), and the buffer is the smallest FIFO with which the same median line times "
+        "keep up, found by running the FIFO (at least 2: a line in flight per thread); they "
+        "assume that two cores render as fast side by side as one alone.\n");
     section_close();
 }
 
@@ -956,27 +1013,8 @@ static void run_scaling(const config *cfg)
 
 /* ------------------------------------------------------------ selftest */
 
-/* The smallest FIFO by simulating it (the beam report's buffer column
- * finds it by a formula): the display takes line n at n periods, the
- * renderer may start line n once line n - K has been taken (at the start,
- * K lines before the display starts) and finishes it t[n] later. */
-static int fifo_by_simulation(const double *t, int h, double period)
-{
-    for (int k = 1; k <= h; k++) {
-        double done = -1e300;
-        bool kept_up = true;
-        for (int n = 0; n < h && kept_up; n++) {
-            double slot_free = (double)(n - k) * period;
-            done = (done > slot_free ? done : slot_free) + t[n];
-            kept_up = done <= (double)n * period;
-        }
-        if (kept_up)
-            return k;
-    }
-    return h + 1;
-}
-
-/* beam_fifo_lines against fifo_by_simulation on random line times. */
+/* beam_fifo_lines against beam_fifo_simulated on random line times, and
+ * the two-thread buffer on cases whose answer is known. */
 static int selftest_fifo(int *checked)
 {
     int failed = 0;
@@ -994,12 +1032,28 @@ static int selftest_fifo(int *checked)
             total += t[y] - period;
         }
         int formula = beam_fifo_lines(t, h, period);
-        int want = total > 0.0 ? 0 : fifo_by_simulation(t, h, period);
+        int want = total > 0.0 ? 0 : beam_fifo_simulated(t, h, period, 1);
         (*checked)++;
         if (formula != want) {
             failed++;
             fprintf(stderr, "selftest: buffer lines for %d line times: formula %d, simulation %d\n",
                     h, formula, want);
+        }
+    }
+    /* Two threads with every line 1.5 periods long: each line has two
+     * periods, so two lines in flight keep up, where one thread cannot;
+     * at 2.5 periods a line two threads cannot either. */
+    double t[100];
+    for (int slow = 0; slow < 2; slow++) {
+        for (int y = 0; y < 100; y++)
+            t[y] = (slow ? 2.5 : 1.5) * period;
+        int one = beam_fifo_simulated(t, 100, period, 1), two = beam_fifo_simulated(t, 100, period, 2);
+        int want2 = slow ? 0 : 2;
+        (*checked)++;
+        if (one != 0 || two != want2) {
+            failed++;
+            fprintf(stderr, "selftest: lines of %.1f periods: buffer %d on one thread (want 0), %d "
+                    "on two (want %d)\n", slow ? 2.5 : 1.5, one, two, want2);
         }
     }
     return failed;

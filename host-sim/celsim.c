@@ -3,7 +3,7 @@
  *
  *   celsim render SCENE [-o OUT.png] [--size WxH] [--time T] [--aa none|N|exact]
  *                 [--encoding srgb|linear] [--repeat N [--time-step S]] [--blend linear|srgb] [--crc]
- *                 [--threads N]
+ *                 [--threads N] [--core auto|baseline|x86-64-v3]
  *
  * SCENE is authoring JSON (.json, with its "animate" tracks) or a cel stream
  * (.cels, decoded by the core's stream decoder as a board would: every
@@ -38,6 +38,7 @@
 #include "cli.h"
 #include "cli_num.h"
 #include "clock.h"
+#include "core_variant.h"
 #include "display.h"
 #include "frame_drive.h"
 #include "png_out.h"
@@ -80,6 +81,9 @@ static const char usage_text[] =
     "                          pixel format (RGB565, little-endian, rows top to bottom)\n"
     "  --threads N             render bands of lines on N threads, 1..64 (default: the\n"
     "                          cores this process may use); the bytes are the same\n"
+    "  --core auto|baseline|x86-64-v3\n"
+    "                          the build of the core to render with (default: the fastest\n"
+    "                          this CPU runs, or $CELSCAN_CORE); the bytes are the same\n"
     "  -h, --help              show this help\n"
     "\n"
     "exit status: 0 ok, 1 load/render/write error (or a stream with no valid commit),\n"
@@ -130,7 +134,7 @@ static int parse_render_args(int argc, char **argv, options *o)
         const char *v;
         static const char *const valued[] = {"-o",       "--output",   "--size",    "--time",
                                              "--aa",     "--encoding", "--repeat",  "--blend",
-                                             "--viewport", "--threads", "--time-step"};
+                                             "--viewport", "--threads", "--time-step", "--core"};
         const char *name = NULL;
         for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
             if (is_option(a, valued[k]))
@@ -196,6 +200,10 @@ static int parse_render_args(int argc, char **argv, options *o)
             if (!cli_int(v, 10, '\0', 1, BANDS_MAX_THREADS, &n))
                 return cli_usage_error("--threads expects a count 1..%d, got '%s'", BANDS_MAX_THREADS, v);
             o->threads = (int)n;
+        } else if (name && strcmp(name, "--core") == 0) {
+            const char *why = core_variant_select(v);
+            if (why != NULL)
+                return cli_usage_error("--core %s: %s", v, why);
         } else if (strcmp(a, "--crc") == 0) {
             o->crc = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {

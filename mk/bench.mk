@@ -34,8 +34,8 @@ $(HOST)/bench-obj/%.o: %.cpp $(FLAGS_DIR)/bench-cxx
 	@mkdir -p $(dir $@)
 	$(Q)$(CXX) $(BENCH_CXXFLAGS) -c $< -o $@
 
-$(BENCH_BIN): $(BENCH_OBJ) $(HOST)/libcelscan.a
-	$(Q)$(CXX) -o $@ $(BENCH_OBJ) $(HOST)/libcelscan.a $(shell pkg-config --libs $(BENCH_PKGS)) -lm
+$(BENCH_BIN): $(BENCH_OBJ) $(HOST)/libcelscan_host.a
+	$(Q)$(CXX) -o $@ $(BENCH_OBJ) $(HOST)/libcelscan_host.a $(shell pkg-config --libs $(BENCH_PKGS)) -lm
 
 # The scenes are committed, so that every checkout measures the same bytes
 # (a Python with another random module could draw them differently);

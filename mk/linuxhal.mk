@@ -34,7 +34,7 @@ LX_BANDS_OBJ := $(HOST)/obj/host-sim/bands.o
 # celfw checks signed streams with the signer's own envelope code (tools/cels_sign.c, libsodium).
 $(HOST)/celfw: $(HOST)/obj/firmware/linux/celfw.o $(LX_FW_OBJ) $(LX_HAL_OBJ) $(LX_JSON_OBJ) $(LX_BANDS_OBJ) \
         $(HOST)/obj/tools/cli_num.o $(HOST)/obj/tools/cels_sign.o $(HOST)/obj/tools/cels_write.o \
-        $(HOST)/libcelscan.a
+        $(HOST)/libcelscan_host.a
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) -o $@ $^ $(LX_PKG_LIBS) $(LX_JSON_LIBS) $(SODIUM_LIBS) -lm -pthread
 

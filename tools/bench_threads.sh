@@ -35,12 +35,16 @@ cores_free() {
 med() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 free_start=$(cores_free)
+# The build of the core celsim and bench render with (tools/core_variant.h).
+core=${CELSCAN_CORE:-$("$celsim" render scenes/demo.json --crc --core x86-64-v3 >/dev/null 2>&1 &&
+    echo x86-64-v3 || echo baseline)}
 {
     echo "### celsim --threads on Many-blobs at 1920x1080, next to cairo ($rounds interleaved rounds)"
     echo
     echo "- machine: $(nproc) cores, load average at start $(cut -d' ' -f1-3 /proc/loadavg) (shared: the ratios within a round are the figures to trust)"
     echo "- cores free: $free_start at the start (two busy loops at once against one alone: 2.0 is two idle cores, 1.0 one)"
     echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+    echo "- the core's build: $core (\`CELSCAN_CORE\`, tools/core_variant.h)"
     echo "- command: \`make bench-threads\` (tools/bench_threads.sh)"
     echo
     echo "| --aa | command (each a median of 5 frames) | rounds, ms/frame | median ms/frame |"

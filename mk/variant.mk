@@ -1,0 +1,55 @@
+# variant.mk - the host programs' core, built twice on x86-64 (tools/core_variant.h):
+# for baseline x86-64 (the objects of libcelscan.a) and at -O3 for x86-64-v3, both
+# with the same FP_FLAGS, so the same bytes. celsim, celfw and bench link
+# libcelscan_host.a, in which the frame's entry points forward to the build the CPU
+# (or CELSCAN_CORE, or celsim --core) chooses.
+#
+#   make test-core-variant   the two builds render every scene alike (make test)
+#
+# Each build is merged into one relocatable object and its symbols renamed with
+# objcopy, so the two sit side by side: in the baseline build only the forwarded
+# functions (base_cs_*), in the v3 build every symbol it defines (v3_*); what the
+# core leaves undefined (memcpy, memset) keeps its name.
+
+CORE_HOST_LIB := $(HOST)/libcelscan_host.a
+# The functions tools/core_variant.c forwards (its CORE_VARIANT_FUNCS).
+CORE_VARIANT_FORWARDED := cs_frame_begin cs_frame_begin_cached cs_cache_build cs_render_line \
+        cs_render_line_runs cs_render_line_px cs_render_frame cs_line_pixels \
+        cs_line_pixels_scratch cs_line_run
+CORE_VARIANT_V3 := $(if $(filter x86_64-%,$(shell $(CC) -dumpmachine)),1,0)
+V3 := $(BUILD)/host-v3
+
+$(HOST)/core-base.o: $(CORE_OBJ)
+	$(Q)ld -r -o $@.tmp $^ && \
+	objcopy $(foreach f,$(CORE_VARIANT_FORWARDED),--redefine-sym $(f)=base_$(f)) $@.tmp $@ && \
+	rm -f $@.tmp
+
+CORE_HOST_OBJ := $(HOST)/core-base.o $(HOST)/obj/tools/core_variant.o
+$(HOST)/obj/tools/core_variant.o: HOST_CFLAGS += -DCORE_VARIANT_V3=$(CORE_VARIANT_V3)
+
+ifeq ($(CORE_VARIANT_V3),1)
+V3_CORE_CFLAGS := $(filter-out $(OPT),$(CORE_CFLAGS)) -O3 -march=x86-64-v3
+$(eval $(call flags_record,host-v3,$(CC) $(V3_CORE_CFLAGS)))
+$(V3)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/host-v3
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(V3_CORE_CFLAGS) -c $< -o $@
+
+$(HOST)/core-v3.o: $(patsubst core/%.c,$(V3)/core/%.o,$(CORE_SRC))
+	$(Q)ld -r -o $@.tmp $^ && \
+	nm -g --defined-only $@.tmp | awk '{ print $$3, "v3_" $$3 }' >$@.syms && \
+	objcopy --redefine-syms=$@.syms $@.tmp $@ && rm -f $@.tmp $@.syms
+CORE_HOST_OBJ += $(HOST)/core-v3.o
+endif
+
+# The forwarders' object changes with the choice of builds.
+$(eval $(call flags_record,core-variant,$(CORE_VARIANT_V3)))
+$(HOST)/obj/tools/core_variant.o: $(FLAGS_DIR)/core-variant
+
+$(CORE_HOST_LIB): $(CORE_HOST_OBJ)
+	$(Q)rm -f $@ && ar rcs $@ $^
+
+.PHONY: test-core-variant
+test-core-variant: $(HOST)/celsim
+	$(Q)sh tests/core_variant.sh $(HOST)/celsim
+
+TEST_TARGETS += test-core-variant
