@@ -138,6 +138,9 @@ struct hal_display {
     void *log_user;
     hal_frame_stats *st;      /* where a frame's counts go: set by hal_display_present for
                                * its frame (a pointer, so an MCU panel pays 4 bytes of RAM) */
+    struct hal_push_lines *lines; /* hal_display_present's line buffers (host): made by the
+                               * first frame it pushes, again only if a hot-plugged display
+                               * grows, freed by hal_display_close; NULL at open */
     char err[HAL_ERR_LEN];    /* the last error: "name: what, where" */
 };
 
@@ -169,12 +172,6 @@ static inline int hal_display_lanes(const hal_display *d)
     return d->api->present ? d->api->lanes : 1;
 }
 
-static inline void hal_display_close(hal_display *d)
-{
-    if (d && d->api->close)
-        d->api->close(d);
-}
-
 /* ---- host side (hal/host/display_host.c) ---- */
 
 /* "ok", "device absent", ...: the kind of failure in words. */
@@ -201,6 +198,10 @@ void hal_display_say(const hal_display *d, const char *fmt, ...) __attribute__((
  * HAL_ERR_CONFIG; a failure stops the frame with d->err set.
  */
 hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_stats *st);
+
+/* Frees the frame driver's line buffers, then what the backend's open took
+ * (its close blanks the panel). NULL is allowed. */
+void hal_display_close(hal_display *d);
 
 /* A display that takes every line and shows nothing (dry runs, render timing). */
 hal_status hal_null_open(hal_display **out, int width, int height, const hal_clock *clock);

@@ -78,6 +78,7 @@ static void test_sim(void)
         snprintf(name, sizeof name, "sim format %d", (int)fmts[i]);
         conf_frames(&b, name);
         conf_geometry_error(&b, name);
+        hal_display_close(&s.d);
         free(img);
     }
 }
@@ -157,6 +158,7 @@ static void test_template(void)
         conf_geometry_error(&b, name);
         CHECK(r.flushes == CONF_NFRAMES && r.last.y1 == H && guards_intact(&r),
               "%s: a whole-frame flush per frame (%d), guards intact", name, r.flushes);
+        hal_display_close(&r.t.d);
         free(r.cfg.fb);
     }
 }
@@ -181,6 +183,7 @@ static void test_failed_write(void)
         CHECK(s == HAL_OK && st.lines_rendered == 2u * H, "the next frame goes: %s", hal_status_str(s));
     }
     lx_scene_source_free(&src);
+    hal_display_close(&r.t.d);
     free(r.cfg.fb);
 }
 
@@ -253,6 +256,72 @@ static void test_window(void)
     free(r.cfg.fb);
 }
 
+/*
+ * The allocation counter: the test is linked with -Wl,--wrap=malloc and
+ * --wrap=calloc (mk/display.mk), so every allocation made by the program's
+ * own code (the frame driver, the backends, the source, the core) passes here.
+ */
+void *__real_malloc(size_t n);
+void *__real_calloc(size_t n, size_t size);
+void *__wrap_malloc(size_t n);
+void *__wrap_calloc(size_t n, size_t size);
+static long allocations;
+
+void *__wrap_malloc(size_t n)
+{
+    allocations++;
+    return __real_malloc(n);
+}
+
+void *__wrap_calloc(size_t n, size_t size)
+{
+    allocations++;
+    return __real_calloc(n, size);
+}
+
+/* After a display's first frame, showing frames allocates nothing: the push
+ * lane's line buffers are the display's (d->lines), made once, freed by close. */
+static void test_no_allocation_per_frame(void)
+{
+    static cs_scene scene;
+    if (!conf_load(conf_frame_list[0].scene, &scene))
+        return;
+    lx_scene_source src;
+    TL_MUST(lx_scene_source_init(&src, W, H, CS_AA_SUBSCAN, CONF_SUBSCANLINES));
+    tpl_rig r;
+    hal_display *null = NULL;
+    size_t n = sim_display_image_bytes(W, H, CS_PANEL_PIXFMT);
+    uint8_t *img = malloc(n);
+    sim_display sim;
+    if (tpl_rig_open(&r, CS_PANEL_PIXFMT) &&
+        CHECK(hal_null_open(&null, W, H, &hal_clock_monotonic) == HAL_OK, "null open") &&
+        CHECK(sim_display_init(&sim, W, H, CS_PANEL_PIXFMT, img, n) == HAL_OK, "sim init")) {
+        hal_display *ds[3] = {&r.t.d, null, &sim.d};
+        for (int i = 0; i < 3; i++) {
+            hal_frame_stats st = {0};
+            hal_status s = HAL_OK;
+            long before = 0;
+            for (int k = 0; k < 4 && s == HAL_OK; k++) {
+                if (k == 1)
+                    before = allocations; /* the first frame made the buffers */
+                lx_scene_source_set(&src, &scene, 0.5f * (float)k);
+                s = hal_display_present(ds[i], &src.src, &st);
+                lx_scene_source_end(&src);
+            }
+            long made = allocations - before;
+            CHECK(s == HAL_OK && made == 0 && st.lines_rendered == 4u * H,
+                  "%s: %ld allocations in frames 2..4 (%s: %s)", ds[i]->api->name, made, hal_status_str(s),
+                  ds[i]->err);
+        }
+        hal_display_close(&sim.d);
+        hal_display_close(&r.t.d);
+    }
+    hal_display_close(null);
+    lx_scene_source_free(&src);
+    free(img);
+    free(r.cfg.fb);
+}
+
 int main(void)
 {
     if (getenv("CELSIM"))
@@ -264,5 +333,6 @@ int main(void)
     TL_RUN(test_failed_write);
     TL_RUN(test_sequence_errors);
     TL_RUN(test_window);
+    TL_RUN(test_no_allocation_per_frame);
     return tl_summary("test_display_conformance");
 }
