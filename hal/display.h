@@ -119,6 +119,8 @@ typedef void (*hal_close_fn)(hal_display *d);
 
 typedef struct hal_display_api {
     const char *name;               /* prefix of the messages: "usb", "drm", ... */
+    const char *noun;               /* optional: what its users call it in messages ("the
+                                     * screen"); NULL: "the display" */
     hal_begin_frame_fn begin_frame; /* optional */
     hal_line_out_fn line_out;       /* required, unless present is given */
     hal_end_frame_fn end_frame;     /* optional */

@@ -157,8 +157,8 @@ hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_
      * begin_frame first: a display that was away learns its size there. */
     hal_status s = hal_display_begin_frame(d, NULL);
     if (s == HAL_OK && (src->width != d->width || src->height != d->height))
-        s = hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, the display %dx%d", src->width,
-                             src->height, d->width, d->height);
+        s = hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, %s %dx%d", src->width, src->height,
+                             d->api->noun ? d->api->noun : "the display", d->width, d->height);
     if (s == HAL_OK)
         s = push_lines(d);
     if (s == HAL_OK)

@@ -396,6 +396,7 @@ static void test_conformance(UMockdevTestbed *tb)
                           .shown = hub75_shown, .user = &r};
         conf_frames(&b, "gpio HUB75");
         conf_geometry_error(&b, "gpio HUB75");
+        CHECK(!strcmp(d->err, "hub75: source is 65x32, the panel chain is 64x32"), "HUB75's words: '%s'", d->err);
         hal_display_close(d);
         for (int i = 0; i < 200 && fake_gpiochip_handles(r.chip); i++)
             g_usleep(5000);
