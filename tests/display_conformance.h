@@ -188,4 +188,45 @@ static TL_UNUSED void conf_geometry_error(const conf_backend *b, const char *nam
     lx_scene_source_free(&src);
 }
 
+/*
+ * A frame limited to win, with every other row of it sent (rows may be
+ * skipped), row y's bytes all 0x30 + y % 16: exactly those rows' window
+ * columns change, to what was sent, and nothing else, which holds for a
+ * panel that keeps its picture and shows lines in its own format (no
+ * encode). Returns the number of rows sent (0 if the frame failed).
+ */
+static TL_UNUSED int conf_window(const conf_backend *b, const char *name, hal_window win)
+{
+    hal_display *d = b->d;
+    size_t lb = conf_line_bytes(b), n = lb * (size_t)d->height;
+    size_t xa = hal_line_bytes(d->pixfmt, win.x0), wb = hal_line_bytes(d->pixfmt, win.x1 - win.x0);
+    uint8_t *before = malloc(n), *after = malloc(n), *line = malloc(wb);
+    int rows = 0;
+    if (!CHECK(before && after && line && b->shown(b->user, before), "%s: the picture before the window", name))
+        goto out;
+    hal_status s = hal_display_begin_frame(d, &win);
+    for (int y = win.y0; y < win.y1 && s == HAL_OK; y += 2, rows++) {
+        memset(line, 0x30 + y % 16, wb);
+        s = hal_display_line_out(d, y, line, wb);
+    }
+    if (s == HAL_OK)
+        s = hal_display_end_frame(d);
+    long wrong = 0;
+    if (s == HAL_OK && b->shown(b->user, after))
+        for (int y = 0; y < d->height; y++)
+            for (size_t x = 0; x < lb; x++) {
+                size_t i = (size_t)y * lb + x;
+                bool in = y >= win.y0 && y < win.y1 && (y - win.y0) % 2 == 0 && x >= xa && x < xa + wb;
+                wrong += after[i] != (in ? 0x30 + y % 16 : before[i]);
+            }
+    if (!CHECK(s == HAL_OK && wrong == 0, "%s: window %d,%d..%d,%d: %ld wrong bytes (%s: %s)", name, win.x0,
+               win.y0, win.x1, win.y1, wrong, hal_status_str(s), d->err))
+        rows = 0;
+out:
+    free(before);
+    free(after);
+    free(line);
+    return rows;
+}
+
 #endif /* DISPLAY_CONFORMANCE_H */
