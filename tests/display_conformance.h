@@ -189,6 +189,52 @@ static TL_UNUSED void conf_geometry_error(const conf_backend *b, const char *nam
 }
 
 /*
+ * A write that fails for good: fail(user) makes the device fail the next
+ * frame's writes (past the backend's retries, where it has them). That frame
+ * ends in HAL_ERR_IO with a "name: ..." message containing needle; the next
+ * frame goes, and the display then shows the core's render (conformance
+ * frames 0 and 1 differ, so a backend that sends only changed lines writes).
+ */
+static TL_UNUSED void conf_failed_write(const conf_backend *b, const char *name, void (*fail)(void *user),
+                                        const char *needle)
+{
+    hal_display *d = b->d;
+    size_t lb = conf_line_bytes(b);
+    lx_scene_source src;
+    if (!CHECK(lx_scene_source_init(&src, d->width, d->height, CS_AA_SUBSCAN, CONF_SUBSCANLINES) == HAL_OK,
+               "%s: source", name))
+        return;
+    static cs_scene scene;
+    uint8_t *frame = malloc(lb * (size_t)d->height);
+    const conf_frame *f = &conf_frame_list[1];
+    if (frame && conf_load(f->scene, &scene)) {
+        hal_status s[3];
+        hal_frame_stats st = {0};
+        for (int i = 0; i < 3; i++) {
+            if (i == 1)
+                fail(b->user);
+            lx_scene_source_set(&src, &scene, i ? f->time : conf_frame_list[0].time);
+            s[i] = hal_display_present(d, &src.src, &st);
+            lx_scene_source_end(&src);
+            if (i == 1)
+                CHECK(conf_error_is(d, s[1], HAL_ERR_IO, needle), "%s: a failed write: %s: %s", name,
+                      hal_status_str(s[1]), d->err);
+        }
+        hal_pixfmt fmt = d->pixfmt;
+        uint32_t want = b->encode ? conf_reference_crc(&scene, f->time, d->width, d->height, lb, b->encode,
+                                                       b->encode_user)
+                                  : conf_reference_crc(&scene, f->time, d->width, d->height, lb,
+                                                       conf_encode_fmt, &fmt);
+        bool read = s[2] == HAL_OK && b->shown(b->user, frame);
+        CHECK(s[0] == HAL_OK && read && cs_crc32(0, frame, lb * (size_t)d->height) == want,
+              "%s: the frames around the failed write: %s, %s (shown %s the core's)", name,
+              hal_status_str(s[0]), hal_status_str(s[2]), read ? "differs from" : "unread, not");
+    }
+    free(frame);
+    lx_scene_source_free(&src);
+}
+
+/*
  * A frame limited to win, with every other row of it sent (rows may be
  * skipped), row y's bytes all 0x30 + y % 16: exactly those rows' window
  * columns change, to what was sent, and nothing else, which holds for a

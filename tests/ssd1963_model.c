@@ -151,7 +151,8 @@ static void command(ssd_model *m, uint16_t v)
         return;
     }
     if (m->reset_seen && m->now_us - m->reset_us < 5000)
-        fault(m, "sent %llu us after a soft reset (5 ms needed)", (unsigned long long)(m->now_us - m->reset_us));
+        fault(m, "sent %llu us after a soft reset (5 ms needed)",
+              (unsigned long long)(m->now_us - m->reset_us));
     switch (m->cmd) {
     case SOFT_RESET:
         defaults(m);

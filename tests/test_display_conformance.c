@@ -163,26 +163,19 @@ static void test_template(void)
     }
 }
 
+static void tpl_fail_flush(void *user)
+{
+    ((tpl_rig *)user)->flush_fail = 1;
+}
+
 /* A failed write (the flush) is HAL_ERR_IO through the frame driver, and the next frame goes. */
 static void test_failed_write(void)
 {
     tpl_rig r;
     if (!tpl_rig_open(&r, CS_PANEL_PIXFMT))
         return;
-    lx_scene_source src;
-    TL_MUST(lx_scene_source_init(&src, W, H, CS_AA_SUBSCAN, CONF_SUBSCANLINES));
-    static cs_scene scene;
-    if (conf_load(conf_frame_list[0].scene, &scene)) {
-        lx_scene_source_set(&src, &scene, 0.0f);
-        hal_frame_stats st = {0};
-        r.flush_fail = 1;
-        hal_status s = hal_display_present(&r.t.d, &src.src, &st);
-        CHECK(conf_error_is(&r.t.d, s, HAL_ERR_IO, "flushing rows 0..67 failed"), "failed flush: %s: %s",
-              hal_status_str(s), r.t.d.err);
-        s = hal_display_present(&r.t.d, &src.src, &st);
-        CHECK(s == HAL_OK && st.lines_rendered == 2u * H, "the next frame goes: %s", hal_status_str(s));
-    }
-    lx_scene_source_free(&src);
+    conf_backend b = {.d = &r.t.d, .shown = tpl_shown, .user = &r};
+    conf_failed_write(&b, "template", tpl_fail_flush, "flushing rows 0..67 failed");
     hal_display_close(&r.t.d);
     free(r.cfg.fb);
 }

@@ -87,13 +87,14 @@ static void test_conformance(void)
             conf_geometry_error(&b, name);
             long px = r.m.pixels;
             /* a window inside, one at the glass's corner (the high address bytes), a single pixel */
-            const hal_window wins[3] = {{10, 20, 50, 30}, {sizes[k][0] - 40, sizes[k][1] - 9, sizes[k][0], sizes[k][1]},
-                                        {3, 4, 4, 5}};
+            const int w = sizes[k][0], h = sizes[k][1];
+            const hal_window wins[3] = {{10, 20, 50, 30}, {w - 40, h - 9, w, h}, {3, 4, 4, 5}};
             long want = 0;
             for (int i = 0; i < 3; i++)
                 want += (long)conf_window(&b, name, wins[i]) * (wins[i].x1 - wins[i].x0);
             CHECK(want > 0 && r.m.pixels - px == want && !r.m.fault[0],
-                  "%s: %ld pixels crossed the bus for windows of %ld: '%s'", name, r.m.pixels - px, want, r.m.fault);
+                  "%s: %ld pixels crossed the bus for windows of %ld: '%s'", name, r.m.pixels - px, want,
+                  r.m.fault);
         }
         rig_close(&r);
     }

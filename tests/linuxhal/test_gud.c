@@ -318,8 +318,10 @@ static void test_faults(UMockdevTestbed *tb)
     celfw_scene_build("anim", &scene, 1.5f);
     fake_gud_stall_bulk(r.dev, 1 + r.cfg.retries);
     s = show(&r, &scene, &st);
-    CHECK(s == HAL_OK && st.errors >= 1, "persistent stall: frame finished with %llu failed bands",
-          (unsigned long long)st.errors);
+    CHECK(s == HAL_ERR_IO && st.errors >= 1 && st.lines_rendered == (uint64_t)r.d->height &&
+              strstr(r.d->err, "LIBUSB_ERROR_PIPE, 3 attempts; sent again next frame"),
+          "persistent stall: frame finished with %llu failed bands: %s: %s", (unsigned long long)st.errors,
+          hal_status_str(s), r.d->err);
     CHECK(compare(&r, &scene) != 0, "the failed band is missing from the panel");
     s = show(&r, &scene, &st);
     CHECK(s == HAL_OK && st.errors == 0 && st.lines_sent > 0, "the failed lines are sent again");
@@ -662,7 +664,14 @@ static bool gud_shown(void *user, uint8_t *frame)
     return true;
 }
 
-/* The conformance case every backend passes, in RGB565 and XRGB8888; then a device gone. */
+/* Every bulk write of the next frame stalls, past the retries. */
+static void gud_fail_writes(void *user)
+{
+    rig *r = user;
+    fake_gud_stall_bulk(r->dev, 1 + r->cfg.retries);
+}
+
+/* The conformance case every backend passes, in RGB565 and XRGB8888; a failed write; then a device gone. */
 static void test_conformance(UMockdevTestbed *tb)
 {
     for (int k = 0; k < 2; k++) {
@@ -680,6 +689,7 @@ static void test_conformance(UMockdevTestbed *tb)
         const char *name = k ? "usb XRGB8888" : "usb RGB565";
         conf_frames(&b, name);
         conf_geometry_error(&b, name);
+        conf_failed_write(&b, name, gud_fail_writes, "LIBUSB_ERROR_PIPE");
         fake_gud_unplug(r.dev);
         hal_frame_stats st;
         celfw_scene_build("demo", &scene, 0.0f);
