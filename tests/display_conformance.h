@@ -263,9 +263,11 @@ static TL_UNUSED void conf_failed_write(const conf_backend *b, const char *name,
             lx_scene_source_set(&src, &scene, i ? f->time : conf_frame_list[0].time);
             s[i] = hal_display_present(d, &src.src, &st);
             lx_scene_source_end(&src);
-            if (i == 1)
+            if (i == 1) {
                 CHECK(conf_error_is(d, s[1], HAL_ERR_IO, needle), "%s: a failed write: %s: %s", name,
                       hal_status_str(s[1]), d->err);
+                b->shown(b->user, frame); /* what the failed frame left: any part of it, not checked */
+            }
         }
         uint32_t want = conf_backend_crc(b, &scene, f->time);
         bool read = s[2] == HAL_OK && b->shown(b->user, frame);

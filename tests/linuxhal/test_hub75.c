@@ -358,6 +358,12 @@ static bool hub75_shown(void *user, uint8_t *frame)
     return dark == 0;
 }
 
+/* The chip's line writes fail (EIO) for the next frame's first row pair. */
+static void hub75_fail_writes(void *user)
+{
+    fake_gpiochip_fail_sets(((conf_rig *)user)->chip, 1, EIO);
+}
+
 /* The conformance case every backend passes, through the pull lane. */
 static void test_conformance(UMockdevTestbed *tb)
 {
@@ -381,6 +387,7 @@ static void test_conformance(UMockdevTestbed *tb)
         conf_frames(&b, "gpio HUB75");
         conf_geometry_error(&b, "gpio HUB75");
         CHECK(!strcmp(d->err, "hub75: source is 65x32, the panel chain is 64x32"), "HUB75's words: '%s'", d->err);
+        conf_failed_write(&b, "gpio HUB75", hub75_fail_writes, "writing GPIO lines on /dev/gpiochip7 failed");
         hal_display_close(d);
         for (int i = 0; i < 200 && fake_gpiochip_handles(r.chip); i++)
             g_usleep(5000);
