@@ -142,7 +142,8 @@ struct hal_display {
                                * its frame (a pointer, so an MCU panel pays 4 bytes of RAM) */
     struct hal_push_lines *lines; /* hal_display_present's line buffers (host): made by the
                                * first frame it pushes, again only if a hot-plugged display
-                               * grows, freed by hal_display_close; NULL at open */
+                               * changed width or format, freed by hal_display_close; NULL
+                               * at open */
     char err[HAL_ERR_LEN];    /* the last error: "name: what, where" */
 };
 
