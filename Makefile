@@ -154,7 +154,7 @@ $(DEMO)/frame-%.png: scenes/demo.json $(HOST)/celsim
 FRAGMENT_TESTS := tests/test_cache.c tests/test_csg.c \
         tests/test_mcu_display.c tests/test_stream.c tests/test_exact.c \
         tests/test_beta.c tests/test_paint_json.c tests/test_scenes.c tests/test_bands.c \
-        tests/test_rx_ring.c tests/test_display_conformance.c \
+        tests/test_rx_ring.c tests/test_display_conformance.c tests/test_panel_ssd1963.c \
         $(wildcard tests/test_svg*.c)
 TEST_SRC := $(filter-out $(FRAGMENT_TESTS),$(sort $(wildcard tests/test_*.c)))
 TEST_REF_SRC := $(sort $(wildcard tests/ref/*.c))

@@ -18,7 +18,9 @@
  *    begin_frame/end_frame where it has work to do around a frame.
  *  - A panel that keeps its picture may take a frame limited to a window
  *    (rows y0..y1-1, columns x0..x1-1): only what changed travels. A backend
- *    that cannot narrow its writes refuses a window with HAL_ERR_CONFIG.
+ *    that cannot narrow its writes refuses a window with HAL_ERR_CONFIG. An
+ *    empty window (x0 == x1 or y0 == y1) is a frame where nothing changed:
+ *    no line comes. After it, read_row may read the picture back.
  *  - A panel that must be refreshed continuously and holds nothing (a HUB75
  *    matrix) implements the pull lane, present: it asks a hal_source for
  *    lines when its scan needs them, in one or more "lanes", each an
@@ -122,6 +124,8 @@ typedef void (*hal_close_fn)(hal_display *d);
 
 typedef struct hal_display_api {
     const char *name;               /* prefix of the messages: "usb", "drm", ... */
+    const char *noun;               /* optional: what its users call it in messages ("the
+                                     * screen"); NULL: "the display" */
     hal_begin_frame_fn begin_frame; /* optional */
     hal_line_out_fn line_out;       /* required, unless present is given */
     hal_end_frame_fn end_frame;     /* optional */
@@ -142,6 +146,10 @@ struct hal_display {
     void *log_user;
     hal_frame_stats *st;      /* where a frame's counts go: set by hal_display_present for
                                * its frame (a pointer, so an MCU panel pays 4 bytes of RAM) */
+    struct hal_push_lines *lines; /* hal_display_present's line buffers (host): made by the
+                               * first frame it pushes, again only if a hot-plugged display
+                               * changed width or format, freed by hal_display_close; NULL
+                               * at open */
     char err[HAL_ERR_LEN];    /* the last error: "name: what, where" */
 };
 
@@ -179,12 +187,6 @@ static inline int hal_display_lanes(const hal_display *d)
     return d->api->present ? d->api->lanes : 1;
 }
 
-static inline void hal_display_close(hal_display *d)
-{
-    if (d && d->api->close)
-        d->api->close(d);
-}
-
 /* ---- host side (hal/host/display_host.c) ---- */
 
 /* "ok", "device absent", ...: the kind of failure in words. */
@@ -211,6 +213,10 @@ void hal_display_say(const hal_display *d, const char *fmt, ...) __attribute__((
  * HAL_ERR_CONFIG; a failure stops the frame with d->err set.
  */
 hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_stats *st);
+
+/* Frees the frame driver's line buffers, then what the backend's open took
+ * (its close blanks the panel). NULL is allowed. */
+void hal_display_close(hal_display *d);
 
 /* A display that takes every line and shows nothing (dry runs, render timing). */
 hal_status hal_null_open(hal_display **out, int width, int height, const hal_clock *clock);

@@ -366,6 +366,15 @@ static void on_note(void *user, const char *what)
 
 /* ------------------------------------------------------------- status */
 
+/* The backend as --backend names it (the display's own name, which prefixes
+ * its messages, is "hub75" for the gpio backend). */
+static const char *backend_name(celfw_backend b)
+{
+    static const char *const names[] = {[CELFW_NULL] = "null", [CELFW_GPIO] = "gpio", [CELFW_USB] = "usb",
+                                        [CELFW_DRM] = "drm"};
+    return names[b];
+}
+
 static const char *display_state(const celfw *fw)
 {
     return hal_display_connected(fw->disp) ? "up" : "absent";
@@ -729,7 +738,7 @@ int main(int argc, char **argv)
         snprintf(aa, sizeof aa, "%d", fw->cfg.subscanlines);
     say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s "
         "trusted_keys=%d threads=%d",
-        fw->disp->api->name, fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
+        backend_name(fw->cfg.backend), fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
         celfw_input_describe(fw->in), fw->cfg.scene, "cel-stream",
         display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw));
     if (celfw_input_public(fw->in) && celfw_trust_key_count(fw->trust) == 0)
@@ -737,7 +746,7 @@ int main(int argc, char **argv)
             "can change the picture (celc keygen, then celfw --trust KEY.pub --state-dir DIR)",
             celfw_input_describe(fw->in));
     celfw_notify_ready(&fw->notify, hal_now(&hal_clock_monotonic), "showing %s on %s %dx%d",
-                       fw->cfg.scene, fw->disp->api->name, fw->disp->width, fw->disp->height);
+                       fw->cfg.scene, backend_name(fw->cfg.backend), fw->disp->width, fw->disp->height);
 
     const char *why = run(fw);
     tell_held(fw, true);

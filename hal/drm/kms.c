@@ -398,6 +398,7 @@ static void kms_close(hal_display *d)
 
 static const hal_display_api kms_api = {
     .name = "drm",
+    .noun = "the screen",
     .begin_frame = kms_begin_frame,
     .line_out = kms_line_out,
     .end_frame = kms_end_frame,

@@ -98,7 +98,7 @@ static void build_planes(hub75 *h)
 static hal_status io_error(hub75 *h, int e)
 {
     return hal_display_fail(&h->d, e == ENODEV ? HAL_ERR_NO_DEVICE : HAL_ERR_IO,
-                            "writing HUB75 lines on %s failed: %s", h->cfg.chip, strerror(e));
+                            "writing GPIO lines on %s failed: %s", h->cfg.chip, strerror(e));
 }
 
 static hal_status drive_row_pair(hub75 *h, int r)
@@ -145,7 +145,7 @@ static hal_status hub75_present(hal_display *d, const hal_source *src, hal_frame
 {
     hub75 *h = (hub75 *)d;
     if (src->width != h->width || src->height != h->cfg.panel_h)
-        return hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, the HUB75 panel chain %dx%d", src->width,
+        return hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, the panel chain is %dx%d", src->width,
                                 src->height, h->width, h->cfg.panel_h);
     hal_status s = src->begin(src->user, 2);
     if (s != HAL_OK)
@@ -195,7 +195,7 @@ static void hub75_close(hal_display *d)
 
 /* The pull lane: a HUB75 panel holds nothing and is rescanned every frame. */
 static const hal_display_api hub75_api = {
-    .name = "gpio",
+    .name = "hub75",
     .present = hub75_present,
     .lanes = 2,
     .connected = hub75_connected,

@@ -4,7 +4,9 @@
  * message", so no backend formats its own), pixel conversion including the
  * XRGB8888 layout the core lacks, and the frame driver that shows a
  * hal_source on any backend, push or pull. Deadline accounting lives here
- * once, not in each backend.
+ * once, not in each backend, and so do the push lane's two line buffers:
+ * they belong to the display (d->lines, kept from frame to frame and freed
+ * by hal_display_close), so showing a frame allocates nothing.
  */
 #include <stdarg.h>
 #include <stdio.h>
@@ -106,6 +108,46 @@ static hal_status push_frame(hal_display *d, const hal_source *src, hal_frame_st
     return hal_display_end_frame(d);
 }
 
+/* The push lane's line buffers: a line of floats and one in the display's format. */
+struct hal_push_lines {
+    int width;
+    hal_pixfmt pixfmt;
+    float *rgb;
+    uint8_t *px;
+};
+
+static void free_lines(hal_display *d)
+{
+    if (d->lines) {
+        free(d->lines->rgb);
+        free(d->lines->px);
+        free(d->lines);
+        d->lines = NULL;
+    }
+}
+
+/* d->lines for d's width and format: kept from frame to frame, so a frame
+ * allocates nothing; made again only when a hot-plugged display changed. */
+static hal_status push_lines(hal_display *d)
+{
+    if (d->lines && d->lines->width == d->width && d->lines->pixfmt == d->pixfmt)
+        return HAL_OK;
+    free_lines(d);
+    struct hal_push_lines *l = calloc(1, sizeof *l);
+    if (l) {
+        l->rgb = malloc((size_t)d->width * 3u * sizeof *l->rgb);
+        l->px = malloc(hal_line_bytes(d->pixfmt, d->width) + 4u);
+        l->width = d->width;
+        l->pixfmt = d->pixfmt;
+        d->lines = l;
+    }
+    if (!l || !l->rgb || !l->px) {
+        free_lines(d);
+        return hal_display_fail(d, HAL_ERR_NOMEM, "no line buffer for a width of %d", d->width);
+    }
+    return HAL_OK;
+}
+
 hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_stats *st)
 {
     if (d->api->present)
@@ -115,15 +157,21 @@ hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_
      * begin_frame first: a display that was away learns its size there. */
     hal_status s = hal_display_begin_frame(d, NULL);
     if (s == HAL_OK && (src->width != d->width || src->height != d->height))
-        s = hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, the display %dx%d", src->width,
-                             src->height, d->width, d->height);
-    if (s == HAL_OK) {
-        float *rgb = malloc((size_t)d->width * 3u * sizeof *rgb);
-        uint8_t *px = malloc(hal_line_bytes(d->pixfmt, d->width) + 4u);
-        s = rgb && px ? push_frame(d, src, st, rgb, px) : hal_display_fail(d, HAL_ERR_NOMEM, "no line buffer");
-        free(rgb);
-        free(px);
-    }
+        s = hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, %s %dx%d", src->width, src->height,
+                             d->api->noun ? d->api->noun : "the display", d->width, d->height);
+    if (s == HAL_OK)
+        s = push_lines(d);
+    if (s == HAL_OK)
+        s = push_frame(d, src, st, d->lines->rgb, d->lines->px);
     d->st = NULL;
     return s;
+}
+
+void hal_display_close(hal_display *d)
+{
+    if (!d)
+        return;
+    free_lines(d);
+    if (d->api->close)
+        d->api->close(d);
 }

@@ -10,8 +10,17 @@
  * A frame sets the memory window once and then streams lines; the
  * controller advances its write address by itself, so a line costs
  * exactly `width` bus writes.
+ *
+ * Every bus write goes through SSD1963_BUS_WRITE. On a board it is a store
+ * to the memory-mapped bus; the host test (tests/ssd1963_model.h) defines
+ * it as a call into a model of the controller that interprets the writes,
+ * so the conformance case runs on this very file.
  */
 #include "panel_ssd1963.h"
+
+#ifndef SSD1963_BUS_WRITE
+#define SSD1963_BUS_WRITE(reg, v) (*(reg) = (v))
+#endif
 
 #define CMD_SOFT_RESET 0x01
 #define CMD_DISPLAY_ON 0x29
@@ -29,17 +38,16 @@
 
 static void command(panel_ssd1963 *p, uint8_t c, const uint8_t *args, int n)
 {
-    *p->cmd = c;
+    SSD1963_BUS_WRITE(p->cmd, c);
     for (int i = 0; i < n; i++)
-        *p->data = args[i];
+        SSD1963_BUS_WRITE(p->data, args[i]);
 }
 
-static void window(panel_ssd1963 *p, int x0, int y0, int x1, int y1)
+/* A start and end address (inclusive), high bytes first: the column and page set's parameters. */
+static void address_set(panel_ssd1963 *p, uint8_t c, int a0, int a1)
 {
-    const uint8_t col[4] = {(uint8_t)(x0 >> 8), (uint8_t)x0, (uint8_t)(x1 >> 8), (uint8_t)x1};
-    const uint8_t page[4] = {(uint8_t)(y0 >> 8), (uint8_t)y0, (uint8_t)(y1 >> 8), (uint8_t)y1};
-    command(p, CMD_SET_COLUMN, col, 4);
-    command(p, CMD_SET_PAGE, page, 4);
+    const uint8_t arg[4] = {(uint8_t)(a0 >> 8), (uint8_t)a0, (uint8_t)(a1 >> 8), (uint8_t)a1};
+    command(p, c, arg, 4);
 }
 
 static const hal_display_api panel_ssd1963_api;
@@ -50,6 +58,8 @@ void panel_ssd1963_init(panel_ssd1963 *p, int width, int height)
     p->d.width = width;
     p->d.height = height;
     p->d.pixfmt = CS_PANEL_PIXFMT;
+    p->win = (hal_window){0, 0, 0, 0};
+    p->next_y = 0;
     int hd = width - 1, vd = height - 1;
     command(p, CMD_SOFT_RESET, 0, 0);
     p->delay_us(5000);
@@ -88,21 +98,42 @@ static hal_status begin_frame(hal_display *d, const hal_window *win)
     const hal_window all = {0, 0, d->width, d->height};
     if (!win)
         win = &all;
-    if (win->x0 < 0 || win->y0 < 0 || win->x1 > d->width || win->y1 > d->height)
+    if (win->x0 < 0 || win->y0 < 0 || win->x0 > win->x1 || win->y0 > win->y1 || win->x1 > d->width ||
+        win->y1 > d->height)
         return HAL_ERR_CONFIG;
-    if (win->x0 >= win->x1 || win->y0 >= win->y1)
-        return HAL_OK; /* nothing changed: nothing to send, the glass keeps its picture */
-    window(p, win->x0, win->y0, win->x1 - 1, win->y1 - 1);
-    *p->cmd = CMD_WRITE_MEMORY;
+    p->win = *win;
+    p->next_y = win->y0;
+    if (win->x0 == win->x1 || win->y0 == win->y1) {
+        p->win.y1 = win->y0; /* nothing changed: nothing crosses the bus, and no line may */
+        return HAL_OK;
+    }
+    address_set(p, CMD_SET_COLUMN, win->x0, win->x1 - 1);
+    address_set(p, CMD_SET_PAGE, win->y0, win->y1 - 1);
+    SSD1963_BUS_WRITE(p->cmd, CMD_WRITE_MEMORY);
     return HAL_OK;
 }
 
 static hal_status line_out(hal_display *d, int y, const uint8_t *pixels, size_t bytes)
 {
     panel_ssd1963 *p = (panel_ssd1963 *)d;
-    (void)y;
+    if (y < p->next_y || y >= p->win.y1)
+        return HAL_ERR_SEQUENCE;
+    if (bytes != 2u * (size_t)(p->win.x1 - p->win.x0))
+        return HAL_ERR_CONFIG;
+    if (y != p->next_y) { /* rows skipped: write memory again from row y's first column */
+        address_set(p, CMD_SET_PAGE, y, p->win.y1 - 1);
+        SSD1963_BUS_WRITE(p->cmd, CMD_WRITE_MEMORY);
+    }
     for (size_t i = 0; i + 1 < bytes; i += 2)
-        *p->data = (uint16_t)(pixels[i] | pixels[i + 1] << 8); /* RGB565, little-endian */
+        SSD1963_BUS_WRITE(p->data, (uint16_t)(pixels[i] | pixels[i + 1] << 8)); /* RGB565, little-endian */
+    p->next_y = y + 1;
+    return HAL_OK;
+}
+
+/* The frame is over: lines until the next begin_frame are out of order. */
+static hal_status end_frame(hal_display *d)
+{
+    ((panel_ssd1963 *)d)->win.y1 = 0;
     return HAL_OK;
 }
 
@@ -110,4 +141,5 @@ static const hal_display_api panel_ssd1963_api = {
     .name = "ssd1963",
     .begin_frame = begin_frame,
     .line_out = line_out,
+    .end_frame = end_frame,
 };

@@ -4,7 +4,7 @@
  * What each operation must do, for any panel:
  *  - begin_frame: get the panel ready for a frame, or for a window of it.
  *    Check the window; a backend that cannot narrow its writes refuses one
- *    with HAL_ERR_CONFIG. A panel that can be absent (USB, HDMI) reconnects
+ *    with HAL_ERR_CONFIG. An empty window is a frame where nothing changed. A panel that can be absent (USB, HDMI) reconnects
  *    here and returns HAL_ERR_NO_DEVICE, cheaply, while it is away.
  *  - line_out: put one row, already in d->pixfmt, where the panel shows it.
  *    Rows come in increasing order and only inside the frame's window; a
@@ -24,7 +24,7 @@ static hal_status tpl_begin_frame(hal_display *d, const hal_window *win)
     tpl_display *t = (tpl_display *)d;
     hal_window all = {0, 0, d->width, d->height};
     if (win && (win->x0 < 0 || win->y0 < 0 || win->x1 > d->width || win->y1 > d->height ||
-                win->x0 >= win->x1 || win->y0 >= win->y1))
+                win->x0 > win->x1 || win->y0 > win->y1))
         return hal_display_fail(d, HAL_ERR_CONFIG, "window %d,%d..%d,%d is not inside %dx%d", win->x0,
                                 win->y0, win->x1, win->y1, d->width, d->height);
     t->win = win ? *win : all;

@@ -65,6 +65,7 @@ typedef struct gud_host {
     uint64_t next_attempt_ns, connects;
     int quiet_failures; /* reconnect attempts since the last message */
     hal_frame_stats unpresented;
+    hal_status frame_status; /* the frame's first band that failed for good (HAL_ERR_IO), else HAL_OK */
     char why[200];      /* detail of the last failed transfer */
 } gud_host;
 
@@ -621,8 +622,8 @@ static hal_status flush_band(gud_host *g, hal_frame_stats *st)
         s = send_rect(g, &req, payload, plen);
         if (s == HAL_OK || s == HAL_ERR_NO_DEVICE)
             break;
-        hal_display_say(&g->d, "rectangle y=%d..%d: %s%s", g->band_y0, g->band_y0 + n - 1, g->why,
-            attempt < g->cfg.retries ? "; retrying" : "; giving up until the next frame");
+        if (attempt < g->cfg.retries)
+            hal_display_say(&g->d, "rectangle y=%d..%d: %s; retrying", g->band_y0, g->band_y0 + n - 1, g->why);
     }
     if (s == HAL_OK) {
         for (int i = 0; i < n; i++)
@@ -639,7 +640,13 @@ static hal_status flush_band(gud_host *g, hal_frame_stats *st)
         lost(g, "a frame");
         return s;
     }
-    return HAL_OK; /* the frame goes on; these lines travel again next frame */
+    /* The frame goes on (its other bands still travel) and these lines travel
+     * again next frame; end_frame reports the write that failed. */
+    if (g->frame_status == HAL_OK)
+        g->frame_status = hal_display_fail(&g->d, HAL_ERR_IO,
+                                           "rectangle y=%d..%d: %s, %d attempts; sent again next frame",
+                                           g->band_y0, g->band_y0 + n - 1, g->why, 1 + g->cfg.retries);
+    return HAL_OK;
 }
 
 /* A frame starts: the display is (re)connected if it was away. */
@@ -668,6 +675,7 @@ static hal_status gud_begin_frame(hal_display *d, const hal_window *win)
     if (!d->st)
         d->st = &g->unpresented; /* pushed without hal_display_present: counts go nowhere */
     g->band_n = 0;
+    g->frame_status = HAL_OK;
     return HAL_OK;
 }
 
@@ -701,7 +709,7 @@ static hal_status gud_end_frame(hal_display *d)
     hal_status s = flush_band(g, d->st);
     if (s == HAL_ERR_NO_DEVICE)
         return hal_display_fail(d, s, "display disconnected: %s", g->why);
-    return s;
+    return s == HAL_OK ? g->frame_status : s;
 }
 
 static bool gud_connected(hal_display *d)

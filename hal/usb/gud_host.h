@@ -12,7 +12,8 @@
  *
  * Failures are values: a stalled transfer is retried after clearing the halt,
  * a timed-out one is retried, and lines that still failed are marked so they
- * travel again next frame. An unplugged device turns begin_frame into a cheap
+ * travel again next frame; the frame's other bands still go, and the frame
+ * ends in HAL_ERR_IO naming the rectangle that failed. An unplugged device turns begin_frame into a cheap
  * HAL_ERR_NO_DEVICE until the device is back, when the handshake runs again
  * and the whole frame is resent.
  */

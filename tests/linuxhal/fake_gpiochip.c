@@ -49,6 +49,8 @@ struct fake_gpiochip {
     fake_gpio_event *trace;
     size_t ntrace, captrace;
     unsigned count[FAKE_GPIO_NCOUNT];
+    unsigned fail_sets; /* the next SET_LINE_VALUES that fail, with fail_errno */
+    int fail_errno;
 };
 
 static void reap_closed(fake_gpiochip *c);
@@ -240,6 +242,9 @@ static gboolean handle_ioctl(UMockdevIoctlBase *base, UMockdevIoctlClient *clien
         c->count[FAKE_GPIO_SET]++;
         if (!(h->flags & GPIOHANDLE_REQUEST_OUTPUT)) {
             e = EPERM;
+        } else if (c->fail_sets) {
+            c->fail_sets--;
+            e = c->fail_errno;
         } else {
             UMockdevIoctlData *d =
                 umockdev_ioctl_data_resolve(arg, 0, sizeof(struct gpiohandle_data), &gerr);
@@ -418,6 +423,14 @@ void fake_gpiochip_hold(fake_gpiochip *c, unsigned line, const char *consumer)
     g_mutex_lock(&c->mu);
     c->requested |= 1ull << line;
     snprintf(c->consumer[line], sizeof c->consumer[line], "%s", consumer);
+    g_mutex_unlock(&c->mu);
+}
+
+void fake_gpiochip_fail_sets(fake_gpiochip *c, unsigned n, int err)
+{
+    g_mutex_lock(&c->mu);
+    c->fail_sets = n;
+    c->fail_errno = err;
     g_mutex_unlock(&c->mu);
 }
 

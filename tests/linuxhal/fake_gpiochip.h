@@ -49,6 +49,8 @@ bool fake_gpiochip_requested(fake_gpiochip *c, unsigned line, char *consumer, si
 /* Marks a line as held by another user (as a kernel driver would). */
 void fake_gpiochip_hold(fake_gpiochip *c, unsigned line, const char *consumer);
 unsigned fake_gpiochip_count(fake_gpiochip *c, int kind);
+/* The next n line writes fail with errno err (a GPIO expander on a bus that errs: EIO). */
+void fake_gpiochip_fail_sets(fake_gpiochip *c, unsigned n, int err);
 /* Open line handles. */
 unsigned fake_gpiochip_handles(fake_gpiochip *c);
 

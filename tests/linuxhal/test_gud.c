@@ -23,51 +23,7 @@
 #include "display_conformance.h"
 
 static cs_scene scene;
-static cs_workspace ws;
 static int next_pid = 0x7000;
-
-static void logger(void *user, const char *fmt, ...)
-{
-    (void)user;
-    va_list ap;
-    va_start(ap, fmt);
-    fprintf(stderr, "  [log] ");
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
-    va_end(ap);
-}
-
-/* The truth: the scene rendered in one pass with the core, in the device's format. */
-static uint8_t *expected(const cs_scene *s, int w, int h, uint8_t format)
-{
-    unsigned bpp = gud_format_bpp(format);
-    cs_render_opts o = cs_render_defaults(w, h);
-    o.subscanlines = 4;
-    o.blend = CS_BLEND_LINEAR;
-    cs_renderer r;
-    cs_error e;
-    uint8_t *img = calloc((size_t)w * (size_t)h, bpp);
-    float *line = calloc((size_t)w * 3u, sizeof *line);
-    uint8_t *rgb = calloc((size_t)w, 3);
-    if (cs_frame_begin(&r, &ws, s, &o, &e) != CS_OK)
-        abort();
-    for (int y = 0; y < h; y++) {
-        cs_render_line(&r, y, line);
-        uint8_t *row = img + (size_t)y * (size_t)w * bpp;
-        if (format == GUD_FORMAT_RGB565) {
-            cs_pixfmt_convert(CS_PIX_RGB565_SRGB, line, w, row);
-        } else {
-            cs_pixfmt_convert(CS_PIX_RGB888_SRGB, line, w, rgb);
-            for (int x = 0; x < w; x++) {
-                uint32_t v = (uint32_t)rgb[3 * x] << 16 | (uint32_t)rgb[3 * x + 1] << 8 | rgb[3 * x + 2];
-                gud_put32(row + 4 * x, v);
-            }
-        }
-    }
-    free(line);
-    free(rgb);
-    return img;
-}
 
 typedef struct rig {
     fake_gud_opts o;
@@ -88,7 +44,7 @@ static hal_status rig_open(rig *r, UMockdevTestbed *tb, char *err, size_t errlen
     r->cfg.vid = r->o.vid;
     r->cfg.pid = r->o.pid;
     err[0] = 0;
-    hal_status s = gud_open(&r->d, &r->cfg, &hal_clock_monotonic, logger, NULL, err, errlen);
+    hal_status s = gud_open(&r->d, &r->cfg, &hal_clock_monotonic, conf_log, NULL, err, errlen);
     if (s == HAL_OK && lx_scene_source_init(&r->src, r->d->width, r->d->height, CS_AA_SUBSCAN, 4) != HAL_OK)
         s = HAL_ERR_NOMEM;
     return s;
@@ -119,7 +75,12 @@ static int compare(rig *r, const cs_scene *s)
     gud_get_info(r->d, &info);
     unsigned bpp = gud_format_bpp(info.format);
     size_t n = (size_t)info.width * (size_t)info.height * bpp;
-    uint8_t *got = malloc(n), *want = expected(s, info.width, info.height, info.format);
+    hal_pixfmt fmt = info.format == GUD_FORMAT_RGB565 ? CS_PIX_RGB565_SRGB : HAL_PIX_XRGB8888;
+    uint8_t *got = malloc(n),
+            *want = conf_reference_image(s, 0.0f, info.width, info.height, (size_t)info.width * bpp,
+                                         conf_encode_fmt, &fmt);
+    if (!want)
+        abort(); /* out of memory or an unrenderable test scene: nothing to compare with */
     fake_gud_framebuffer(r->dev, got, n);
     int bad = 0;
     for (size_t i = 0; i < n; i += bpp)
@@ -318,8 +279,10 @@ static void test_faults(UMockdevTestbed *tb)
     celfw_scene_build("anim", &scene, 1.5f);
     fake_gud_stall_bulk(r.dev, 1 + r.cfg.retries);
     s = show(&r, &scene, &st);
-    CHECK(s == HAL_OK && st.errors >= 1, "persistent stall: frame finished with %llu failed bands",
-          (unsigned long long)st.errors);
+    CHECK(s == HAL_ERR_IO && st.errors >= 1 && st.lines_rendered == (uint64_t)r.d->height &&
+              strstr(r.d->err, "LIBUSB_ERROR_PIPE, 3 attempts; sent again next frame"),
+          "persistent stall: frame finished with %llu failed bands: %s: %s", (unsigned long long)st.errors,
+          hal_status_str(s), r.d->err);
     CHECK(compare(&r, &scene) != 0, "the failed band is missing from the panel");
     s = show(&r, &scene, &st);
     CHECK(s == HAL_OK && st.errors == 0 && st.lines_sent > 0, "the failed lines are sent again");
@@ -662,7 +625,14 @@ static bool gud_shown(void *user, uint8_t *frame)
     return true;
 }
 
-/* The conformance case every backend passes, in RGB565 and XRGB8888; then a device gone. */
+/* Every bulk write of the next frame stalls, past the retries. */
+static void gud_fail_writes(void *user)
+{
+    rig *r = user;
+    fake_gud_stall_bulk(r->dev, 1 + r->cfg.retries);
+}
+
+/* The conformance case every backend passes, in RGB565 and XRGB8888; a failed write; then a device gone. */
 static void test_conformance(UMockdevTestbed *tb)
 {
     for (int k = 0; k < 2; k++) {
@@ -680,6 +650,7 @@ static void test_conformance(UMockdevTestbed *tb)
         const char *name = k ? "usb XRGB8888" : "usb RGB565";
         conf_frames(&b, name);
         conf_geometry_error(&b, name);
+        conf_failed_write(&b, name, gud_fail_writes, "LIBUSB_ERROR_PIPE");
         fake_gud_unplug(r.dev);
         hal_frame_stats st;
         celfw_scene_build("demo", &scene, 0.0f);

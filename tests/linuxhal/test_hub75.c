@@ -32,30 +32,25 @@
 
 static _Atomic uint64_t vtime;
 static cs_scene scene;
-static cs_workspace ws;
 
-/* The truth: the scene rendered in one in-order pass, quantised to `planes` bits. */
-static uint16_t *expected_levels(const cs_scene *s, int w, int h, int planes)
+/* The panel's "format": each channel quantised to `planes` bits of linear light, as 16-bit words. */
+static void hub75_encode(const void *user, const float *rgb, int width, uint8_t *dst)
 {
-    cs_render_opts o = cs_render_defaults(w, h);
-    o.subscanlines = 4;
-    o.blend = CS_BLEND_LINEAR;
-    cs_renderer r;
-    cs_error e;
-    uint16_t *lv = calloc((size_t)w * (size_t)h * 3u, sizeof *lv);
-    float *line = calloc((size_t)w * 3u, sizeof *line);
-    if (cs_frame_begin(&r, &ws, s, &o, &e) != CS_OK)
-        abort();
-    float max = (float)((1u << planes) - 1u);
-    for (int y = 0; y < h; y++) {
-        cs_render_line(&r, y, line);
-        for (int i = 0; i < 3 * w; i++) {
-            float v = fminf(fmaxf(line[i], 0.0f), 1.0f);
-            lv[(size_t)y * (size_t)w * 3u + (size_t)i] = (uint16_t)floorf(v * max + 0.5f);
-        }
+    const hub75_config *c = user;
+    float max = (float)((1u << c->planes) - 1u);
+    for (int i = 0; i < 3 * width; i++) {
+        uint16_t v = (uint16_t)floorf(fminf(fmaxf(rgb[i], 0.0f), 1.0f) * max + 0.5f);
+        memcpy(dst + 2 * i, &v, 2);
     }
-    free(line);
-    return lv;
+}
+
+/* The truth (the conformance reference, display_conformance.h) as levels of c->planes bits. */
+static uint16_t *expected_levels(const cs_scene *s, const hub75_config *c, int w, int h)
+{
+    uint8_t *img = conf_reference_image(s, 0.0f, w, h, (size_t)w * 6u, hub75_encode, c);
+    if (!img)
+        abort(); /* out of memory or an unrenderable test scene: nothing to compare with */
+    return (uint16_t *)(void *)img;
 }
 
 typedef struct run_result {
@@ -87,7 +82,7 @@ static void run_frame(hal_display *d, fake_gpiochip *chip, const hub75_config *c
         hub75_model_feed(&res->m, &ev[i]);
     uint16_t *got = calloc((size_t)w * (size_t)h * 3u, sizeof *got);
     res->dark_rows = hub75_model_image(&res->m, c->planes, got);
-    uint16_t *want = expected_levels(s, w, h, c->planes);
+    uint16_t *want = expected_levels(s, c, w, h);
     res->mismatches = 0;
     res->first_x = res->first_y = -1;
     for (int y = 0; y < h; y++)
@@ -347,17 +342,6 @@ typedef struct conf_rig {
     uint64_t wires0;
 } conf_rig;
 
-/* The panel's "format": each channel quantised to `planes` bits of linear light, as 16-bit words. */
-static void hub75_encode(const void *user, const float *rgb, int width, uint8_t *dst)
-{
-    const hub75_config *c = user;
-    float max = (float)((1u << c->planes) - 1u);
-    for (int i = 0; i < 3 * width; i++) {
-        uint16_t v = (uint16_t)floorf(fminf(fmaxf(rgb[i], 0.0f), 1.0f) * max + 0.5f);
-        memcpy(dst + 2 * i, &v, 2);
-    }
-}
-
 static bool hub75_shown(void *user, uint8_t *frame)
 {
     conf_rig *r = user;
@@ -372,6 +356,12 @@ static bool hub75_shown(void *user, uint8_t *frame)
     r->wires0 = fake_gpiochip_wires(r->chip);
     fake_gpiochip_clear_trace(r->chip);
     return dark == 0;
+}
+
+/* The chip's line writes fail (EIO) for the next frame's first row pair. */
+static void hub75_fail_writes(void *user)
+{
+    fake_gpiochip_fail_sets(((conf_rig *)user)->chip, 1, EIO);
 }
 
 /* The conformance case every backend passes, through the pull lane. */
@@ -396,6 +386,8 @@ static void test_conformance(UMockdevTestbed *tb)
                           .shown = hub75_shown, .user = &r};
         conf_frames(&b, "gpio HUB75");
         conf_geometry_error(&b, "gpio HUB75");
+        CHECK(!strcmp(d->err, "hub75: source is 65x32, the panel chain is 64x32"), "HUB75's words: '%s'", d->err);
+        conf_failed_write(&b, "gpio HUB75", hub75_fail_writes, "writing GPIO lines on /dev/gpiochip7 failed");
         hal_display_close(d);
         for (int i = 0; i < 200 && fake_gpiochip_handles(r.chip); i++)
             g_usleep(5000);
