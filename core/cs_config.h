@@ -125,6 +125,20 @@
 #ifndef CS_CFG_SRGB8_TABLE
 #define CS_CFG_SRGB8_TABLE 1
 #endif
+/*
+ * The same codes from an 8 KB table cut by the float's bits rather than its
+ * square root (no square root, multiply or conversion per channel): the
+ * same bytes, -1.6 % of a Many-blobs frame on the host (BENCHMARKS.md). On
+ * by default on x86-64 hosts only: a board keeps the smaller table. It
+ * replaces the square-root table, so it counts as CS_CFG_SRGB8_TABLE.
+ */
+#ifndef CS_CFG_SRGB8_BITS
+#if defined(__x86_64__) && CS_CFG_SRGB8_TABLE
+#define CS_CFG_SRGB8_BITS 1
+#else
+#define CS_CFG_SRGB8_BITS 0
+#endif
+#endif
 /* --aa exact: bands one region's pixel row may be cut into where its curves
  * cross or crowd each other (about one per crossing, a few per vertex). */
 #ifndef CS_CFG_EXACT_MAX_BANDS

@@ -410,12 +410,26 @@ static inline float cs__srgb_encode(float linear)
 }
 /* The 8-bit code of the encoding, round(255 * cs__srgb_encode(v)), from
  * two tables in which the core's own arithmetic was run on every float
- * (tools/gen_srgb8_table.c): a comparison instead of an interpolation. */
-extern const uint8_t cs__srgb8_base[1024];
-extern const float cs__srgb8_step[1024];
+ * (tools/gen_srgb8_table.c): a comparison instead of an interpolation. The
+ * cells are cut by the square root of v, or, with CS_CFG_SRGB8_BITS, by the
+ * top bits of v's float (128 cells per power of two from the first whose
+ * code is not 0), which needs no square root, multiply or conversion. */
+#define CS__SRGB8_BITS_FIRST 0x391Eu /* bits >> 16 of the first cell */
+#define CS__SRGB8_BITS_CELLS 1634u   /* up to 1.0 */
+extern const uint8_t cs__srgb8_base[1024], cs__srgb8_bits_base[CS__SRGB8_BITS_CELLS];
+extern const float cs__srgb8_step[1024], cs__srgb8_bits_step[CS__SRGB8_BITS_CELLS];
 static inline uint32_t cs__srgb8(float linear)
 {
-#if CS_CFG_SRGB8_TABLE
+#if CS_CFG_SRGB8_BITS
+    union {
+        float f;
+        uint32_t u;
+    } v = {linear};
+    uint32_t i = (v.u >> 16) - CS__SRGB8_BITS_FIRST; /* negative v: the sign bit, far out */
+    if (i < CS__SRGB8_BITS_CELLS)
+        return cs__srgb8_bits_base[i] + (linear >= cs__srgb8_bits_step[i] ? 1u : 0u);
+    return linear >= 1.0f ? 255u : 0u; /* below the cells (0 too) and NaN: 0 */
+#elif CS_CFG_SRGB8_TABLE
     if (!(linear > 0.0f))
         return 0u;
     if (linear >= 1.0f)

@@ -272,24 +272,37 @@ static uint32_t bits_of(float v)
     return b;
 }
 
+/* Compares cs__srgb8 with the interpolation at the floats around b. */
+static void srgb8_near(uint32_t b, int *bad, int *checked, float *first_bad)
+{
+    for (uint32_t d = b < 4u ? 0u : b - 4u; d <= b + 4u; d++) {
+        float v = float_at(d);
+        (*checked)++;
+        if (cs__srgb8(v) != srgb8_interpolated(v) && (*bad)++ == 0)
+            *first_bad = v;
+    }
+}
+
 static void test_srgb8_table(void)
 {
     int bad = 0, checked = 0;
     float first_bad = 0.0f;
+#if CS_CFG_SRGB8_BITS
+    /* Around each bits cell's start and its step (the first cell's start
+     * is where the code-0 floats below the table end). */
+    for (uint32_t i = 0; i <= CS__SRGB8_BITS_CELLS; i++) {
+        srgb8_near((CS__SRGB8_BITS_FIRST + i) << 16, &bad, &checked, &first_bad);
+        if (i < CS__SRGB8_BITS_CELLS)
+            srgb8_near(bits_of(cs__srgb8_bits_step[i]), &bad, &checked, &first_bad);
+    }
+#else
     for (int i = 0; i <= 1024; i++) {
         /* Around the cell boundary (i / 1024)^2 and the cell's step. */
         float edge = (float)((double)i / 1024.0 * ((double)i / 1024.0));
-        float points[2] = {edge, i < 1024 ? cs__srgb8_step[i] : 1.0f};
-        for (int p = 0; p < 2; p++) {
-            uint32_t b = bits_of(points[p]);
-            for (uint32_t d = b < 4u ? 0u : b - 4u; d <= b + 4u; d++) {
-                float v = float_at(d);
-                checked++;
-                if (cs__srgb8(v) != srgb8_interpolated(v) && bad++ == 0)
-                    first_bad = v;
-            }
-        }
+        srgb8_near(bits_of(edge), &bad, &checked, &first_bad);
+        srgb8_near(bits_of(i < 1024 ? cs__srgb8_step[i] : 1.0f), &bad, &checked, &first_bad);
     }
+#endif
     for (uint32_t b = 1u; b < 0x3F800000u; b += 97u) { /* a sweep of (0, 1) */
         float v = float_at(b);
         checked++;
