@@ -26,6 +26,7 @@ void mcu_display_init(mcu_display *d, hal_display *panel, uint8_t *pixels)
     d->pixels = pixels;
     d->width = d->height = 0;
     d->crc = 0;
+    d->hash = true;
     d->frames = 0;
     d->panel_error = HAL_OK;
 }

@@ -4,8 +4,8 @@
  * The renderer hands over finished lines of linear-light floats (a
  * cs_line_sink). This backend turns each into the panel's pixel format
  * (CS_PANEL_PIXFMT: RGB565, little-endian) and passes the bytes to the
- * board's panel: an SPI or 8080 bus on a real
- * part, or a semihosting file on QEMU so that tests can compare pixels.
+ * board's panel: an SPI or 8080 bus on a real part, or a semihosting file
+ * on QEMU so that tests can compare pixels.
  *
  * A panel is a display of the one contract, hal/display.h (a hal_display
  * first in the panel's state, a const table of operations in flash). Only
