@@ -139,6 +139,16 @@
 #define CS_CFG_SRGB8_BITS 0
 #endif
 #endif
+/*
+ * CRC-32 a byte a step from a 256-entry table (1 KB of flash); 0: a nibble
+ * a step from a 16-entry one (64 B, about twice the instructions a byte).
+ * A board whose panel reads its picture back hashes no frame byte while it
+ * renders (hal/mcu/mcu_display.c), only stream bytes and the read-back after
+ * the frame, and can spend the kilobyte on the line code instead.
+ */
+#ifndef CS_CFG_CRC32_TABLE
+#define CS_CFG_CRC32_TABLE 1
+#endif
 /* --aa exact: bands one region's pixel row may be cut into where its curves
  * cross or crowd each other (about one per crossing, a few per vertex). */
 #ifndef CS_CFG_EXACT_MAX_BANDS

@@ -11,10 +11,27 @@
  * as stepping the bytes one by one. Entry b of the table is the register b
  * shifted through the polynomial 0xEDB88320 eight times (tests/test_pixfmt.c
  * checks every entry and random buffers against the bitwise definition).
- * It is compiled with the per-line code on the boards (-O2).
+ * It is compiled with the per-line code on the boards (-O2). A board that
+ * hashes no frame byte while rendering (CS_CFG_CRC32_TABLE 0) steps a
+ * nibble at a time instead, from entries 0, 16, ..., 240 of that table
+ * (the register's low four bits shifted through the polynomial four times):
+ * the same values from 64 B.
  */
 #include "cs_internal.h"
 
+#if !CS_CFG_CRC32_TABLE
+static const uint32_t crc_nibble[16] = {
+    0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu, 0x76DC4190u, 0x6B6B51F4u,
+    0x4DB26158u, 0x5005713Cu, 0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
+    0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu,
+};
+
+static inline uint32_t crc_byte(uint32_t crc)
+{
+    crc = (crc >> 4) ^ crc_nibble[crc & 0xFu];
+    return (crc >> 4) ^ crc_nibble[crc & 0xFu];
+}
+#else
 static const uint32_t crc_table[256] = {
     0x00000000u, 0x77073096u, 0xEE0E612Cu, 0x990951BAu, 0x076DC419u, 0x706AF48Fu,
     0xE963A535u, 0x9E6495A3u, 0x0EDB8832u, 0x79DCB8A4u, 0xE0D5E91Eu, 0x97D2D988u,
@@ -65,6 +82,7 @@ static inline uint32_t crc_byte(uint32_t crc)
 {
     return (crc >> 8) ^ crc_table[crc & 0xFFu];
 }
+#endif
 
 uint32_t cs_crc32(uint32_t crc, const void *data, size_t len)
 {

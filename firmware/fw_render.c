@@ -259,11 +259,13 @@ int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *lab
     }
     if (quiet)
         return display.panel_error ? 1 : 0;
-    /* With damage, the whole frame's CRC is read back from the panel (not
-     * counted in the frame's instructions); a panel that cannot read back
-     * gives the CRC of the window's bytes. */
-    bool whole = !damage_on || mcu_display_frame_crc(&display, (uint8_t *)(void *)&work, &crc);
-    fw_print("%s crc32 %08X\n", whole ? "frame" : "window", (unsigned)crc);
+    /* The whole frame's CRC is read back from a panel that can, after the
+     * frame's counted instructions; a panel that cannot read back has the
+     * running CRC of the bytes sent, the window's with damage. */
+    if (mcu_display_frame_crc(&display, (uint8_t *)(void *)&work, &crc))
+        fw_print("frame crc32 %08X\n", (unsigned)crc);
+    else if (display.hash)
+        fw_print("%s crc32 %08X\n", damage_on ? "window" : "frame", (unsigned)crc);
     if (float_crc_on)
         fw_print("float crc32 %08X\n", (unsigned)float_crc);
     fw_print("%s segments %u pieces %u bands %u render_us %llu%s", label, most_segments,

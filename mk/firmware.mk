@@ -46,10 +46,11 @@ FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c f
 # Frame preparation (cs_frame.c, cs_nurbs.c, cs_paint.c's compile) runs
 # once per band, the messages once per error: -Os there costs 3 % of a
 # frame's instructions and saves 2.4 KB. The line code (FW_LINE_SRC: spans
-# and compositing, the root solver, the pixel output) keeps -O2 but inlines
-# only small functions (FW_LINE_OPT): 4 KB less for several per cent more
-# instructions per frame (firmware/README.md), where all of it at -Os
-# would cost 17 % more.
+# and compositing) keeps -O2 but inlines only small functions (FW_LINE_OPT):
+# 4 KB less for several per cent more instructions per frame
+# (firmware/README.md), where all of it at -Os would cost 17 % more. The
+# limit is 30 (it was 20): 112 k fewer instructions per board demo frame
+# for 116 B; 40 and 50 gave less per byte.
 # The image is linked with -flto: GCC keeps each file's -Os or -O2 per
 # function, and inlines across the core's stage files (cs__line_active,
 # cs__crossings_at, cs__region_coverage are called per line from other
@@ -60,9 +61,17 @@ FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c f
 # when the LTO objects are compiled (-u keeps those two through --gc-sections).
 FW_OPT = $(OPT)
 FW_COLD_OPT := -Os
-FW_LINE_OPT = $(OPT) -finline-limit=20
+FW_LINE_OPT = $(OPT) -finline-limit=30
+# Two line files inline more (FW_HOT_OPT): the root solver's Horner steps
+# (cs_poly.c) and the RGB565 run conversion (cs_pixfmt.c) gave 285 k fewer
+# instructions per board demo frame for 396 B, paid for by the CRC-32's
+# nibble table on the boards whose panel reads back (CS_CFG_CRC32_TABLE).
+# The same for cs_cross.c would give 216 k for 1.1 KB, cs_composite.c
+# 159 k for 0.8 KB: more than the flash left (firmware/README.md).
+FW_HOT_OPT = $(OPT) -finline-limit=80
+FW_HOT_SRC := core/cs_poly.c core/cs_pixfmt.c
 FW_LINE_SRC := core/cs_cross.c core/cs_coverage.c core/cs_composite.c core/cs_line.c \
-               core/cs_poly.c core/cs_pixfmt.c core/cs_crc32.c
+               core/cs_crc32.c
 FW_COLD_SRC := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_edit.c \
                core/cs_anim.c core/cs_frame.c core/cs_nurbs.c core/cs_paint.c core/cs_status.c \
                core/cs_damage.c firmware/fw_render.c \
@@ -94,12 +103,14 @@ FW_INC_$(1) := -Icore -Ifirmware -Ifirmware/scenes -Ifirmware/boards -Ifirmware/
 FW_OBJ_$(1) := $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(CORE_SRC) $(FW_COMMON_SRC) $$(BOARD_SRC))
 
 $$(eval $$(call flags_record,fw-$(1),$(ARM_CC) $$(FW_CPU_$(1)) $(OPT) $(FW_COLD_OPT) $(FW_CFLAGS) \
-        $$(FW_INC_$(1)) cold: $(FW_COLD_SRC) line: $(FW_LINE_OPT) $(FW_LINE_SRC)))
+        $$(FW_INC_$(1)) cold: $(FW_COLD_SRC) line: $(FW_LINE_OPT) $(FW_LINE_SRC) \
+        hot: $(FW_HOT_OPT) $(FW_HOT_SRC)))
 $(BUILD)/$(1)/obj/%.o: %.c $(FLAGS_DIR)/fw-$(1)
 	@mkdir -p $$(dir $$@)
 	$(Q)$(ARM_CC) $$(FW_CPU_$(1)) $$(FW_OPT) $(FW_CFLAGS) $$(FW_INC_$(1)) -c $$< -o $$@
 $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(FW_COLD_SRC)): FW_OPT := $(FW_COLD_OPT)
 $$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(FW_LINE_SRC)): FW_OPT := $(FW_LINE_OPT)
+$$(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(FW_HOT_SRC)): FW_OPT := $(FW_HOT_OPT)
 $(BUILD)/$(1)/obj/firmware/fw_mem.o: FW_OPT := $(FW_COLD_OPT) -fno-lto
 
 $(BUILD)/$(1)/celfw.elf: $$(FW_OBJ_$(1)) $$(FW_LD_$(1)) linker/sections.ld

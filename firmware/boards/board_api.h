@@ -38,7 +38,8 @@ extern const hal_clock board_clock;
 const char *board_cmdline(void);
 
 /* The panel that finished lines go to: a display of hal/display.h taking
- * CS_PANEL_PIXFMT lines, its size the glass's. */
+ * CS_PANEL_PIXFMT lines, its size the glass's; NULL if the board has none
+ * (QEMU without dump=). */
 hal_display *board_panel(void);
 
 /* Ends the program with an exit status: the emulator exits with it; real

@@ -133,9 +133,11 @@ const char *board_cmdline(void)
     return cmdline;
 }
 
+/* Without a dump directory there is no glass, and so no panel: the frame's
+ * CRC is then the display's running one (mcu_display.h). */
 hal_display *board_panel(void)
 {
-    return &dump_panel.d;
+    return dump_panel.dir[0] ? &dump_panel.d : NULL;
 }
 
 void board_exit(int status)
