@@ -13,6 +13,12 @@
  * that line() hands out in order: the same floats, at most the ring ahead
  * of the display, never a frame of pixels. Two-lane backends (HUB75) keep
  * the lanes on the calling thread.
+ *
+ * A one-lane frame may be limited to a window of the output (the source's
+ * window operation, from hal_display_present_window): only its rows are
+ * rendered, on the pool too, each as wide as the window, with the whole
+ * render's bits (the window becomes the core's viewport, inside a video
+ * wall's viewport if there is one).
  */
 #ifndef LX_SCENE_SOURCE_H
 #define LX_SCENE_SOURCE_H
@@ -40,6 +46,8 @@ typedef struct lx_scene_source {
     bands *pool;
     float *ring;
     int ring_lines;
+    int base_x, base_y, base_w, base_h; /* the viewport without a window (view_w 0: none) */
+    hal_window win;           /* the rows and columns the next frame renders */
     bool pooled;              /* workers are rendering lines of the frame */
     int pool_next;            /* the frame's next line from the pool; -1: lines in lanes */
 } lx_scene_source;
