@@ -591,32 +591,6 @@ static void wait_and_serve(celfw *fw, uint64_t until)
     fw->last_serve = hal_now(fw->clk.mono);
 }
 
-/*
- * The window of the display the frame can change: the core's damage (in the
- * whole render, a wall's when there is one) within this board's viewport,
- * counted from its corner; the whole display without damage tracking or if
- * the damage cannot be found.
- */
-static hal_window frame_window(celfw *fw)
-{
-    const lx_scene_source *src = &fw->src;
-    hal_window whole = {0, 0, src->src.width, src->src.height};
-    cs_rect r;
-    if (!fw->cfg.damage || cs_frame_damage(&fw->damage, src->scene, &src->opts, &r) != CS_OK) {
-        cs_damage_reset(&fw->damage);
-        return whole;
-    }
-    int x0 = r.x0 - src->base_x, y0 = r.y0 - src->base_y;
-    int x1 = r.x1 - src->base_x, y1 = r.y1 - src->base_y;
-    x0 = x0 < 0 ? 0 : x0;
-    y0 = y0 < 0 ? 0 : y0;
-    x1 = x1 > whole.x1 ? whole.x1 : x1;
-    y1 = y1 > whole.y1 ? whole.y1 : y1;
-    if (x0 >= x1 || y0 >= y1)
-        return (hal_window){0, 0, 0, 0}; /* nothing of this board changed */
-    return (hal_window){x0, y0, x1, y1};
-}
-
 static const char *run(celfw *fw)
 {
     const celfw_config *c = &fw->cfg;
@@ -635,7 +609,9 @@ static const char *run(celfw *fw)
         fw->disp->frame_start_ns = start;
         fw->disp->frame_period_ns = period;
         hal_frame_stats st = {0};
-        hal_window win = frame_window(fw);
+        hal_window win = {0, 0, fw->src.src.width, fw->src.src.height};
+        if (fw->cfg.damage)
+            win = lx_scene_source_damage(&fw->src, &fw->damage);
         fw->in_frame = true;
         hal_status s = hal_display_present_window(fw->disp, &fw->src.src, &win, &st);
         if (s != HAL_OK)

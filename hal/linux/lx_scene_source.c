@@ -168,6 +168,25 @@ void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time)
     s->opts.time = time;
 }
 
+hal_window lx_scene_source_damage(lx_scene_source *s, cs_damage *d)
+{
+    hal_window whole = {0, 0, s->src.width, s->src.height};
+    cs_rect r;
+    if (!s->scene || cs_frame_damage(d, s->scene, &s->opts, &r) != CS_OK) {
+        cs_damage_reset(d);
+        return whole;
+    }
+    int x0 = r.x0 - s->base_x, y0 = r.y0 - s->base_y;
+    int x1 = r.x1 - s->base_x, y1 = r.y1 - s->base_y;
+    x0 = x0 < 0 ? 0 : x0;
+    y0 = y0 < 0 ? 0 : y0;
+    x1 = x1 > whole.x1 ? whole.x1 : x1;
+    y1 = y1 > whole.y1 ? whole.y1 : y1;
+    if (x0 >= x1 || y0 >= y1)
+        return (hal_window){0, 0, 0, 0}; /* nothing of this viewport changed */
+    return (hal_window){x0, y0, x1, y1};
+}
+
 cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err)
 {
     lx_scene_source_end(s);

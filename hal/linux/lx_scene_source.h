@@ -64,6 +64,14 @@ hal_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa
 hal_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, int x, int y);
 /* Chooses the scene and the animation time of the next frame. */
 void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time);
+/*
+ * The window of this source's output that the frame lx_scene_source_set
+ * chose can change from the last frame passed with d (cs_frame_damage in the
+ * whole render, a wall's if there is one, within this source's viewport and
+ * counted from its corner): empty if none of it changed, the whole output
+ * if the damage cannot be found (d is then reset).
+ */
+hal_window lx_scene_source_damage(lx_scene_source *s, cs_damage *d);
 /* Whether `scene` can be rendered at this source's size (cs_scene_check_render
  * in lane 0's workspace): only between frames. */
 cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err);
