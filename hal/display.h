@@ -20,7 +20,10 @@
  *    (rows y0..y1-1, columns x0..x1-1): only what changed travels. A backend
  *    that cannot narrow its writes refuses a window with HAL_ERR_CONFIG. An
  *    empty window (x0 == x1 or y0 == y1) is a frame where nothing changed:
- *    no line comes. After it, read_row may read the picture back.
+ *    no line comes. After it, read_row may read the picture back. A backend
+ *    that does not hold the last frame now (away, just reconnected) refuses
+ *    a window the same way, and hal_display_present_window then sends the
+ *    whole frame.
  *  - A panel that must be refreshed continuously and holds nothing (a HUB75
  *    matrix) implements the pull lane, present: it asks a hal_source for
  *    lines when its scan needs them, in one or more "lanes", each an
