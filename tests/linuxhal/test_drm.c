@@ -164,14 +164,15 @@ static hal_status show_damage(rig *r, cs_damage *dmg, const cs_scene *s, float t
 
 /*
  * Damage windows (issue 27): board-anim at 480x272, with flips and atomic
- * FB_DAMAGE_CLIPS on two render threads, or in one buffer with DirtyFB on one.
+ * FB_DAMAGE_CLIPS on two render threads (XRGB8888 or RGB565), or in one
+ * buffer with DirtyFB on one.
  * Every frame the CRTC scans out the core's whole render at that time (so
  * the back buffer was brought up to date outside the window), only the
  * window's lines are rendered, the clips lie within it, a still frame
  * renders nothing and commits nothing, and after a lost screen the frame is
  * whole.
  */
-static void test_damage_window(UMockdevTestbed *tb, bool no_flip)
+static void test_damage_window(UMockdevTestbed *tb, bool no_flip, bool rgb565)
 {
     static rig r;
     static cs_scene anim;
@@ -186,8 +187,11 @@ static void test_damage_window(UMockdevTestbed *tb, bool no_flip)
     r.o.no_flip = no_flip;
     r.o.atomic = !no_flip;
     r.o.damage_clips = !no_flip;
+    if (rgb565)
+        r.o.preferred_depth = 16; /* a window's columns start at 2 bytes a pixel */
     if (!rig_start(&r, tb))
         return;
+    CHECK((r.d->pixfmt == CS_PIX_RGB565_SRGB) == rgb565, "pixel format %d", r.d->pixfmt);
     /* the window on the thread pool with flips, in the calling thread's lane without */
     CHECK(lx_scene_source_threads(&r.src, no_flip ? 1 : 2) == HAL_OK, "render threads");
     cs_damage_reset(&dmg);
@@ -214,8 +218,8 @@ static void test_damage_window(UMockdevTestbed *tb, bool no_flip)
                 outside++;
         lines += st.lines_rendered;
     }
-    CHECK(wrong == 0, "no_flip %d: every frame scanned out equals the core's whole render (%d differ)", no_flip,
-          wrong);
+    CHECK(wrong == 0, "no_flip %d rgb565 %d: every frame scanned out equals the core's whole render (%d differ)",
+          no_flip, rgb565, wrong);
     CHECK(unbounded == 0 && outside == 0, "lines rendered are the window's (%d frames not), clips in it (%d not)",
           unbounded, outside);
     CHECK(lines * 4 < (uint64_t)FRAMES * 272, "a quarter of the lines or fewer (%llu of %d)",
@@ -841,8 +845,9 @@ int main(void)
     test_wait(tb);
     test_scan(tb);
     test_atomic(tb, true);
-    test_damage_window(tb, false);
-    test_damage_window(tb, true);
+    test_damage_window(tb, false, false);
+    test_damage_window(tb, true, false);
+    test_damage_window(tb, false, true);
     test_atomic(tb, false);
     test_refusals(tb);
     test_conformance(tb);

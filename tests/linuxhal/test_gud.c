@@ -537,6 +537,16 @@ static void test_odd_devices(UMockdevTestbed *tb)
         fake_gud_get_stats(f.dev, &ds);
         CHECK(ds.rects == 2 && ds.set_buffers == 1 && st.lines_sent == 48 && compare(&f, &scene) == 0,
               "full update: %u rects, %u SET_BUFFERs", ds.rects, ds.set_buffers);
+        /* a window is refused: the frame driver sends the whole frame */
+        hal_window w = {8, 8, 20, 20};
+        memset(&st, 0, sizeof st);
+        celfw_scene_build("anim", &scene, 0.3f);
+        lx_scene_source_set(&f.src, &scene, 0.0f);
+        s = hal_display_present_window(f.d, &f.src.src, &w, &st);
+        CHECK(s == HAL_OK && w.x0 == 0 && w.y1 == 48 && st.lines_rendered == 48 && compare(&f, &scene) == 0,
+              "full update takes no window: %s, rendered %d,%d..%d,%d (%llu lines)", hal_status_str(s), w.x0,
+              w.y0, w.x1, w.y1, (unsigned long long)st.lines_rendered);
+        s = HAL_OK;
     }
     rig_close(&f, s == HAL_OK);
 }
