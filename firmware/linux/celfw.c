@@ -748,10 +748,11 @@ int main(int argc, char **argv)
     else
         snprintf(aa, sizeof aa, "%d", fw->cfg.subscanlines);
     say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s "
-        "trusted_keys=%d threads=%d",
+        "trusted_keys=%d threads=%d damage=%s",
         backend_name(fw->cfg.backend), fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
         celfw_input_describe(fw->in), fw->cfg.scene, "cel-stream",
-        display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw));
+        display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw),
+        fw->cfg.damage && !fw->disp->api->present ? "on" : "off");
     if (celfw_input_public(fw->in) && celfw_trust_key_count(fw->trust) == 0)
         say("warning", "input %s listens beyond loopback and no key is trusted: anyone who can reach it "
             "can change the picture (celc keygen, then celfw --trust KEY.pub --state-dir DIR)",
