@@ -20,7 +20,10 @@
  *    (rows y0..y1-1, columns x0..x1-1): only what changed travels. A backend
  *    that cannot narrow its writes refuses a window with HAL_ERR_CONFIG. An
  *    empty window (x0 == x1 or y0 == y1) is a frame where nothing changed:
- *    no line comes. After it, read_row may read the picture back.
+ *    no line comes. After it, read_row may read the picture back. A backend
+ *    that does not hold the last frame now (away, just reconnected) refuses
+ *    a window the same way, and hal_display_present_window then sends the
+ *    whole frame.
  *  - A panel that must be refreshed continuously and holds nothing (a HUB75
  *    matrix) implements the pull lane, present: it asks a hal_source for
  *    lines when its scan needs them, in one or more "lanes", each an
@@ -86,11 +89,16 @@ typedef struct hal_source {
     /* Renders line y into rgb (3*width floats, linear light). Within a lane,
      * y must increase from call to call; lines may be skipped. */
     hal_status (*line)(void *user, int lane, int y, float *rgb);
+    /* Optional: the next begin() renders only `win` (NULL: the whole
+     * output); line() then gives its rows, 3*(x1-x0) floats of its columns.
+     * hal_display_present_window calls it before begin(). */
+    hal_status (*window)(void *user, const hal_window *win);
 } hal_source;
 
 /* What frames did; hal_display_present adds a frame's counts to the caller's. */
 typedef struct hal_frame_stats {
     uint64_t lines_rendered;
+    uint64_t pixels_rendered; /* the rendered lines' pixels (a window's lines are narrower) */
     uint64_t lines_sent;   /* lines that travelled (changed lines) */
     uint64_t rects;        /* rectangles sent (USB SET_BUFFER, DRM damage clips) */
     uint64_t bytes_raw;    /* pixel bytes of the rectangles */
@@ -213,6 +221,18 @@ void hal_display_say(const hal_display *d, const char *fmt, ...) __attribute__((
  * HAL_ERR_CONFIG; a failure stops the frame with d->err set.
  */
 hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_stats *st);
+
+/*
+ * Shows one frame of src limited to *win, the window of the display that can
+ * differ from the last frame shown (an empty window: nothing changed, no
+ * line is rendered), where the display takes that window: a pull-lane
+ * display, a source without a window operation, or a backend whose
+ * begin_frame refuses the window with HAL_ERR_CONFIG (it is away, or does
+ * not hold the last frame) gets the whole frame instead, and *win is set to
+ * the whole display. NULL win: the whole frame, as hal_display_present.
+ */
+hal_status hal_display_present_window(hal_display *d, const hal_source *src, hal_window *win,
+                                      hal_frame_stats *st);
 
 /* Frees the frame driver's line buffers, then what the backend's open took
  * (its close blanks the panel). NULL is allowed. */

@@ -82,6 +82,7 @@ typedef struct celfw {
     uint64_t frames, dropped, stream_bytes, stream_errors, commits, failures, slow;
     uint64_t applied_seq;    /* the shown stream's signature sequence; 0 if unsigned */
     hal_frame_stats sum;
+    cs_damage damage;        /* what the last frame showed, for the next one's window */
     bool display_up, render_warned;
     celfw_clock clk;         /* which animation time each frame shows */
     hal_clock wall_at;        /* --clock at:S: a wall clock that stays at cfg.clock_at_ns */
@@ -91,7 +92,7 @@ typedef struct celfw {
     size_t held_n, held_cap;
     uint64_t last_serve;
     float anim_t;            /* the last frame's, as the renderer took it */
-    uint64_t t0, last_log, frames_at_log;
+    uint64_t t0, last_log, frames_at_log, pixels_at_log;
     celfw_notify notify; /* READY and watchdog pings to systemd */
 } celfw;
 
@@ -251,6 +252,7 @@ static void apply_frame(celfw *fw, celfw_framer *src, const celfw_frame *fr)
          * shown before it edits) */
         fw->front ^= 1;
         fw->builtin[0] = 0;
+        cs_damage_reset(&fw->damage); /* a commit is shown whole */
         celfw_clock_show(&fw->clk, fw->scene[fw->front ^ 1], fw->scene[fw->front], 0);
         fw->commits++;
         if (src)
@@ -387,20 +389,23 @@ static void status(celfw *fw, const char *kind, const char *extra)
     uint64_t since = final ? fw->t0 : fw->last_log, base = final ? 0 : fw->frames_at_log;
     double dt = (double)(now - since) / 1e9;
     double fps = dt > 0 ? (double)(fw->frames - base) / dt : 0.0;
+    uint64_t px = fw->sum.pixels_rendered - (final ? 0 : fw->pixels_at_log);
+    double px_frame = fw->frames > base ? (double)px / (double)(fw->frames - base) : 0.0;
     say(kind,
         "%st=%.2f frames=%llu dropped=%llu misses=%llu slow=%llu stream_bytes=%llu stream_errors=%llu commits=%llu "
         "display=%s lines_sent=%llu rects=%llu bytes_raw=%llu bytes_wire=%llu gpio_writes=%llu "
-        "retries=%llu errors=%llu fps=%.1f anim_t=%.9g",
+        "retries=%llu errors=%llu lines_rendered=%llu pixels_per_frame=%.0f fps=%.1f anim_t=%.9g",
         extra, (double)(now - fw->t0) / 1e9, (unsigned long long)fw->frames,
         (unsigned long long)fw->dropped, (unsigned long long)fw->sum.line_misses, (unsigned long long)fw->slow,
         (unsigned long long)fw->stream_bytes, (unsigned long long)fw->stream_errors,
         (unsigned long long)fw->commits, display_state(fw), (unsigned long long)fw->sum.lines_sent,
         (unsigned long long)fw->sum.rects, (unsigned long long)fw->sum.bytes_raw,
         (unsigned long long)fw->sum.bytes_wire, (unsigned long long)fw->sum.writes,
-        (unsigned long long)fw->sum.retries, (unsigned long long)(fw->sum.errors + fw->failures), fps,
-        (double)fw->anim_t);
+        (unsigned long long)fw->sum.retries, (unsigned long long)(fw->sum.errors + fw->failures),
+        (unsigned long long)fw->sum.lines_rendered, px_frame, fps, (double)fw->anim_t);
     fw->last_log = now;
     fw->frames_at_log = fw->frames;
+    fw->pixels_at_log = fw->sum.pixels_rendered;
     if (!final)
         report(fw, NULL, fps);
 }
@@ -408,6 +413,7 @@ static void status(celfw *fw, const char *kind, const char *extra)
 static void add_stats(hal_frame_stats *a, const hal_frame_stats *b)
 {
     a->lines_rendered += b->lines_rendered;
+    a->pixels_rendered += b->pixels_rendered;
     a->lines_sent += b->lines_sent;
     a->rects += b->rects;
     a->bytes_raw += b->bytes_raw;
@@ -603,8 +609,13 @@ static const char *run(celfw *fw)
         fw->disp->frame_start_ns = start;
         fw->disp->frame_period_ns = period;
         hal_frame_stats st = {0};
+        hal_window win = {0, 0, fw->src.src.width, fw->src.src.height};
+        if (fw->cfg.damage)
+            win = lx_scene_source_damage(&fw->src, &fw->damage);
         fw->in_frame = true;
-        hal_status s = hal_display_present(fw->disp, &fw->src.src, &st);
+        hal_status s = hal_display_present_window(fw->disp, &fw->src.src, &win, &st);
+        if (s != HAL_OK)
+            cs_damage_reset(&fw->damage); /* the display may not show this frame: the next is whole */
         lx_scene_source_end(&fw->src); /* no worker reads the scene past here */
         release_held(fw);
         add_stats(&fw->sum, &st);
@@ -737,10 +748,11 @@ int main(int argc, char **argv)
     else
         snprintf(aa, sizeof aa, "%d", fw->cfg.subscanlines);
     say("start", "backend=%s display=%dx%d fps=%g aa=%s input=%s scene=%s decoder=%s display_state=%s "
-        "trusted_keys=%d threads=%d",
+        "trusted_keys=%d threads=%d damage=%s",
         backend_name(fw->cfg.backend), fw->disp->width, fw->disp->height, fw->cfg.fps, aa,
         celfw_input_describe(fw->in), fw->cfg.scene, "cel-stream",
-        display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw));
+        display_state(fw), celfw_trust_key_count(fw->trust), render_threads(fw),
+        fw->cfg.damage && !fw->disp->api->present ? "on" : "off");
     if (celfw_input_public(fw->in) && celfw_trust_key_count(fw->trust) == 0)
         say("warning", "input %s listens beyond loopback and no key is trusted: anyone who can reach it "
             "can change the picture (celc keygen, then celfw --trust KEY.pub --state-dir DIR)",

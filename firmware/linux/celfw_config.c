@@ -228,6 +228,11 @@ static bool p_threads(celfw_config *c, const char *v, char *err, size_t n)
     return true;
 }
 
+static bool p_damage(celfw_config *c, const char *v, char *err, size_t n)
+{
+    return parse_bool(v, &c->damage, err, n);
+}
+
 static bool p_chain(celfw_config *c, const char *v, char *err, size_t n)
 {
     long k;
@@ -489,6 +494,8 @@ static const setting settings[] = {
     {"aa", "none|N", p_aa, "anti-aliasing: pixel centres, or N sub-scanlines (default 4)"},
     {"threads", "N", p_threads, "render bands of lines on N threads, 1..64 (default: the cores; "
                                 "HUB75 renders on one)"},
+    {"damage", "on|off", p_damage, "render only the window that changed since the last frame (default on; "
+                                   "HUB75 rescans whole frames)"},
     {"input", "SPEC", p_input, "cel stream: none, stdin, file:PATH, tcp:PORT (loopback), tcp:ADDR:PORT, "
                               "tcp:[ADDR]:PORT, tty:DEV[:BAUD], mqtt[s]://HOST:PORT[/TOPIC]"},
     {"input-timeout", "SECONDS", p_input_timeout, "drop a TCP client that gets no transaction applied for this "
@@ -558,6 +565,7 @@ void celfw_config_default(celfw_config *c)
     c->aa = CS_AA_SUBSCAN;
     c->subscanlines = 4;
     c->threads = bands_cores();
+    c->damage = true;
     snprintf(c->input, sizeof c->input, "none");
     snprintf(c->scene, sizeof c->scene, "builtin:demo");
     c->input_timeout = 10.0;

@@ -32,6 +32,7 @@ typedef struct celfw_config {
     cs_aa_mode aa;
     int subscanlines;
     int threads;           /* render threads for one-lane displays (bands.h); 1: the main thread */
+    bool damage;           /* render only what changed since the last frame (cs_frame_damage) */
     char input[256];       /* none | stdin | file:PATH | tcp:[HOST:]PORT | tty:DEVICE[:BAUD] |
                               mqtt[s]://HOST:PORT[/TOPIC] */
     char scene[256];       /* builtin:NAME | PATH.json | none */

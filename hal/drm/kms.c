@@ -17,6 +17,16 @@
  * Which lines a buffer holds is known from a hash per line (lx_damage), so
  * an unchanged line costs no write to the (write-combined, slow to read)
  * buffer and a frame equal to the screen costs no flip.
+ *
+ * A frame may be a window (display.h): only its rows and columns come. The
+ * back buffer holds the frame before last, so before it is shown the rows
+ * outside the window that differ from the screen's (by their hashes: the
+ * last frame's window) are copied from the front buffer, and a row of a
+ * window narrower than the screen is brought up to date the same way before
+ * the window's columns go in, then hashed from the buffer. The flip's clips
+ * are the window's rows that changed, as wide as the window. A window is
+ * refused (HAL_ERR_CONFIG: the frame driver sends the whole frame) until a
+ * whole frame is on screen, so after a (re)connect.
  */
 #include <errno.h>
 #include <poll.h>
@@ -272,15 +282,15 @@ static hal_status show(kms_dev *k, int b, drmModeClip *clips, int nclips)
     return kms_errno_status(e);
 }
 
-/* Extends the damage by line y (bands are full-width; the last absorbs overflow). */
-static void add_damage(drmModeClip *clips, int *n, int y, int width)
+/* Extends the damage by line y (bands span the window's columns; the last absorbs overflow). */
+static void add_damage(drmModeClip *clips, int *n, int y, const hal_window *w)
 {
     if (*n && clips[*n - 1].y2 == (uint16_t)y) {
         clips[*n - 1].y2 = (uint16_t)(y + 1);
     } else if (*n == KMS_MAX_CLIPS) {
         clips[*n - 1].y2 = (uint16_t)(y + 1);
     } else {
-        clips[*n] = (drmModeClip){0, (uint16_t)y, (uint16_t)width, (uint16_t)(y + 1)};
+        clips[*n] = (drmModeClip){(uint16_t)w->x0, (uint16_t)y, (uint16_t)w->x1, (uint16_t)(y + 1)};
         (*n)++;
     }
 }
@@ -318,8 +328,12 @@ static hal_status kms_begin_frame(hal_display *d, const hal_window *win)
 {
     kms_dev *k = (kms_dev *)d;
     hal_status s;
-    if (win)
-        return hal_display_fail(d, HAL_ERR_CONFIG, "frames are whole (damage is found per line)");
+    if (win && (!k->connected || k->front < 0))
+        return hal_display_fail(d, HAL_ERR_CONFIG, "a window needs a whole frame on screen first");
+    if (win && (win->x0 < 0 || win->y0 < 0 || win->x0 > win->x1 || win->y0 > win->y1 || win->x1 > k->width ||
+                win->y1 > k->height))
+        return hal_display_fail(d, HAL_ERR_CONFIG, "window %d,%d..%d,%d outside %dx%d", win->x0, win->y0,
+                                win->x1, win->y1, k->width, k->height);
     if (!k->connected && (s = reconnect(k)) != HAL_OK)
         return s;
     uint64_t now = hal_now(d->clock);
@@ -332,9 +346,20 @@ static hal_status kms_begin_frame(hal_display *d, const hal_window *win)
         return fail(k, s, "a page flip");
     k->back = k->front < 0 ? 0 : k->flips ? 1 - k->front : k->front;
     k->nclips = 0;
+    k->win = win ? *win : (hal_window){0, 0, k->width, k->height};
     if (!d->st)
         d->st = &k->unpresented; /* pushed without hal_display_present: counts go nowhere */
     return HAL_OK;
+}
+
+/* Row y of the back buffer made equal to the screen's, unless the hashes say it is. */
+static void copy_from_front(kms_dev *k, kms_buf *b, int y)
+{
+    const kms_buf *f = &k->buf[k->front];
+    if (b == f || (f->held.hash[y] && !lx_damage_changed(&b->held, y, f->held.hash[y])))
+        return;
+    memcpy(b->map + (size_t)y * k->pitch, f->map + (size_t)y * k->pitch, (size_t)k->width * k->bpp / 8u);
+    lx_damage_commit(&b->held, y, f->held.hash[y]);
 }
 
 /* Line y goes into the back buffer only if that buffer holds something else;
@@ -343,22 +368,35 @@ static hal_status kms_line_out(hal_display *d, int y, const uint8_t *px, size_t 
 {
     kms_dev *k = (kms_dev *)d;
     size_t row = (size_t)k->width * k->bpp / 8u;
-    if (!k->connected || y < 0 || y >= k->height || len != row)
-        return hal_display_fail(d, HAL_ERR_SEQUENCE, "line %d of %zu bytes outside a frame of %d lines of %zu",
-                                y, len, k->height, row);
+    size_t wrow = (size_t)(k->win.x1 - k->win.x0) * k->bpp / 8u;
+    if (!k->connected || y < k->win.y0 || y >= k->win.y1 || len != wrow)
+        return hal_display_fail(d, HAL_ERR_SEQUENCE, "line %d of %zu bytes outside a frame of lines %d..%d of %zu",
+                                y, len, k->win.y0, k->win.y1 - 1, wrow);
     kms_buf *b = &k->buf[k->back];
     const kms_buf *f = k->front < 0 ? NULL : &k->buf[k->front];
-    uint64_t h = lx_line_hash(px, row);
-    bool on_screen = f && !lx_damage_changed(&f->held, y, h);
-    if (lx_damage_changed(&b->held, y, h)) {
-        memcpy(b->map + (size_t)y * k->pitch, px, row);
-        lx_damage_commit(&b->held, y, h);
-        d->st->bytes_raw += row;
-        if (b == f)
-            on_screen = false; /* single buffer: written where it is scanned out */
+    uint8_t *dst = b->map + (size_t)y * k->pitch;
+    uint64_t h;
+    bool wrote = false;
+    if (wrow == row) {
+        h = lx_line_hash(px, row);
+        if ((wrote = lx_damage_changed(&b->held, y, h))) {
+            memcpy(dst, px, row);
+            d->st->bytes_raw += row;
+        }
+    } else {
+        /* f is there: a window is refused before the first whole frame */
+        copy_from_front(k, b, y);
+        memcpy(dst + (size_t)k->win.x0 * k->bpp / 8u, px, wrow);
+        d->st->bytes_raw += wrow;
+        h = lx_line_hash(dst, row);
+        wrote = lx_damage_changed(&b->held, y, h);
     }
+    lx_damage_commit(&b->held, y, h);
+    /* damage: the line differs from the screen; a single buffer is written
+     * where it is scanned out, so there it is whatever changed the buffer */
+    bool on_screen = b == f ? !wrote : f && !lx_damage_changed(&f->held, y, h);
     if (!on_screen) {
-        add_damage(k->clips, &k->nclips, y, k->width);
+        add_damage(k->clips, &k->nclips, y, &k->win);
         d->st->lines_sent++;
     }
     return HAL_OK;
@@ -369,6 +407,10 @@ static hal_status kms_end_frame(hal_display *d)
     kms_dev *k = (kms_dev *)d;
     if (k->front >= 0 && k->nclips == 0)
         return HAL_OK; /* the screen already shows this frame */
+    if (k->front >= 0 && k->back != k->front)
+        for (int y = 0; y < k->height; y++)
+            if (y < k->win.y0 || y >= k->win.y1)
+                copy_from_front(k, &k->buf[k->back], y); /* the rows the window left out */
     d->st->rects += (uint64_t)k->nclips;
     hal_status s = show(k, k->back, k->clips, k->nclips);
     if (s != HAL_OK) {

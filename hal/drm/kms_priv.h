@@ -56,6 +56,7 @@ typedef struct kms_dev {
     kms_atomic atomic;
     int width, height;  /* fixed for the life of the display: the source's size */
     int back;           /* the buffer the current frame goes into */
+    hal_window win;     /* the current frame's window (display.h): the whole screen if none */
     int nclips;         /* the current frame's damage: bands that differ from the screen */
     drmModeClip clips[KMS_MAX_CLIPS];
     bool connected;

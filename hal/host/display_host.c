@@ -84,19 +84,23 @@ void hal_display_say(const hal_display *d, const char *fmt, ...)
     d->log(d->log_user, "%s: %s", d->api->name, msg);
 }
 
-/* The push lane: every line rendered, converted and handed to line_out. */
-static hal_status push_frame(hal_display *d, const hal_source *src, hal_frame_stats *st, float *rgb,
-                             uint8_t *px)
+/* The push lane: the window's lines rendered, converted and handed to line_out. */
+static hal_status push_frame(hal_display *d, const hal_source *src, hal_frame_stats *st,
+                             const hal_window *w, float *rgb, uint8_t *px)
 {
-    size_t len = hal_line_bytes(d->pixfmt, d->width);
+    int cols = w->x1 - w->x0;
+    if (cols <= 0 || w->y1 <= w->y0)
+        return hal_display_end_frame(d); /* nothing changed: nothing is rendered */
+    size_t len = hal_line_bytes(d->pixfmt, cols);
     hal_status s = src->begin(src->user, 1);
     if (s != HAL_OK)
         return hal_display_fail(d, s, "the renderer could not start the frame");
-    for (int y = 0; y < d->height; y++) {
+    for (int y = w->y0; y < w->y1; y++) {
         if ((s = src->line(src->user, 0, y, rgb)) != HAL_OK)
             return hal_display_fail(d, s, "the renderer failed on line %d", y);
         st->lines_rendered++;
-        hal_pixfmt_convert(d->pixfmt, rgb, d->width, px);
+        st->pixels_rendered += (uint64_t)cols;
+        hal_pixfmt_convert(d->pixfmt, rgb, cols, px);
         if ((s = d->api->line_out(d, y, px, len)) != HAL_OK)
             return s;
         if (d->frame_period_ns && d->clock) {
@@ -148,21 +152,59 @@ static hal_status push_lines(hal_display *d)
     return HAL_OK;
 }
 
+/* Whether w lies within d and leaves part of it out. */
+static bool window_narrows(const hal_display *d, const hal_window *w)
+{
+    bool inside = w->x0 >= 0 && w->y0 >= 0 && w->x0 <= w->x1 && w->y0 <= w->y1 && w->x1 <= d->width &&
+                  w->y1 <= d->height;
+    return inside && (w->x0 > 0 || w->y0 > 0 || w->x1 < d->width || w->y1 < d->height);
+}
+
 hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_stats *st)
 {
-    if (d->api->present)
-        return d->api->present(d, src, st);
+    return hal_display_present_window(d, src, NULL, st);
+}
+
+/*
+ * A window the backend refuses (HAL_ERR_CONFIG) or that does not fit the
+ * display (a hot-plugged one changed) becomes a whole frame: a whole frame
+ * is always right, a window only while the display holds the last frame.
+ */
+hal_status hal_display_present_window(hal_display *d, const hal_source *src, hal_window *win,
+                                      hal_frame_stats *st)
+{
+    bool narrow = win && src->window && !d->api->present && window_narrows(d, win);
+    hal_status s = HAL_OK;
     d->st = st;
     /* Backends add their counts (rectangles, bytes) to *d->st during the frame.
-     * begin_frame first: a display that was away learns its size there. */
-    hal_status s = hal_display_begin_frame(d, NULL);
+     * begin_frame first: a display that was away learns its size there (a
+     * backend that is away refuses a window, so it reconnects below). */
+    if (narrow && (s = hal_display_begin_frame(d, win)) == HAL_ERR_CONFIG) {
+        narrow = false;
+        s = HAL_OK;
+    }
+    bool empty = narrow && (win->x0 == win->x1 || win->y0 == win->y1); /* renders nothing */
+    if (s == HAL_OK && src->window && !empty && (s = src->window(src->user, narrow ? win : NULL)) != HAL_OK)
+        s = hal_display_fail(d, s, "the renderer cannot take the window");
+    if (s == HAL_OK && d->api->present) {
+        d->st = NULL;
+        if (win)
+            *win = (hal_window){0, 0, d->width, d->height};
+        return d->api->present(d, src, st);
+    }
+    if (s == HAL_OK && !narrow) {
+        s = hal_display_begin_frame(d, NULL);
+        if (win)
+            *win = (hal_window){0, 0, d->width, d->height};
+    }
     if (s == HAL_OK && (src->width != d->width || src->height != d->height))
         s = hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, %s %dx%d", src->width, src->height,
                              d->api->noun ? d->api->noun : "the display", d->width, d->height);
     if (s == HAL_OK)
         s = push_lines(d);
+    hal_window whole = {0, 0, d->width, d->height};
     if (s == HAL_OK)
-        s = push_frame(d, src, st, d->lines->rgb, d->lines->px);
+        s = push_frame(d, src, st, narrow ? win : &whole, d->lines->rgb, d->lines->px);
     d->st = NULL;
     return s;
 }

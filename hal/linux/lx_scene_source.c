@@ -41,7 +41,7 @@ static hal_status begin(void *user, int lanes)
             return HAL_ERR_RENDER;
         }
         s->pooled = true;
-        s->pool_next = 0;
+        s->pool_next = s->win.y0;
         return HAL_OK;
     }
     s->pool_next = -1;
@@ -56,16 +56,38 @@ static hal_status begin(void *user, int lanes)
 /* Line y from the pool's ring; lines only go forward, as in a lane. */
 static bool pool_line(lx_scene_source *s, int y, float *rgb)
 {
-    if (y < s->pool_next || y >= s->src.height)
+    if (y < s->pool_next || y >= s->win.y1)
         return false; /* its slot may hold a later line already */
-    size_t n = 3u * (size_t)s->src.width;
-    bands_wait(s->pool, y);
-    memcpy(rgb, s->ring + (size_t)(y % s->ring_lines) * n, n * sizeof *rgb);
+    int i = y - s->win.y0; /* the pool counts the window's lines */
+    size_t n = 3u * (size_t)(s->win.x1 - s->win.x0);
+    bands_wait(s->pool, i);
+    memcpy(rgb, s->ring + (size_t)(i % s->ring_lines) * 3u * (size_t)s->src.width, n * sizeof *rgb);
     s->pool_next = y + 1;
-    bands_release(s->pool, y + 1); /* its slot may take line y + ring_lines */
-    if (y == s->src.height - 1)
+    bands_release(s->pool, i + 1); /* its slot may take line i + ring_lines */
+    if (y == s->win.y1 - 1)
         lx_scene_source_end(s);
     return true;
+}
+
+/* The window becomes the core's viewport, offset by the wall's if there is one. */
+static hal_status window(void *user, const hal_window *win)
+{
+    lx_scene_source *s = user;
+    lx_scene_source_end(s); /* the workers' frame uses the viewport */
+    hal_window w = {0, 0, s->src.width, s->src.height};
+    if (win && (win->x0 < 0 || win->y0 < 0 || win->x0 >= win->x1 || win->y0 >= win->y1 ||
+                win->x1 > w.x1 || win->y1 > w.y1))
+        return HAL_ERR_CONFIG;
+    bool whole = !win || (win->x0 == 0 && win->y0 == 0 && win->x1 == w.x1 && win->y1 == w.y1);
+    if (!whole)
+        w = *win;
+    s->win = w;
+    s->opts.view_x = s->base_x + w.x0;
+    s->opts.view_y = s->base_y + w.y0;
+    /* whole and no wall: no viewport, as before windows */
+    s->opts.view_w = whole && !s->base_w ? 0 : w.x1 - w.x0;
+    s->opts.view_h = whole && !s->base_h ? 0 : w.y1 - w.y0;
+    return HAL_OK;
 }
 
 static hal_status line(void *user, int lane, int y, float *rgb)
@@ -77,7 +99,7 @@ static hal_status line(void *user, int lane, int y, float *rgb)
         if (!pool_line(s, y, rgb))
             return HAL_ERR_RENDER;
     } else {
-        cs_status st = cs_render_line(&s->r[lane], s->opts.view_y + y, rgb);
+        cs_status st = cs_render_line(&s->r[lane], s->base_y + y, rgb);
         if (st != CS_OK) {
             s->err.status = st;
             return HAL_ERR_RENDER;
@@ -115,6 +137,8 @@ hal_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa
     s->src.user = s;
     s->src.begin = begin;
     s->src.line = line;
+    s->src.window = window;
+    s->win = (hal_window){0, 0, width, height};
     return HAL_OK;
 }
 
@@ -130,6 +154,11 @@ hal_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, 
     s->opts.view_y = y;
     s->opts.view_w = w;
     s->opts.view_h = h;
+    s->base_x = x;
+    s->base_y = y;
+    s->base_w = w;
+    s->base_h = h;
+    s->win = (hal_window){0, 0, w, h};
     return HAL_OK;
 }
 
@@ -139,11 +168,34 @@ void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time)
     s->opts.time = time;
 }
 
+hal_window lx_scene_source_damage(lx_scene_source *s, cs_damage *d)
+{
+    hal_window whole = {0, 0, s->src.width, s->src.height};
+    cs_rect r;
+    if (!s->scene || cs_frame_damage(d, s->scene, &s->opts, &r) != CS_OK) {
+        cs_damage_reset(d);
+        return whole;
+    }
+    int x0 = r.x0 - s->base_x, y0 = r.y0 - s->base_y;
+    int x1 = r.x1 - s->base_x, y1 = r.y1 - s->base_y;
+    x0 = x0 < 0 ? 0 : x0;
+    y0 = y0 < 0 ? 0 : y0;
+    x1 = x1 > whole.x1 ? whole.x1 : x1;
+    y1 = y1 > whole.y1 ? whole.y1 : y1;
+    if (x0 >= x1 || y0 >= y1)
+        return (hal_window){0, 0, 0, 0}; /* nothing of this viewport changed */
+    return (hal_window){x0, y0, x1, y1};
+}
+
 cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err)
 {
     lx_scene_source_end(s);
     cs_render_opts o = s->opts;
     o.time = 0.0f;
+    o.view_x = s->base_x;
+    o.view_y = s->base_y;
+    o.view_w = s->base_w;
+    o.view_h = s->base_h;
     return cs_scene_check_render(&s->r[0], s->ws[0], scene, &o, err);
 }
 

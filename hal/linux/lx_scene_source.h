@@ -13,6 +13,12 @@
  * that line() hands out in order: the same floats, at most the ring ahead
  * of the display, never a frame of pixels. Two-lane backends (HUB75) keep
  * the lanes on the calling thread.
+ *
+ * A one-lane frame may be limited to a window of the output (the source's
+ * window operation, from hal_display_present_window): only its rows are
+ * rendered, on the pool too, each as wide as the window, with the whole
+ * render's bits (the window becomes the core's viewport, inside a video
+ * wall's viewport if there is one).
  */
 #ifndef LX_SCENE_SOURCE_H
 #define LX_SCENE_SOURCE_H
@@ -40,6 +46,8 @@ typedef struct lx_scene_source {
     bands *pool;
     float *ring;
     int ring_lines;
+    int base_x, base_y, base_w, base_h; /* the viewport without a window (view_w 0: none) */
+    hal_window win;           /* the rows and columns the next frame renders */
     bool pooled;              /* workers are rendering lines of the frame */
     int pool_next;            /* the frame's next line from the pool; -1: lines in lanes */
 } lx_scene_source;
@@ -56,6 +64,14 @@ hal_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa
 hal_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, int x, int y);
 /* Chooses the scene and the animation time of the next frame. */
 void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time);
+/*
+ * The window of this source's output that the frame lx_scene_source_set
+ * chose can change from the last frame passed with d (cs_frame_damage in the
+ * whole render, a wall's if there is one, within this source's viewport and
+ * counted from its corner): empty if none of it changed, the whole output
+ * if the damage cannot be found (d is then reset).
+ */
+hal_window lx_scene_source_damage(lx_scene_source *s, cs_damage *d);
 /* Whether `scene` can be rendered at this source's size (cs_scene_check_render
  * in lane 0's workspace): only between frames. */
 cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err);

@@ -17,6 +17,14 @@
  * one full-width rectangle. Bands are bounded by max_band_bytes and by the
  * device's max_buffer_size, so memory never grows with the frame.
  *
+ * A frame may be a window (display.h): the device keeps its picture, so only
+ * the window's lines come, and its rectangles are as wide as the window. A
+ * full-width window's lines are still skipped by hash; a narrower one's are
+ * all sent and their hashes forgotten (a hash covers a whole line). A
+ * window is refused (HAL_ERR_CONFIG: the frame driver sends the whole frame)
+ * while the device is away, so a reconnect always starts with a whole frame,
+ * and by a full-update device, which takes whole frames only.
+ *
  * Everything the device reports is input like any other: descriptor and
  * mode list lengths, sizes (a 0-wide mode would divide by a zero pitch),
  * formats and buffer limits are checked before they size anything, and a
@@ -60,6 +68,8 @@ typedef struct gud_host {
     uint8_t *band, *zbuf;
     uint64_t *band_hash;
     int band_cap, band_y0, band_n;
+    int win_x0, win_x1; /* the frame's columns; a narrower window's lines are not hashed */
+    size_t line_bytes;  /* bytes of the frame's lines: the window's width */
     size_t band_bytes, zcap;
     bool connected;
     uint64_t next_attempt_ns, connects;
@@ -386,6 +396,9 @@ static hal_status setup_buffers(gud_host *g, char *err, size_t errlen)
     if (g->desc.max_buffer_size && g->desc.max_buffer_size < cap)
         cap = g->desc.max_buffer_size;
     g->pitch = (size_t)g->width * g->bpp; /* width and bpp were checked: never 0 */
+    g->line_bytes = g->pitch; /* whole frames until a begin_frame says otherwise */
+    g->win_x0 = 0;
+    g->win_x1 = g->width;
     if (g->full_update) {
         cap = g->pitch * (size_t)g->height; /* the whole frame goes in one transfer */
         if (cap > GUD_MAX_FULL_FRAME) {
@@ -602,8 +615,9 @@ static hal_status flush_band(gud_host *g, hal_frame_stats *st)
         return HAL_OK;
     int n = g->band_n;
     g->band_n = 0;
-    size_t len = (size_t)n * g->pitch;
-    gud_set_buffer req = {0, (uint32_t)g->band_y0, (uint32_t)g->width, (uint32_t)n, (uint32_t)len, 0, 0};
+    size_t len = (size_t)n * g->line_bytes;
+    gud_set_buffer req = {(uint32_t)g->win_x0, (uint32_t)g->band_y0, (uint32_t)(g->win_x1 - g->win_x0),
+                          (uint32_t)n, (uint32_t)len, 0, 0};
     const uint8_t *payload = g->band;
     int plen = (int)len;
     if (g->lz4) {
@@ -653,8 +667,13 @@ static hal_status flush_band(gud_host *g, hal_frame_stats *st)
 static hal_status gud_begin_frame(hal_display *d, const hal_window *win)
 {
     gud_host *g = (gud_host *)d;
-    if (win)
-        return hal_display_fail(d, HAL_ERR_CONFIG, "frames are whole (damage is found per line)");
+    if (win && (!g->connected || g->full_update))
+        return hal_display_fail(d, HAL_ERR_CONFIG, "%s", g->connected ? "a full-update device takes whole frames"
+                                                                         : "a reconnect needs a whole frame");
+    if (win && (win->x0 < 0 || win->y0 < 0 || win->x0 > win->x1 || win->y0 > win->y1 || win->x1 > g->width ||
+                win->y1 > g->height))
+        return hal_display_fail(d, HAL_ERR_CONFIG, "window %d,%d..%d,%d outside %dx%d", win->x0, win->y0,
+                                win->x1, win->y1, g->width, g->height);
     if (!g->connected) {
         uint64_t now = hal_now(d->clock);
         if (now < g->next_attempt_ns)
@@ -676,6 +695,9 @@ static hal_status gud_begin_frame(hal_display *d, const hal_window *win)
         d->st = &g->unpresented; /* pushed without hal_display_present: counts go nowhere */
     g->band_n = 0;
     g->frame_status = HAL_OK;
+    g->win_x0 = win ? win->x0 : 0;
+    g->win_x1 = win ? win->x1 : g->width;
+    g->line_bytes = (size_t)(g->win_x1 - g->win_x0) * g->bpp;
     return HAL_OK;
 }
 
@@ -683,15 +705,16 @@ static hal_status gud_begin_frame(hal_display *d, const hal_window *win)
 static hal_status gud_line_out(hal_display *d, int y, const uint8_t *px, size_t len)
 {
     gud_host *g = (gud_host *)d;
-    if (!g->connected || y < 0 || y >= g->height || len != g->pitch)
+    if (!g->connected || y < 0 || y >= g->height || len != g->line_bytes)
         return hal_display_fail(d, HAL_ERR_SEQUENCE, "line %d of %zu bytes outside a frame of %d lines of %zu",
-                                y, len, g->height, g->pitch);
+                                y, len, g->height, g->line_bytes);
     hal_status s = HAL_OK;
-    uint64_t h = lx_line_hash(px, g->pitch);
-    if (g->full_update || lx_damage_changed(&g->damage, y, h)) {
+    bool full_width = g->line_bytes == g->pitch;
+    uint64_t h = full_width ? lx_line_hash(px, g->pitch) : 0; /* 0: unknown, sent next time */
+    if (g->full_update || !full_width || lx_damage_changed(&g->damage, y, h)) {
         if (g->band_n == 0)
             g->band_y0 = y;
-        memcpy(g->band + (size_t)g->band_n * g->pitch, px, g->pitch);
+        memcpy(g->band + (size_t)g->band_n * g->line_bytes, px, g->line_bytes);
         g->band_hash[g->band_n++] = h;
         if (g->band_n == g->band_cap)
             s = flush_band(g, d->st);

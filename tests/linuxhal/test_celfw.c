@@ -170,9 +170,15 @@ static void test_usb_tcp(UMockdevTestbed *tb)
     if (ex) {
         CHECK(field(ex, "frames") == 40 && field(ex, "stream_bytes") == sizeof junk && field(ex, "dropped") == 0,
               "exit line: %s", ex);
-        /* damage: the first frame sends 180 lines, the others only the disc's */
-        unsigned long long sent = field(ex, "lines_sent");
-        CHECK(sent >= 180 && sent < 180 + 39 * 16, "lines sent over 40 frames: %llu", sent);
+        /* damage: the first frame renders and sends 180 lines, the others only
+         * the disc's window (its old and new extents), as wide as the window */
+        unsigned long long sent = field(ex, "lines_sent"), raw = field(ex, "bytes_raw");
+        CHECK(sent >= 180 && sent < 180 + 39 * 20, "lines sent over 40 frames: %llu", sent);
+        CHECK(raw >= 320 * 180 * 2 && raw < 320 * 180 * 2 + 39 * 16 * 320 * 2 / 4,
+              "bytes sent over 40 frames: %llu (the windows are narrower than the panel)", raw);
+        CHECK(field(ex, "lines_rendered") == sent && field(ex, "pixels_per_frame") < 320 * 180 / 8,
+              "celfw renders only the windows: %llu lines, %llu pixels a frame",
+              (unsigned long long)field(ex, "lines_rendered"), (unsigned long long)field(ex, "pixels_per_frame"));
         const char *at = strstr(ex, "anim_t=");
         float t = at ? strtof(at + 7, NULL) : -1.0f;
         CHECK(fabsf(t - 39 * 0.04f) < 1e-4f, "last frame at t=%g", (double)t);

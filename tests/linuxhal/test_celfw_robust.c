@@ -15,6 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "celfw_scenes.h"
 #include "celfw_child.h"
 #include "cels_write.h"
 #include "fake_gud.h"
@@ -236,8 +237,9 @@ static void test_slow_frames(void)
     cels_encode_scene(&b, &heavy);
     child c;
     spawn(&c,
+          /* the scene is still: with damage only its first frame would render (and be slow) */
           (const char *[]){"--backend", "null", "--size", "1280x720", "--fps", "60", "--input", "tcp:127.0.0.1:0",
-                           "--log-interval", "0", NULL},
+                           "--log-interval", "0", "--damage", "off", NULL},
           false);
     char line[1024] = "";
     int port = start_port(&c, line, sizeof line);
@@ -286,6 +288,42 @@ static void test_slow_frames(void)
  * committed: celfw's frame time must lie between what the wall clock gave
  * just before and just after the frame.
  */
+/*
+ * Damage in celfw (issue 27): a still scene renders its first frame whole
+ * and then nothing; a commit (here of the same picture) makes the next
+ * frame whole again.
+ */
+static void test_still_damage(void)
+{
+    static cs_scene demo;
+    CHECK(celfw_scene_build("demo", &demo, 0.0f), "demo scene");
+    cels_buf b;
+    cels_buf_init(&b);
+    cels_stream_header(&b);
+    cels_encode_scene(&b, &demo);
+    child c;
+    spawn(&c,
+          (const char *[]){"--backend", "null", "--size", "64x48", "--scene", "builtin:demo", "--fps", "200",
+                           "--input", "tcp:127.0.0.1:0", "--log-interval", "0", NULL},
+          false);
+    char line[1024] = "";
+    int port = start_port(&c, line, sizeof line);
+    g_usleep(50000);
+    int fd = port > 0 ? tcp_connect(port) : -1;
+    CHECK(fd >= 0 && send_all(fd, b.data, b.len), "send the scene again as a stream");
+    CHECK(wait_line(&c, "stream commit 1 applied", 10.0, line, sizeof line), "it commits: %s", c.log);
+    g_usleep(100000);
+    if (fd >= 0)
+        close(fd);
+    kill(c.pid, SIGTERM);
+    int rc = wait_exit(&c, 10.0);
+    const char *ex = strstr(c.log, "celfw: exit");
+    CHECK(rc == 0 && ex && field(ex, "frames") >= 10 && field(ex, "lines_rendered") == 2 * 48,
+          "a still scene: the first frame and the commit's are whole, the others render nothing: %s",
+          ex ? ex : c.log);
+    cels_buf_free(&b);
+}
+
 static void test_realtime(void)
 {
     static cs_scene motion;
@@ -348,6 +386,7 @@ int main(void)
     test_hostile_usb(tb);
     test_unrenderable(tb);
     test_slow_frames();
+    test_still_damage();
     test_realtime();
     g_object_unref(tb);
     return tl_summary("test_celfw_robust");

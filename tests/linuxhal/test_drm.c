@@ -30,15 +30,20 @@
 
 #include "display_conformance.h"
 
-/* The truth (the conformance reference, display_conformance.h) in the buffer's format. */
-static uint8_t *expected(const cs_scene *s, int w, int h, uint32_t fourcc)
+/* The truth at time t (the conformance reference, display_conformance.h) in the buffer's format. */
+static uint8_t *expected_at(const cs_scene *s, float t, int w, int h, uint32_t fourcc)
 {
     hal_pixfmt fmt = fourcc == DRM_FORMAT_RGB565 ? CS_PIX_RGB565_SRGB : HAL_PIX_XRGB8888;
     size_t bpp = fourcc == DRM_FORMAT_RGB565 ? 2 : 4;
-    uint8_t *img = conf_reference_image(s, 0.0f, w, h, (size_t)w * bpp, conf_encode_fmt, &fmt);
+    uint8_t *img = conf_reference_image(s, t, w, h, (size_t)w * bpp, conf_encode_fmt, &fmt);
     if (!img)
         abort(); /* out of memory or an unrenderable test scene: nothing to compare with */
     return img;
+}
+
+static uint8_t *expected(const cs_scene *s, int w, int h, uint32_t fourcc)
+{
+    return expected_at(s, 0.0f, w, h, fourcc);
 }
 
 typedef struct rig {
@@ -117,8 +122,8 @@ static hal_status show(rig *r, const char *name, float t, hal_frame_stats *st)
     return hal_display_present(r->d, &r->src.src, st);
 }
 
-/* Compares what the CRTC scans out with the core's rendering. Returns mismatching pixels. */
-static int compare(rig *r)
+/* Compares what the CRTC scans out with the core's rendering of s at t. Returns mismatching pixels. */
+static int compare_at(rig *r, const cs_scene *s, float t)
 {
     fake_drm_scanout so;
     if (!fake_drm_get_scanout(r->card, &so)) {
@@ -126,7 +131,7 @@ static int compare(rig *r)
         return -1;
     }
     size_t bpp = so.fourcc == DRM_FORMAT_RGB565 ? 2 : 4;
-    uint8_t *want = expected(&r->scene, so.mode_w, so.mode_h, so.fourcc);
+    uint8_t *want = expected_at(s, t, so.mode_w, so.mode_h, so.fourcc);
     int bad = 0;
     for (int y = 0; y < so.mode_h; y++)
         for (int x = 0; x < so.mode_w; x++)
@@ -136,6 +141,119 @@ static int compare(rig *r)
                 fprintf(stderr, "  first mismatch at pixel (%d,%d)\n", x, y);
     free(want);
     return bad;
+}
+
+static int compare(rig *r)
+{
+    return compare_at(r, &r->scene, 0.0f);
+}
+
+/* One frame of s at t with its damage window (celfw's loop); *win is what was rendered. */
+static hal_status show_damage(rig *r, cs_damage *dmg, const cs_scene *s, float t, hal_window *win,
+                              hal_frame_stats *st)
+{
+    memset(st, 0, sizeof *st);
+    lx_scene_source_set(&r->src, s, t);
+    *win = lx_scene_source_damage(&r->src, dmg);
+    hal_status res = hal_display_present_window(r->d, &r->src.src, win, st);
+    lx_scene_source_end(&r->src);
+    if (res != HAL_OK)
+        cs_damage_reset(dmg);
+    return res;
+}
+
+/*
+ * Damage windows (issue 27): board-anim at 480x272, with flips and atomic
+ * FB_DAMAGE_CLIPS on two render threads (XRGB8888 or RGB565), or in one
+ * buffer with DirtyFB on one.
+ * Every frame the CRTC scans out the core's whole render at that time (so
+ * the back buffer was brought up to date outside the window), only the
+ * window's lines are rendered, the clips lie within it, a still frame
+ * renders nothing and commits nothing, and after a lost screen the frame is
+ * whole.
+ */
+static void test_damage_window(UMockdevTestbed *tb, bool no_flip, bool rgb565)
+{
+    static rig r;
+    static cs_scene anim;
+    static cs_damage dmg;
+    char err[300];
+    if (!celfw_scene_json("scenes/board-anim.json", &anim, err, sizeof err)) {
+        CHECK(false, "board-anim: %s", err);
+        return;
+    }
+    rig_defaults(&r);
+    r.o.modes[0] = (fake_drm_mode){480, 272, 60, true};
+    r.o.no_flip = no_flip;
+    r.o.atomic = !no_flip;
+    r.o.damage_clips = !no_flip;
+    if (rgb565)
+        r.o.preferred_depth = 16; /* a window's columns start at 2 bytes a pixel */
+    if (!rig_start(&r, tb))
+        return;
+    CHECK((r.d->pixfmt == CS_PIX_RGB565_SRGB) == rgb565, "pixel format %d", r.d->pixfmt);
+    /* the window on the thread pool with flips, in the calling thread's lane without */
+    CHECK(lx_scene_source_threads(&r.src, no_flip ? 1 : 2) == HAL_OK, "render threads");
+    cs_damage_reset(&dmg);
+    enum { FRAMES = 20 };
+    uint64_t lines = 0;
+    int wrong = 0, unbounded = 0, outside = 0;
+    hal_frame_stats st;
+    hal_window w;
+    hal_status s = HAL_OK;
+    for (int i = 0; i < FRAMES; i++) {
+        float t = (float)i / 30.0f;
+        s = show_damage(&r, &dmg, &anim, t, &w, &st);
+        CHECK(s == HAL_OK, "frame %d: %s (%s)", i, hal_status_str(s), r.d->err);
+        int rows = w.x1 > w.x0 ? w.y1 - w.y0 : 0;
+        if (st.lines_rendered != (uint64_t)rows)
+            unbounded++;
+        if (compare_at(&r, &anim, t) != 0 && wrong++ == 0)
+            fprintf(stderr, "  frame %d at t=%g (window %d,%d..%d,%d) differs from the core's render\n", i,
+                    (double)t, w.x0, w.y0, w.x1, w.y1);
+        int clips[128];
+        int n = i > 0 && st.lines_sent ? fake_drm_last_clips(r.card, clips, 64) : 0;
+        for (int j = 0; j < n && j < 64; j++)
+            if (clips[2 * j] < w.y0 || clips[2 * j + 1] > w.y1)
+                outside++;
+        lines += st.lines_rendered;
+    }
+    CHECK(wrong == 0, "no_flip %d rgb565 %d: every frame scanned out equals the core's whole render (%d differ)",
+          no_flip, rgb565, wrong);
+    CHECK(unbounded == 0 && outside == 0, "lines rendered are the window's (%d frames not), clips in it (%d not)",
+          unbounded, outside);
+    CHECK(lines * 4 < (uint64_t)FRAMES * 272, "a quarter of the lines or fewer (%llu of %d)",
+          (unsigned long long)lines, FRAMES * 272);
+    float t = (float)FRAMES / 30.0f;
+    s = show_damage(&r, &dmg, &anim, t, &w, &st);
+    unsigned commits = fake_drm_count(r.card, FAKE_DRM_ATOMIC) + fake_drm_count(r.card, FAKE_DRM_FLIP) +
+                       fake_drm_count(r.card, FAKE_DRM_DIRTY);
+    s = s == HAL_OK ? show_damage(&r, &dmg, &anim, t, &w, &st) : s;
+    CHECK(s == HAL_OK && st.lines_rendered == 0 &&
+              commits == fake_drm_count(r.card, FAKE_DRM_ATOMIC) + fake_drm_count(r.card, FAKE_DRM_FLIP) +
+                             fake_drm_count(r.card, FAKE_DRM_DIRTY),
+          "a still frame renders and commits nothing (%s, %llu lines)", hal_status_str(s),
+          (unsigned long long)st.lines_rendered);
+
+    fake_drm_set_connected(r.card, false);
+    t += 1.0f / 30.0f;
+    s = show_damage(&r, &dmg, &anim, t, &w, &st);
+    CHECK(s == HAL_ERR_NO_DEVICE, "unplugged: %s", hal_status_str(s));
+    fake_drm_set_connected(r.card, true);
+    for (int i = 0; i < 100; i++) {
+        usleep(10000);
+        t += 1.0f / 30.0f;
+        if ((s = show_damage(&r, &dmg, &anim, t, &w, &st)) == HAL_OK)
+            break;
+    }
+    CHECK(s == HAL_OK && st.lines_rendered == 272 && compare_at(&r, &anim, t) == 0,
+          "the frame after a replug is whole and right (%s, %llu lines)", hal_status_str(s),
+          (unsigned long long)st.lines_rendered);
+    t += 1.0f / 30.0f;
+    s = show_damage(&r, &dmg, &anim, t, &w, &st);
+    CHECK(s == HAL_OK && st.lines_rendered < 272 && compare_at(&r, &anim, t) == 0,
+          "then windows again (%llu lines), still right", (unsigned long long)st.lines_rendered);
+    rig_close(&r, true);
 }
 
 static void test_frames(UMockdevTestbed *tb)
@@ -727,6 +845,9 @@ int main(void)
     test_wait(tb);
     test_scan(tb);
     test_atomic(tb, true);
+    test_damage_window(tb, false, false);
+    test_damage_window(tb, true, false);
+    test_damage_window(tb, false, true);
     test_atomic(tb, false);
     test_refusals(tb);
     test_conformance(tb);

@@ -68,8 +68,8 @@ static hal_status show(rig *r, const cs_scene *s, hal_frame_stats *st)
     return hal_display_present(r->d, &r->src.src, st);
 }
 
-/* Compares the device's panel with the core's rendering. Returns mismatching pixels. */
-static int compare(rig *r, const cs_scene *s)
+/* Compares the device's panel with the core's rendering at time t. Returns mismatching pixels. */
+static int compare_at(rig *r, const cs_scene *s, float t)
 {
     gud_info info;
     gud_get_info(r->d, &info);
@@ -77,7 +77,7 @@ static int compare(rig *r, const cs_scene *s)
     size_t n = (size_t)info.width * (size_t)info.height * bpp;
     hal_pixfmt fmt = info.format == GUD_FORMAT_RGB565 ? CS_PIX_RGB565_SRGB : HAL_PIX_XRGB8888;
     uint8_t *got = malloc(n),
-            *want = conf_reference_image(s, 0.0f, info.width, info.height, (size_t)info.width * bpp,
+            *want = conf_reference_image(s, t, info.width, info.height, (size_t)info.width * bpp,
                                          conf_encode_fmt, &fmt);
     if (!want)
         abort(); /* out of memory or an unrenderable test scene: nothing to compare with */
@@ -90,6 +90,11 @@ static int compare(rig *r, const cs_scene *s)
     free(got);
     free(want);
     return bad;
+}
+
+static int compare(rig *r, const cs_scene *s)
+{
+    return compare_at(r, s, 0.0f);
 }
 
 static void test_basic(UMockdevTestbed *tb)
@@ -331,6 +336,119 @@ static void test_unplug(UMockdevTestbed *tb)
     rig_close(&r, true);
 }
 
+/* One frame of s at t with its damage window (celfw's loop); *win is what was rendered. */
+static hal_status show_damage(rig *r, cs_damage *dmg, const cs_scene *s, float t, hal_window *win,
+                              hal_frame_stats *st)
+{
+    memset(st, 0, sizeof *st);
+    lx_scene_source_set(&r->src, s, t);
+    *win = lx_scene_source_damage(&r->src, dmg);
+    hal_status res = hal_display_present_window(r->d, &r->src.src, win, st);
+    lx_scene_source_end(&r->src);
+    if (res != HAL_OK)
+        cs_damage_reset(dmg);
+    return res;
+}
+
+/*
+ * Damage windows (issue 27): board-anim's movers over its still sign, on two
+ * render threads. Every frame the panel equals the core's whole render at
+ * that time, while only the window's lines are rendered and its rectangles
+ * travel; a still frame renders nothing; an unplug forgets the last frame
+ * and the frame after the replug is whole.
+ */
+static void test_damage_window(UMockdevTestbed *tb)
+{
+    static cs_scene anim;
+    static cs_damage dmg;
+    char err[300];
+    if (!celfw_scene_json("scenes/board-anim.json", &anim, err, sizeof err)) {
+        CHECK(false, "board-anim: %s", err);
+        return;
+    }
+    rig r = {0};
+    fake_gud_opts_default(&r.o);
+    r.o.width = 480;
+    r.o.height = 272;
+    gud_config_default(&r.cfg);
+    r.cfg.reconnect_ms = 30;
+    hal_status s = rig_open(&r, tb, err, sizeof err);
+    CHECK(s == HAL_OK, "open: %s", err);
+    if (s != HAL_OK)
+        return rig_close(&r, false);
+    CHECK(lx_scene_source_threads(&r.src, 2) == HAL_OK, "two render threads");
+    cs_damage_reset(&dmg);
+    enum { FRAMES = 24 };
+    uint64_t lines = 0, pixels = 0;
+    int wrong = 0, unbounded = 0, narrow = 0;
+    for (int i = 0; i < FRAMES; i++) {
+        float t = (float)i / 30.0f;
+        hal_frame_stats st;
+        hal_window w;
+        s = show_damage(&r, &dmg, &anim, t, &w, &st);
+        CHECK(s == HAL_OK, "frame %d: %s (%s)", i, hal_status_str(s), r.d->err);
+        int rows = w.x1 > w.x0 ? w.y1 - w.y0 : 0;
+        if (st.lines_rendered != (uint64_t)rows ||
+            st.pixels_rendered != (uint64_t)rows * (uint64_t)(w.x1 - w.x0))
+            unbounded++;
+        if (i > 0 && rows < 272)
+            narrow++;
+        if (compare_at(&r, &anim, t) != 0 && wrong++ == 0)
+            fprintf(stderr, "  frame %d at t=%g (window %d,%d..%d,%d) differs from the core's render\n", i,
+                    (double)t, w.x0, w.y0, w.x1, w.y1);
+        lines += st.lines_rendered;
+        pixels += st.pixels_rendered;
+        if (i == 0)
+            CHECK(st.lines_rendered == 272, "the first frame is whole (%llu lines)",
+                  (unsigned long long)st.lines_rendered);
+    }
+    CHECK(wrong == 0, "every frame equals the core's whole render (%d differ)", wrong);
+    CHECK(unbounded == 0, "lines and pixels rendered are the window's (%d frames not)", unbounded);
+    CHECK(narrow == FRAMES - 1, "frames after the first render a window (%d of %d)", narrow, FRAMES - 1);
+    fprintf(stderr, "  board-anim 480x272, %d frames: %.1f lines, %.0f pixels rendered a frame (whole: 272, "
+            "130560)\n", FRAMES, (double)lines / FRAMES, (double)pixels / FRAMES);
+    CHECK(lines * 4 < (uint64_t)FRAMES * 272, "a quarter of the lines or fewer (%llu of %d)",
+          (unsigned long long)lines, FRAMES * 272);
+
+    hal_frame_stats st;
+    hal_window w;
+    float t = (float)FRAMES / 30.0f;
+    s = show_damage(&r, &dmg, &anim, t, &w, &st);
+    s = s == HAL_OK ? show_damage(&r, &dmg, &anim, t, &w, &st) : s;
+    CHECK(s == HAL_OK && st.lines_rendered == 0 && st.lines_sent == 0 && st.rects == 0,
+          "a still frame renders and sends nothing (%s, %llu lines, %llu sent)", hal_status_str(s),
+          (unsigned long long)st.lines_rendered, (unsigned long long)st.lines_sent);
+
+    fake_gud_unplug(r.dev);
+    for (int i = 0; i < 3; i++)
+        s = show_damage(&r, &dmg, &anim, t + (float)(i + 1) / 30.0f, &w, &st);
+    CHECK(s == HAL_ERR_NO_DEVICE, "unplugged: %s", hal_status_str(s));
+    hal_window part = {0, 0, 10, 10};
+    memset(&st, 0, sizeof st);
+    lx_scene_source_set(&r.src, &anim, t);
+    s = hal_display_present_window(r.d, &r.src.src, &part, &st);
+    CHECK(s == HAL_ERR_NO_DEVICE && part.x1 == 480 && part.y1 == 272,
+          "an absent display refuses a window: the frame is whole (%s, %d,%d)", hal_status_str(s), part.x1,
+          part.y1);
+    fake_gud_replug(r.dev, 6);
+    t += 0.5f;
+    for (int i = 0; i < 100; i++) {
+        g_usleep(10000);
+        s = show_damage(&r, &dmg, &anim, t, &w, &st);
+        if (s == HAL_OK)
+            break;
+    }
+    CHECK(s == HAL_OK && st.lines_rendered == 272 && st.lines_sent == 272,
+          "the frame after a replug is whole (%s, %llu rendered, %llu sent)", hal_status_str(s),
+          (unsigned long long)st.lines_rendered, (unsigned long long)st.lines_sent);
+    CHECK(compare_at(&r, &anim, t) == 0, "the frame after the replug equals the core's render");
+    t += 1.0f / 30.0f;
+    s = show_damage(&r, &dmg, &anim, t, &w, &st);
+    CHECK(s == HAL_OK && st.lines_rendered < 272 && compare_at(&r, &anim, t) == 0,
+          "then windows again (%llu lines), still equal", (unsigned long long)st.lines_rendered);
+    rig_close(&r, true);
+}
+
 static void expect_open_error(UMockdevTestbed *tb, const char *what, fake_gud_opts *o, const char *needle)
 {
     rig r = {0};
@@ -419,6 +537,16 @@ static void test_odd_devices(UMockdevTestbed *tb)
         fake_gud_get_stats(f.dev, &ds);
         CHECK(ds.rects == 2 && ds.set_buffers == 1 && st.lines_sent == 48 && compare(&f, &scene) == 0,
               "full update: %u rects, %u SET_BUFFERs", ds.rects, ds.set_buffers);
+        /* a window is refused: the frame driver sends the whole frame */
+        hal_window w = {8, 8, 20, 20};
+        memset(&st, 0, sizeof st);
+        celfw_scene_build("anim", &scene, 0.3f);
+        lx_scene_source_set(&f.src, &scene, 0.0f);
+        s = hal_display_present_window(f.d, &f.src.src, &w, &st);
+        CHECK(s == HAL_OK && w.x0 == 0 && w.y1 == 48 && st.lines_rendered == 48 && compare(&f, &scene) == 0,
+              "full update takes no window: %s, rendered %d,%d..%d,%d (%llu lines)", hal_status_str(s), w.x0,
+              w.y0, w.x1, w.y1, (unsigned long long)st.lines_rendered);
+        s = HAL_OK;
     }
     rig_close(&f, s == HAL_OK);
 }
@@ -682,6 +810,7 @@ int main(void)
     test_small_buffer(tb);
     test_faults(tb);
     test_unplug(tb);
+    test_damage_window(tb);
     test_odd_devices(tb);
     test_hostile(tb);
     test_conformance(tb);

@@ -9,7 +9,10 @@
  * lane 0, bottom half in lane 1): every line a board's display asks for must
  * be, float for float, the whole wall's line at its place. Viewports that do
  * not fit are refused, and the source keeps rendering the whole output
- * without one.
+ * without one. Damage (issue 27) composes with the viewport: each board of
+ * the wall, showing board-anim.json frame after frame on a display that keeps
+ * its picture, renders only the wall's damage within its viewport, and its
+ * picture is every frame its part of the whole wall's render.
  *
  * Four boards (issue 24: "four celfw instances sampling one instant with
  * --clock realtime and a fixed clock produce the tiles of the same frame"):
@@ -69,6 +72,96 @@ enum { FW_WALL_W = 320, FW_WALL_H = 180, FW_TILE_W = 160, FW_TILE_H = 90 };
  * its quadrant of the whole wall at animation time t. Returns the wall's
  * RGB565 render (to free) so the caller can compare instants.
  */
+/* A display that keeps its picture (RGB888) and takes windows. */
+typedef struct memdisp {
+    hal_display d;
+    hal_window win;
+    uint8_t px[BW * BH * 3];
+} memdisp;
+
+static hal_status mem_begin(hal_display *d, const hal_window *w)
+{
+    memdisp *m = (memdisp *)d;
+    m->win = w ? *w : (hal_window){0, 0, BW, BH};
+    return HAL_OK;
+}
+
+static hal_status mem_line(hal_display *d, int y, const uint8_t *px, size_t len)
+{
+    memdisp *m = (memdisp *)d;
+    if (y < m->win.y0 || y >= m->win.y1 || len != 3u * (size_t)(m->win.x1 - m->win.x0))
+        return HAL_ERR_SEQUENCE;
+    memcpy(m->px + ((size_t)y * BW + (size_t)m->win.x0) * 3, px, len);
+    return HAL_OK;
+}
+
+static const hal_display_api mem_api = {.name = "mem", .begin_frame = mem_begin, .line_out = mem_line};
+
+/* The wall's whole render at t, as floats. */
+static void render_wall(const cs_scene *scene, cs_workspace *ws, float t, float *whole)
+{
+    cs_render_opts o = cs_render_defaults(WALL_W, WALL_H);
+    o.time = t;
+    cs_renderer r;
+    cs_error e;
+    CHECK(cs_frame_begin(&r, ws, scene, &o, &e) == CS_OK, "whole frame");
+    for (int y = 0; y < WALL_H; y++)
+        cs_render_line(&r, y, whole + (size_t)y * WALL_W * 3);
+}
+
+/*
+ * The board at bx, by shows the scene for `frames` frames with damage
+ * windows (on `threads` render threads): every frame its picture is its
+ * part of the whole wall's render. Returns the lines it rendered.
+ */
+static uint64_t board_damage(const cs_scene *scene, cs_workspace *ws, float *whole, int bx, int by, int threads,
+                             int frames)
+{
+    static memdisp m;
+    static cs_damage dmg;
+    memset(&m, 0, sizeof m);
+    m.d.api = &mem_api;
+    m.d.width = BW;
+    m.d.height = BH;
+    m.d.pixfmt = CS_PIX_RGB888_SRGB;
+    cs_damage_reset(&dmg);
+    lx_scene_source src;
+    CHECK(lx_scene_source_init(&src, BW, BH, CS_AA_SUBSCAN, 16) == HAL_OK, "init");
+    CHECK(lx_scene_source_viewport(&src, WALL_W, WALL_H, bx, by) == HAL_OK, "viewport %d,%d", bx, by);
+    CHECK(lx_scene_source_threads(&src, threads) == HAL_OK, "%d threads", threads);
+    uint64_t lines = 0;
+    int wrong = 0, unbounded = 0;
+    for (int k = 0; k < frames; k++) {
+        float t = 0.3f + (float)k * 0.05f;
+        lx_scene_source_set(&src, scene, t);
+        hal_window w = lx_scene_source_damage(&src, &dmg);
+        hal_frame_stats st = {0};
+        hal_status s = hal_display_present_window(&m.d, &src.src, &w, &st);
+        lx_scene_source_end(&src);
+        CHECK(s == HAL_OK, "board %d,%d frame %d: %s", bx, by, k, m.d.err);
+        if (st.lines_rendered != (uint64_t)(w.x1 > w.x0 ? w.y1 - w.y0 : 0))
+            unbounded++;
+        lines += st.lines_rendered;
+        render_wall(scene, ws, t, whole);
+        uint8_t want[BW * 3];
+        for (int y = 0; y < BH; y++) {
+            hal_pixfmt_convert(CS_PIX_RGB888_SRGB, whole + ((size_t)(by + y) * WALL_W + (size_t)bx) * 3, BW, want);
+            if (memcmp(want, m.px + (size_t)y * BW * 3, sizeof want) != 0) {
+                if (wrong++ == 0)
+                    fprintf(stderr, "  board %d,%d frame %d (window %d,%d..%d,%d): row %d differs\n", bx, by, k,
+                            w.x0, w.y0, w.x1, w.y1, y);
+                break;
+            }
+        }
+    }
+    CHECK(wrong == 0 && unbounded == 0,
+          "board %d,%d with damage: %d frames differ from the wall's render, %d render beyond the window", bx, by,
+          wrong, unbounded);
+    lx_scene_source_free(&src);
+    hal_display_close(&m.d);
+    return lines;
+}
+
 static uint8_t *four_boards(fake_gud *dev[4], const cs_scene *scene, const char *spec, const char *at,
                             float t)
 {
@@ -194,6 +287,19 @@ int main(void)
             for (int bx = 0; bx < WALL_W; bx += BW)
                 board(scene, times[k], bx, by, whole);
     }
+    enum { FRAMES = 16 };
+    uint64_t lines = 0;
+    if (scene_json_load("scenes/board-anim.json", scene, err, sizeof err)) {
+        fprintf(stderr, "test_wall: cannot load scenes/board-anim.json: %s\n", err);
+        return 1;
+    }
+    for (int by = 0; by < WALL_H; by += BH)
+        for (int bx = 0; bx < WALL_W; bx += BW)
+            lines += board_damage(scene, ws, whole, bx, by, bx ? 2 : 1, FRAMES);
+    fprintf(stderr, "  wall boards with damage: %.1f of %d lines rendered a frame\n", (double)lines / (4 * FRAMES),
+            BH);
+    CHECK(lines < (uint64_t)4 * FRAMES * BH, "damage renders fewer lines than whole frames (%llu of %d)",
+          (unsigned long long)lines, 4 * FRAMES * BH);
     lx_scene_source src;
     CHECK(lx_scene_source_init(&src, BW, BH, CS_AA_SUBSCAN, 16) == HAL_OK, "init");
     CHECK(lx_scene_source_viewport(&src, WALL_W, WALL_H, WALL_W - BW + 1, 0) == HAL_ERR_CONFIG,
