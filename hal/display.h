@@ -32,6 +32,10 @@
  * hal_display_present drives either kind from a hal_source; a program that
  * has its lines in hand (the simulator) calls the push operations itself.
  *
+ * A frame that fails after begin_frame (a refused line, a renderer error)
+ * is abandoned, not ended: end_frame would show half a frame. The next
+ * begin_frame starts afresh, and every backend must take it.
+ *
  * Errors are one type, hal_status, and the backend writes what went wrong,
  * prefixed with its name, into d->err (hal_display_fail). On a
  * microcontroller HAL_ERR_LEN may be set small: the status still says what

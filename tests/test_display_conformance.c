@@ -217,6 +217,50 @@ static void test_sequence_errors(void)
     free(r.cfg.fb);
 }
 
+/*
+ * An abandoned frame (begin_frame again without end_frame, as after a failed
+ * line) does not stop the display: the next frame begins and shows the
+ * core's render. An empty window is a frame where nothing changed: taken,
+ * no row may come, and the picture stays.
+ */
+static void test_abandon_and_empty(void)
+{
+    size_t n = sim_display_image_bytes(W, H, CS_PANEL_PIXFMT);
+    uint8_t *img = malloc(n);
+    sim_display s;
+    tpl_rig r;
+    if (!CHECK(sim_display_init(&s, W, H, CS_PANEL_PIXFMT, img, n) == HAL_OK, "sim init") ||
+        !tpl_rig_open(&r, CS_PANEL_PIXFMT)) {
+        free(img);
+        return;
+    }
+    conf_backend bs[2] = {{.d = &s.d, .shown = sim_shown, .user = &s},
+                          {.d = &r.t.d, .shown = tpl_shown, .user = &r}};
+    uint8_t line[W * 4] = {0};
+    size_t lb = hal_line_bytes(CS_PANEL_PIXFMT, W);
+    for (int i = 0; i < 2; i++) {
+        hal_display *d = bs[i].d;
+        CHECK(hal_display_begin_frame(d, NULL) == HAL_OK && hal_display_line_out(d, 0, line, lb) == HAL_OK,
+              "%s: half a frame", d->api->name);
+        conf_frames(&bs[i], d->api->name); /* begins again: the half frame is abandoned */
+        size_t fb = lb * H;
+        uint8_t *before = malloc(fb), *after = malloc(fb);
+        bs[i].shown(bs[i].user, before);
+        const hal_window empty = {3, 4, 3, 9};
+        hal_status st = hal_display_begin_frame(d, &empty);
+        CHECK(st == HAL_OK, "%s: an empty window refused: %s", d->api->name, d->err);
+        st = hal_display_line_out(d, 4, line, 0);
+        CHECK(st != HAL_OK, "%s: a row in an empty window taken", d->api->name);
+        CHECK(hal_display_end_frame(d) == HAL_OK, "%s: end of an empty frame: %s", d->api->name, d->err);
+        bs[i].shown(bs[i].user, after);
+        CHECK(memcmp(before, after, fb) == 0, "%s: an empty window changed the picture", d->api->name);
+        free(before);
+        free(after);
+    }
+    free(img);
+    free(r.cfg.fb);
+}
+
 /* A windowed frame changes its window and nothing else, and is flushed as that window. */
 static void test_window(void)
 {
@@ -308,6 +352,7 @@ int main(void)
     TL_RUN(test_template);
     TL_RUN(test_failed_write);
     TL_RUN(test_sequence_errors);
+    TL_RUN(test_abandon_and_empty);
     TL_RUN(test_window);
     TL_RUN(test_no_allocation_per_frame);
     return tl_summary("test_display_conformance");

@@ -28,6 +28,8 @@ static hal_status tpl_begin_frame(hal_display *d, const hal_window *win)
         return hal_display_fail(d, HAL_ERR_CONFIG, "window %d,%d..%d,%d is not inside %dx%d", win->x0,
                                 win->y0, win->x1, win->y1, d->width, d->height);
     t->win = win ? *win : all;
+    if (t->win.x0 == t->win.x1)
+        t->win.y1 = t->win.y0; /* an empty window: nothing changed, no row may come */
     t->next_y = t->win.y0;
     t->in_frame = true;
     return HAL_OK;
