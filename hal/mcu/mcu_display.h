@@ -34,7 +34,8 @@ typedef struct mcu_display {
     int width, height;       /* of the frame being drawn */
     hal_window win;          /* its window: what is sent */
     uint32_t crc;            /* CRC-32 of the bytes sent so far, if hash */
-    bool hash;               /* the panel cannot read back: keep the running CRC */
+    bool hash;               /* keep the running CRC: the panel cannot read back (a
+                              * caller that prints no CRC may clear it after begin) */
     uint32_t frames;         /* frames completed */
     hal_status panel_error;  /* the panel's first failure this frame */
 } mcu_display;
