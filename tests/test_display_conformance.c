@@ -181,19 +181,38 @@ static void test_failed_write(void)
 }
 
 /* Out-of-order calls: the same HAL_ERR_SEQUENCE from every strict backend. */
+/* The two push displays that need no device, in the panel format: the simulator and the template. */
+typedef struct push_pair {
+    sim_display s;
+    tpl_rig r;
+    uint8_t *img;
+} push_pair;
+
+static bool push_pair_open(push_pair *p)
+{
+    size_t n = sim_display_image_bytes(W, H, CS_PANEL_PIXFMT);
+    p->img = malloc(n);
+    if (!CHECK(sim_display_init(&p->s, W, H, CS_PANEL_PIXFMT, p->img, n) == HAL_OK, "sim init") ||
+        !tpl_rig_open(&p->r, CS_PANEL_PIXFMT)) {
+        free(p->img);
+        return false;
+    }
+    return true;
+}
+
+static void push_pair_close(push_pair *p)
+{
+    free(p->img);
+    free(p->r.cfg.fb);
+}
+
 static void test_sequence_errors(void)
 {
     uint8_t line[W * 4] = {0};
-    size_t n = sim_display_image_bytes(W, H, CS_PANEL_PIXFMT);
-    uint8_t *img = malloc(n);
-    sim_display s;
-    tpl_rig r;
-    if (!CHECK(sim_display_init(&s, W, H, CS_PANEL_PIXFMT, img, n) == HAL_OK, "sim init") ||
-        !tpl_rig_open(&r, CS_PANEL_PIXFMT)) {
-        free(img);
+    push_pair p;
+    if (!push_pair_open(&p))
         return;
-    }
-    hal_display *ds[2] = {&s.d, &r.t.d};
+    hal_display *ds[2] = {&p.s.d, &p.r.t.d};
     size_t lb = hal_line_bytes(CS_PANEL_PIXFMT, W);
     for (int i = 0; i < 2; i++) {
         hal_display *d = ds[i];
@@ -213,8 +232,7 @@ static void test_sequence_errors(void)
         CHECK(conf_error_is(d, st, HAL_ERR_CONFIG, "not inside"), "%s: window wider than the display: %s: %s",
               d->api->name, hal_status_str(st), d->err);
     }
-    free(img);
-    free(r.cfg.fb);
+    push_pair_close(&p);
 }
 
 /*
@@ -225,17 +243,11 @@ static void test_sequence_errors(void)
  */
 static void test_abandon_and_empty(void)
 {
-    size_t n = sim_display_image_bytes(W, H, CS_PANEL_PIXFMT);
-    uint8_t *img = malloc(n);
-    sim_display s;
-    tpl_rig r;
-    if (!CHECK(sim_display_init(&s, W, H, CS_PANEL_PIXFMT, img, n) == HAL_OK, "sim init") ||
-        !tpl_rig_open(&r, CS_PANEL_PIXFMT)) {
-        free(img);
+    push_pair p;
+    if (!push_pair_open(&p))
         return;
-    }
-    conf_backend bs[2] = {{.d = &s.d, .shown = sim_shown, .user = &s},
-                          {.d = &r.t.d, .shown = tpl_shown, .user = &r}};
+    conf_backend bs[2] = {{.d = &p.s.d, .shown = sim_shown, .user = &p.s},
+                          {.d = &p.r.t.d, .shown = tpl_shown, .user = &p.r}};
     uint8_t line[W * 4] = {0};
     size_t lb = hal_line_bytes(CS_PANEL_PIXFMT, W);
     for (int i = 0; i < 2; i++) {
@@ -257,8 +269,7 @@ static void test_abandon_and_empty(void)
         free(before);
         free(after);
     }
-    free(img);
-    free(r.cfg.fb);
+    push_pair_close(&p);
 }
 
 /* A windowed frame changes its window and nothing else, and is flushed as that window. */

@@ -609,14 +609,10 @@ static const char *run(celfw *fw)
         fw->disp->frame_start_ns = start;
         fw->disp->frame_period_ns = period;
         hal_frame_stats st = {0};
-        hal_window win = {0, 0, fw->src.src.width, fw->src.src.height};
-        if (fw->cfg.damage)
-            win = lx_scene_source_damage(&fw->src, &fw->damage);
+        hal_window win;
         fw->in_frame = true;
-        hal_status s = hal_display_present_window(fw->disp, &fw->src.src, &win, &st);
-        if (s != HAL_OK)
-            cs_damage_reset(&fw->damage); /* the display may not show this frame: the next is whole */
-        lx_scene_source_end(&fw->src); /* no worker reads the scene past here */
+        cs_damage *damage = fw->cfg.damage ? &fw->damage : NULL;
+        hal_status s = lx_scene_source_show(&fw->src, fw->disp, damage, &win, &st);
         release_held(fw);
         add_stats(&fw->sum, &st);
         uint64_t took = hal_now(fw->clk.mono) - start;

@@ -187,6 +187,17 @@ hal_window lx_scene_source_damage(lx_scene_source *s, cs_damage *d)
     return (hal_window){x0, y0, x1, y1};
 }
 
+hal_status lx_scene_source_show(lx_scene_source *s, hal_display *d, cs_damage *damage, hal_window *win,
+                                hal_frame_stats *st)
+{
+    *win = damage ? lx_scene_source_damage(s, damage) : (hal_window){0, 0, s->src.width, s->src.height};
+    hal_status res = hal_display_present_window(d, &s->src, win, st);
+    if (res != HAL_OK && damage)
+        cs_damage_reset(damage);
+    lx_scene_source_end(s);
+    return res;
+}
+
 cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err)
 {
     lx_scene_source_end(s);

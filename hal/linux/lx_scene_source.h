@@ -72,6 +72,15 @@ void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time);
  * if the damage cannot be found (d is then reset).
  */
 hal_window lx_scene_source_damage(lx_scene_source *s, cs_damage *d);
+/*
+ * Shows the frame lx_scene_source_set chose on d, as celfw's loop does: only
+ * the window lx_scene_source_damage finds when `damage` is given, else the
+ * whole output. *win is what was rendered, *st gets the frame's counts. A
+ * failed frame resets the damage (the display may not show it: the next
+ * frame is whole). No worker reads the scene after it returns.
+ */
+hal_status lx_scene_source_show(lx_scene_source *s, hal_display *d, cs_damage *damage, hal_window *win,
+                                hal_frame_stats *st);
 /* Whether `scene` can be rendered at this source's size (cs_scene_check_render
  * in lane 0's workspace): only between frames. */
 cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_error *err);

@@ -342,12 +342,7 @@ static hal_status show_damage(rig *r, cs_damage *dmg, const cs_scene *s, float t
 {
     memset(st, 0, sizeof *st);
     lx_scene_source_set(&r->src, s, t);
-    *win = lx_scene_source_damage(&r->src, dmg);
-    hal_status res = hal_display_present_window(r->d, &r->src.src, win, st);
-    lx_scene_source_end(&r->src);
-    if (res != HAL_OK)
-        cs_damage_reset(dmg);
-    return res;
+    return lx_scene_source_show(&r->src, r->d, dmg, win, st);
 }
 
 /*
