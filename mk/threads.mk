@@ -14,7 +14,7 @@
 
 BANDS_TEST_OBJ := $(HOST)/obj/tests/test_bands.o $(HOST)/obj/host-sim/bands.o \
         $(HOST)/obj/host-sim/scene_json.o $(HOST)/obj/host-sim/paint_json.o \
-        $(HOST)/obj/hal/linux/lx_scene_source.o
+        $(HOST)/obj/hal/linux/lx_scene_source.o $(HOST)/obj/hal/host/display_host.o
 $(HOST)/obj/tests/test_bands.o: HOST_CFLAGS += -Itests -Ihal/linux
 
 $(HOST)/test_bands: $(BANDS_TEST_OBJ) $(HOST)/libcelscan.a
@@ -30,7 +30,7 @@ TEST_TARGETS += test-bands
 # clang's here (as fuzzing is); -O1 keeps a run within seconds.
 #   $(1) the name (tsan, asan), $(2) the sanitizer flags
 BANDS_SAN_SRC := tests/test_bands.c host-sim/bands.c host-sim/scene_json.c host-sim/paint_json.c \
-        hal/linux/lx_scene_source.c $(CORE_SRC)
+        hal/linux/lx_scene_source.c hal/host/display_host.c $(CORE_SRC)
 define bands_san
 $$(eval $$(call flags_record,bands-$(1),clang $(2)))
 $(BUILD)/bands-$(1)/%.o: %.c $(FLAGS_DIR)/bands-$(1)
