@@ -84,6 +84,13 @@ typedef struct hal_window {
     int x0, y0, x1, y1;
 } hal_window;
 
+/* Whether w lies within a width x height display (an empty window does). */
+static inline bool hal_window_inside(const hal_window *w, int width, int height)
+{
+    return w->x0 >= 0 && w->y0 >= 0 && w->x0 <= w->x1 && w->y0 <= w->y1 && w->x1 <= width &&
+           w->y1 <= height;
+}
+
 /* Where lines come from, for the pull lane and hal_display_present. */
 typedef struct hal_source {
     int width, height;

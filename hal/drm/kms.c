@@ -330,8 +330,7 @@ static hal_status kms_begin_frame(hal_display *d, const hal_window *win)
     hal_status s;
     if (win && (!k->connected || k->front < 0))
         return hal_display_fail(d, HAL_ERR_CONFIG, "a window needs a whole frame on screen first");
-    if (win && (win->x0 < 0 || win->y0 < 0 || win->x0 > win->x1 || win->y0 > win->y1 || win->x1 > k->width ||
-                win->y1 > k->height))
+    if (win && !hal_window_inside(win, k->width, k->height))
         return hal_display_fail(d, HAL_ERR_CONFIG, "window %d,%d..%d,%d outside %dx%d", win->x0, win->y0,
                                 win->x1, win->y1, k->width, k->height);
     if (!k->connected && (s = reconnect(k)) != HAL_OK)

@@ -155,9 +155,8 @@ static hal_status push_lines(hal_display *d)
 /* Whether w lies within d and leaves part of it out. */
 static bool window_narrows(const hal_display *d, const hal_window *w)
 {
-    bool inside = w->x0 >= 0 && w->y0 >= 0 && w->x0 <= w->x1 && w->y0 <= w->y1 && w->x1 <= d->width &&
-                  w->y1 <= d->height;
-    return inside && (w->x0 > 0 || w->y0 > 0 || w->x1 < d->width || w->y1 < d->height);
+    return hal_window_inside(w, d->width, d->height) &&
+           (w->x0 > 0 || w->y0 > 0 || w->x1 < d->width || w->y1 < d->height);
 }
 
 hal_status hal_display_present(hal_display *d, const hal_source *src, hal_frame_stats *st)

@@ -75,8 +75,7 @@ static hal_status window(void *user, const hal_window *win)
     lx_scene_source *s = user;
     lx_scene_source_end(s); /* the workers' frame uses the viewport */
     hal_window w = {0, 0, s->src.width, s->src.height};
-    if (win && (win->x0 < 0 || win->y0 < 0 || win->x0 >= win->x1 || win->y0 >= win->y1 ||
-                win->x1 > w.x1 || win->y1 > w.y1))
+    if (win && (!hal_window_inside(win, w.x1, w.y1) || win->x0 == win->x1 || win->y0 == win->y1))
         return HAL_ERR_CONFIG;
     bool whole = !win || (win->x0 == 0 && win->y0 == 0 && win->x1 == w.x1 && win->y1 == w.y1);
     if (!whole)

@@ -35,8 +35,7 @@ cs_status mcu_display_begin(mcu_display *d, int width, int height, const hal_win
 {
     if (width < 1 || height < 1)
         return CS_ERR_SIZE;
-    if (win && (win->x0 < 0 || win->y0 < 0 || win->x1 > width || win->y1 > height ||
-                win->x0 > win->x1 || win->y0 > win->y1))
+    if (win && !hal_window_inside(win, width, height))
         return CS_ERR_ARG;
     d->width = width;
     d->height = height;

@@ -98,8 +98,7 @@ static hal_status begin_frame(hal_display *d, const hal_window *win)
     const hal_window all = {0, 0, d->width, d->height};
     if (!win)
         win = &all;
-    if (win->x0 < 0 || win->y0 < 0 || win->x0 > win->x1 || win->y0 > win->y1 || win->x1 > d->width ||
-        win->y1 > d->height)
+    if (!hal_window_inside(win, d->width, d->height))
         return HAL_ERR_CONFIG;
     p->win = *win;
     p->next_y = win->y0;

@@ -23,8 +23,7 @@ static hal_status tpl_begin_frame(hal_display *d, const hal_window *win)
 {
     tpl_display *t = (tpl_display *)d;
     hal_window all = {0, 0, d->width, d->height};
-    if (win && (win->x0 < 0 || win->y0 < 0 || win->x1 > d->width || win->y1 > d->height ||
-                win->x0 > win->x1 || win->y0 > win->y1))
+    if (win && !hal_window_inside(win, d->width, d->height))
         return hal_display_fail(d, HAL_ERR_CONFIG, "window %d,%d..%d,%d is not inside %dx%d", win->x0,
                                 win->y0, win->x1, win->y1, d->width, d->height);
     t->win = win ? *win : all;

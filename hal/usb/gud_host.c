@@ -670,8 +670,7 @@ static hal_status gud_begin_frame(hal_display *d, const hal_window *win)
     if (win && (!g->connected || g->full_update))
         return hal_display_fail(d, HAL_ERR_CONFIG, "%s", g->connected ? "a full-update device takes whole frames"
                                                                          : "a reconnect needs a whole frame");
-    if (win && (win->x0 < 0 || win->y0 < 0 || win->x0 > win->x1 || win->y0 > win->y1 || win->x1 > g->width ||
-                win->y1 > g->height))
+    if (win && !hal_window_inside(win, g->width, g->height))
         return hal_display_fail(d, HAL_ERR_CONFIG, "window %d,%d..%d,%d outside %dx%d", win->x0, win->y0,
                                 win->x1, win->y1, g->width, g->height);
     if (!g->connected) {
