@@ -84,34 +84,6 @@ void hal_display_say(const hal_display *d, const char *fmt, ...)
     d->log(d->log_user, "%s: %s", d->api->name, msg);
 }
 
-/* The push lane: the window's lines rendered, converted and handed to line_out. */
-static hal_status push_frame(hal_display *d, const hal_source *src, hal_frame_stats *st,
-                             const hal_window *w, float *rgb, uint8_t *px)
-{
-    int cols = w->x1 - w->x0;
-    if (cols <= 0 || w->y1 <= w->y0)
-        return hal_display_end_frame(d); /* nothing changed: nothing is rendered */
-    size_t len = hal_line_bytes(d->pixfmt, cols);
-    hal_status s = src->begin(src->user, 1);
-    if (s != HAL_OK)
-        return hal_display_fail(d, s, "the renderer could not start the frame");
-    for (int y = w->y0; y < w->y1; y++) {
-        if ((s = src->line(src->user, 0, y, rgb)) != HAL_OK)
-            return hal_display_fail(d, s, "the renderer failed on line %d", y);
-        st->lines_rendered++;
-        st->pixels_rendered += (uint64_t)cols;
-        hal_pixfmt_convert(d->pixfmt, rgb, cols, px);
-        if ((s = d->api->line_out(d, y, px, len)) != HAL_OK)
-            return s;
-        if (d->frame_period_ns && d->clock) {
-            uint64_t due = d->frame_start_ns + (uint64_t)(y + 1) * d->frame_period_ns / (uint64_t)d->height;
-            if (hal_now(d->clock) > due)
-                st->line_misses++;
-        }
-    }
-    return hal_display_end_frame(d);
-}
-
 /* The push lane's line buffers: a line of floats and one in the display's format. */
 struct hal_push_lines {
     int width;
@@ -150,6 +122,39 @@ static hal_status push_lines(hal_display *d)
         return hal_display_fail(d, HAL_ERR_NOMEM, "no line buffer for a width of %d", d->width);
     }
     return HAL_OK;
+}
+
+/* The push lane: the window's lines rendered, converted and handed to line_out. */
+static hal_status push_frame(hal_display *d, const hal_source *src, hal_frame_stats *st,
+                             const hal_window *w)
+{
+    int cols = w->x1 - w->x0;
+    if (cols <= 0 || w->y1 <= w->y0)
+        return hal_display_end_frame(d); /* nothing changed: nothing is rendered */
+    hal_status s = push_lines(d);
+    if (s != HAL_OK)
+        return s;
+    float *rgb = d->lines->rgb;
+    uint8_t *px = d->lines->px;
+    size_t len = hal_line_bytes(d->pixfmt, cols);
+    s = src->begin(src->user, 1);
+    if (s != HAL_OK)
+        return hal_display_fail(d, s, "the renderer could not start the frame");
+    for (int y = w->y0; y < w->y1; y++) {
+        if ((s = src->line(src->user, 0, y, rgb)) != HAL_OK)
+            return hal_display_fail(d, s, "the renderer failed on line %d", y);
+        st->lines_rendered++;
+        st->pixels_rendered += (uint64_t)cols;
+        hal_pixfmt_convert(d->pixfmt, rgb, cols, px);
+        if ((s = d->api->line_out(d, y, px, len)) != HAL_OK)
+            return s;
+        if (d->frame_period_ns && d->clock) {
+            uint64_t due = d->frame_start_ns + (uint64_t)(y + 1) * d->frame_period_ns / (uint64_t)d->height;
+            if (hal_now(d->clock) > due)
+                st->line_misses++;
+        }
+    }
+    return hal_display_end_frame(d);
 }
 
 /* Whether w lies within d and leaves part of it out. */
@@ -199,11 +204,9 @@ hal_status hal_display_present_window(hal_display *d, const hal_source *src, hal
     if (s == HAL_OK && (src->width != d->width || src->height != d->height))
         s = hal_display_fail(d, HAL_ERR_CONFIG, "source is %dx%d, %s %dx%d", src->width, src->height,
                              d->api->noun ? d->api->noun : "the display", d->width, d->height);
-    if (s == HAL_OK)
-        s = push_lines(d);
     hal_window whole = {0, 0, d->width, d->height};
     if (s == HAL_OK)
-        s = push_frame(d, src, st, narrow ? win : &whole, d->lines->rgb, d->lines->px);
+        s = push_frame(d, src, st, narrow ? win : &whole);
     d->st = NULL;
     return s;
 }
