@@ -69,23 +69,34 @@ static bool pool_line(lx_scene_source *s, int y, float *rgb)
     return true;
 }
 
-/* The window becomes the core's viewport, offset by the wall's if there is one. */
+/* The core's viewport for window w of this display, offset by the wall's if
+ * there is one: the one place the two are combined. A whole display with no
+ * wall has no viewport, as before windows. */
+static void set_view(const lx_scene_source *s, cs_render_opts *o, hal_window w, bool whole)
+{
+    o->view_x = s->base_x + w.x0;
+    o->view_y = s->base_y + w.y0;
+    o->view_w = whole && !s->base_w ? 0 : w.x1 - w.x0;
+    o->view_h = whole && !s->base_h ? 0 : w.y1 - w.y0;
+}
+
+static hal_window whole_window(const lx_scene_source *s)
+{
+    return (hal_window){0, 0, s->src.width, s->src.height};
+}
+
 static hal_status window(void *user, const hal_window *win)
 {
     lx_scene_source *s = user;
     lx_scene_source_end(s); /* the workers' frame uses the viewport */
-    hal_window w = {0, 0, s->src.width, s->src.height};
+    hal_window w = whole_window(s);
     if (win && (!hal_window_inside(win, w.x1, w.y1) || win->x0 == win->x1 || win->y0 == win->y1))
         return HAL_ERR_CONFIG;
     bool whole = !win || (win->x0 == 0 && win->y0 == 0 && win->x1 == w.x1 && win->y1 == w.y1);
     if (!whole)
         w = *win;
     s->win = w;
-    s->opts.view_x = s->base_x + w.x0;
-    s->opts.view_y = s->base_y + w.y0;
-    /* whole and no wall: no viewport, as before windows */
-    s->opts.view_w = whole && !s->base_w ? 0 : w.x1 - w.x0;
-    s->opts.view_h = whole && !s->base_h ? 0 : w.y1 - w.y0;
+    set_view(s, &s->opts, w, whole);
     return HAL_OK;
 }
 
@@ -137,7 +148,7 @@ hal_status lx_scene_source_init(lx_scene_source *s, int width, int height, cs_aa
     s->src.begin = begin;
     s->src.line = line;
     s->src.window = window;
-    s->win = (hal_window){0, 0, width, height};
+    s->win = whole_window(s);
     return HAL_OK;
 }
 
@@ -149,15 +160,12 @@ hal_status lx_scene_source_viewport(lx_scene_source *s, int wall_w, int wall_h, 
         return HAL_ERR_CONFIG;
     s->opts.width = wall_w;
     s->opts.height = wall_h;
-    s->opts.view_x = x;
-    s->opts.view_y = y;
-    s->opts.view_w = w;
-    s->opts.view_h = h;
     s->base_x = x;
     s->base_y = y;
     s->base_w = w;
     s->base_h = h;
-    s->win = (hal_window){0, 0, w, h};
+    s->win = whole_window(s);
+    set_view(s, &s->opts, s->win, true);
     return HAL_OK;
 }
 
@@ -169,7 +177,7 @@ void lx_scene_source_set(lx_scene_source *s, const cs_scene *scene, float time)
 
 hal_window lx_scene_source_damage(lx_scene_source *s, cs_damage *d)
 {
-    hal_window whole = {0, 0, s->src.width, s->src.height};
+    hal_window whole = whole_window(s);
     cs_rect r;
     if (!s->scene || cs_frame_damage(d, s->scene, &s->opts, &r) != CS_OK) {
         cs_damage_reset(d);
@@ -189,7 +197,7 @@ hal_window lx_scene_source_damage(lx_scene_source *s, cs_damage *d)
 hal_status lx_scene_source_show(lx_scene_source *s, hal_display *d, cs_damage *damage, hal_window *win,
                                 hal_frame_stats *st)
 {
-    *win = damage ? lx_scene_source_damage(s, damage) : (hal_window){0, 0, s->src.width, s->src.height};
+    *win = damage ? lx_scene_source_damage(s, damage) : whole_window(s);
     hal_status res = hal_display_present_window(d, &s->src, win, st);
     if (res != HAL_OK && damage)
         cs_damage_reset(damage);
@@ -202,10 +210,7 @@ cs_status lx_scene_source_check(lx_scene_source *s, const cs_scene *scene, cs_er
     lx_scene_source_end(s);
     cs_render_opts o = s->opts;
     o.time = 0.0f;
-    o.view_x = s->base_x;
-    o.view_y = s->base_y;
-    o.view_w = s->base_w;
-    o.view_h = s->base_h;
+    set_view(s, &o, whole_window(s), true);
     return cs_scene_check_render(&s->r[0], s->ws[0], scene, &o, err);
 }
 
