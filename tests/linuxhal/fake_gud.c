@@ -37,6 +37,12 @@ struct fake_gud {
     GMutex mu;
     unsigned gen;   /* bumped on unplug: older fds are dead */
     bool unplugged;
+    /* Nodes of earlier plugs, still served (every ioctl ENODEV, as the kernel
+     * answers a process that holds a vanished device) until fake_gud_free:
+     * detaching at the unplug reset the socket under a celfw mid-ioctl, and
+     * umockdev's preload aborts on that. */
+    char gone[8][64];
+    int ngone;
     /* GUD state */
     uint8_t last_status;
     bool checked;
@@ -547,6 +553,8 @@ void fake_gud_free(fake_gud *g)
         return;
     if (!g->unplugged)
         umockdev_testbed_detach_ioctl(g->tb, g->node, NULL);
+    for (int i = 0; i < g->ngone; i++)
+        umockdev_testbed_detach_ioctl(g->tb, g->gone[i], NULL);
     g_object_unref(g->base);
     free(g->rx);
     free(g->fb);
@@ -564,12 +572,20 @@ void fake_gud_unplug(fake_gud *g)
     g->halted = false;
     g_mutex_unlock(&g->mu);
     umockdev_testbed_uevent(g->tb, g->syspath, "remove");
-    umockdev_testbed_detach_ioctl(g->tb, g->node, NULL);
+    if (g->ngone < (int)(sizeof g->gone / sizeof g->gone[0]))
+        memcpy(g->gone[g->ngone++], g->node, sizeof g->node);
+    else
+        umockdev_testbed_detach_ioctl(g->tb, g->node, NULL);
     umockdev_testbed_remove_device(g->tb, g->syspath);
 }
 
 void fake_gud_replug(fake_gud *g, int devnum)
 {
+    for (int i = 0; i < g->ngone; i++)
+        if (atoi(strrchr(g->gone[i], '/') + 1) == devnum) {
+            fprintf(stderr, "fake_gud: replug at devnum %d, which an earlier plug still holds\n", devnum);
+            abort();
+        }
     g_mutex_lock(&g->mu);
     g->devnum = devnum;
     g->unplugged = false;
