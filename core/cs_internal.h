@@ -394,6 +394,19 @@ static inline bool cs__region_inside(const cs_region *region, const int32_t *win
 /* sRGB encoding (0..1) of linear (i/1024)^2 (cs_srgb_table.c). */
 extern const float cs__srgb_by_sqrt[1025];
 
+/* Its entry i, and sRGB decoding (cs_srgb_decode): from the table, or on a
+ * board short of flash from its compact form (CS_CFG_SRGB_COMPACT,
+ * cs_srgb_compact.c), the same floats. */
+float cs__srgb_compact_at(uint32_t i);
+float cs__srgb_decode_compact(float encoded);
+#if CS_CFG_SRGB_COMPACT
+static inline float cs__srgb_at(uint32_t i) { return cs__srgb_compact_at(i); }
+static inline float cs__srgb_decode(float encoded) { return cs__srgb_decode_compact(encoded); }
+#else
+static inline float cs__srgb_at(uint32_t i) { return cs__srgb_by_sqrt[i]; }
+static inline float cs__srgb_decode(float encoded) { return cs_srgb_decode(encoded); }
+#endif
+
 /* sRGB encoding of linear light in 0..1 (clamped), as 0..1. */
 static inline float cs__srgb_encode(float linear)
 {
@@ -405,7 +418,7 @@ static inline float cs__srgb_encode(float linear)
     int32_t i = (int32_t)pos;
     if (i >= 1024)
         return 1.0f;
-    float a = cs__srgb_by_sqrt[i], b = cs__srgb_by_sqrt[i + 1];
+    float a = cs__srgb_at((uint32_t)i), b = cs__srgb_at((uint32_t)i + 1u);
     return a + (b - a) * (pos - (float)i);
 }
 /* The 8-bit code of the encoding, round(255 * cs__srgb_encode(v)), from

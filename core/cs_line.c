@@ -30,7 +30,7 @@ static CS__SPECIALISE void finish_line_as(cs_renderer *r, bool grey)
         /* sRGB blending composited encoded values; hand back linear light. */
         if (srgb)
             for (int ch = 0; ch < 3; ch++)
-                E[ch] = cs_srgb_decode(E[ch]);
+                E[ch] = cs__srgb_decode(E[ch]);
         uint32_t e = ws->run_end[s];
         if (prev != UINT32_MAX) {
             const float *P = &ws->stack_E[3 * prev];
