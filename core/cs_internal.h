@@ -61,6 +61,13 @@ static inline void cs__copy3(float *dst, const float *src)
 #define CS__HOT_INLINE inline
 #endif
 
+/* A branch that is rarely taken (a mode few frames use), for the code layout. */
+#if defined(__GNUC__)
+#define CS__UNLIKELY(c) __builtin_expect(!!(c), 0)
+#else
+#define CS__UNLIKELY(c) (c)
+#endif
+
 /* For a small helper that the line code calls per crossing or per Newton
  * step: forced inline where the file is compiled for speed, left to the
  * compiler where it is compiled for size (-Os, __OPTIMIZE_SIZE__: the
