@@ -66,14 +66,16 @@ FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c f
 FW_OPT = $(OPT)
 FW_COLD_OPT := -Os
 FW_LINE_OPT = $(OPT) -finline-limit=30
-# Two line files inline more (FW_HOT_OPT): the root solver's Horner steps
+# Three line files inline more (FW_HOT_OPT): the root solver's Horner steps
 # (cs_poly.c) and the RGB565 run conversion (cs_pixfmt.c) gave 285 k fewer
 # instructions per board demo frame for 396 B, paid for by the CRC-32's
-# nibble table on the boards whose panel reads back (CS_CFG_CRC32_TABLE).
-# The same for cs_cross.c would give 216 k for 1.1 KB, cs_composite.c
-# 159 k for 0.8 KB: more than the flash left (firmware/README.md).
+# nibble table on the boards whose panel reads back (CS_CFG_CRC32_TABLE);
+# the compositing (cs_composite.c) 65 k for 772 B, paid for by the compact
+# sRGB table on those boards (CS_CFG_SRGB_COMPACT). cs_cross.c at 80 now
+# gives nothing (cs__horner and cs__horner_d are forced inline, cs_internal.h
+# CS__LINE_INLINE) for 360 B (firmware/README.md).
 FW_HOT_OPT = $(OPT) -finline-limit=80
-FW_HOT_SRC := core/cs_poly.c core/cs_pixfmt.c
+FW_HOT_SRC := core/cs_poly.c core/cs_pixfmt.c core/cs_composite.c
 FW_LINE_SRC := core/cs_cross.c core/cs_coverage.c core/cs_composite.c core/cs_line.c \
                core/cs_crc32.c core/cs_nurbs.c
 FW_COLD_SRC := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_edit.c \
