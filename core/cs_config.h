@@ -140,6 +140,16 @@
 #endif
 #endif
 /*
+ * The sRGB encoding curve (sRGB blending, and formats other than RGB565)
+ * from 1.7 KB instead of the 4 KB table: the same floats, each entry
+ * rebuilt from an anchor cubic and a one-byte correction (about 25
+ * instructions; cs_srgb_compact.c). For a board short of flash; only
+ * scenes blended in sRGB pay for it.
+ */
+#ifndef CS_CFG_SRGB_COMPACT
+#define CS_CFG_SRGB_COMPACT 0
+#endif
+/*
  * CRC-32 a byte a step from a 256-entry table (1 KB of flash); 0: a nibble
  * a step from a 16-entry one (64 B, about twice the instructions a byte).
  * A board whose panel reads its picture back hashes no frame byte while it

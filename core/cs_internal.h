@@ -61,6 +61,26 @@ static inline void cs__copy3(float *dst, const float *src)
 #define CS__HOT_INLINE inline
 #endif
 
+/* A branch that is rarely taken (a mode few frames use), for the code layout. */
+#if defined(__GNUC__)
+#define CS__UNLIKELY(c) __builtin_expect(!!(c), 0)
+#else
+#define CS__UNLIKELY(c) (c)
+#endif
+
+/* For a small helper that the line code calls per crossing or per Newton
+ * step: forced inline where the file is compiled for speed, left to the
+ * compiler where it is compiled for size (-Os, __OPTIMIZE_SIZE__: the
+ * boards' frame preparation and stream code). On a board the line code's
+ * inline limit (mk/firmware.mk) kept cs__horner and cs__horner_d out of
+ * line: inlined, the board demo frame takes 0.32 M fewer instructions for
+ * 0.7 KB of flash (firmware/README.md). The same operations either way. */
+#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+#define CS__LINE_INLINE inline __attribute__((always_inline))
+#else
+#define CS__LINE_INLINE inline
+#endif
+
 /* Whether the three channels of v hold the same number: a grey
  * transmittance, which a frame may keep in one channel (cs_renderer.grey). */
 static inline bool cs__grey3(const float *v)
@@ -163,7 +183,7 @@ float cs__poly_eval(const float *c, int degree, float u);
  * The operations and their order are those of cs__poly_eval, so the result
  * is the same float.
  */
-static inline float cs__horner(const float *c, int degree, float u)
+static CS__LINE_INLINE float cs__horner(const float *c, int degree, float u)
 {
     switch (degree) {
     case 1:
@@ -189,7 +209,7 @@ static inline float cs__segment_y(const cs_segment *s, float u)
 }
 
 /* Value of c at u, and its derivative in *d, by Horner's scheme (unrolled). */
-static inline float cs__horner_d(const float *c, int degree, float u, float *d)
+static CS__LINE_INLINE float cs__horner_d(const float *c, int degree, float u, float *d)
 {
     switch (degree) {
     case 1:
@@ -394,6 +414,19 @@ static inline bool cs__region_inside(const cs_region *region, const int32_t *win
 /* sRGB encoding (0..1) of linear (i/1024)^2 (cs_srgb_table.c). */
 extern const float cs__srgb_by_sqrt[1025];
 
+/* Its entry i, and sRGB decoding (cs_srgb_decode): from the table, or on a
+ * board short of flash from its compact form (CS_CFG_SRGB_COMPACT,
+ * cs_srgb_compact.c), the same floats. */
+float cs__srgb_compact_at(uint32_t i);
+float cs__srgb_decode_compact(float encoded);
+#if CS_CFG_SRGB_COMPACT
+static inline float cs__srgb_at(uint32_t i) { return cs__srgb_compact_at(i); }
+static inline float cs__srgb_decode(float encoded) { return cs__srgb_decode_compact(encoded); }
+#else
+static inline float cs__srgb_at(uint32_t i) { return cs__srgb_by_sqrt[i]; }
+static inline float cs__srgb_decode(float encoded) { return cs_srgb_decode(encoded); }
+#endif
+
 /* sRGB encoding of linear light in 0..1 (clamped), as 0..1. */
 static inline float cs__srgb_encode(float linear)
 {
@@ -405,7 +438,7 @@ static inline float cs__srgb_encode(float linear)
     int32_t i = (int32_t)pos;
     if (i >= 1024)
         return 1.0f;
-    float a = cs__srgb_by_sqrt[i], b = cs__srgb_by_sqrt[i + 1];
+    float a = cs__srgb_at((uint32_t)i), b = cs__srgb_at((uint32_t)i + 1u);
     return a + (b - a) * (pos - (float)i);
 }
 /* The 8-bit code of the encoding, round(255 * cs__srgb_encode(v)), from

@@ -20,26 +20,29 @@ static CS__SPECIALISE void finish_line_as(cs_renderer *r, bool grey)
     uint32_t width = (uint32_t)r->vw;
     float L0 = r->behind[0], L1 = r->behind[1], L2 = r->behind[2];
     bool srgb = r->opts.blend == CS_BLEND_SRGB;
-    uint32_t prev = UINT32_MAX;
+    /* The arrays in locals: on a board the workspace is one static object,
+     * and GCC otherwise rebuilds each array's address from it per run. */
+    float *stack_E = ws->stack_E;
+    uint16_t *run_end = ws->run_end;
+    const float *P = NULL; /* the previous run's pixel */
+    uint32_t prev = 0;
     for (uint32_t s = 0; s < width;) {
-        float *E = &ws->stack_E[3 * s], T[3];
+        float *E = &stack_E[3 * s], T[3];
         cs__run_T(ws, grey, s, T);
         E[0] = cs__clampf(E[0] + T[0] * L0, 0.0f, 1.0f);
         E[1] = cs__clampf(E[1] + T[1] * L1, 0.0f, 1.0f);
         E[2] = cs__clampf(E[2] + T[2] * L2, 0.0f, 1.0f);
         /* sRGB blending composited encoded values; hand back linear light. */
-        if (srgb)
+        if (CS__UNLIKELY(srgb))
             for (int ch = 0; ch < 3; ch++)
-                E[ch] = cs_srgb_decode(E[ch]);
-        uint32_t e = ws->run_end[s];
-        if (prev != UINT32_MAX) {
-            const float *P = &ws->stack_E[3 * prev];
-            if (P[0] == E[0] && P[1] == E[1] && P[2] == E[2]) {
-                ws->run_end[prev] = (uint16_t)e; /* same pixels: one run */
-                s = e;
-                continue;
-            }
+                E[ch] = cs__srgb_decode(E[ch]);
+        uint32_t e = run_end[s];
+        if (P && P[0] == E[0] && P[1] == E[1] && P[2] == E[2]) {
+            run_end[prev] = (uint16_t)e; /* same pixels: one run */
+            s = e;
+            continue;
         }
+        P = E;
         prev = s;
         s = e;
     }

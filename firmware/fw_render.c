@@ -16,12 +16,18 @@
  * whole frame gives them. On CS_ERR_CAP_SEGMENTS or CS_ERR_CAP_PIECES the
  * frame is cut into one band more and the band prepared again, down to one
  * row per band (FreeType's rasterizer halves a band whose cells overflow;
- * equal bands of height/k rows waste fewer rows than halving). A frame
- * starts from one band fewer than the one before needed, so the bands grow
- * back after a busy scene at the cost of at most one refused trial per
- * frame. The arena can so be sized for a busy band rather than for the
- * whole signage demo; a band prepares only the contours that reach its
- * rows (cs_frame.c), so bands cost little more than one preparation.
+ * equal bands of height/k rows waste fewer rows than halving). A refused
+ * trial costs what the preparation did before the arena ran out (about
+ * 0.2 M instructions for the board demo), and every band prepares the
+ * contours that reach its rows again, so a frame starts from the fewest
+ * bands likely to fit (first_bands): a new scene from its knot spans over
+ * the arena's segments (a lower bound: spans off screen aside, every span
+ * is a segment of some band), a scene shown before from the last frame's
+ * count, one fewer only when the last frame's busiest band, spread over
+ * one band fewer, would still fit. The arena can so be sized for a busy
+ * band rather than for the whole signage demo; a band prepares only the
+ * contours that reach its rows (cs_frame.c), so bands cost little more
+ * than one preparation.
  *
  * The fw_mark_* functions do nothing; a QEMU instruction-count plugin
  * (tools/qemu-insn) watches their addresses to split the count into frame
@@ -84,9 +90,11 @@ static uint32_t crc_line_floats(uint32_t crc, const cs_renderer *r, int width)
     return crc;
 }
 
-/* The bands the last frame was cut into (0: none yet), and the bands and
- * the busiest band's segments and pieces of the frame being rendered. */
+/* The bands the last frame was cut into (0: none yet, or a new scene) and
+ * its busiest band's segments and pieces; the bands and the busiest band
+ * of the frame being rendered. */
 static int band_count;
+static unsigned band_segments, band_pieces;
 static unsigned frame_bands, most_segments, most_pieces;
 
 /* The window of the frame to render: the damage, or the whole frame. Not
@@ -110,12 +118,32 @@ void fw_render_damage(bool on)
 void fw_render_forget(void)
 {
     cs_damage_reset(&damage);
+    band_count = 0; /* the last scene's bands say nothing about this one */
 }
 
 /* Rows per band when a frame of `height` rows is cut into `bands`. */
 static int band_rows(int height, int bands)
 {
     return (height + bands - 1) / bands;
+}
+
+/* The bands a frame of `height` rows of `scene` starts from (see the top
+ * of the file). */
+static int first_bands(const cs_scene *scene, int height)
+{
+    int bands = band_count;
+    if (bands == 0) {
+        uint32_t spans = 0; /* a knot span of non-zero length is a segment */
+        for (uint32_t i = 0; i < scene->point_count; i++)
+            spans += scene->intervals[i] != 0.0f;
+        bands = (int)((spans + CS_CFG_MAX_SEGMENTS - 1u) / CS_CFG_MAX_SEGMENTS);
+    } else if (bands > 1) {
+        unsigned fewer = (unsigned)bands - 1u;
+        if (band_segments * (fewer + 1u) <= fewer * CS_CFG_MAX_SEGMENTS &&
+            band_pieces * (fewer + 1u) <= fewer * CS_CFG_MAX_PIECES)
+            bands--;
+    }
+    return bands < 1 ? 1 : bands > height ? height : bands;
 }
 
 /*
@@ -186,7 +214,11 @@ static cs_status render_bands(const cs_scene *scene, const cs_render_opts *opts,
         if (st != CS_OK)
             *err = cs_frame_error(&renderer);
     }
-    band_count = bands;
+    if (st == CS_OK) {
+        band_count = bands;
+        band_segments = most_segments;
+        band_pieces = most_pieces;
+    }
     return st;
 }
 
@@ -227,16 +259,16 @@ int fw_render(const cs_scene *scene, const cs_render_opts *opts, const char *lab
 {
     cs_error err;
     uint64_t t0 = board_time_us();
-    /* One band fewer than the last frame needed: the bands grow back after a
-     * busy scene, at the cost of at most one refused trial per frame. */
-    int bands = band_count > 1 ? band_count - 1 : 1;
+    int bands = 1;
     frame_bands = most_segments = most_pieces = 0;
     fw_mark_frame_begin();
     cs_rect win;
     cs_status st = frame_window(scene, opts, &win);
     bool empty = win.x0 >= win.x1 || win.y0 >= win.y1;
-    if (st == CS_OK && !empty)
+    if (st == CS_OK && !empty) {
+        bands = first_bands(scene, win.y1 - win.y0);
         st = begin_band(scene, opts, &win, win.y0, &bands, &err);
+    }
     fw_mark_frame_ready();
     if (st != CS_OK) {
         cs_damage_reset(&damage); /* the panel may not show the last frame's picture */

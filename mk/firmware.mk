@@ -43,9 +43,13 @@ FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c f
 # per-line path for speed ($(OPT)). The optimisation level changes no
 # result: -ffp-contract=off and no fast-math keep every float operation as
 # written, so the frames' CRCs are the same either way (qemu-test checks).
-# Frame preparation (cs_frame.c, cs_nurbs.c, cs_paint.c's compile) runs
-# once per band, the messages once per error: -Os there costs 3 % of a
-# frame's instructions and saves 2.4 KB. The line code (FW_LINE_SRC: spans
+# Frame preparation (cs_frame.c, cs_paint.c's compile) runs once per band,
+# the messages once per error: -Os there costs 3 % of a frame's
+# instructions and saves 2.4 KB. The exception is cs_nurbs.c, the knot
+# spans to polynomial segments that every band redoes for each contour
+# meeting its rows: with the line code's options it gives 176 k fewer
+# instructions per board demo frame for 316 B (cs_frame.c or cs_paint.c
+# there cost 1.0 and 0.65 KB for nothing). The line code (FW_LINE_SRC: spans
 # and compositing) keeps -O2 but inlines only small functions (FW_LINE_OPT):
 # 4 KB less for several per cent more instructions per frame
 # (firmware/README.md), where all of it at -Os would cost 17 % more. The
@@ -62,18 +66,20 @@ FW_COMMON_SRC := firmware/main_mcu.c firmware/fw_render.c firmware/fw_stream.c f
 FW_OPT = $(OPT)
 FW_COLD_OPT := -Os
 FW_LINE_OPT = $(OPT) -finline-limit=30
-# Two line files inline more (FW_HOT_OPT): the root solver's Horner steps
+# Three line files inline more (FW_HOT_OPT): the root solver's Horner steps
 # (cs_poly.c) and the RGB565 run conversion (cs_pixfmt.c) gave 285 k fewer
 # instructions per board demo frame for 396 B, paid for by the CRC-32's
-# nibble table on the boards whose panel reads back (CS_CFG_CRC32_TABLE).
-# The same for cs_cross.c would give 216 k for 1.1 KB, cs_composite.c
-# 159 k for 0.8 KB: more than the flash left (firmware/README.md).
+# nibble table on the boards whose panel reads back (CS_CFG_CRC32_TABLE);
+# the compositing (cs_composite.c) 65 k for 772 B, paid for by the compact
+# sRGB table on those boards (CS_CFG_SRGB_COMPACT). cs_cross.c at 80 now
+# gives nothing (cs__horner and cs__horner_d are forced inline, cs_internal.h
+# CS__LINE_INLINE) for 360 B (firmware/README.md).
 FW_HOT_OPT = $(OPT) -finline-limit=80
-FW_HOT_SRC := core/cs_poly.c core/cs_pixfmt.c
+FW_HOT_SRC := core/cs_poly.c core/cs_pixfmt.c core/cs_composite.c
 FW_LINE_SRC := core/cs_cross.c core/cs_coverage.c core/cs_composite.c core/cs_line.c \
-               core/cs_crc32.c
+               core/cs_crc32.c core/cs_nurbs.c
 FW_COLD_SRC := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_edit.c \
-               core/cs_anim.c core/cs_frame.c core/cs_nurbs.c core/cs_paint.c core/cs_status.c \
+               core/cs_anim.c core/cs_frame.c core/cs_paint.c core/cs_status.c \
                core/cs_damage.c firmware/fw_render.c \
                firmware/main_mcu.c firmware/fw_stream.c firmware/fw_print.c firmware/fw_args.c \
                firmware/fw_mem.c firmware/fw_clock.c firmware/scenes/fw_scenes.c \

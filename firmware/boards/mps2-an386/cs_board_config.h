@@ -9,4 +9,8 @@
  * frame renders, so the CRC-32 goes a nibble a step and the kilobyte of its
  * table pays for inlining in the line code (mk/firmware.mk FW_HOT_SRC). */
 #define CS_CFG_CRC32_TABLE 0
+/* Flash for the line code (mk/firmware.mk): the sRGB curve, which only
+ * scenes blended in sRGB read here, from its 1.7 KB compact form instead of
+ * the 4 KB table; the same floats (tests/test_srgb_compact.c). */
+#define CS_CFG_SRGB_COMPACT 1
 #endif

@@ -1,0 +1,65 @@
+/*
+ * cs_srgb_compact.c - the sRGB encoding table's entries from its compact
+ * form (CS_CFG_SRGB_COMPACT, layout in cs_srgb_compact.h), and the
+ * decoding of sRGB blending over it.
+ *
+ * A board that blends in sRGB (imported SVG and Lottie scenes ask for it)
+ * needs the encoding curve; one that keeps its flash for the line code
+ * rebuilds each entry it reads from an anchor cubic and a one-byte
+ * correction: the same floats, so the same frames, for about 25
+ * instructions an entry, paid only under sRGB blending (RGB565 panels
+ * convert through their own threshold tables). The decoding is
+ * cs_srgb_decode's over these entries: the cell found by a search over the
+ * anchors, which are stored whole, and three rebuilt entries; the table is
+ * strictly increasing, so the cell, and with it every bit of the result,
+ * is the one cs_srgb_decode finds.
+ */
+#include "cs_srgb_compact.h"
+
+float cs__srgb_compact_at(uint32_t i)
+{
+    if (i < CS__SRGB_HEAD)
+        return cs__srgb_head[i];
+    uint32_t m = i - CS__SRGB_HEAD;
+    union {
+        float f;
+        int32_t b;
+    } v = {cs__srgb_cubic(cs__srgb_anchor, m)};
+    v.b += cs__srgb_fix[m];
+    return v.f;
+}
+
+/* Entry CS__SRGB_STEP j of the table, stored whole (j <= 1024 / CS__SRGB_STEP). */
+static float coarse(uint32_t j)
+{
+    uint32_t i = j * CS__SRGB_STEP;
+    return i < CS__SRGB_HEAD ? cs__srgb_head[i] : cs__srgb_anchor[(i - CS__SRGB_HEAD) / CS__SRGB_STEP];
+}
+
+float cs__srgb_decode_compact(float encoded)
+{
+    if (!(encoded > 0.0f))
+        return 0.0f;
+    if (encoded >= 1.0f)
+        return 1.0f;
+    uint32_t lo = 0, hi = 1024u / CS__SRGB_STEP; /* coarse(lo) <= encoded < coarse(hi) */
+    while (hi - lo > 1u) {
+        uint32_t mid = (lo + hi) / 2u;
+        if (coarse(mid) <= encoded)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    lo *= CS__SRGB_STEP;
+    hi = lo + CS__SRGB_STEP; /* entry lo <= encoded < entry hi */
+    while (hi - lo > 1u) {
+        uint32_t mid = (lo + hi) / 2u;
+        if (cs__srgb_compact_at(mid) <= encoded)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    float a = cs__srgb_compact_at(lo), b = cs__srgb_compact_at(hi);
+    float s = ((float)lo + (encoded - a) / (b - a)) * (1.0f / 1024.0f);
+    return s * s;
+}
