@@ -5,6 +5,7 @@
 # (or CELSCAN_CORE, or celsim --core) chooses.
 #
 #   make test-core-variant   the two builds render every scene alike (make test)
+#   make test-runs-v3        tests/test_runs on the x86-64-v3 build's objects (make test)
 #
 # Each build is merged into one relocatable object and its symbols renamed with
 # objcopy, so the two sit side by side: in the baseline build only the forwarded
@@ -39,6 +40,26 @@ $(HOST)/core-v3.o: $(patsubst core/%.c,$(V3)/core/%.o,$(CORE_SRC))
 	nm -g --defined-only $@.tmp | awk '{ print $$3, "v3_" $$3 }' >$@.syms && \
 	objcopy --redefine-syms=$@.syms $@.tmp $@ && rm -f $@.tmp $@.syms
 CORE_HOST_OBJ += $(HOST)/core-v3.o
+
+# tests/test_runs links libcelscan.a, the baseline build; the v3 build writes
+# 8-bit runs its own way (SSSE3 shuffles, ahead of a run: cs_pixfmt.c), so the
+# test also runs on the v3 objects themselves (not renamed), where the CPU has
+# them (celsim --core x86-64-v3 is refused otherwise).
+V3_TEST_RUNS := $(HOST)/tests/test_runs_v3
+$(V3_TEST_RUNS): $(HOST)/tests/test_runs.o $(HOST_TEST_REF_OBJ) \
+        $(patsubst core/%.c,$(V3)/core/%.o,$(CORE_SRC))
+	$(Q)$(CC) $(TEST_CFLAGS) $^ -lm -o $@
+
+.PHONY: test-runs-v3
+test-runs-v3: $(V3_TEST_RUNS) $(HOST)/celsim
+	$(Q)if $(HOST)/celsim render scenes/demo.json --crc --core x86-64-v3 >/dev/null 2>&1; then \
+		$(V3_TEST_RUNS); \
+	else \
+		echo "test-runs-v3: this CPU has no x86-64-v3, skipped"; \
+		echo "test-runs-v3: 0 passed, 0 failed"; \
+	fi
+
+TEST_TARGETS += test-runs-v3
 endif
 
 # The forwarders' object changes with the choice of builds.
