@@ -294,14 +294,25 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
  * run code inlined at each of its four places: 2 % fewer instructions in a
  * Many-blobs frame than calling one copy of it per case (the call, and the
  * registers it saves, were ~25 instructions of each of ~100 k folded runs),
- * for ~14 KB more Cortex-M4 code, which CS_CFG_GREY 0 leaves out.
+ * for ~14 KB more Cortex-M4 code, which CS_CFG_GREY 0 leaves out. Where
+ * CS_CFG_GREY is on (the hosts) a region folded straight into the stack
+ * (`direct`) has copies of its own as well: the test per folded run was
+ * mispredicted ~28 k times a Many-blobs exact frame (cachegrind
+ * --branch-sim), as lone and summed regions alternate along a line
+ * (another ~10 KB of Cortex-M4 code, again none with CS_CFG_GREY 0).
  */
 static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi, bool direct)
 {
-    if (CS_CFG_GREY && r->grey)
-        fold_region_as(r, reg, y, lo, hi, direct, true);
-    else
+    if (CS_CFG_GREY && r->grey) {
+        if (direct)
+            fold_region_as(r, reg, y, lo, hi, true, true);
+        else
+            fold_region_as(r, reg, y, lo, hi, false, true);
+    } else if (CS_CFG_GREY && direct) {
+        fold_region_as(r, reg, y, lo, hi, true, false);
+    } else {
         fold_region_as(r, reg, y, lo, hi, direct, false);
+    }
 }
 
 /*

@@ -40,9 +40,14 @@
 
 /* Highest set bit of v != 0, by de Bruijn multiplication: an integer table
  * lookup that needs no compiler builtin (on RV32 without Zbb a builtin
- * would call into libgcc, which the freestanding core may not). */
+ * would call into libgcc, which the freestanding core may not). x86-64
+ * has the instruction in every build (bsr, or lzcnt in x86-64-v3), so the
+ * host takes the builtin: ~1 M fewer instructions in a Many-blobs frame. */
 static inline uint32_t cs__high_bit(uint32_t v)
 {
+#if defined(__GNUC__) && defined(__x86_64__)
+    return 31u - (uint32_t)__builtin_clz(v);
+#else
     static const uint8_t table[32] = {0,  9,  1,  10, 13, 21, 2,  29, 11, 14, 16,
                                       18, 22, 25, 3,  30, 8,  12, 20, 28, 15, 17,
                                       24, 7,  19, 27, 23, 6,  26, 5,  4,  31};
@@ -52,15 +57,20 @@ static inline uint32_t cs__high_bit(uint32_t v)
     v |= v >> 8;
     v |= v >> 16;
     return table[(v * 0x07C4ACDDu) >> 27];
+#endif
 }
 
-/* Lowest set bit of v != 0. */
+/* Lowest set bit of v != 0 (the builtin as for cs__high_bit). */
 static inline uint32_t cs__low_bit(uint32_t v)
 {
+#if defined(__GNUC__) && defined(__x86_64__)
+    return (uint32_t)__builtin_ctz(v);
+#else
     static const uint8_t table[32] = {0,  1,  28, 2,  29, 14, 24, 3,  30, 22, 20,
                                       15, 25, 17, 4,  8,  31, 27, 13, 23, 21, 19,
                                       16, 7,  26, 12, 18, 6,  11, 5,  10, 9};
     return table[((v & (0u - v)) * 0x077CB531u) >> 27];
+#endif
 }
 
 /* The start of the run holding pixel x. Pixel 0 always starts a run. */

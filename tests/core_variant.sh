@@ -2,7 +2,9 @@
 # core_variant.sh - the two builds of the core in the host programs
 # (tools/core_variant.h, mk/variant.mk) render the same bytes: every scene of
 # scenes/ and scenes/bench/ at its canvas size in four AA modes, as the panel's
-# CRC and as a 16-bit linear PNG, with --core baseline and --core x86-64-v3;
+# CRC, a 16-bit linear PNG and an 8-bit sRGB PNG (the x86-64-v3 build writes
+# 8-bit runs with SSSE3 shuffles of its own: cs_pixfmt.c), with --core baseline
+# and --core x86-64-v3;
 # and the choice is refused or overridden as documented. The baseline build is
 # the one the other tests hold to their references. On a CPU without
 # x86-64-v3 (or a host that is not x86-64) the comparisons are skipped, and
@@ -16,10 +18,12 @@ celsim=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# The frame of scene $1 in mode $2 by build $3: CRC line, then the PNG's bytes.
+# The frame of scene $1 in mode $2 by build $3: CRC line, then the PNGs' bytes.
 render() {
     "$celsim" render "$1" --aa "$2" --core "$3" --threads 1 --crc --encoding linear \
-        -o "$tmp/$3.png" >"$tmp/$3.crc" 2>"$tmp/$3.err"
+        -o "$tmp/$3.png" >"$tmp/$3.crc" 2>"$tmp/$3.err" &&
+        "$celsim" render "$1" --aa "$2" --core "$3" --threads 1 -o "$tmp/$3-8.png" \
+            2>>"$tmp/$3.err"
 }
 
 if "$celsim" render scenes/demo.json --crc --core x86-64-v3 >/dev/null 2>"$tmp/v3.err"; then
@@ -28,7 +32,8 @@ if "$celsim" render scenes/demo.json --crc --core x86-64-v3 >/dev/null 2>"$tmp/v
             if ! render "$s" "$aa" baseline || ! render "$s" "$aa" x86-64-v3; then
                 bad "$s --aa $aa did not render: $(cat "$tmp"/*.err)"
             elif cmp -s "$tmp/baseline.crc" "$tmp/x86-64-v3.crc" &&
-                cmp -s "$tmp/baseline.png" "$tmp/x86-64-v3.png"; then
+                cmp -s "$tmp/baseline.png" "$tmp/x86-64-v3.png" &&
+                cmp -s "$tmp/baseline-8.png" "$tmp/x86-64-v3-8.png"; then
                 ok
             else
                 bad "$s --aa $aa: x86-64-v3 $(cat "$tmp/x86-64-v3.crc")," \

@@ -248,7 +248,7 @@ static void check_outputs(int W, int H, cs_aa_mode aa, int nsub, const char *mod
     ok = ok && render_as(sc, W, H, aa, nsub, true, false, b) == CS_OK;
     CHECK(!ok || memcmp(a, b, 3 * n * sizeof *a) == 0,
           "%s %dx%d: the grey path and three channels differ", mode, W, H);
-    int bad_runs = 0, bad_px = 0, bad_walk = 0;
+    int bad_runs = 0, bad_px = 0, bad_walk = 0, bad_guard = 0;
     cs_renderer r;
     cs_render_opts o = {.width = W, .height = H, .aa = aa, .subscanlines = nsub};
     cs_error err;
@@ -274,10 +274,14 @@ static void check_outputs(int W, int H, cs_aa_mode aa, int nsub, const char *mod
         for (size_t f = 0; f < sizeof all_formats / sizeof all_formats[0]; f++) {
             size_t bytes = (size_t)W * cs_pixfmt_bytes_per_pixel(all_formats[f]);
             cs_pixfmt_convert(all_formats[f], row, W, want);
-            memset(px, 0xA5, bytes);
+            /* The bytes past the line are guards (the 8-bit runs may write
+             * ahead of a run, within the line only: cs_pixfmt.c). */
+            memset(px, 0xA5, 6 * (size_t)W);
             cs_line_pixels(&r, all_formats[f], px);
             if (memcmp(want, px, bytes) != 0)
                 bad_px++;
+            for (size_t k = bytes; k < 6 * (size_t)W; k++)
+                bad_guard += px[k] != 0xA5;
         }
     }
     CHECK(ok && bad_walk == 0, "%s %dx%d: the runs do not tile the line (%d lines)", mode, W, H,
@@ -286,6 +290,8 @@ static void check_outputs(int W, int H, cs_aa_mode aa, int nsub, const char *mod
           H, bad_runs);
     CHECK(bad_px == 0, "%s %dx%d: cs_line_pixels differs from cs_pixfmt_convert on %d lines", mode,
           W, H, bad_px);
+    CHECK(bad_guard == 0, "%s %dx%d: cs_line_pixels wrote %d bytes past the line", mode, W, H,
+          bad_guard);
     /* cs_render_line_px is the two steps in one. */
     if (ok && cs_frame_begin(&r, tc_workspace(), sc, &o, &err) == CS_OK) {
         int y = H / 2;
