@@ -11,6 +11,15 @@
 
 #if CS_CFG_EXACT /* the whole file: see cs_config.h */
 
+/* A rare path kept out of line, so its callers stay lean (see its uses).
+ * Not `cold`: that compiles it for size, and struct copies then call
+ * memcpy (RISC-V), which the freestanding core must not. */
+#if defined(__GNUC__)
+#define EXACT_COLD __attribute__((noinline))
+#else
+#define EXACT_COLD
+#endif
+
 static const float gl3_t[3] = {-0.77459666924148338f, 0.0f, 0.77459666924148338f};
 static const float gl3_w[3] = {0.55555555555555556f, 0.88888888888888889f, 0.55555555555555556f};
 static const float gl5_t[5] = {-0.90617984593866399f, -0.53846931010568309f, 0.0f,
@@ -459,7 +468,7 @@ static inline bool add_poly_part(cs__exact_ctx *cx, const cs_segment *s, float s
  * screen costs no more than one across it: its long parts off screen go
  * to add_monotone, which passes over whole columns there.
  */
-static void add_poly_parts(cs__exact_ctx *cx, const cs_segment *s, float sign,
+static EXACT_COLD void add_poly_parts(cs__exact_ctx *cx, const cs_segment *s, float sign,
                            const cs_exact_end *top, float y0, const cs_exact_end *bot, float y1)
 {
     float span = cs__absf(bot->x - top->x);
@@ -504,37 +513,16 @@ static void add_x_monotone(cs__exact_ctx *cx, const cs_segment *s, float sign,
         add_monotone(cx, s, sign, top, y0, bot, y1);
 }
 
-/* Effective edge e over the band [ya, yb]: sign +1 where the region begins.
- * Called by the loop over a row's clusters for a lone arc and by the band
- * sweep (cs_exact.c). */
-void cs__exact_add_edge(cs__exact_ctx *cx, const cs_exact_piece *e, float sign, float ya, float yb)
+/*
+ * An effective edge that is neither straight nor a monotone polynomial
+ * arc: one column (no solve), a monotone rational arc, or one cut at its
+ * x-extrema into x-monotone sub-arcs. Kept out of cs__exact_add_edge,
+ * which every arc passes through: written into it, its registers and
+ * stack made the common path's entry and exit dearer (EXACT_COLD).
+ */
+static EXACT_COLD void add_curved_edge(cs__exact_ctx *cx, const cs_segment *s,
+                                       const cs_exact_piece *e, float sign, float ya, float yb)
 {
-    cs_workspace *ws = cx->ws;
-    const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
-    if (e->hidden) { /* only what it adds right of its opaque pixels matters */
-        int32_t c = (int32_t)e->xmin - cx->x0;
-        cs__acc_cover(ws, c, sign * (yb - ya));
-        cs__exact_touch(cx, c, c + 1);
-        return;
-    }
-    if (e->xmax <= (float)cx->x0) { /* its cells' heights sum to the band's exactly */
-        cs__acc_cover(ws, 0, sign * (yb - ya));
-        cs__exact_touch(cx, 0, 1);
-        return;
-    }
-    if (e->xmin >= (float)(cx->x0 + cx->width)) {
-        cs__exact_touch(cx, cx->width, cx->width + 1);
-        return;
-    }
-    if (s->degree == 1) {
-        add_line(cx, sign, e->top.x, 0.0f, e->bot.x, yb - ya); /* heights in the band */
-        return;
-    }
-    bool poly = cs__exact_polynomial(s);
-    if (e->monotone && poly) {
-        add_poly_monotone(cx, s, sign, &e->top, ya, &e->bot, yb);
-        return;
-    }
     if (e->xmax - e->xmin < 1.0f) { /* the usual case: one column, no solve */
         int32_t c = cs__floori(e->xmin);
         if (e->xmax <= (float)c + 1.0f) {
@@ -563,6 +551,39 @@ void cs__exact_add_edge(cs__exact_ctx *cx, const cs_exact_piece *e, float sign, 
         y0 = y;
     }
     add_x_monotone(cx, s, sign, &a, y0, &e->bot, yb);
+}
+
+/* Effective edge e over the band [ya, yb]: sign +1 where the region begins.
+ * Called by the loop over a row's clusters for a lone arc and by the band
+ * sweep (cs_exact.c). */
+void cs__exact_add_edge(cs__exact_ctx *cx, const cs_exact_piece *e, float sign, float ya, float yb)
+{
+    cs_workspace *ws = cx->ws;
+    if (e->hidden) { /* only what it adds right of its opaque pixels matters */
+        int32_t c = (int32_t)e->xmin - cx->x0;
+        cs__acc_cover(ws, c, sign * (yb - ya));
+        cs__exact_touch(cx, c, c + 1);
+        return;
+    }
+    if (e->xmax <= (float)cx->x0) { /* its cells' heights sum to the band's exactly */
+        cs__acc_cover(ws, 0, sign * (yb - ya));
+        cs__exact_touch(cx, 0, 1);
+        return;
+    }
+    if (e->xmin >= (float)(cx->x0 + cx->width)) {
+        cs__exact_touch(cx, cx->width, cx->width + 1);
+        return;
+    }
+    const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
+    if (s->degree == 1) {
+        add_line(cx, sign, e->top.x, 0.0f, e->bot.x, yb - ya); /* heights in the band */
+        return;
+    }
+    if (e->monotone && cs__exact_polynomial(s)) { /* most arcs */
+        add_poly_monotone(cx, s, sign, &e->top, ya, &e->bot, yb);
+        return;
+    }
+    add_curved_edge(cx, s, e, sign, ya, yb);
 }
 
 
