@@ -353,7 +353,7 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
         float d = a[1] + t * (2.0f * a[2] + 3.0f * a3t);
         float rd = 1.0f / d, st = -h * rd, next = t + st;
         *rd_out = rd;
-        if ((cs__absf(dd) + 2.0f * cs__absf(a[3] * st)) * (st * st) <= 2.0f * CUT_TOL)
+        if ((cs__exact_mag(dd) + 2.0f * cs__exact_mag(a[3] * st)) * (st * st) <= 2.0f * CUT_TOL)
             return cs__clampf(next, lo, hi);
         float c = 0.5f * dd * st * rd;
         if (c > -0.5f && c < 0.5f)
@@ -450,7 +450,7 @@ static inline bool add_poly_part(cs__exact_ctx *cx, const cs_segment *s, float s
                                  const cs_exact_end *a,
                           float ya, const cs_exact_end *b, float yb)
 {
-    if (!(cs__absf(b->x - a->x) <= POLY_ARC_COLUMNS))
+    if (!(cs__exact_mag(b->x - a->x) <= POLY_ARC_COLUMNS))
         return false;
     float bx[4], by[4];
     int p = arc_polygon(s, a, ya, b, yb, bx, by);

@@ -103,7 +103,7 @@ inline void cs__exact_place_end(const cs_segment *s, bool poly, float yv, float 
                 float rd = 1.0f / d, st = -f * rd, next = u + st;
                 /* g being a cubic, the step leaves exactly
                  * (g''/2 + g3 s) s^2 of it */
-                if ((cs__absf(dd) + 2.0f * cs__absf(g[3] * st)) * (st * st) <= tol) {
+                if ((cs__exact_mag(dd) + 2.0f * cs__exact_mag(g[3] * st)) * (st * st) <= tol) {
                     /* g' at the accepted point: exact Taylor for a cubic */
                     d += st * (dd + 3.0f * g[3] * st);
                     u = cs__clampf(next, lo, hi);
@@ -191,7 +191,7 @@ static float poly_level(const float *Y, int p, float level, float lo, float hi, 
             else
                 hi = u;
             float rd = 1.0f / d, st = -f * rd, next = u + st;
-            if ((cs__absf(dd) + 2.0f * cs__absf(y3 * st)) * (st * st) <= tol) {
+            if ((cs__exact_mag(dd) + 2.0f * cs__exact_mag(y3 * st)) * (st * st) <= tol) {
                 /* g' there: exact Taylor for a cubic */
                 *d1 = d + st * (dd + y3x3 * st);
                 return cs__clampf(next, lo, hi);
