@@ -19,8 +19,10 @@
  *    chord of the piece), with x, x', y' and W'/W at both ends. An end is
  *    a pure function of the piece and the height, so the bottom end of a
  *    row is kept (the level memo) and is the top end of the next: one
- *    solve per row boundary, and the same bits whichever lines came
- *    before, or none. A straight piece is placed in closed form, a
+ *    solve per row boundary (a polynomial piece's next eight solved side
+ *    by side, lane by lane as each would be alone), and the same bits
+ *    whichever lines came before, or none. A straight piece is placed in
+ *    closed form, a
  *    polynomial one in plane coordinates; the iteration stops once the
  *    residual of its last step, known exactly for a cubic, is below
  *    2^-18 px in y (cs__exact_place_end). Those give the arc's inner Bezier control

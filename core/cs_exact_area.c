@@ -11,15 +11,6 @@
 
 #if CS_CFG_EXACT /* the whole file: see cs_config.h */
 
-/* A rare path kept out of line, so its callers stay lean (see its uses).
- * Not `cold`: that compiles it for size, and struct copies then call
- * memcpy (RISC-V), which the freestanding core must not. */
-#if defined(__GNUC__)
-#define EXACT_COLD __attribute__((noinline))
-#else
-#define EXACT_COLD
-#endif
-
 static const float gl3_t[3] = {-0.77459666924148338f, 0.0f, 0.77459666924148338f};
 static const float gl3_w[3] = {0.55555555555555556f, 0.88888888888888889f, 0.55555555555555556f};
 static const float gl5_t[5] = {-0.90617984593866399f, -0.53846931010568309f, 0.0f,
@@ -468,7 +459,7 @@ static inline bool add_poly_part(cs__exact_ctx *cx, const cs_segment *s, float s
  * screen costs no more than one across it: its long parts off screen go
  * to add_monotone, which passes over whole columns there.
  */
-static EXACT_COLD void add_poly_parts(cs__exact_ctx *cx, const cs_segment *s, float sign,
+static CS__EXACT_NOINLINE void add_poly_parts(cs__exact_ctx *cx, const cs_segment *s, float sign,
                            const cs_exact_end *top, float y0, const cs_exact_end *bot, float y1)
 {
     float span = cs__absf(bot->x - top->x);
@@ -518,9 +509,9 @@ static void add_x_monotone(cs__exact_ctx *cx, const cs_segment *s, float sign,
  * arc: one column (no solve), a monotone rational arc, or one cut at its
  * x-extrema into x-monotone sub-arcs. Kept out of cs__exact_add_edge,
  * which every arc passes through: written into it, its registers and
- * stack made the common path's entry and exit dearer (EXACT_COLD).
+ * stack made the common path's entry and exit dearer (CS__EXACT_NOINLINE).
  */
-static EXACT_COLD void add_curved_edge(cs__exact_ctx *cx, const cs_segment *s,
+static CS__EXACT_NOINLINE void add_curved_edge(cs__exact_ctx *cx, const cs_segment *s,
                                        const cs_exact_piece *e, float sign, float ya, float yb)
 {
     if (e->xmax - e->xmin < 1.0f) { /* the usual case: one column, no solve */

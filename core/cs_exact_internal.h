@@ -12,6 +12,17 @@
 
 #if CS_CFG_EXACT
 
+/*
+ * For a path kept out of a hot function, so that the hot one saves fewer
+ * registers on every call. Not `cold`: that compiles it for size, and
+ * struct copies then call memcpy (RISC-V), which the core must not.
+ */
+#if defined(__GNUC__)
+#define CS__EXACT_NOINLINE __attribute__((noinline))
+#else
+#define CS__EXACT_NOINLINE
+#endif
+
 /* Stands for "no bound": a hull that could not be formed. */
 #define HUGE_X 1.0e30f
 
