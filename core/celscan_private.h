@@ -159,17 +159,17 @@ typedef struct cs_exact_end {
 /*
  * A piece's ends at consecutive row boundaries y, y + 1, ..., y + n - 1,
  * kept for the rows that reach them (cs_exact_place.c); y is -1 before
- * any. Field by field, as the polynomial ones are solved side by side,
- * CS_EXACT_LEVELS at a time; w and W'/W are the same for all of them
- * (a rational piece keeps one level).
+ * any. A polynomial piece's are solved CS_EXACT_LEVELS at a time; a
+ * rational piece keeps one. end[i] holds u, x, x', y' of level y + i
+ * (the first four fields of a cs_exact_end); w and W'/W are the same for
+ * all of them.
  */
 #define CS_EXACT_LEVELS 8
 typedef struct cs_exact_level {
     float y;
     uint32_t n;
-    float u[CS_EXACT_LEVELS], x[CS_EXACT_LEVELS];
-    float dx[CS_EXACT_LEVELS], dy[CS_EXACT_LEVELS];
     float w, dwr;
+    float end[CS_EXACT_LEVELS][4];
 } cs_exact_level;
 
 /* Where one active piece is within the current band of a pixel row, for

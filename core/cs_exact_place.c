@@ -183,12 +183,14 @@ typedef int32_t lanes_i __attribute__((vector_size(4 * CS_EXACT_LEVELS)));
  * function taking vectors is an ABI question on baseline x86-64. */
 #define PICK(m, a, b) ((lanes_f)(((m) & (lanes_i)(a)) | (~(m) & (lanes_i)(b))))
 
-/* Whether any lane of a mask is set. */
+/* Whether any lane of a mask is set: its bits as 64-bit lanes, ORed. */
+typedef int64_t lanes_q __attribute__((vector_size(4 * CS_EXACT_LEVELS)));
 #define ANY_LANE(m, out)                                                                  \
     do {                                                                                  \
-        int32_t any_ = 0;                                                                 \
-        for (int l_ = 0; l_ < CS_EXACT_LEVELS; l_++)                                      \
-            any_ |= (m)[l_];                                                              \
+        lanes_q q_ = (lanes_q)(m);                                                        \
+        int64_t any_ = 0;                                                                 \
+        for (int l_ = 0; l_ < CS_EXACT_LEVELS / 2; l_++)                                  \
+            any_ |= q_[l_];                                                               \
         (out) = any_ != 0;                                                                \
     } while (0)
 
@@ -259,7 +261,9 @@ static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment 
         u = PICK(live, next, u);
     }
     fall |= live; /* out of steps */
-    for (uint32_t l = 0; l < n; l++) {
+    bool fell;
+    ANY_LANE(fall, fell);
+    for (uint32_t l = 0; fell && l < n; l++) {
         if (fall[l] == 0)
             continue;
         /* a step left the bracket: the bounded solve of cs_poly.c */
@@ -272,10 +276,10 @@ static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment 
     lanes_f dxv = ((3.0f * X[3] * res + 2.0f * X[2]) * res + X[1]) * inv;
     lanes_f dyv = d1 * inv;
     for (uint32_t l = 0; l < n; l++) {
-        m->u[l] = res[l];
-        m->x[l] = xv[l];
-        m->dx[l] = dxv[l];
-        m->dy[l] = dyv[l];
+        m->end[l][0] = res[l];
+        m->end[l][1] = xv[l];
+        m->end[l][2] = dxv[l];
+        m->end[l][3] = dyv[l];
     }
     m->w = w0;
     m->dwr = 0.0f;
@@ -324,46 +328,58 @@ static inline bool memo_has(const cs_exact_level *m, float yv, uint32_t *i)
     return true;
 }
 
-/*
- * The end of curved piece pc at height yv, a row boundary or one of its
- * own ends: from the level memo m, which is filled from yv on if it does
- * not hold it (the piece's later rows take the levels below).
- */
-static CS__HOT_INLINE void level_end(const cs_piece *pc, const cs_segment *s, float yv,
-                                    cs_exact_level *m, cs_exact_end *e)
+/* Level i of m, as an end. */
+static inline void memo_get(const cs_exact_level *m, uint32_t i, cs_exact_end *e)
 {
-    bool poly = cs__exact_polynomial(s);
-    if (yv == pc->y_top || yv == pc->y_bot) {
-        if (poly)
-            poly_own_end(pc, s, yv, e);
-        else
-            rational_end(pc, s, yv, e);
-        return;
-    }
-    uint32_t i;
-    if (!memo_has(m, yv, &i)) {
-        if (poly) {
-            fill_levels(pc, s, yv, m);
-        } else {
-            cs_exact_end r;
-            rational_end(pc, s, yv, &r);
-            m->u[0] = r.u;
-            m->x[0] = r.x;
-            m->dx[0] = r.dx;
-            m->dy[0] = r.dy;
-            m->w = r.w;
-            m->dwr = r.dwr;
-            m->y = yv;
-            m->n = 1;
-        }
-        i = 0;
-    }
-    e->u = m->u[i];
-    e->x = m->x[i];
-    e->dx = m->dx[i];
-    e->dy = m->dy[i];
+    e->u = m->end[i][0];
+    e->x = m->end[i][1];
+    e->dx = m->end[i][2];
+    e->dy = m->end[i][3];
     e->w = m->w;
     e->dwr = m->dwr;
+}
+
+/*
+ * The end of polynomial piece pc at height yv, a row boundary or one of
+ * its own ends: from the level memo m if it holds yv, else solved with
+ * the levels below it into m (the piece's later rows take those).
+ */
+static CS__HOT_INLINE void poly_level_end(const cs_piece *pc, const cs_segment *s, float yv,
+                                         cs_exact_level *m, cs_exact_end *e)
+{
+    uint32_t i;
+    if (yv == pc->y_top || yv == pc->y_bot) {
+        poly_own_end(pc, s, yv, e);
+        return;
+    }
+    if (!memo_has(m, yv, &i)) {
+        fill_levels(pc, s, yv, m);
+        i = 0;
+    }
+    memo_get(m, i, e);
+}
+
+/* The same for a rational piece, whose memo keeps one level: the bottom
+ * of the row before. */
+static CS__HOT_INLINE void rational_level_end(const cs_piece *pc, const cs_segment *s, float yv,
+                                             cs_exact_level *m, cs_exact_end *e)
+{
+    bool own = yv == pc->y_top || yv == pc->y_bot;
+    if (!own && m->y == yv) { /* never -1, the memo's "none": no row is above 0 */
+        memo_get(m, 0, e);
+        return;
+    }
+    rational_end(pc, s, yv, e);
+    if (own)
+        return;
+    m->end[0][0] = e->u;
+    m->end[0][1] = e->x;
+    m->end[0][2] = e->dx;
+    m->end[0][3] = e->dy;
+    m->w = e->w;
+    m->dwr = e->dwr;
+    m->y = yv;
+    m->n = 1;
 }
 
 /*
@@ -386,7 +402,7 @@ static void poly_bounds(int p, cs_exact_piece *e)
 /*
  * The arc of piece `piece` across the row: its ends and its x bounds. An
  * end inside the piece is a pure function of the piece and the height
- * (level_end), so the ends of a polynomial piece at its next
+ * (poly_level_end), so the ends of a polynomial piece at its next
  * CS_EXACT_LEVELS row boundaries are solved together and kept in the
  * level memo, where the rows below find their tops and bottoms: one solve
  * per row boundary, several side by side, and the same bits whichever
@@ -413,13 +429,17 @@ void cs__exact_place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index pi
         return;
     }
     cs_exact_level *memo = &ws->level_memo[piece];
-    level_end(pc, s, ya, memo, &e->top);
-    level_end(pc, s, yb, memo, &e->bot);
-    e->u_row = e->bot.u;
-    if (cs__exact_polynomial(s))
+    if (cs__exact_polynomial(s)) {
+        poly_level_end(pc, s, ya, memo, &e->top);
+        poly_level_end(pc, s, yb, memo, &e->bot);
+        e->u_row = e->bot.u;
         poly_bounds(s->degree, e);
-    else
-        cs__exact_hull(s, e, ya, yb, false);
+        return;
+    }
+    rational_level_end(pc, s, ya, memo, &e->top);
+    rational_level_end(pc, s, yb, memo, &e->bot);
+    e->u_row = e->bot.u;
+    cs__exact_hull(s, e, ya, yb, false);
 }
 
 #endif /* CS_CFG_EXACT */
