@@ -459,8 +459,9 @@ static inline bool add_poly_part(cs__exact_ctx *cx, const cs_segment *s, float s
  * screen costs no more than one across it: its long parts off screen go
  * to add_monotone, which passes over whole columns there.
  */
-static CS__EXACT_NOINLINE void add_poly_parts(cs__exact_ctx *cx, const cs_segment *s, float sign,
-                           const cs_exact_end *top, float y0, const cs_exact_end *bot, float y1)
+static CS__EXACT_NOINLINE void add_poly_parts(cs__exact_ctx *cx, const cs_segment *s,
+                                              float sign, const cs_exact_end *top, float y0,
+                                              const cs_exact_end *bot, float y1)
 {
     float span = cs__absf(bot->x - top->x);
     int32_t n = 1;
@@ -512,7 +513,8 @@ static void add_x_monotone(cs__exact_ctx *cx, const cs_segment *s, float sign,
  * stack made the common path's entry and exit dearer (CS__EXACT_NOINLINE).
  */
 static CS__EXACT_NOINLINE void add_curved_edge(cs__exact_ctx *cx, const cs_segment *s,
-                                       const cs_exact_piece *e, float sign, float ya, float yb)
+                                               const cs_exact_piece *e, float sign, float ya,
+                                               float yb)
 {
     if (e->xmax - e->xmin < 1.0f) { /* the usual case: one column, no solve */
         int32_t c = cs__floori(e->xmin);

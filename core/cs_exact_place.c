@@ -170,11 +170,11 @@ static void line_end(const cs_segment *s, float yv, float exact, float ua, float
 
 /*
  * The levels of a polynomial piece are solved CS_EXACT_LEVELS at a time,
- * one per lane of a vector (the GCC and clang vector extension: AVX on x86-64-v3, two
- * SSE halves on baseline x86-64, plain floats elsewhere). A lane does the
- * float operations one solve alone would, in the same order, and stops
- * where it would, so every end has the bits of its scalar solve; only
- * the branches became masks.
+ * one per lane of a vector (the GCC and clang vector extension: AVX on
+ * x86-64-v3, two SSE halves on baseline x86-64, plain floats elsewhere).
+ * A lane does the float operations one solve alone would, in the same
+ * order, and stops where it would, so every end has the bits of its
+ * scalar solve; only the branches became masks.
  */
 typedef float lanes_f __attribute__((vector_size(4 * CS_EXACT_LEVELS)));
 typedef int32_t lanes_i __attribute__((vector_size(4 * CS_EXACT_LEVELS)));
@@ -197,16 +197,16 @@ typedef int64_t lanes_q __attribute__((vector_size(4 * CS_EXACT_LEVELS)));
 /*
  * The ends of polynomial piece pc (constant weight w0, degree 2 or 3) at
  * the levels y0, y0 + 1, ... above its bottom, at most CS_EXACT_LEVELS of
- * them, into m; out of line, so that its vector registers are not saved
- * by the callers that find their level in the memo (most). Each is u where Y = (yv - oy) w0 by
- * Newton's method from the piece's chord over the whole piece, accepted
- * as cs__exact_place_end accepts, with Y' there: a function of the piece
- * and the level alone, never of the row asking, so the bottom of one row
- * is the top of the next, and bands of lines on other threads or in
- * another order get the same bits.
+ * them, into m. Each is u where Y = (yv - oy) w0 by Newton's method from
+ * the piece's chord over the whole piece, accepted as cs__exact_place_end
+ * accepts, with Y' there: a function of the piece and the level alone,
+ * never of the row asking, so the bottom of one row is the top of the
+ * next, and bands of lines on other threads or in another order get the
+ * same bits. Out of line, so that its vector registers are not saved by
+ * the callers that find their level in the memo (most).
  */
 static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment *s, float y0,
-                                       cs_exact_level *m)
+                                           cs_exact_level *m)
 {
     const float *X = s->x, *Y = s->y;
     float w0 = s->w[0], inv = 1.0f / w0;
