@@ -365,10 +365,10 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
  * (y1 - y0): one solve for t per cut and no other evaluation. An arc in
  * one column takes the moment from its control points directly.
  */
-static void add_poly_arc(cs__exact_ctx *cx, float sign, int p, const float *bx, const float *by)
+static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p, const float *bx,
+                                            const float *by, bool inc)
 {
     float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = (float)cx->wall;
-    bool inc = x1 > x0;
     float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
                   : cs__minf((float)(-cs__floori(-x0) - 1), width);
     if (inc ? !(k < x1 && k <= width) : !(k > x1 && k >= 0.0f)) { /* one column */
@@ -419,6 +419,16 @@ static void add_poly_arc(cs__exact_ctx *cx, float sign, int p, const float *bx, 
     int32_t c = cs__floori(cs__minf(xa, x1));
     float M1 = m2 + (m3 + (m4 + (m5 + m6)));
     put_cell(cx, sign, c, y1 - ya, (M1 - Ma) + (x0 - (float)c) * (y1 - ya));
+}
+
+/* add_poly_arc_dir once for each direction of x, so that neither copy
+ * tests the direction in its loop. */
+static void add_poly_arc(cs__exact_ctx *cx, float sign, int p, const float *bx, const float *by)
+{
+    if (bx[p] > bx[0])
+        add_poly_arc_dir(cx, sign, p, bx, by, true);
+    else
+        add_poly_arc_dir(cx, sign, p, bx, by, false);
 }
 
 /*
