@@ -169,56 +169,54 @@ static void line_end(const cs_segment *s, float yv, float exact, float ua, float
 
 
 /*
- * The levels of a polynomial piece are solved CS_EXACT_LEVELS at a time,
- * one per lane of a vector (the GCC and clang vector extension: AVX on
- * x86-64-v3, two SSE halves on baseline x86-64, plain floats elsewhere).
- * A lane does the float operations one solve alone would, in the same
- * order, and stops where it would, so every end has the bits of its
- * scalar solve; only the branches became masks.
+ * The levels of a polynomial piece are solved side by side, one per lane
+ * of a vector (the GCC and clang vector extension): eight lanes where the
+ * build has AVX (x86-64-v3), else four (SSE on baseline x86-64, where the
+ * compiler splits eight-lane compares into scalar ones; plain floats on
+ * the boards' compilers, which build without exact mode). A lane does the
+ * float operations one solve alone would, in the same order, and stops
+ * where it would, so every end has the bits of its scalar solve whatever
+ * the width; only the branches became masks.
  */
-typedef float lanes_f __attribute__((vector_size(4 * CS_EXACT_LEVELS)));
-typedef int32_t lanes_i __attribute__((vector_size(4 * CS_EXACT_LEVELS)));
+#if defined(__AVX__)
+#define LANES 8
+#else
+#define LANES 4
+#endif
+typedef float lanes_f __attribute__((vector_size(4 * LANES)));
+typedef int32_t lanes_i __attribute__((vector_size(4 * LANES)));
+typedef char cs__exact_lanes_fit_[CS_EXACT_LEVELS % LANES == 0 ? 1 : -1];
 
 /* Lane by lane, m ? a : b (m all ones or zero per lane). A macro: a
  * function taking vectors is an ABI question on baseline x86-64. */
 #define PICK(m, a, b) ((lanes_f)(((m) & (lanes_i)(a)) | (~(m) & (lanes_i)(b))))
 
 /* Whether any lane of a mask is set: its bits as 64-bit lanes, ORed. */
-typedef int64_t lanes_q __attribute__((vector_size(4 * CS_EXACT_LEVELS)));
+typedef int64_t lanes_q __attribute__((vector_size(4 * LANES)));
 #define ANY_LANE(m, out)                                                                  \
     do {                                                                                  \
         lanes_q q_ = (lanes_q)(m);                                                        \
         int64_t any_ = 0;                                                                 \
-        for (int l_ = 0; l_ < CS_EXACT_LEVELS / 2; l_++)                                  \
+        for (int l_ = 0; l_ < LANES / 2; l_++)                                            \
             any_ |= q_[l_];                                                               \
         (out) = any_ != 0;                                                                \
     } while (0)
 
 /*
- * The ends of polynomial piece pc (constant weight w0, degree 2 or 3) at
- * the levels y0, y0 + 1, ... above its bottom, at most CS_EXACT_LEVELS of
- * them, into m. Each is u where Y = (yv - oy) w0 by Newton's method from
- * the piece's chord over the whole piece, accepted as cs__exact_place_end
- * accepts, with Y' there: a function of the piece and the level alone,
- * never of the row asking, so the bottom of one row is the top of the
- * next, and bands of lines on other threads or in another order get the
- * same bits. Out of line, so that its vector registers are not saved by
- * the callers that find their level in the memo (most).
+ * Levels y0 + c0 .. y0 + n - 1 of polynomial piece pc, at most LANES of
+ * them, into m->end[c0..]: one vector's worth of fill_levels.
  */
-static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment *s, float y0,
-                                           cs_exact_level *m)
+static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, float y0,
+                                       uint32_t c0, uint32_t n, cs_exact_level *m)
 {
     const float *X = s->x, *Y = s->y;
     float w0 = s->w[0], inv = 1.0f / w0;
     float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
     float tol = (2.0f * LEVEL_TOL) * w0;
     float y1 = Y[1], y2 = Y[2], y3 = Y[3], y2x2 = 2.0f * y2, y3x3 = 3.0f * y3;
-    uint32_t n = 1;
-    while (n < CS_EXACT_LEVELS && y0 + (float)n < pc->y_bot)
-        n++;
-    lanes_f yv, lo, hi; /* lanes past n repeat y0: the same steps as lane 0 */
-    for (uint32_t l = 0; l < CS_EXACT_LEVELS; l++) {
-        yv[l] = l < n ? y0 + (float)l : y0;
+    lanes_f yv, lo, hi; /* lanes past n repeat the first: the same steps */
+    for (uint32_t l = 0; l < LANES; l++) {
+        yv[l] = y0 + (float)(c0 + l < n ? c0 + l : c0);
         lo[l] = cs__minf(ut, ub);
         hi[l] = cs__maxf(ut, ub);
     }
@@ -261,9 +259,10 @@ static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment 
         u = PICK(live, next, u);
     }
     fall |= live; /* out of steps */
+    uint32_t k = n - c0 < LANES ? n - c0 : LANES; /* lanes of levels */
     bool fell;
     ANY_LANE(fall, fell);
-    for (uint32_t l = 0; fell && l < n; l++) {
+    for (uint32_t l = 0; fell && l < k; l++) {
         if (fall[l] == 0)
             continue;
         /* a step left the bracket: the bounded solve of cs_poly.c */
@@ -275,13 +274,38 @@ static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment 
     lanes_f xv = (float)s->ox + (((X[3] * res + X[2]) * res + X[1]) * res + X[0]) * inv;
     lanes_f dxv = ((3.0f * X[3] * res + 2.0f * X[2]) * res + X[1]) * inv;
     lanes_f dyv = d1 * inv;
-    for (uint32_t l = 0; l < n; l++) {
-        m->end[l][0] = res[l];
-        m->end[l][1] = xv[l];
-        m->end[l][2] = dxv[l];
-        m->end[l][3] = dyv[l];
+    for (uint32_t l = 0; l < k; l++) {
+        m->end[c0 + l][0] = res[l];
+        m->end[c0 + l][1] = xv[l];
+        m->end[c0 + l][2] = dxv[l];
+        m->end[c0 + l][3] = dyv[l];
     }
-    m->w = w0;
+}
+
+/*
+ * The ends of polynomial piece pc (constant weight w0, degree 2 or 3) at
+ * the levels y0, y0 + 1, ... above its bottom, at most CS_EXACT_LEVELS of
+ * them, into m. Each is u where Y = (yv - oy) w0 by Newton's method from
+ * the piece's chord over the whole piece, accepted as cs__exact_place_end
+ * accepts, with Y' there: a function of the piece and the level alone,
+ * never of the row asking, so the bottom of one row is the top of the
+ * next, and bands of lines on other threads or in another order get the
+ * same bits. Out of line, so that its vector registers are not saved by
+ * the callers that find their level in the memo (most).
+ */
+static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment *s, float y0,
+                                           cs_exact_level *m)
+{
+    uint32_t n = 1;
+    while (n < CS_EXACT_LEVELS && y0 + (float)n < pc->y_bot)
+        n++;
+#if LANES == CS_EXACT_LEVELS /* one vector (a loop of one step measured 0.5 % dearer) */
+    solve_lanes(pc, s, y0, 0, n, m);
+#else
+    for (uint32_t c0 = 0; c0 < n; c0 += LANES)
+        solve_lanes(pc, s, y0, c0, n, m);
+#endif
+    m->w = s->w[0];
     m->dwr = 0.0f;
     m->y = y0;
     m->n = n;
