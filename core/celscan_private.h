@@ -156,11 +156,20 @@ typedef struct cs_exact_end {
     float w, dwr;         /* W(u), and W'(u) / W(u): 0 for polynomial segments */
 } cs_exact_end;
 
-/* A piece's end at the last row boundary placed, kept for the next row
- * (cs_exact.c): y is that boundary, or -1 before any. */
+/*
+ * A piece's ends at consecutive row boundaries y, y + 1, ..., y + n - 1,
+ * kept for the rows that reach them (cs_exact_place.c); y is -1 before
+ * any. A polynomial piece's are solved CS_EXACT_LEVELS at a time; a
+ * rational piece keeps one. end[i] holds u, x, x', y' of level y + i
+ * (the first four fields of a cs_exact_end); w and W'/W are the same for
+ * all of them.
+ */
+#define CS_EXACT_LEVELS 8
 typedef struct cs_exact_level {
     float y;
-    cs_exact_end end;
+    uint32_t n;
+    float w, dwr;
+    float end[CS_EXACT_LEVELS][4];
 } cs_exact_level;
 
 /* Where one active piece is within the current band of a pixel row, for
@@ -228,7 +237,7 @@ typedef struct cs_workspace {
 #if CS_CFG_EXACT
     cs_exact_piece exact[CS_CFG_MAX_CROSSINGS]; /* a region's pieces on one row (exact AA) */
     uint32_t exact_order[CS_CFG_MAX_CROSSINGS];  /* those in the band, in x order */
-    cs_exact_level level_memo[CS_CFG_MAX_PIECES]; /* per piece: its last row bottom */
+    cs_exact_level level_memo[CS_CFG_MAX_PIECES]; /* per piece: its next row ends */
 #endif
     float area[CS_CFG_MAX_WIDTH + 2];     /* partial coverage of the region, per pixel */
     float cover[CS_CFG_MAX_WIDTH + 2];    /* coverage deltas, prefix-summed */

@@ -19,10 +19,11 @@
  *    chord of the piece), with x, x', y' and W'/W at both ends. An end is
  *    a pure function of the piece and the height, so the bottom end of a
  *    row is kept (the level memo) and is the top end of the next: one
- *    solve per row boundary, and the same bits whichever lines came
- *    before, or none. A straight piece is placed in closed form, a
- *    polynomial one in plane coordinates; the iteration stops once the
- *    residual of its last step, known exactly for a cubic, is below
+ *    solve per row boundary (a polynomial piece's next eight solved side
+ *    by side, lane by lane as each would be alone), and the same bits
+ *    whichever lines came before, or none. A straight piece is placed in
+ *    closed form, a polynomial one in plane coordinates; the iteration
+ *    stops once the residual of its last step, known exactly for a cubic, is below
  *    2^-18 px in y (cs__exact_place_end). Those give the arc's inner Bezier control
  *    points directly (P(a) + h/p P'(a) in homogeneous form), hence its x
  *    range. Pieces in order of xmin fall into clusters whose x ranges

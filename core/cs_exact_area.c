@@ -344,7 +344,7 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
         float d = a[1] + t * (2.0f * a[2] + 3.0f * a3t);
         float rd = 1.0f / d, st = -h * rd, next = t + st;
         *rd_out = rd;
-        if ((cs__absf(dd) + 2.0f * cs__absf(a[3] * st)) * (st * st) <= 2.0f * CUT_TOL)
+        if ((cs__exact_mag(dd) + 2.0f * cs__exact_mag(a[3] * st)) * (st * st) <= 2.0f * CUT_TOL)
             return cs__clampf(next, lo, hi);
         float c = 0.5f * dd * st * rd;
         if (c > -0.5f && c < 0.5f)
@@ -365,10 +365,10 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
  * (y1 - y0): one solve for t per cut and no other evaluation. An arc in
  * one column takes the moment from its control points directly.
  */
-static void add_poly_arc(cs__exact_ctx *cx, float sign, int p, const float *bx, const float *by)
+static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p, const float *bx,
+                                            const float *by, bool inc)
 {
     float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = (float)cx->wall;
-    bool inc = x1 > x0;
     float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
                   : cs__minf((float)(-cs__floori(-x0) - 1), width);
     if (inc ? !(k < x1 && k <= width) : !(k > x1 && k >= 0.0f)) { /* one column */
@@ -421,6 +421,16 @@ static void add_poly_arc(cs__exact_ctx *cx, float sign, int p, const float *bx, 
     put_cell(cx, sign, c, y1 - ya, (M1 - Ma) + (x0 - (float)c) * (y1 - ya));
 }
 
+/* add_poly_arc_dir once for each direction of x, so that neither copy
+ * tests the direction in its loop. */
+static void add_poly_arc(cs__exact_ctx *cx, float sign, int p, const float *bx, const float *by)
+{
+    if (bx[p] > bx[0])
+        add_poly_arc_dir(cx, sign, p, bx, by, true);
+    else
+        add_poly_arc_dir(cx, sign, p, bx, by, false);
+}
+
 /*
  * add_poly_arc serves arcs across at most this many columns. Its
  * power-basis coefficients grow with the arc's length L in columns, so
@@ -441,7 +451,7 @@ static inline bool add_poly_part(cs__exact_ctx *cx, const cs_segment *s, float s
                                  const cs_exact_end *a,
                           float ya, const cs_exact_end *b, float yb)
 {
-    if (!(cs__absf(b->x - a->x) <= POLY_ARC_COLUMNS))
+    if (!(cs__exact_mag(b->x - a->x) <= POLY_ARC_COLUMNS))
         return false;
     float bx[4], by[4];
     int p = arc_polygon(s, a, ya, b, yb, bx, by);
@@ -459,8 +469,9 @@ static inline bool add_poly_part(cs__exact_ctx *cx, const cs_segment *s, float s
  * screen costs no more than one across it: its long parts off screen go
  * to add_monotone, which passes over whole columns there.
  */
-static void add_poly_parts(cs__exact_ctx *cx, const cs_segment *s, float sign,
-                           const cs_exact_end *top, float y0, const cs_exact_end *bot, float y1)
+static CS__EXACT_NOINLINE void add_poly_parts(cs__exact_ctx *cx, const cs_segment *s,
+                                              float sign, const cs_exact_end *top, float y0,
+                                              const cs_exact_end *bot, float y1)
 {
     float span = cs__absf(bot->x - top->x);
     int32_t n = 1;
@@ -504,37 +515,17 @@ static void add_x_monotone(cs__exact_ctx *cx, const cs_segment *s, float sign,
         add_monotone(cx, s, sign, top, y0, bot, y1);
 }
 
-/* Effective edge e over the band [ya, yb]: sign +1 where the region begins.
- * Called by the loop over a row's clusters for a lone arc and by the band
- * sweep (cs_exact.c). */
-void cs__exact_add_edge(cs__exact_ctx *cx, const cs_exact_piece *e, float sign, float ya, float yb)
+/*
+ * An effective edge that is neither straight nor a monotone polynomial
+ * arc: one column (no solve), a monotone rational arc, or one cut at its
+ * x-extrema into x-monotone sub-arcs. Kept out of cs__exact_add_edge,
+ * which every arc passes through: written into it, its registers and
+ * stack made the common path's entry and exit dearer (CS__EXACT_NOINLINE).
+ */
+static CS__EXACT_NOINLINE void add_curved_edge(cs__exact_ctx *cx, const cs_segment *s,
+                                               const cs_exact_piece *e, float sign, float ya,
+                                               float yb)
 {
-    cs_workspace *ws = cx->ws;
-    const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
-    if (e->hidden) { /* only what it adds right of its opaque pixels matters */
-        int32_t c = (int32_t)e->xmin - cx->x0;
-        cs__acc_cover(ws, c, sign * (yb - ya));
-        cs__exact_touch(cx, c, c + 1);
-        return;
-    }
-    if (e->xmax <= (float)cx->x0) { /* its cells' heights sum to the band's exactly */
-        cs__acc_cover(ws, 0, sign * (yb - ya));
-        cs__exact_touch(cx, 0, 1);
-        return;
-    }
-    if (e->xmin >= (float)(cx->x0 + cx->width)) {
-        cs__exact_touch(cx, cx->width, cx->width + 1);
-        return;
-    }
-    if (s->degree == 1) {
-        add_line(cx, sign, e->top.x, 0.0f, e->bot.x, yb - ya); /* heights in the band */
-        return;
-    }
-    bool poly = cs__exact_polynomial(s);
-    if (e->monotone && poly) {
-        add_poly_monotone(cx, s, sign, &e->top, ya, &e->bot, yb);
-        return;
-    }
     if (e->xmax - e->xmin < 1.0f) { /* the usual case: one column, no solve */
         int32_t c = cs__floori(e->xmin);
         if (e->xmax <= (float)c + 1.0f) {
@@ -563,6 +554,39 @@ void cs__exact_add_edge(cs__exact_ctx *cx, const cs_exact_piece *e, float sign, 
         y0 = y;
     }
     add_x_monotone(cx, s, sign, &a, y0, &e->bot, yb);
+}
+
+/* Effective edge e over the band [ya, yb]: sign +1 where the region begins.
+ * Called by the loop over a row's clusters for a lone arc and by the band
+ * sweep (cs_exact.c). */
+void cs__exact_add_edge(cs__exact_ctx *cx, const cs_exact_piece *e, float sign, float ya, float yb)
+{
+    cs_workspace *ws = cx->ws;
+    if (e->hidden) { /* only what it adds right of its opaque pixels matters */
+        int32_t c = (int32_t)e->xmin - cx->x0;
+        cs__acc_cover(ws, c, sign * (yb - ya));
+        cs__exact_touch(cx, c, c + 1);
+        return;
+    }
+    if (e->xmax <= (float)cx->x0) { /* its cells' heights sum to the band's exactly */
+        cs__acc_cover(ws, 0, sign * (yb - ya));
+        cs__exact_touch(cx, 0, 1);
+        return;
+    }
+    if (e->xmin >= (float)(cx->x0 + cx->width)) {
+        cs__exact_touch(cx, cx->width, cx->width + 1);
+        return;
+    }
+    const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
+    if (s->degree == 1) {
+        add_line(cx, sign, e->top.x, 0.0f, e->bot.x, yb - ya); /* heights in the band */
+        return;
+    }
+    if (e->monotone && cs__exact_polynomial(s)) { /* most arcs */
+        add_poly_monotone(cx, s, sign, &e->top, ya, &e->bot, yb);
+        return;
+    }
+    add_curved_edge(cx, s, e, sign, ya, yb);
 }
 
 

@@ -12,6 +12,17 @@
 
 #if CS_CFG_EXACT
 
+/*
+ * For a path kept out of a hot function, so that the hot one saves fewer
+ * registers on every call. Not `cold`: that compiles it for size, and
+ * struct copies then call memcpy (RISC-V), which the core must not.
+ */
+#if defined(__GNUC__)
+#define CS__EXACT_NOINLINE __attribute__((noinline))
+#else
+#define CS__EXACT_NOINLINE
+#endif
+
 /* Stands for "no bound": a hull that could not be formed. */
 #define HUGE_X 1.0e30f
 
@@ -30,6 +41,22 @@ static inline float cs__exact_top_u(const cs_piece *pc) { return pc->dir > 0 ? p
 static inline float cs__exact_bot_u(const cs_piece *pc) { return pc->dir > 0 ? pc->u1 : pc->u0; }
 
 static inline bool cs__exact_polynomial(const cs_segment *s) { return !s->rational; }
+
+/*
+ * |v| for the Newton steps' acceptance tests: one AND (GCC's builtin,
+ * inline on every target the core builds for; no libm), where cs__absf
+ * (v < 0 ? -v : v) compiles to a compare, a negation and a blend. The two
+ * differ only on -0 and the sign of a NaN, which a sum compared with a
+ * tolerance cannot tell apart.
+ */
+static inline float cs__exact_mag(float v)
+{
+#if defined(__GNUC__)
+    return __builtin_fabsf(v);
+#else
+    return cs__absf(v);
+#endif
+}
 
 /* The part of the row the piece spans. */
 static inline float cs__exact_row_top(const cs__exact_ctx *cx, const cs_piece *pc)

@@ -3,7 +3,9 @@
  * cs_exact.c): where each active piece enters and leaves a pixel row, u at
  * a given height by Newton from the chord (closed form for a straight
  * piece, plane coordinates for a polynomial one), with x, x', y' and W'/W
- * at both ends, and from those the arc's x range. The band proof
+ * at both ends, and from those the arc's x range; a polynomial piece's
+ * ends at its next row boundaries are solved side by side (fill_levels)
+ * and kept for the rows below. The band proof
  * (cs_exact.c) moves ends to its cuts with the same solve, and the area
  * (cs_exact_area.c) evaluates ends at x-extrema.
  */
@@ -103,7 +105,7 @@ inline void cs__exact_place_end(const cs_segment *s, bool poly, float yv, float 
                 float rd = 1.0f / d, st = -f * rd, next = u + st;
                 /* g being a cubic, the step leaves exactly
                  * (g''/2 + g3 s) s^2 of it */
-                if ((cs__absf(dd) + 2.0f * cs__absf(g[3] * st)) * (st * st) <= tol) {
+                if ((cs__exact_mag(dd) + 2.0f * cs__exact_mag(g[3] * st)) * (st * st) <= tol) {
                     /* g' at the accepted point: exact Taylor for a cubic */
                     d += st * (dd + 3.0f * g[3] * st);
                     u = cs__clampf(next, lo, hi);
@@ -167,69 +169,157 @@ static void line_end(const cs_segment *s, float yv, float exact, float ua, float
 
 
 /*
- * u in [lo, hi] where the polynomial Y (degree <= 3, monotone there,
- * growing if `rising`) equals `level`, by Newton's method from u, with
- * Y' there. The same iteration and acceptance as cs__exact_place_end, for
- * the common case of constant weight, with nothing else to carry.
+ * The levels of a polynomial piece are solved side by side, one per lane
+ * of a vector (the GCC and clang vector extension): eight lanes where the
+ * build has AVX (x86-64-v3), else four (SSE on baseline x86-64, where the
+ * compiler splits eight-lane compares into scalar ones; plain floats on
+ * the boards' compilers, which build without exact mode). A lane does the
+ * float operations one solve alone would, in the same order, and stops
+ * where it would, so every end has the bits of its scalar solve whatever
+ * the width; only the branches became masks.
  */
-static float poly_level(const float *Y, int p, float level, float lo, float hi, float u,
-                        bool rising, float tol, float *d1)
-{
-    float g0 = Y[0] - level, y1 = Y[1], y2 = Y[2], y3 = Y[3];
-    float y2x2 = 2.0f * y2, y3x3 = 3.0f * y3;
-    if (u > lo && u < hi) {
-        for (int it = 0; it < LEVEL_MAX_ITER; it++) {
-            float f = ((y3 * u + y2) * u + y1) * u + g0;
-            float d = (y3x3 * u + y2x2) * u + y1;
-            float dd = 2.0f * (y3x3 * u + y2);
-            if (f == 0.0f) {
-                *d1 = d;
-                return u;
-            }
-            if ((f < 0.0f) == rising)
-                lo = u;
-            else
-                hi = u;
-            float rd = 1.0f / d, st = -f * rd, next = u + st;
-            if ((cs__absf(dd) + 2.0f * cs__absf(y3 * st)) * (st * st) <= tol) {
-                /* g' there: exact Taylor for a cubic */
-                *d1 = d + st * (dd + y3x3 * st);
-                return cs__clampf(next, lo, hi);
-            }
-            float c = 0.5f * dd * st * rd;
-            if (c > -0.5f && c < 0.5f)
-                next -= c * st;
-            if (!(next > lo && next < hi))
-                break;
-            u = next;
-        }
-    }
-    float w[4] = {1.0f, 0.0f, 0.0f, 0.0f};
-    u = cs__solve_level(Y, w, p, level, lo, hi);
-    *d1 = (y3x3 * u + y2x2) * u + y1;
-    return u;
-}
+#if defined(__AVX__)
+#define LANES 8
+#else
+#define LANES 4
+#endif
+typedef float lanes_f __attribute__((vector_size(4 * LANES)));
+typedef int32_t lanes_i __attribute__((vector_size(4 * LANES)));
+typedef char cs__exact_lanes_fit_[CS_EXACT_LEVELS % LANES == 0 ? 1 : -1];
+
+/* Lane by lane, m ? a : b (m all ones or zero per lane). A macro: a
+ * function taking vectors is an ABI question on baseline x86-64. */
+#define PICK(m, a, b) ((lanes_f)(((m) & (lanes_i)(a)) | (~(m) & (lanes_i)(b))))
+
+/* Whether any lane of a mask is set: its bits as 64-bit lanes, ORed. */
+typedef int64_t lanes_q __attribute__((vector_size(4 * LANES)));
+#define ANY_LANE(m, out)                                                                  \
+    do {                                                                                  \
+        lanes_q q_ = (lanes_q)(m);                                                        \
+        int64_t any_ = 0;                                                                 \
+        for (int l_ = 0; l_ < LANES / 2; l_++)                                            \
+            any_ |= q_[l_];                                                               \
+        (out) = any_ != 0;                                                                \
+    } while (0)
 
 /*
- * The end of polynomial piece pc (constant weight w0, degree 2 or 3) at
- * height yv: its own end's u if yv is one, else Newton from the piece's
- * chord over the whole piece. It depends on the piece and yv alone, never
- * on the row asking, so the bottom of one row is the top of the next
- * (see the level memo in cs__exact_place_arc).
+ * Levels y0 + c0 .. y0 + n - 1 of polynomial piece pc, at most LANES of
+ * them, into m->end[c0..]: one vector's worth of fill_levels.
  */
-static void poly_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact_end *e)
+static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, float y0,
+                                       uint32_t c0, uint32_t n, cs_exact_level *m)
 {
     const float *X = s->x, *Y = s->y;
     float w0 = s->w[0], inv = 1.0f / w0;
-    float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc), u, d1;
-    if (yv == pc->y_top || yv == pc->y_bot) { /* the piece's own end: its u is exact */
-        u = yv == pc->y_top ? ut : ub;
-        d1 = (3.0f * Y[3] * u + 2.0f * Y[2]) * u + Y[1];
-    } else {
-        u = poly_level(Y, s->degree, (yv - (float)s->oy) * w0, cs__minf(ut, ub), cs__maxf(ut, ub),
-                       cs__exact_chord_u(ut, pc->y_top, ub, pc->y_bot, yv), pc->dir > 0,
-                       (2.0f * LEVEL_TOL) * w0, &d1);
+    float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
+    float tol = (2.0f * LEVEL_TOL) * w0;
+    float y1 = Y[1], y2 = Y[2], y3 = Y[3], y2x2 = 2.0f * y2, y3x3 = 3.0f * y3;
+    lanes_f yv, lo, hi; /* lanes past n repeat the first: the same steps */
+    for (uint32_t l = 0; l < LANES; l++) {
+        yv[l] = y0 + (float)(c0 + l < n ? c0 + l : c0);
+        lo[l] = cs__minf(ut, ub);
+        hi[l] = cs__maxf(ut, ub);
     }
+    lanes_f level = (yv - (float)s->oy) * w0;
+    lanes_f g0 = Y[0] - level;
+    lanes_f u = ut + (yv - pc->y_top) / (pc->y_bot - pc->y_top) * (ub - ut); /* the chord */
+    lanes_f res = u, d1 = u; /* every lane below n sets both: a root, accepted or solved */
+    lanes_i live = (u > lo) & (u < hi), fall = ~live;
+    for (int it = 0; it < LEVEL_MAX_ITER; it++) {
+        bool going;
+        ANY_LANE(live, going);
+        if (!going)
+            break;
+        lanes_f f = ((y3 * u + y2) * u + y1) * u + g0;
+        lanes_f d = (y3x3 * u + y2x2) * u + y1;
+        lanes_f dd = 2.0f * (y3x3 * u + y2);
+        lanes_i root = live & (f == 0.0f);
+        res = PICK(root, u, res);
+        d1 = PICK(root, d, d1);
+        live &= ~root;
+        lanes_i neg = f < 0.0f, below = pc->dir > 0 ? neg : ~neg;
+        lo = PICK(live & below, u, lo);
+        hi = PICK(live & ~below, u, hi);
+        lanes_f rd = 1.0f / d, st = -f * rd, next = u + st;
+        /* g being a cubic, the step leaves exactly (g''/2 + g3 s) s^2 of it */
+        lanes_f ad = (lanes_f)((lanes_i)dd & 0x7FFFFFFF);
+        lanes_f a3 = (lanes_f)((lanes_i)(y3 * st) & 0x7FFFFFFF);
+        lanes_i ok = live & ((ad + 2.0f * a3) * (st * st) <= tol);
+        d1 = PICK(ok, d + st * (dd + y3x3 * st), d1); /* g' there: exact Taylor */
+        lanes_f up = PICK(next > lo, next, lo);
+        res = PICK(ok, PICK(up < hi, up, hi), res);
+        live &= ~ok;
+        /* Chebyshev's correction (the root of the quadratic model) makes
+         * the steps converge cubically where the model holds. */
+        lanes_f c = 0.5f * dd * st * rd;
+        next = PICK((c > -0.5f) & (c < 0.5f), next - c * st, next);
+        lanes_i out = live & ~((next > lo) & (next < hi));
+        fall |= out;
+        live &= ~out;
+        u = PICK(live, next, u);
+    }
+    fall |= live; /* out of steps */
+    uint32_t k = n - c0 < LANES ? n - c0 : LANES; /* lanes of levels */
+    bool fell;
+    ANY_LANE(fall, fell);
+    for (uint32_t l = 0; fell && l < k; l++) {
+        if (fall[l] == 0)
+            continue;
+        /* a step left the bracket: the bounded solve of cs_poly.c */
+        float w[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+        float ul = cs__solve_level(Y, w, s->degree, level[l], lo[l], hi[l]);
+        res[l] = ul;
+        d1[l] = (y3x3 * ul + y2x2) * ul + y1;
+    }
+    lanes_f xv = (float)s->ox + (((X[3] * res + X[2]) * res + X[1]) * res + X[0]) * inv;
+    lanes_f dxv = ((3.0f * X[3] * res + 2.0f * X[2]) * res + X[1]) * inv;
+    lanes_f dyv = d1 * inv;
+    for (uint32_t l = 0; l < k; l++) {
+        m->end[c0 + l][0] = res[l];
+        m->end[c0 + l][1] = xv[l];
+        m->end[c0 + l][2] = dxv[l];
+        m->end[c0 + l][3] = dyv[l];
+    }
+}
+
+/*
+ * The ends of polynomial piece pc (constant weight w0, degree 2 or 3) at
+ * the levels y0, y0 + 1, ... above its bottom, at most CS_EXACT_LEVELS of
+ * them, into m. Each is u where Y = (yv - oy) w0 by Newton's method from
+ * the piece's chord over the whole piece, accepted as cs__exact_place_end
+ * accepts, with Y' there: a function of the piece and the level alone,
+ * never of the row asking, so the bottom of one row is the top of the
+ * next, and bands of lines on other threads or in another order get the
+ * same bits. Out of line, so that its vector registers are not saved by
+ * the callers that find their level in the memo (most).
+ */
+static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment *s, float y0,
+                                           cs_exact_level *m)
+{
+    uint32_t n = 1;
+    while (n < CS_EXACT_LEVELS && y0 + (float)n < pc->y_bot)
+        n++;
+#if LANES == CS_EXACT_LEVELS /* one vector (a loop of one step measured 0.5 % dearer) */
+    solve_lanes(pc, s, y0, 0, n, m);
+#else
+    for (uint32_t c0 = 0; c0 < n; c0 += LANES)
+        solve_lanes(pc, s, y0, c0, n, m);
+#endif
+    m->w = s->w[0];
+    m->dwr = 0.0f;
+    m->y = y0;
+    m->n = n;
+}
+
+/* The end of polynomial piece pc at its own top or bottom (yv is y_top or
+ * y_bot): its u is exact. */
+static CS__EXACT_NOINLINE void poly_own_end(const cs_piece *pc, const cs_segment *s, float yv,
+                                            cs_exact_end *e)
+{
+    const float *X = s->x, *Y = s->y;
+    float w0 = s->w[0], inv = 1.0f / w0;
+    float u = yv == pc->y_top ? cs__exact_top_u(pc) : cs__exact_bot_u(pc);
+    float d1 = (3.0f * Y[3] * u + 2.0f * Y[2]) * u + Y[1];
     e->u = u;
     e->x = (float)s->ox + (((X[3] * u + X[2]) * u + X[1]) * u + X[0]) * inv;
     e->dx = ((3.0f * X[3] * u + 2.0f * X[2]) * u + X[1]) * inv;
@@ -238,14 +328,11 @@ static void poly_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact
     e->dwr = 0.0f;
 }
 
-/* The end of any curved piece at height yv: poly_end, or for a rational
- * piece cs__exact_place_end from the chord over the whole piece. */
-static void level_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exact_end *e)
+/* The end of a rational piece at height yv: cs__exact_place_end, exactly
+ * at its own ends, else from the chord over the whole piece. */
+static CS__EXACT_NOINLINE void rational_end(const cs_piece *pc, const cs_segment *s, float yv,
+                                            cs_exact_end *e)
 {
-    if (cs__exact_polynomial(s)) {
-        poly_end(pc, s, yv, e);
-        return;
-    }
     float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
     if (yv == pc->y_top || yv == pc->y_bot) {
         float u = yv == pc->y_top ? ut : ub;
@@ -254,6 +341,69 @@ static void level_end(const cs_piece *pc, const cs_segment *s, float yv, cs_exac
         cs__exact_place_end(s, false, yv, cs__minf(ut, ub), cs__maxf(ut, ub),
                   cs__exact_chord_u(ut, pc->y_top, ub, pc->y_bot, yv), pc->dir > 0, e);
     }
+}
+
+/* Whether m holds level yv (a row boundary), and which. */
+static inline bool memo_has(const cs_exact_level *m, float yv, uint32_t *i)
+{
+    if (!(m->y >= 0.0f && yv >= m->y && yv < m->y + (float)m->n))
+        return false; /* -1: none yet, and no row is above 0 */
+    *i = (uint32_t)(yv - m->y);
+    return true;
+}
+
+/* Level i of m, as an end. */
+static inline void memo_get(const cs_exact_level *m, uint32_t i, cs_exact_end *e)
+{
+    e->u = m->end[i][0];
+    e->x = m->end[i][1];
+    e->dx = m->end[i][2];
+    e->dy = m->end[i][3];
+    e->w = m->w;
+    e->dwr = m->dwr;
+}
+
+/*
+ * The end of polynomial piece pc at height yv, a row boundary or one of
+ * its own ends: from the level memo m if it holds yv, else solved with
+ * the levels below it into m (the piece's later rows take those).
+ */
+static CS__HOT_INLINE void poly_level_end(const cs_piece *pc, const cs_segment *s, float yv,
+                                         cs_exact_level *m, cs_exact_end *e)
+{
+    uint32_t i;
+    if (yv == pc->y_top || yv == pc->y_bot) {
+        poly_own_end(pc, s, yv, e);
+        return;
+    }
+    if (!memo_has(m, yv, &i)) {
+        fill_levels(pc, s, yv, m);
+        i = 0;
+    }
+    memo_get(m, i, e);
+}
+
+/* The same for a rational piece, whose memo keeps one level: the bottom
+ * of the row before. */
+static CS__HOT_INLINE void rational_level_end(const cs_piece *pc, const cs_segment *s, float yv,
+                                             cs_exact_level *m, cs_exact_end *e)
+{
+    bool own = yv == pc->y_top || yv == pc->y_bot;
+    if (!own && m->y == yv) { /* never -1, the memo's "none": no row is above 0 */
+        memo_get(m, 0, e);
+        return;
+    }
+    rational_end(pc, s, yv, e);
+    if (own)
+        return;
+    m->end[0][0] = e->u;
+    m->end[0][1] = e->x;
+    m->end[0][2] = e->dx;
+    m->end[0][3] = e->dy;
+    m->w = e->w;
+    m->dwr = e->dwr;
+    m->y = yv;
+    m->n = 1;
 }
 
 /*
@@ -276,9 +426,11 @@ static void poly_bounds(int p, cs_exact_piece *e)
 /*
  * The arc of piece `piece` across the row: its ends and its x bounds. An
  * end inside the piece is a pure function of the piece and the height
- * (level_end), so the row's bottom end is kept in the level
- * memo and serves as the next row's top: one solve per row boundary, and
- * the same bits whichever lines were rendered before.
+ * (poly_level_end), so the ends of a polynomial piece at its next
+ * CS_EXACT_LEVELS row boundaries are solved together and kept in the
+ * level memo, where the rows below find their tops and bottoms: one solve
+ * per row boundary, several side by side, and the same bits whichever
+ * lines were rendered before.
  */
 void cs__exact_place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index piece)
 {
@@ -301,20 +453,17 @@ void cs__exact_place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index pi
         return;
     }
     cs_exact_level *memo = &ws->level_memo[piece];
-    if (memo->y == ya)
-        e->top = memo->end;
-    else
-        level_end(pc, s, ya, &e->top);
-    level_end(pc, s, yb, &e->bot);
-    if (yb < pc->y_bot) {
-        memo->y = yb;
-        memo->end = e->bot;
-    }
-    e->u_row = e->bot.u;
-    if (cs__exact_polynomial(s))
+    if (cs__exact_polynomial(s)) {
+        poly_level_end(pc, s, ya, memo, &e->top);
+        poly_level_end(pc, s, yb, memo, &e->bot);
+        e->u_row = e->bot.u;
         poly_bounds(s->degree, e);
-    else
-        cs__exact_hull(s, e, ya, yb, false);
+        return;
+    }
+    rational_level_end(pc, s, ya, memo, &e->top);
+    rational_level_end(pc, s, yb, memo, &e->bot);
+    e->u_row = e->bot.u;
+    cs__exact_hull(s, e, ya, yb, false);
 }
 
 #endif /* CS_CFG_EXACT */

@@ -5,9 +5,10 @@
  * (a piece's root starts the solve one sub-scanline lower), but nothing
  * from line to line that history could change: a board may skip lines, a
  * cache build renders lines in its own order, and the firmware's frame
- * CRCs must not depend on history. (Exact mode keeps each piece's end at
- * the last row boundary for the next row, but that end is a pure function
- * of the piece and the height.) So
+ * CRCs must not depend on history. (Exact mode keeps each piece's ends at
+ * its next eight row boundaries for the rows below, filled from wherever a
+ * row finds none, but an end is a pure function of the piece and the
+ * height.) So
  * every line rendered alone, right after cs_frame_begin, must be
  * bit-identical to the same line rendered in the middle of the full frame,
  * in every anti-aliasing mode; and two renders of a frame are identical.
@@ -123,6 +124,11 @@ static void check_mode(const char *what, cs_aa_mode aa, int sub)
     /* Every third line, in order but skipping: the same bytes again. */
     differ = lines_differing(&o, full, 1, 3);
     CHECK(differ == 0, "%s: %d lines differ when lines are skipped", what, differ);
+
+    /* Every seventh line from the third: exact mode's level memo (eight
+     * row boundaries per piece) is filled from other levels than in order. */
+    differ = lines_differing(&o, full, 2, 7);
+    CHECK(differ == 0, "%s: %d lines differ when every seventh is rendered", what, differ);
 
     /* Bottom to top in one frame: whatever the line before left behind. */
     differ = lines_differing(&o, full, H - 1, -1);
