@@ -259,7 +259,10 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
     p.a = p.b = p.cursor = 0;
     p.c = 0.0f;
     bool first = true;
-    for (uint32_t w = (uint32_t)lo >> 5; w <= width >> 5 && w <= (end + 1u) >> 5; w++) {
+    /* The last word to visit, found once: the loop's one bound test per
+     * word is most of its cost where a wide region's interior words are 0. */
+    uint32_t w_last = (end + 1u) >> 5 < width >> 5 ? (end + 1u) >> 5 : width >> 5;
+    for (uint32_t w = (uint32_t)lo >> 5; w <= w_last; w++) {
         uint32_t bits = ws->touched[w];
         ws->touched[w] = 0u;
         while (bits) {
