@@ -325,7 +325,7 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
  */
 static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
 {
-    if (!r->record || r->opaque_px == 0u)
+    if (r->opaque_px == 0u) /* always so with the early-out off (cs__run_join) */
         return false;
     cs_workspace *ws = r->ws;
     uint32_t a = (uint32_t)r->vw, b = 0u;
@@ -476,7 +476,7 @@ void cs__line_stack(cs_renderer *r, int y)
             }
             current_cel = cel;
             /* Front to back: once the whole line is opaque nothing behind shows. */
-            if (r->record && r->opaque_px >= width)
+            if (r->opaque_px >= width) /* never with the early-out off */
                 break;
         }
         if (!region_hidden(r, &ws->active[i], j - i)) {
