@@ -136,13 +136,13 @@ static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, f
 static CS__SPECIALISE void transmittance(float t[3], const float *A, float c, bool snap, bool grey)
 {
     for (int ch = 0; ch < (grey ? 1 : 3); ch++) {
-        float v = 1.0f - c * A[ch];
 #if CS_CFG_SNAP_SELECT
+        float v = 1.0f - c * A[ch];
         t[ch] = (snap & (v < CS__T_ZERO)) ? 0.0f : v;
 #else
-        if (snap && v < CS__T_ZERO)
-            v = 0.0f;
-        t[ch] = v;
+        t[ch] = 1.0f - c * A[ch];
+        if (snap && t[ch] < CS__T_ZERO)
+            t[ch] = 0.0f;
 #endif
     }
 }
