@@ -136,9 +136,14 @@ static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, f
 static CS__SPECIALISE void transmittance(float t[3], const float *A, float c, bool snap, bool grey)
 {
     for (int ch = 0; ch < (grey ? 1 : 3); ch++) {
+#if CS_CFG_SNAP_SELECT
+        float v = 1.0f - c * A[ch];
+        t[ch] = (snap & (v < CS__T_ZERO)) ? 0.0f : v;
+#else
         t[ch] = 1.0f - c * A[ch];
         if (snap && t[ch] < CS__T_ZERO)
             t[ch] = 0.0f;
+#endif
     }
 }
 
@@ -259,7 +264,10 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
     p.a = p.b = p.cursor = 0;
     p.c = 0.0f;
     bool first = true;
-    for (uint32_t w = (uint32_t)lo >> 5; w <= width >> 5 && w <= (end + 1u) >> 5; w++) {
+    /* The last word to visit, found once: the loop's one bound test per
+     * word is most of its cost where a wide region's interior words are 0. */
+    uint32_t w_last = (end + 1u) >> 5 < width >> 5 ? (end + 1u) >> 5 : width >> 5;
+    for (uint32_t w = (uint32_t)lo >> 5; w <= w_last; w++) {
         uint32_t bits = ws->touched[w];
         ws->touched[w] = 0u;
         while (bits) {
@@ -322,7 +330,7 @@ static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t
  */
 static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
 {
-    if (!r->record || r->opaque_px == 0u)
+    if (r->opaque_px == 0u) /* always so with the early-out off (cs__run_join) */
         return false;
     cs_workspace *ws = r->ws;
     uint32_t a = (uint32_t)r->vw, b = 0u;
@@ -473,7 +481,7 @@ void cs__line_stack(cs_renderer *r, int y)
             }
             current_cel = cel;
             /* Front to back: once the whole line is opaque nothing behind shows. */
-            if (r->record && r->opaque_px >= width)
+            if (r->opaque_px >= width) /* never with the early-out off */
                 break;
         }
         if (!region_hidden(r, &ws->active[i], j - i)) {

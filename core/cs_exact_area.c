@@ -336,10 +336,12 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
         float h = t * (a[1] + t * (a[2] + a3t)) - r;
         if (h == 0.0f)
             return t;
-        if ((h < 0.0f) == inc)
-            lo = t;
-        else
-            hi = t;
+        /* t's side of the root narrows the bracket: by the data, so as
+         * selects rather than a branch (13 k mispredicts a Many-blobs
+         * exact frame) */
+        bool below = (h < 0.0f) == inc;
+        lo = below ? t : lo;
+        hi = below ? hi : t;
         float dd = 2.0f * (a[2] + 3.0f * a3t);
         float d = a[1] + t * (2.0f * a[2] + 3.0f * a3t);
         float rd = 1.0f / d, st = -h * rd, next = t + st;

@@ -68,12 +68,14 @@ static inline float cs__exact_row_end(const cs__exact_ctx *cx, const cs_piece *p
     return cs__minf(pc->y_bot, cx->row_bot);
 }
 
+/* Widens the row's accumulator range to [a, b). Stored either way, so
+ * that the compiler can select without a branch: whether a cell widens
+ * the range goes by the data (~30 k mispredicted branches of a Many-blobs
+ * exact frame when it was `if (a < cx->lo) cx->lo = a`). */
 static inline void cs__exact_touch(cs__exact_ctx *cx, int32_t a, int32_t b)
 {
-    if (a < cx->lo)
-        cx->lo = a;
-    if (b > cx->hi)
-        cx->hi = b;
+    cx->lo = a < cx->lo ? a : cx->lo;
+    cx->hi = b > cx->hi ? b : cx->hi;
 }
 
 /* u between ua (at height ya) and ub (at yb) where y is yv, on the chord. */

@@ -343,12 +343,15 @@ static CS__EXACT_NOINLINE void rational_end(const cs_piece *pc, const cs_segment
     }
 }
 
-/* Whether m holds level yv (a row boundary), and which. */
+/* Whether m holds level yv (a row boundary), and which. Row boundaries
+ * are whole numbers far below 2^24, so yv - m->y is exact: the one
+ * difference serves both bounds and the index. */
 static inline bool memo_has(const cs_exact_level *m, float yv, uint32_t *i)
 {
-    if (!(m->y >= 0.0f && yv >= m->y && yv < m->y + (float)m->n))
+    float d = yv - m->y;
+    if (!(m->y >= 0.0f && d >= 0.0f && d < (float)m->n))
         return false; /* -1: none yet, and no row is above 0 */
-    *i = (uint32_t)(yv - m->y);
+    *i = (uint32_t)d;
     return true;
 }
 

@@ -29,7 +29,11 @@ CORE_HOST_OBJ := $(HOST)/core-base.o $(HOST)/obj/tools/core_variant.o
 $(HOST)/obj/tools/core_variant.o: HOST_CFLAGS += -DCORE_VARIANT_V3=$(CORE_VARIANT_V3)
 
 ifeq ($(CORE_VARIANT_V3),1)
-V3_CORE_CFLAGS := $(filter-out $(OPT),$(CORE_CFLAGS)) -O3 -march=x86-64-v3
+# -fipa-pta: points-to analysis across the file's functions, so that GCC
+# knows more of the workspace's arrays apart after inlining (-0.2 M
+# instructions of a Many-blobs exact frame, 86.66 M -> 86.47 M; no change
+# to the arithmetic).
+V3_CORE_CFLAGS := $(filter-out $(OPT),$(CORE_CFLAGS)) -O3 -march=x86-64-v3 -fipa-pta
 
 # Profile-guided (V3_PGO=1, the default): the v3 build is compiled first with
 # -fprofile-generate, tools/pgo_train.c renders V3_PGO_SCENES with it (exact, 5
