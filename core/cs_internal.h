@@ -460,6 +460,28 @@ static inline float cs__srgb_at(uint32_t i) { return cs__srgb_by_sqrt[i]; }
 static inline float cs__srgb_decode(float encoded) { return cs_srgb_decode(encoded); }
 #endif
 
+/*
+ * sRGB decoding within entries lo..hi of the encoding table, read through
+ * `at` (entry lo <= encoded < entry hi): a binary search for the cell, then
+ * the inverse of its linear interpolation, so decode(encode(v)) returns v to
+ * float precision. cs_srgb_decode searches the whole table; the compact
+ * form's decoder (cs_srgb_compact.c) first finds the anchors around the
+ * value. The table rises strictly, so both find the same cell and float.
+ */
+static inline float cs__srgb_decode_in(float (*at)(uint32_t), uint32_t lo, uint32_t hi, float encoded)
+{
+    while (hi - lo > 1u) {
+        uint32_t mid = (lo + hi) / 2u;
+        if (at(mid) <= encoded)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    float a = at(lo), b = at(hi);
+    float s = ((float)lo + (encoded - a) / (b - a)) * (1.0f / 1024.0f);
+    return s * s;
+}
+
 /* sRGB encoding of linear light in 0..1 (clamped), as 0..1. */
 static inline float cs__srgb_encode(float linear)
 {

@@ -55,28 +55,19 @@ uint16_t cs_srgb_encode16(float linear)
     return (uint16_t)code(cs__srgb_encode(linear), 65535.0f, 0.5f);
 }
 
-/*
- * Inverse of the encoding, for --blend srgb: a binary search for the table
- * cell holding the value, then the inverse of its linear interpolation, so
- * decode(encode(v)) returns v to float precision.
- */
+static float table_at(uint32_t i)
+{
+    return cs__srgb_by_sqrt[i];
+}
+
+/* Inverse of the encoding, for --blend srgb (cs__srgb_decode_in). */
 float cs_srgb_decode(float encoded)
 {
     if (!(encoded > 0.0f))
         return 0.0f;
     if (encoded >= 1.0f)
         return 1.0f;
-    uint32_t lo = 0, hi = 1024; /* table[lo] <= encoded < table[hi] */
-    while (hi - lo > 1u) {
-        uint32_t mid = (lo + hi) / 2u;
-        if (cs__srgb_by_sqrt[mid] <= encoded)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    float a = cs__srgb_by_sqrt[lo], b = cs__srgb_by_sqrt[hi];
-    float s = ((float)lo + (encoded - a) / (b - a)) * (1.0f / 1024.0f);
-    return s * s;
+    return cs__srgb_decode_in(table_at, 0u, 1024u, encoded);
 }
 
 size_t cs_pixfmt_bytes_per_pixel(cs_pixfmt fmt)

@@ -9,10 +9,10 @@
  * correction: the same floats, so the same frames, for about 25
  * instructions an entry, paid only under sRGB blending (RGB565 panels
  * convert through their own threshold tables). The decoding is
- * cs_srgb_decode's over these entries: the cell found by a search over the
- * anchors, which are stored whole, and three rebuilt entries; the table is
- * strictly increasing, so the cell, and with it every bit of the result,
- * is the one cs_srgb_decode finds.
+ * cs_srgb_decode's search and interpolation (cs__srgb_decode_in) over these
+ * entries, after a search over the anchors, which are stored whole, so that
+ * three entries are rebuilt; the table is strictly increasing, so the cell,
+ * and with it every bit of the result, is the one cs_srgb_decode finds.
  */
 #include "cs_srgb_compact.h"
 
@@ -50,16 +50,6 @@ float cs__srgb_decode_compact(float encoded)
         else
             hi = mid;
     }
-    lo *= CS__SRGB_STEP;
-    hi = lo + CS__SRGB_STEP; /* entry lo <= encoded < entry hi */
-    while (hi - lo > 1u) {
-        uint32_t mid = (lo + hi) / 2u;
-        if (cs__srgb_compact_at(mid) <= encoded)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    float a = cs__srgb_compact_at(lo), b = cs__srgb_compact_at(hi);
-    float s = ((float)lo + (encoded - a) / (b - a)) * (1.0f / 1024.0f);
-    return s * s;
+    lo *= CS__SRGB_STEP; /* entry lo <= encoded < entry lo + CS__SRGB_STEP */
+    return cs__srgb_decode_in(cs__srgb_compact_at, lo, lo + CS__SRGB_STEP, encoded);
 }
