@@ -430,7 +430,7 @@ static int render(const options *o, sim_state *s)
 
     size_t panel_line = (size_t)ow * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
     if (o->threads > 1) {
-        s->pool = bands_new(o->threads);
+        s->pool = bands_new(o->threads - 1); /* and this thread */
         s->frame_bytes = malloc(image_bytes);
         if (o->crc)
             s->frame_panel = malloc(panel_line * (size_t)oh);
