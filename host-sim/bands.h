@@ -46,7 +46,7 @@ int bands_cores(void);
 
 /*
  * Starts rendering the frame `prepared` holds on the workers, in bands of
- * `chunk` lines (0: four bands a thread), at most `window` lines ahead of
+ * `chunk` lines (0: sixteen bands a thread), at most `window` lines ahead of
  * the caller's releases. Returns CS_ERR_ARG for a negative chunk, or a
  * window smaller than a band. Ends the frame before, if one runs.
  */
