@@ -118,9 +118,9 @@ core=${CELSCAN_CORE:-$("$celsim" render scenes/demo.json --crc --core x86-64-v3 
         done
     done
     echo
-    echo "The bands here are equal and fixed, one a thread. celsim --threads hands out four bands a"
-    echo "thread in turn (a thread slowed by the machine takes fewer); on idle cores that schedule,"
-    echo "from the instructions of each of its bands, gives:"
+    echo "The bands here are equal and fixed, one a thread. celsim --threads hands out sixteen bands a"
+    echo "thread in turn to its workers and the calling thread (a thread slowed by the machine takes"
+    echo "fewer); on idle cores that schedule, from the instructions of each of its bands, gives:"
     echo
     echo "| --aa | threads | bands | prepare + the busiest thread's bands | 1 thread / critical path |"
     echo "|---|---:|---:|---:|---:|"
@@ -129,7 +129,7 @@ core=${CELSCAN_CORE:-$("$celsim" render scenes/demo.json --crc --core x86-64-v3 
     one=$(count celscan_band "$aa" 0/1)
     one=$(awk -v p="$prep" -v o="$one" 'BEGIN { print p + o }')
     for t in 2 4; do
-        nb=$((4 * t))
+        nb=$((16 * t))
         counts=
         k=0
         while [ "$k" -lt "$nb" ]; do
