@@ -10,7 +10,9 @@
  *
  * Each worker shares the frame into its own renderer the first time it
  * takes a band of it, on its own thread, so clearing a workspace's line
- * state runs in parallel too.
+ * state runs in parallel too. A caller that helps (bands_help) takes bands
+ * from the same queue and renders them in the renderer that prepared the
+ * frame, which needs no share: its workspace is the frame's.
  */
 #define _GNU_SOURCE /* sched_getaffinity */
 #include <pthread.h>
