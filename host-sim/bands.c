@@ -162,10 +162,9 @@ bands *bands_new(int threads)
 cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int window,
                       bands_emit emit, void *user)
 {
-    if (!b || !prepared || !emit || chunk < 0 || window < 1 || prepared->vh > CS_CFG_MAX_HEIGHT)
+    if (!b || !prepared || !emit || chunk < 0 || prepared->vh > CS_CFG_MAX_HEIGHT)
         return CS_ERR_ARG;
-    bool default_chunk = chunk == 0;
-    if (default_chunk) {
+    if (chunk == 0) {
         /* Sixteen bands a thread: a thread the machine slows down takes
          * fewer, and the last band to end holds up the others by half a
          * band on average (Many-blobs exact at 1920x1080 on 2 threads: the
@@ -178,8 +177,6 @@ cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int wind
     }
     if (chunk > prepared->vh)
         chunk = prepared->vh; /* one band: the frame */
-    if (default_chunk && chunk > window)
-        chunk = window; /* a band fits the caller's window */
     if (window < chunk)
         return CS_ERR_ARG;
     (void)bands_finish(b);

@@ -46,9 +46,9 @@ int bands_cores(void);
 
 /*
  * Starts rendering the frame `prepared` holds on the workers, in bands of
- * `chunk` lines (0: sixteen bands a thread, cut to the window), at most
- * `window` lines ahead of the caller's releases. Returns CS_ERR_ARG for a
- * negative chunk, a window below 1 line, or a window smaller than a band. Ends the frame before, if one runs.
+ * `chunk` lines (0: sixteen bands a thread), at most `window` lines ahead of
+ * the caller's releases. Returns CS_ERR_ARG for a negative chunk, or a
+ * window smaller than a band. Ends the frame before, if one runs.
  */
 cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int window,
                       bands_emit emit, void *user);

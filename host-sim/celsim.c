@@ -341,14 +341,6 @@ static void report_core_error(const char *what, const cs_error *e)
     fprintf(stderr, "celsim: %s: %s\n", what, msg);
 }
 
-/*
- * Lines of display bytes between the threads that render them and this one,
- * which shows them (frame_drive.h): eight bands of two threads at 1080p,
- * 1.5 MB at 1920 RGB888, where a whole frame (6.2 MB) outgrew the caches
- * between writer and reader.
- */
-#define SIM_RING_LINES 256
-
 typedef struct sim_state {
     cs_scene *scene;
     cs_workspace *ws;
@@ -357,7 +349,7 @@ typedef struct sim_state {
     uint8_t *panel;
     double *times;
     bands *pool;          /* --threads > 1 */
-    uint8_t *frame_bytes; /* the pool's lines: display bytes and panel pixels, a ring */
+    uint8_t *frame_bytes; /* the pool's lines: display bytes and panel pixels */
     uint8_t *frame_panel;
 } sim_state;
 
@@ -437,20 +429,18 @@ static int render(const options *o, sim_state *s)
     }
 
     size_t panel_line = (size_t)ow * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
-    int ring = oh < SIM_RING_LINES ? oh : SIM_RING_LINES;
     if (o->threads > 1) {
         s->pool = bands_new(o->threads - 1); /* and this thread */
-        s->frame_bytes = malloc(line_bytes * (size_t)ring);
+        s->frame_bytes = malloc(image_bytes);
         if (o->crc)
-            s->frame_panel = malloc(panel_line * (size_t)ring);
+            s->frame_panel = malloc(panel_line * (size_t)oh);
         if (!s->pool || !s->frame_bytes || (o->crc && !s->frame_panel)) {
             fprintf(stderr, "celsim: out of memory or threads for --threads %d\n", o->threads);
             return EXIT_LOAD;
         }
     }
     frame_drive d = {.dev = &dev.d, .bytes = s->bytes, .panel = NULL, .pool = s->pool,
-                     .frame_bytes = s->frame_bytes, .frame_panel = s->frame_panel,
-                     .ring_lines = ring};
+                     .frame_bytes = s->frame_bytes, .frame_panel = s->frame_panel};
     cs_renderer r;
     int rc = FRAME_DRIVE_OK;
     uint32_t crc = 0;

@@ -37,31 +37,24 @@ static cs_status drive_line(frame_drive *d, const cs_renderer *r, int y)
     return show_line(d, y, d->bytes, d->panel);
 }
 
-/* Line y's slot in the ring of the pool's lines. */
-static size_t ring_slot(const frame_drive *d, int y)
-{
-    return (size_t)(y % d->ring_lines);
-}
-
-/* Line y on a rendering thread: its display bytes and panel pixels into its slot of the ring. */
+/* Line y on a worker: its display bytes and panel pixels into the frame's storage. */
 static void band_line(void *user, const cs_renderer *r, int y)
 {
     frame_drive *d = user;
-    cs_line_pixels(r, d->pixfmt, d->frame_bytes + ring_slot(d, y) * d->line_bytes);
+    cs_line_pixels(r, d->pixfmt, d->frame_bytes + (size_t)y * d->line_bytes);
     if (d->panel != NULL)
-        cs_line_pixels(r, CS_PANEL_PIXFMT, d->frame_panel + ring_slot(d, y) * panel_bytes(d));
+        cs_line_pixels(r, CS_PANEL_PIXFMT, d->frame_panel + (size_t)y * panel_bytes(d));
 }
 
 /* The lines of the frame r prepared, rendered by the pool and by this thread
  * (in r itself, while it waits for a line), and shown in order. */
 static cs_status drive_bands(frame_drive *d, cs_renderer *r, cs_error *sticky)
 {
-    cs_status st = bands_start(d->pool, r, 0, d->ring_lines, band_line, d);
+    cs_status st = bands_start(d->pool, r, 0, d->dev->height, band_line, d);
     for (int y = 0; y < d->dev->height && st == CS_OK; y++) {
         bands_help(d->pool, r, y);
-        st = show_line(d, y, d->frame_bytes + ring_slot(d, y) * d->line_bytes,
-                       d->panel ? d->frame_panel + ring_slot(d, y) * panel_bytes(d) : NULL);
-        bands_release(d->pool, y + 1); /* its slot may take line y + ring_lines */
+        st = show_line(d, y, d->frame_bytes + (size_t)y * d->line_bytes,
+                       d->panel ? d->frame_panel + (size_t)y * panel_bytes(d) : NULL);
     }
     *sticky = bands_finish(d->pool);
     return st;

@@ -27,16 +27,12 @@ typedef struct frame_drive {
     /* Optional: lines rendered on the pool's threads and on the calling one,
      * which renders bands in the renderer it prepared while it waits for the
      * next line to show (bands_help). Each line is converted on the thread
-     * that rendered it into its slot of frame_bytes (a ring of ring_lines
-     * lines of line_bytes: line y in slot y % ring_lines) and, when panel is
-     * set, of frame_panel (ring_lines lines of panel pixels), then shown and
-     * hashed in order, as one thread would. A ring a few bands deep instead
-     * of a whole frame stays in the caches between the thread that writes a
-     * line and the one that shows it. */
+     * that rendered it into frame_bytes (height lines of line_bytes)
+     * and, when panel is set, frame_panel (height lines of panel pixels),
+     * then shown and hashed in order, as one thread would. */
     bands *pool;
     uint8_t *frame_bytes;
     uint8_t *frame_panel;
-    int ring_lines;   /* at least 1; bands are cut to fit it (bands_start) */
 
     /* Set by frame_drive_render. */
     uint32_t crc;     /* CRC-32 of the frame in CS_PANEL_PIXFMT, rows top to bottom */
