@@ -16,8 +16,9 @@
  * display's pixel format and sends them to a HAL display, here the in-memory
  * simulator (hal/sim). With --threads N > 1 the lines are rendered in bands
  * on N - 1 worker threads and this one (which shows the lines in order
- * between its bands) from one prepared frame (bands.h), with the same bytes. The PNG is written from what the simulated display
- * received, so the picture is what the glass would show.
+ * between its bands) from one prepared frame (bands.h), with the same
+ * bytes. The PNG is written from what the simulated display received, so
+ * the picture is what the glass would show.
  *
  * Exit status: 0 success; 1 the scene or a file could not be read, loaded or
  * written, or the frame could not be rendered, or a stream committed nothing
