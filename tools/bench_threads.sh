@@ -121,9 +121,10 @@ core=${CELSCAN_CORE:-$("$celsim" render scenes/demo.json --crc --core x86-64-v3 
     echo "The bands here are equal and fixed, one a thread. celsim --threads hands out sixteen bands a"
     echo "thread in turn to its workers and the calling thread (a thread slowed by the machine takes"
     echo "fewer); on idle cores that schedule, from the instructions of each of its bands, gives the"
-    echo "figures below. Each band is counted as a fresh start (its cs_frame_share and a first row of"
-    echo "exact ends solved afresh, ~80 k instructions), which a thread that takes the next band"
-    echo "straight after its last does not pay again, so with many bands the path errs long:"
+    echo "figures below. Each band is counted as a fresh start: its cs_frame_share (~24 k instructions),"
+    echo "which celsim's threads pay once a frame, and a restart (the active list rebuilt, a first row"
+    echo "of exact ends solved afresh; ~80 k in all), which they pay for every band that does not"
+    echo "follow their last, so the path errs a little long:"
     echo
     echo "| --aa | threads | bands | prepare + the busiest thread's bands | 1 thread / critical path |"
     echo "|---|---:|---:|---:|---:|"
