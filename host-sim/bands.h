@@ -46,7 +46,7 @@ int bands_cores(void);
 
 /*
  * Starts rendering the frame `prepared` holds on the workers, in bands of
- * `chunk` lines (0: four bands a thread), at most `window` lines ahead of
+ * `chunk` lines (0: sixteen bands a thread), at most `window` lines ahead of
  * the caller's releases. Returns CS_ERR_ARG for a negative chunk, or a
  * window smaller than a band. Ends the frame before, if one runs.
  */
@@ -56,6 +56,16 @@ cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int wind
 /* Blocks until line y of the frame (of its window) has been emitted. */
 void bands_wait(bands *b, int y);
 
+/*
+ * bands_wait that works meanwhile: while line y is not emitted and a band
+ * is open, the caller takes it and renders it in `prepared` (the renderer
+ * given to bands_start, which it may then no longer use for anything else
+ * until bands_finish), emitting its lines as a worker would, on this
+ * thread. A pool of N - 1 workers and a helping caller keep N cores busy
+ * without a third thread waking to copy lines; from the first helped
+ * frame on, chunk 0 counts the caller as a thread.
+ */
+void bands_help(bands *b, cs_renderer *prepared, int y);
 /* The caller is done with every line before y: workers may go on to y + window. */
 void bands_release(bands *b, int y);
 

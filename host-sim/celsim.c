@@ -15,9 +15,10 @@
  * path as on a board: the core renders lines, frame_drive converts them to the
  * display's pixel format and sends them to a HAL display, here the in-memory
  * simulator (hal/sim). With --threads N > 1 the lines are rendered in bands
- * on N threads from one prepared frame (bands.h) and reach the display in
- * order, with the same bytes. The PNG is written from what the simulated display
- * received, so the picture is what the glass would show.
+ * on N - 1 worker threads and this one (which shows the lines in order
+ * between its bands) from one prepared frame (bands.h), with the same
+ * bytes. The PNG is written from what the simulated display received, so
+ * the picture is what the glass would show.
  *
  * Exit status: 0 success; 1 the scene or a file could not be read, loaded or
  * written, or the frame could not be rendered, or a stream committed nothing
@@ -430,7 +431,7 @@ static int render(const options *o, sim_state *s)
 
     size_t panel_line = (size_t)ow * cs_pixfmt_bytes_per_pixel(CS_PANEL_PIXFMT);
     if (o->threads > 1) {
-        s->pool = bands_new(o->threads);
+        s->pool = bands_new(o->threads - 1); /* and this thread */
         s->frame_bytes = malloc(image_bytes);
         if (o->crc)
             s->frame_panel = malloc(panel_line * (size_t)oh);

@@ -46,12 +46,13 @@ static void band_line(void *user, const cs_renderer *r, int y)
         cs_line_pixels(r, CS_PANEL_PIXFMT, d->frame_panel + (size_t)y * panel_bytes(d));
 }
 
-/* The lines of the frame r prepared, rendered by the pool and shown in order. */
-static cs_status drive_bands(frame_drive *d, const cs_renderer *r, cs_error *sticky)
+/* The lines of the frame r prepared, rendered by the pool and by this thread
+ * (in r itself, while it waits for a line), and shown in order. */
+static cs_status drive_bands(frame_drive *d, cs_renderer *r, cs_error *sticky)
 {
     cs_status st = bands_start(d->pool, r, 0, d->dev->height, band_line, d);
     for (int y = 0; y < d->dev->height && st == CS_OK; y++) {
-        bands_wait(d->pool, y);
+        bands_help(d->pool, r, y);
         st = show_line(d, y, d->frame_bytes + (size_t)y * d->line_bytes,
                        d->panel ? d->frame_panel + (size_t)y * panel_bytes(d) : NULL);
     }

@@ -24,8 +24,10 @@ typedef struct frame_drive {
     hal_display *dev;
     uint8_t *bytes;   /* hal_line_bytes of the display: one line in its format */
     uint8_t *panel;   /* NULL, or width * bytes-per-pixel of CS_PANEL_PIXFMT to hash the frame */
-    /* Optional: lines rendered on the pool's threads (bands.h). Each line is
-     * converted on its worker into frame_bytes (height lines of line_bytes)
+    /* Optional: lines rendered on the pool's threads and on the calling one,
+     * which renders bands in the renderer it prepared while it waits for the
+     * next line to show (bands_help). Each line is converted on the thread
+     * that rendered it into frame_bytes (height lines of line_bytes)
      * and, when panel is set, frame_panel (height lines of panel pixels),
      * then shown and hashed in order, as one thread would. */
     bands *pool;

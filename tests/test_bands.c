@@ -9,7 +9,8 @@
  * 16 sub-scanlines, exact area) and both blends, the same frame prepared
  * once and rendered by the thread pool of host-sim/bands.c (cs_frame_share
  * into a workspace per thread) with 1, 2, 3 and 4 threads must give the
- * same linear floats, bit for bit, on every line; so must small bands,
+ * same linear floats, bit for bit, on every line, also with the caller
+ * rendering bands in the prepared renderer (bands_help); so must small bands,
  * bands of one line, a ring of a few lines that the consumer releases as it
  * goes, and a frame with a pre-combined cache. celfw's source
  * (hal/linux/lx_scene_source.c) with a pool must hand out the same lines,
@@ -63,11 +64,12 @@ static cs_error render_one(const cs_render_opts *o, const cs_cache *cache)
 
 /*
  * The frame on `pool` in bands of `chunk` (0: the default) with a window of
- * `window` lines (0: the whole frame); compares each line with `want` as
- * the consumer receives it. Returns the number of lines that differ.
+ * `window` lines (0: the whole frame), the caller rendering bands too when
+ * `help` (bands_help); compares each line with `want` as the consumer
+ * receives it. Returns the number of lines that differ.
  */
 static int render_pool(bands *pool, const cs_render_opts *o, const cs_cache *cache, int chunk,
-                       int window, cs_error *err)
+                       int window, bool help, cs_error *err)
 {
     cs_renderer prep;
     cs_error e;
@@ -82,7 +84,10 @@ static int render_pool(bands *pool, const cs_render_opts *o, const cs_cache *cac
         return o->height;
     int bad = 0;
     for (int y = 0; y < o->height; y++) {
-        bands_wait(pool, y);
+        if (help)
+            bands_help(pool, &prep, y);
+        else
+            bands_wait(pool, y);
         const float *line = got + (size_t)(y % slots) * line_floats;
         if (memcmp(line, want + (size_t)y * line_floats, line_floats * sizeof(float)) != 0) {
             if (bad == 0)
@@ -139,16 +144,17 @@ static void test_threads_match_one(void)
                 o.time = scenes[s].time;
                 o.blend = (cs_blend)blend;
                 cs_error e1 = render_one(&o, NULL);
-                for (int t = 0; t < 4; t++) {
-                    if (!pool[t])
+                for (int t = 0; t < 8; t++) {
+                    bool help = t >= 4; /* the caller a thread too */
+                    if (!pool[t % 4])
                         continue;
                     cs_error et;
-                    int bad = render_pool(pool[t], &o, NULL, 0, 0, &et);
+                    int bad = render_pool(pool[t % 4], &o, NULL, 0, 0, help, &et);
                     CHECK(bad == 0 && et.status == e1.status,
-                          "%s aa %d/%d blend %d, %d threads: %d lines differ from one thread "
+                          "%s aa %d/%d blend %d, %d threads%s: %d lines differ from one thread "
                           "(errors %d, %d)",
-                          scenes[s].file, (int)o.aa, o.subscanlines, blend, t + 1, bad,
-                          (int)et.status, (int)e1.status);
+                          scenes[s].file, (int)o.aa, o.subscanlines, blend, t % 4 + 1,
+                          help ? " and the caller" : "", bad, (int)et.status, (int)e1.status);
                 }
             }
         }
@@ -172,9 +178,11 @@ static void test_band_shapes(void)
         render_one(&o, NULL);
         for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++) {
             cs_error e;
-            int bad = render_pool(pool, &o, NULL, shapes[k][0], shapes[k][1], &e);
-            CHECK(bad == 0, "aa %d, bands of %d lines, window %d: %d lines differ", (int)o.aa,
-                  shapes[k][0], shapes[k][1], bad);
+            for (int help = 0; help < 2; help++) {
+                int bad = render_pool(pool, &o, NULL, shapes[k][0], shapes[k][1], help, &e);
+                CHECK(bad == 0, "aa %d, bands of %d lines, window %d, help %d: %d lines differ",
+                      (int)o.aa, shapes[k][0], shapes[k][1], help, bad);
+            }
         }
     }
     /* A window smaller than a band could never start one. */
@@ -196,7 +204,7 @@ static void test_band_shapes(void)
     if (CHECK(st == CS_OK, "cs_cache_build: %s (%zu bytes needed)", cs_status_str(st),
               cache.bytes_needed)) {
         render_one(&o, &cache);
-        int bad = render_pool(pool, &o, &cache, 0, 0, &e);
+        int bad = render_pool(pool, &o, &cache, 0, 0, true, &e);
         CHECK(bad == 0, "cached frame on 3 threads: %d lines differ", bad);
     }
     bands_free(pool);
@@ -243,15 +251,17 @@ static void test_capacity_error_in_line_order(void)
         cs_error e1 = render_one(&o, NULL);
         CHECK_STATUS(e1.status, CS_ERR_CAP_CROSSINGS, "the comb overflows (one thread)");
         /* Bands of 3 lines: several threads meet the overflow, the lowest line wins. */
-        cs_error e4;
-        int bad = render_pool(pool, &o, NULL, 3, 0, &e4);
-        CHECK(bad == 0, "aa %d: %d lines differ", aa, bad);
-        CHECK(e4.status == e1.status && e4.cel == e1.cel && e4.region == e1.region &&
-                  e4.item == e1.item,
-              "aa %d: 4 threads report %s at cel %d region %d line %d; one thread %s at cel %d "
-              "region %d line %d",
-              aa, cs_status_str(e4.status), e4.cel, e4.region, e4.item, cs_status_str(e1.status),
-              e1.cel, e1.region, e1.item);
+        for (int help = 0; help < 2; help++) {
+            cs_error e4;
+            int bad = render_pool(pool, &o, NULL, 3, 0, help, &e4);
+            CHECK(bad == 0, "aa %d, help %d: %d lines differ", aa, help, bad);
+            CHECK(e4.status == e1.status && e4.cel == e1.cel && e4.region == e1.region &&
+                      e4.item == e1.item,
+                  "aa %d, help %d: 4 threads report %s at cel %d region %d line %d; one thread "
+                  "%s at cel %d region %d line %d",
+                  aa, help, cs_status_str(e4.status), e4.cel, e4.region, e4.item,
+                  cs_status_str(e1.status), e1.cel, e1.region, e1.item);
+        }
     }
     bands_free(pool);
 }

@@ -118,9 +118,13 @@ core=${CELSCAN_CORE:-$("$celsim" render scenes/demo.json --crc --core x86-64-v3 
         done
     done
     echo
-    echo "The bands here are equal and fixed, one a thread. celsim --threads hands out four bands a"
-    echo "thread in turn (a thread slowed by the machine takes fewer); on idle cores that schedule,"
-    echo "from the instructions of each of its bands, gives:"
+    echo "The bands here are equal and fixed, one a thread. celsim --threads hands out sixteen bands a"
+    echo "thread in turn to its workers and the calling thread (a thread slowed by the machine takes"
+    echo "fewer); on idle cores that schedule, from the instructions of each of its bands, gives the"
+    echo "figures below. Each band is counted as a fresh start: its cs_frame_share (~24 k instructions),"
+    echo "which celsim's threads pay once a frame, and a restart (the active list rebuilt, a first row"
+    echo "of exact ends solved afresh; ~80 k in all), which they pay for every band that does not"
+    echo "follow their last, so the path errs a little long:"
     echo
     echo "| --aa | threads | bands | prepare + the busiest thread's bands | 1 thread / critical path |"
     echo "|---|---:|---:|---:|---:|"
@@ -129,7 +133,7 @@ core=${CELSCAN_CORE:-$("$celsim" render scenes/demo.json --crc --core x86-64-v3 
     one=$(count celscan_band "$aa" 0/1)
     one=$(awk -v p="$prep" -v o="$one" 'BEGIN { print p + o }')
     for t in 2 4; do
-        nb=$((4 * t))
+        nb=$((16 * t))
         counts=
         k=0
         while [ "$k" -lt "$nb" ]; do
