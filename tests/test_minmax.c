@@ -17,13 +17,6 @@
 #include "cs_internal.h"
 #include "testlib.h"
 
-static uint32_t bits_of(float f)
-{
-    uint32_t b;
-    memcpy(&b, &f, sizeof b);
-    return b;
-}
-
 static float ref_min(float a, float b)
 {
     volatile float va = a, vb = b;
@@ -40,9 +33,9 @@ static float ref_max(float a, float b)
 static int pair_differs(float a, float b)
 {
     int bad = 0;
-    bad += bits_of(cs__minf(a, b)) != bits_of(ref_min(a, b));
-    bad += bits_of(cs__maxf(a, b)) != bits_of(ref_max(a, b));
-    bad += bits_of(cs__clampf(a, 0.0f, 1.0f)) != bits_of(ref_min(ref_max(a, 0.0f), 1.0f));
+    bad += tl_bits_of(cs__minf(a, b)) != tl_bits_of(ref_min(a, b));
+    bad += tl_bits_of(cs__maxf(a, b)) != tl_bits_of(ref_max(a, b));
+    bad += tl_bits_of(cs__clampf(a, 0.0f, 1.0f)) != tl_bits_of(ref_min(ref_max(a, 0.0f), 1.0f));
     return bad;
 }
 
@@ -59,8 +52,8 @@ static void test_special(void)
     CHECK(bad == 0, "min/max/clamp of %zu x %zu special pairs: %d results differ from the C "
           "conditional", n, n, bad);
     /* The cases the order of the operands decides, by name. */
-    CHECK(bits_of(cs__maxf(-0.0f, 0.0f)) == bits_of(0.0f) &&
-              bits_of(cs__maxf(0.0f, -0.0f)) == bits_of(-0.0f),
+    CHECK(tl_bits_of(cs__maxf(-0.0f, 0.0f)) == tl_bits_of(0.0f) &&
+              tl_bits_of(cs__maxf(0.0f, -0.0f)) == tl_bits_of(-0.0f),
           "max of +-0 is the second operand");
     CHECK(cs__maxf(NAN, 1.0f) == 1.0f && isnan(cs__maxf(1.0f, NAN)),
           "max with one NaN is the second operand");

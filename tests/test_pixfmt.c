@@ -258,25 +258,11 @@ static uint32_t srgb8_interpolated(float v)
     return c > 255u ? 255u : c;
 }
 
-static float float_at(uint32_t bits)
-{
-    float v;
-    memcpy(&v, &bits, sizeof v);
-    return v;
-}
-
-static uint32_t bits_of(float v)
-{
-    uint32_t b;
-    memcpy(&b, &v, sizeof b);
-    return b;
-}
-
 /* Compares cs__srgb8 with the interpolation at the floats around b. */
 static void srgb8_near(uint32_t b, int *bad, int *checked, float *first_bad)
 {
     for (uint32_t d = b < 4u ? 0u : b - 4u; d <= b + 4u; d++) {
-        float v = float_at(d);
+        float v = tl_float_of(d);
         (*checked)++;
         if (cs__srgb8(v) != srgb8_interpolated(v) && (*bad)++ == 0)
             *first_bad = v;
@@ -293,18 +279,18 @@ static void test_srgb8_table(void)
     for (uint32_t i = 0; i <= CS__SRGB8_BITS_CELLS; i++) {
         srgb8_near((CS__SRGB8_BITS_FIRST + i) << 16, &bad, &checked, &first_bad);
         if (i < CS__SRGB8_BITS_CELLS)
-            srgb8_near(bits_of(cs__srgb8_bits_step[i]), &bad, &checked, &first_bad);
+            srgb8_near(tl_bits_of(cs__srgb8_bits_step[i]), &bad, &checked, &first_bad);
     }
 #else
     for (int i = 0; i <= 1024; i++) {
         /* Around the cell boundary (i / 1024)^2 and the cell's step. */
         float edge = (float)((double)i / 1024.0 * ((double)i / 1024.0));
-        srgb8_near(bits_of(edge), &bad, &checked, &first_bad);
-        srgb8_near(bits_of(i < 1024 ? cs__srgb8_step[i] : 1.0f), &bad, &checked, &first_bad);
+        srgb8_near(tl_bits_of(edge), &bad, &checked, &first_bad);
+        srgb8_near(tl_bits_of(i < 1024 ? cs__srgb8_step[i] : 1.0f), &bad, &checked, &first_bad);
     }
 #endif
     for (uint32_t b = 1u; b < 0x3F800000u; b += 97u) { /* a sweep of (0, 1) */
-        float v = float_at(b);
+        float v = tl_float_of(b);
         checked++;
         if (cs__srgb8(v) != srgb8_interpolated(v) && bad++ == 0)
             first_bad = v;
@@ -340,7 +326,7 @@ static void test_rgb565_table(void)
     uint32_t bad = 0, checked = 0;
     float first_bad = 0.0f;
     for (uint32_t b = 0u; b <= 0x3F800000u; b += stride) {
-        float v = float_at(b);
+        float v = tl_float_of(b);
         checked++;
         if ((cs__rgb5(v) != packed_interpolated(v, 31u) ||
              cs__rgb6(v) != packed_interpolated(v, 63u)) && bad++ == 0)
@@ -351,9 +337,9 @@ static void test_rgb565_table(void)
                            (float)((double)k / 64.0 * ((double)k / 64.0)),
                            (float)((double)k / 32.0 * ((double)k / 32.0))};
         for (int p = 0; p < 4; p++) {
-            uint32_t c = bits_of(points[p]);
+            uint32_t c = tl_bits_of(points[p]);
             for (uint32_t d = c < 4u ? 0u : c - 4u; d <= c + 4u; d++) {
-                float v = float_at(d);
+                float v = tl_float_of(d);
                 checked++;
                 if ((cs__rgb5(v) != packed_interpolated(v, 31u) ||
                      cs__rgb6(v) != packed_interpolated(v, 63u)) && bad++ == 0)

@@ -18,25 +18,11 @@
 #include "common.h"
 #include "cs_internal.h"
 
-static uint32_t bits_of(float f)
-{
-    uint32_t b;
-    memcpy(&b, &f, sizeof b);
-    return b;
-}
-
-static float float_of(uint32_t b)
-{
-    float f;
-    memcpy(&f, &b, sizeof f);
-    return f;
-}
-
 static void test_entries(void)
 {
     int bad = 0, first = -1;
     for (uint32_t i = 0; i <= 1024u; i++)
-        if (bits_of(cs__srgb_compact_at(i)) != bits_of(cs__srgb_by_sqrt[i])) {
+        if (tl_bits_of(cs__srgb_compact_at(i)) != tl_bits_of(cs__srgb_by_sqrt[i])) {
             if (first < 0)
                 first = (int)i;
             bad++;
@@ -52,7 +38,7 @@ static void test_entries(void)
 static int decode_differs(float v, float *worst)
 {
     float got = cs__srgb_decode_compact(v), want = cs_srgb_decode(v);
-    if (bits_of(got) == bits_of(want))
+    if (tl_bits_of(got) == tl_bits_of(want))
         return 0;
     *worst = v;
     return 1;
@@ -64,17 +50,17 @@ static void test_decode(void)
     float at = 0.0f;
     for (uint32_t i = 0; i <= 1024u; i++)
         for (int d = -2; d <= 2; d++) {
-            uint32_t b = bits_of(cs__srgb_by_sqrt[i]);
+            uint32_t b = tl_bits_of(cs__srgb_by_sqrt[i]);
             if (d < 0 && b < (uint32_t)-d)
                 continue;
-            bad += decode_differs(float_of(b + (uint32_t)d), &at);
+            bad += decode_differs(tl_float_of(b + (uint32_t)d), &at);
         }
     CHECK(bad == 0, "decoding at the entries and their neighbours: %d differ (one at %a)", bad,
           (double)at);
     bad = 0;
-    uint32_t one = bits_of(1.0f);
+    uint32_t one = tl_bits_of(1.0f);
     for (uint32_t b = 0; b <= one; b += 256u)
-        bad += decode_differs(float_of(b), &at);
+        bad += decode_differs(tl_float_of(b), &at);
     CHECK(bad == 0, "decoding every 256th float in [0, 1]: %d differ (one at %a)", bad, (double)at);
     const float special[] = {0.0f, -0.0f, -1.0f, 1.0f, 2.0f, INFINITY, -INFINITY, NAN, FLT_MIN};
     bad = 0;
@@ -87,9 +73,9 @@ static void test_encode(void)
 {
     int bad = 0;
     float at = 0.0f;
-    uint32_t one = bits_of(1.0f);
+    uint32_t one = tl_bits_of(1.0f);
     for (uint32_t b = 0; b <= one; b += 256u) {
-        float v = float_of(b);
+        float v = tl_float_of(b);
         uint32_t c = (uint32_t)(cs__srgb_encode(v) * 65535.0f + 0.5f);
         if ((c > 65535u ? 65535u : c) != cs_srgb_encode16(v)) {
             bad++;

@@ -27,6 +27,7 @@
 #define CELSCAN_TESTLIB_H
 
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -112,6 +113,22 @@ static TL_PRINTF(1, 2) TL_UNUSED void tl_note(const char *fmt, ...)
 
 /* The name of a status (designated, so the order of cs_status does not
  * matter); one added to the core but not here prints as unnamed. */
+/* A float's bits and the float of some bits, for tests that compare floats
+ * bit for bit or walk every float of a range. */
+static TL_UNUSED uint32_t tl_bits_of(float f)
+{
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+static TL_UNUSED float tl_float_of(uint32_t b)
+{
+    float f;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
 static TL_UNUSED const char *tl_status_name(int s)
 {
 #define TL_STATUS(name) [name] = #name
