@@ -460,9 +460,23 @@ static inline float cs__srgb_at(uint32_t i) { return cs__srgb_by_sqrt[i]; }
 static inline float cs__srgb_decode(float encoded) { return cs_srgb_decode(encoded); }
 #endif
 
+/* The cell of a strictly rising table, read through `at`, that holds v:
+ * the i in [lo, hi) with at(i) <= v < at(i + 1), given at(lo) <= v < at(hi). */
+static inline uint32_t cs__srgb_cell(float (*at)(uint32_t), uint32_t lo, uint32_t hi, float v)
+{
+    while (hi - lo > 1u) {
+        uint32_t mid = (lo + hi) / 2u;
+        if (at(mid) <= v)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
 /*
  * sRGB decoding within entries lo..hi of the encoding table, read through
- * `at` (entry lo <= encoded < entry hi): a binary search for the cell, then
+ * `at` (entry lo <= encoded < entry hi): the cell holding the value, then
  * the inverse of its linear interpolation, so decode(encode(v)) returns v to
  * float precision. cs_srgb_decode searches the whole table; the compact
  * form's decoder (cs_srgb_compact.c) first finds the anchors around the
@@ -470,14 +484,8 @@ static inline float cs__srgb_decode(float encoded) { return cs_srgb_decode(encod
  */
 static inline float cs__srgb_decode_in(float (*at)(uint32_t), uint32_t lo, uint32_t hi, float encoded)
 {
-    while (hi - lo > 1u) {
-        uint32_t mid = (lo + hi) / 2u;
-        if (at(mid) <= encoded)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    float a = at(lo), b = at(hi);
+    lo = cs__srgb_cell(at, lo, hi, encoded);
+    float a = at(lo), b = at(lo + 1u);
     float s = ((float)lo + (encoded - a) / (b - a)) * (1.0f / 1024.0f);
     return s * s;
 }

@@ -42,14 +42,7 @@ float cs__srgb_decode_compact(float encoded)
         return 0.0f;
     if (encoded >= 1.0f)
         return 1.0f;
-    uint32_t lo = 0, hi = 1024u / CS__SRGB_STEP; /* coarse(lo) <= encoded < coarse(hi) */
-    while (hi - lo > 1u) {
-        uint32_t mid = (lo + hi) / 2u;
-        if (coarse(mid) <= encoded)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    lo *= CS__SRGB_STEP; /* entry lo <= encoded < entry lo + CS__SRGB_STEP */
+    uint32_t lo = CS__SRGB_STEP * cs__srgb_cell(coarse, 0u, 1024u / CS__SRGB_STEP, encoded);
+    /* entry lo <= encoded < entry lo + CS__SRGB_STEP */
     return cs__srgb_decode_in(cs__srgb_compact_at, lo, lo + CS__SRGB_STEP, encoded);
 }
