@@ -163,7 +163,11 @@ TEST_CFLAGS := -std=c11 $(OPT) -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Ite
 # range (NaN included) is undefined behaviour that the MCU and the host may resolve differently.
 SAN_FLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all \
         -fno-omit-frame-pointer
-ASAN_CORE_CFLAGS := -std=c11 -O1 -g $(FP_FLAGS) $(WARN) $(SAN_FLAGS) -Icore -MMD -MP
+# One sanitizer build of the core (build/asan/libcelscan.a), compiled as the
+# library is, with the sanitizers added, and linked by every ASan test program:
+# the unit tests, exact, stream, scenes, wall and beta tests (each had compiled
+# the core on its own, four times in all, and the beta tests once per program).
+ASAN_CORE_CFLAGS := $(CORE_CFLAGS) $(SAN_FLAGS)
 ASAN_TEST_CFLAGS := -std=c11 -O1 -g $(FP_FLAGS) -Wall -Wextra -Wshadow $(SAN_FLAGS) -Icore -Itests \
         -MMD -MP
 ASAN_ENV := ASAN_OPTIONS=abort_on_error=0:detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1

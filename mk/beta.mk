@@ -5,8 +5,9 @@
 #   make test-beta-asan   the same under AddressSanitizer + UBSan
 #   make bench-cache      pre-combination benchmark (static background, moving front)
 #
-# The tests link the core sources directly (not the freestanding library
-# objects) so that the sanitizer build instruments the core too.
+# The tests link the core library; the sanitizer build links the sanitizer
+# build of the core (Makefile, ASAN_CORE_CFLAGS), so the core is instrumented
+# too.
 
 BETA_CFLAGS := -std=c11 -O2 -g $(FP_FLAGS) -Wall -Wextra -Wshadow -Icore -Itests -D_POSIX_C_SOURCE=200809L -MMD -MP
 $(eval $(call flags_record,beta,$(CC) $(BETA_CFLAGS) $(SAN_FLAGS)))
@@ -15,13 +16,15 @@ BETA_TESTS := test_beta test_cache test_csg
 BETA_HOST := $(addprefix $(HOST)/,$(BETA_TESTS))
 BETA_ASAN := $(addprefix $(ASAN)/,$(BETA_TESTS))
 
-$(BETA_HOST): $(HOST)/%: tests/%.c tests/beta_common.h $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
+$(BETA_HOST): $(HOST)/%: tests/%.c tests/beta_common.h $(HOST)/libcelscan.a $(CORE_HDR) \
+        $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(BETA_CFLAGS) $< $(CORE_SRC) -lm -o $@
+	$(Q)$(CC) $(BETA_CFLAGS) $< $(HOST)/libcelscan.a -lm -o $@
 
-$(BETA_ASAN): $(ASAN)/%: tests/%.c tests/beta_common.h $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
+$(BETA_ASAN): $(ASAN)/%: tests/%.c tests/beta_common.h $(ASAN)/libcelscan.a $(CORE_HDR) \
+        $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(BETA_CFLAGS) -O1 $(SAN_FLAGS) $< $(CORE_SRC) -lm -o $@
+	$(Q)$(CC) $(BETA_CFLAGS) -O1 $(SAN_FLAGS) $< $(ASAN)/libcelscan.a -lm -o $@
 
 $(HOST)/bench_cache_anim: bench/cache_anim.c tools/cli_num.c $(CORE_SRC) $(CORE_HDR) $(FLAGS_DIR)/beta
 	@mkdir -p $(dir $@)

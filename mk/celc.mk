@@ -44,16 +44,14 @@ TEST_TARGETS += test-scenes
 # The same in-process tests under ASan + UBSan, the JSON loader and the core
 # included (mk/stream.mk does the same for the decoder's own tests).
 SCENES_ASAN := $(ASAN)/scenes
-$(eval $(call flags_record,scenes-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(PKG_CFLAGS) $(SAN_FLAGS)))
-$(SCENES_ASAN)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/scenes-asan
-	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CORE_CFLAGS) $(SAN_FLAGS) -c $< -o $@
+# (the core: the shared sanitizer build, build/asan/libcelscan.a)
+$(eval $(call flags_record,scenes-asan,$(CC) $(HOST_CFLAGS) $(PKG_CFLAGS) $(SAN_FLAGS)))
 $(SCENES_ASAN)/obj/%.o: %.c $(FLAGS_DIR)/scenes-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) $(PKG_CFLAGS) -Itests $(SAN_FLAGS) -c $< -o $@
 $(SCENES_ASAN)/test_scenes: $(patsubst %.o,$(SCENES_ASAN)/obj/%.o,tests/test_scenes.o \
         tools/cels_write.o tools/cels_read.o host-sim/scene_json.o host-sim/paint_json.o) \
-        $(patsubst core/%.c,$(SCENES_ASAN)/core/%.o,$(CORE_SRC))
+        $(ASAN)/libcelscan.a
 	$(Q)$(CC) $(SAN_FLAGS) $^ -o $@ $(PKG_LIBS) -lm
 
 .PHONY: test-scenes-asan

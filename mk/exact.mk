@@ -13,15 +13,12 @@ $(HOST)/tests/test_exact: $(addprefix $(HOST)/obj/,$(EXACT_TEST_OBJ)) $(HOST)/li
 	$(Q)$(CC) $^ -lm -o $@
 
 # Sanitizer builds keep their objects apart from the plain ones.
-$(eval $(call flags_record,exact-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(SAN_FLAGS)))
-$(EXACT_ASAN)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/exact-asan
-	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CORE_CFLAGS) $(SAN_FLAGS) -c $< -o $@
+# The core is the shared sanitizer build (Makefile, ASAN_CORE_CFLAGS).
+$(eval $(call flags_record,exact-asan,$(CC) $(HOST_CFLAGS) $(SAN_FLAGS)))
 $(EXACT_ASAN)/obj/%.o: %.c $(FLAGS_DIR)/exact-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) -Itests $(SAN_FLAGS) -DTEST_NAME='"test_exact_asan"' -c $< -o $@
-$(EXACT_ASAN)/test_exact: $(addprefix $(EXACT_ASAN)/obj/,$(EXACT_TEST_OBJ)) \
-                          $(patsubst core/%.c,$(EXACT_ASAN)/core/%.o,$(CORE_SRC))
+$(EXACT_ASAN)/test_exact: $(addprefix $(EXACT_ASAN)/obj/,$(EXACT_TEST_OBJ)) $(ASAN)/libcelscan.a
 	$(Q)$(CC) $(SAN_FLAGS) $^ -lm -o $@
 
 $(HOST)/bench_aa_modes: $(HOST)/obj/bench/aa_modes.o $(HOST)/obj/tools/cli_num.o $(HOST)/libcelscan.a

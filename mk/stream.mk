@@ -18,15 +18,13 @@ $(HOST)/test_stream: $(STREAM_TEST_OBJ) $(HOST)/libcelscan.a
 
 # Sanitizers over everything, the core too: the decoder is what they are for.
 STREAM_ASAN := $(ASAN)/stream
-$(eval $(call flags_record,stream-asan,$(CC) $(CORE_CFLAGS) $(HOST_CFLAGS) $(SAN_FLAGS)))
-$(STREAM_ASAN)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/stream-asan
-	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CORE_CFLAGS) $(SAN_FLAGS) -c $< -o $@
+# (the core: the shared sanitizer build, build/asan/libcelscan.a)
+$(eval $(call flags_record,stream-asan,$(CC) $(HOST_CFLAGS) $(SAN_FLAGS)))
 $(STREAM_ASAN)/obj/%.o: %.c $(FLAGS_DIR)/stream-asan
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(HOST_CFLAGS) -Itools $(SAN_FLAGS) -c $< -o $@
 $(STREAM_ASAN)/test_stream: $(STREAM_ASAN)/obj/tests/test_stream.o \
-        $(STREAM_ASAN)/obj/tools/cels_write.o $(STREAM_ASAN)/obj/tools/cels_read.o $(patsubst core/%.c,$(STREAM_ASAN)/core/%.o,$(CORE_SRC))
+        $(STREAM_ASAN)/obj/tools/cels_write.o $(STREAM_ASAN)/obj/tools/cels_read.o $(ASAN)/libcelscan.a
 	$(Q)$(CC) $(SAN_FLAGS) $^ -o $@ -lm
 
 .PHONY: stream-test stream-test-asan fuzz fuzz-smoke stream-seeds

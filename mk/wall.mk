@@ -22,10 +22,10 @@ TEST_TARGETS += test-wall
 
 # The same tiles under ASan + UBSan, the core included: the viewport's index
 # arithmetic (accumulator entries shifted by the window's origin) checked at
-# every access. Objects as mk/celc.mk's test-scenes-asan builds them.
+# every access. Objects as mk/celc.mk's test-scenes-asan builds them, the
+# core the shared sanitizer build.
 $(SCENES_ASAN)/wall_tiles: $(patsubst %.o,$(SCENES_ASAN)/obj/%.o,tests/wall_tiles.o \
-        host-sim/scene_json.o host-sim/paint_json.o) \
-        $(patsubst core/%.c,$(SCENES_ASAN)/core/%.o,$(CORE_SRC))
+        host-sim/scene_json.o host-sim/paint_json.o) $(ASAN)/libcelscan.a
 	$(Q)$(CC) $(SAN_FLAGS) $^ -o $@ $(PKG_LIBS) -lm
 
 .PHONY: test-wall-asan
