@@ -63,6 +63,16 @@ $(FUZZ)/fuzz_stream: $(patsubst %.c,$(FUZZ)/guided/%.o,$(FUZZ_GUIDED)) \
         $(patsubst %.c,$(FUZZ)/plain/%.o,$(FUZZ_PLAIN))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ -o $@
 
+# The core with full capacities under the fuzzers' coverage and sanitizers,
+# one build shared by the JSON loader's, the SVG importer's (mk/svg.mk) and
+# the Lottie importer's (mk/zlottie.mk) fuzzers, which had each compiled it.
+FUZZ_CORE_CFLAGS := $(FUZZ_BASE_CFLAGS) -Icore
+$(eval $(call flags_record,fuzz-core,$(FUZZ_CC) $(FUZZ_CORE_CFLAGS)))
+$(FUZZ)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/fuzz-core
+	@mkdir -p $(dir $@)
+	$(Q)$(FUZZ_CC) $(FUZZ_CORE_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
+FUZZ_CORE_OBJ := $(patsubst core/%.c,$(FUZZ)/core/%.o,$(CORE_SRC))
+
 # Runs fuzzer $(1) (a program in $(FUZZ)) for $(2) seconds in a scratch corpus,
 # $(FUZZ)/$(1).corpus, filled by FUZZ_SEEDS_$(1) (shell commands) and run
 # with FUZZ_OPTS_$(1); $(3) names it in the summary line. Findings (crash-*,
@@ -97,7 +107,7 @@ $(eval $(call flags_record,fuzz-json,$(FUZZ_CC) $(FUZZ_JSON_CFLAGS)))
 $(FUZZ)/json/%.o: %.c $(CORE_HDR) tests/fuzz_check.h host-sim/scene_json.h host-sim/paint_json.h $(FLAGS_DIR)/fuzz-json
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_JSON_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
-$(FUZZ)/fuzz_scene_json: $(patsubst %.c,$(FUZZ)/json/%.o,$(FUZZ_JSON_SRC) $(CORE_SRC))
+$(FUZZ)/fuzz_scene_json: $(patsubst %.c,$(FUZZ)/json/%.o,$(FUZZ_JSON_SRC)) $(FUZZ_CORE_OBJ)
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(shell pkg-config --libs libcjson) -o $@
 
 FUZZ_SEEDS_fuzz_scene_json = cp scenes/*.json $(FUZZ)/fuzz_scene_json.corpus/

@@ -103,7 +103,7 @@ $(eval $(call flags_record,fuzz-svg,$(FUZZ_CC) $(FUZZ_SVG_CFLAGS)))
 $(FUZZ)/svg/%.o: %.c $(CORE_HDR) tests/fuzz_check.h $(wildcard tools/svg/*.h) host-sim/scene_json.h $(FLAGS_DIR)/fuzz-svg
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_SVG_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
-$(FUZZ)/fuzz_svg: $(patsubst %.c,$(FUZZ)/svg/%.o,$(FUZZ_SVG_SRC) $(CORE_SRC))
+$(FUZZ)/fuzz_svg: $(patsubst %.c,$(FUZZ)/svg/%.o,$(FUZZ_SVG_SRC)) $(FUZZ_CORE_OBJ)
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
 
 FUZZ_SEEDS_fuzz_svg = cp scenes/svg/*.svg $(FUZZ)/fuzz_svg.corpus/ && \

@@ -60,16 +60,18 @@ TEST_DEPS += $(HOST)/lottie_import
 #   make fuzz-lottie         FUZZ_TIME s (default 60)
 #   make fuzz-lottie-smoke   FUZZ_LOTTIE_SMOKE_TIME s (default 15), in `make test`
 FUZZ_LOTTIE_SMOKE_TIME ?= 15
-FUZZ_LOTTIE_SRC := tests/fuzz_lottie.c $(LOTTIE_SRC) $(SVG_LIB_SRC) host-sim/scene_json.c \
-        host-sim/paint_json.c tools/cels_write.c tools/cli_num.c
-FUZZ_LOTTIE_CFLAGS := $(FUZZ_BASE_CFLAGS) -D_GNU_SOURCE -Icore -Ihost-sim -Itools/svg -Itools \
-        $(shell pkg-config --cflags $(SVG_PKGS) 2>/dev/null)
+# The SVG library, the JSON writer and the core are the SVG fuzzer's objects
+# (mk/svg.mk: the same flags) and the shared fuzz core (mk/stream.mk).
+FUZZ_LOTTIE_SRC := tests/fuzz_lottie.c $(LOTTIE_SRC) tools/cels_write.c tools/cli_num.c
+FUZZ_LOTTIE_CFLAGS := $(FUZZ_SVG_CFLAGS)
 $(eval $(call flags_record,fuzz-lottie,$(FUZZ_CC) $(FUZZ_LOTTIE_CFLAGS)))
 $(FUZZ)/lottie/%.o: %.c $(CORE_HDR) tests/fuzz_check.h $(wildcard tools/lottie/*.h) \
         $(wildcard tools/svg/*.h) host-sim/scene_json.h $(FLAGS_DIR)/fuzz-lottie
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_LOTTIE_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
-$(FUZZ)/fuzz_lottie: $(patsubst %.c,$(FUZZ)/lottie/%.o,$(FUZZ_LOTTIE_SRC) $(CORE_SRC))
+$(FUZZ)/fuzz_lottie: $(patsubst %.c,$(FUZZ)/lottie/%.o,$(FUZZ_LOTTIE_SRC)) \
+        $(patsubst %.c,$(FUZZ)/svg/%.o,$(SVG_LIB_SRC) host-sim/scene_json.c host-sim/paint_json.c) \
+        $(FUZZ_CORE_OBJ)
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ $(SVG_LIBS) -o $@
 
 # Seeds: the small conformance files and scenes/lottie, and inputs that once failed (tests/fuzz-lottie-corpus).
