@@ -60,9 +60,15 @@ all:
 deps:
 	$(Q)tools/install-deps.sh
 
+# make test builds on every core (TEST_JOBS, default the machine's count):
+# the programs test-all needs, and what each part's target needs, since
+# tests/run.sh runs those targets' makes under this one's job server. The
+# tests themselves run one at a time, so timing and the loopback servers
+# are as with -j1.
+TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 test:
 	$(Q)tools/install-deps.sh
-	$(Q)$(MAKE) --no-print-directory test-all
+	$(Q)$(MAKE) --no-print-directory -j$(TEST_JOBS) test-all
 
 demo:
 	$(Q)tools/install-deps.sh
