@@ -368,23 +368,37 @@ static inline void memo_get(const cs_exact_level *m, uint32_t i, cs_exact_end *e
 }
 
 /*
- * The end of polynomial piece pc at height yv, a row boundary or one of
- * its own ends: from the level memo m if it holds yv, else solved with
- * the levels below it into m (the piece's later rows take those).
+ * The ends of polynomial piece pc at ya and yb, the top and bottom of its
+ * arc across a row, each a row boundary or one of its own ends: from the
+ * level memo m if it holds them, else solved with the levels below into m
+ * (the piece's later rows take those). A top at a row boundary is level i
+ * of the memo, and a bottom at one is then the next boundary, level i + 1
+ * if m holds it: one look-up a row, not two.
  */
-static CS__HOT_INLINE void poly_level_end(const cs_piece *pc, const cs_segment *s, float yv,
-                                         cs_exact_level *m, cs_exact_end *e)
+static CS__HOT_INLINE void poly_row_ends(const cs_piece *pc, const cs_segment *s, float ya,
+                                         float yb, cs_exact_level *m, cs_exact_end *top,
+                                         cs_exact_end *bot)
 {
-    uint32_t i;
-    if (yv == pc->y_top || yv == pc->y_bot) {
-        poly_own_end(pc, s, yv, e);
+    uint32_t i = CS_EXACT_LEVELS; /* none: the bottom looks itself up */
+    if (ya == pc->y_top || ya == pc->y_bot) {
+        poly_own_end(pc, s, ya, top);
+    } else {
+        if (!memo_has(m, ya, &i)) {
+            fill_levels(pc, s, ya, m);
+            i = 0;
+        }
+        memo_get(m, i, top);
+        i++;
+    }
+    if (yb == pc->y_top || yb == pc->y_bot) {
+        poly_own_end(pc, s, yb, bot);
         return;
     }
-    if (!memo_has(m, yv, &i)) {
-        fill_levels(pc, s, yv, m);
+    if (i >= m->n && !memo_has(m, yb, &i)) {
+        fill_levels(pc, s, yb, m);
         i = 0;
     }
-    memo_get(m, i, e);
+    memo_get(m, i, bot);
 }
 
 /* The same for a rational piece, whose memo keeps one level: the bottom
@@ -430,7 +444,7 @@ static void poly_bounds(int p, cs_exact_piece *e)
 /*
  * The arc of piece `piece` across the row: its ends and its x bounds. An
  * end inside the piece is a pure function of the piece and the height
- * (poly_level_end), so the ends of a polynomial piece at its next
+ * (poly_row_ends), so the ends of a polynomial piece at its next
  * CS_EXACT_LEVELS row boundaries are solved together and kept in the
  * level memo, where the rows below find their tops and bottoms: one solve
  * per row boundary, several side by side, and the same bits whichever
@@ -458,8 +472,7 @@ static CS__HOT_INLINE void place_arc(const cs__exact_ctx *cx, cs_exact_piece *e,
     }
     cs_exact_level *memo = &ws->level_memo[piece];
     if (cs__exact_polynomial(s)) {
-        poly_level_end(pc, s, ya, memo, &e->top);
-        poly_level_end(pc, s, yb, memo, &e->bot);
+        poly_row_ends(pc, s, ya, yb, memo, &e->top, &e->bot);
         e->u_row = e->bot.u;
         poly_bounds(s->degree, e);
         return;
