@@ -181,11 +181,23 @@ static void line_end(const cs_segment *s, float yv, float exact, float ua, float
  */
 #if defined(__AVX__)
 #define LANES 8
+#define LANE_INDEX {0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f}
+/* lanes interleaved in pairs, then pairs of pairs, within each half */
+#define PAIR_LO {0, 8, 1, 9, 4, 12, 5, 13}
+#define PAIR_HI {2, 10, 3, 11, 6, 14, 7, 15}
+#define QUAD_LO {0, 1, 8, 9, 4, 5, 12, 13}
+#define QUAD_HI {2, 3, 10, 11, 6, 7, 14, 15}
 #else
 #define LANES 4
+#define LANE_INDEX {0.0f, 1.0f, 2.0f, 3.0f}
+#define PAIR_LO {0, 4, 1, 5}
+#define PAIR_HI {2, 6, 3, 7}
+#define QUAD_LO {0, 1, 4, 5}
+#define QUAD_HI {2, 3, 6, 7}
 #endif
 typedef float lanes_f __attribute__((vector_size(4 * LANES)));
 typedef int32_t lanes_i __attribute__((vector_size(4 * LANES)));
+typedef float lanes_fu __attribute__((vector_size(4 * LANES), aligned(4))); /* stored anywhere */
 typedef char cs__exact_lanes_fit_[CS_EXACT_LEVELS % LANES == 0 ? 1 : -1];
 
 /* Lane by lane, m ? a : b (m all ones or zero per lane). A macro: a
@@ -215,12 +227,12 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
     float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
     float tol = (2.0f * LEVEL_TOL) * w0;
     float y1 = Y[1], y2 = Y[2], y3 = Y[3], y2x2 = 2.0f * y2, y3x3 = 3.0f * y3;
-    lanes_f yv, lo, hi; /* lanes past n repeat the first: the same steps */
-    for (uint32_t l = 0; l < LANES; l++) {
-        yv[l] = y0 + (float)(c0 + l < n ? c0 + l : c0);
-        lo[l] = cs__minf(ut, ub);
-        hi[l] = cs__maxf(ut, ub);
-    }
+    /* Scalars to every lane as x - 0, which keeps a -0 (x + 0 would not).
+     * Lanes past n repeat the first: the same steps. */
+    const lanes_f zero = {0.0f}, lane = LANE_INDEX;
+    lanes_f k = (float)c0 + lane, first = (float)c0 - zero;
+    lanes_f yv = y0 + PICK(k < (float)n, k, first);
+    lanes_f lo = cs__minf(ut, ub) - zero, hi = cs__maxf(ut, ub) - zero;
     lanes_f level = (yv - (float)s->oy) * w0;
     lanes_f g0 = Y[0] - level;
     lanes_f u = ut + (yv - pc->y_top) / (pc->y_bot - pc->y_top) * (ub - ut); /* the chord */
@@ -260,10 +272,10 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
         u = PICK(live, next, u);
     }
     fall |= live; /* out of steps */
-    uint32_t k = n - c0 < LANES ? n - c0 : LANES; /* lanes of levels */
+    uint32_t nl = n - c0 < LANES ? n - c0 : LANES; /* lanes of levels */
     bool fell;
     ANY_LANE(fall, fell);
-    for (uint32_t l = 0; fell && l < k; l++) {
+    for (uint32_t l = 0; fell && l < nl; l++) {
         if (fall[l] == 0)
             continue;
         /* a step left the bracket: the bounded solve of cs_poly.c */
@@ -275,12 +287,26 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
     lanes_f xv = (float)s->ox + (((X[3] * res + X[2]) * res + X[1]) * res + X[0]) * inv;
     lanes_f dxv = ((3.0f * X[3] * res + 2.0f * X[2]) * res + X[1]) * inv;
     lanes_f dyv = d1 * inv;
-    for (uint32_t l = 0; l < k; l++) {
-        m->end[c0 + l][0] = res[l];
-        m->end[c0 + l][1] = xv[l];
-        m->end[c0 + l][2] = dxv[l];
-        m->end[c0 + l][3] = dyv[l];
-    }
+    /* Into the memo's records (u, x, x', y'), which memo_get copies whole:
+     * the four vectors transposed by shuffles and stored whole, the lanes
+     * past n onto records the memo does not hold. */
+    const lanes_i pair_lo = PAIR_LO, pair_hi = PAIR_HI, quad_lo = QUAD_LO, quad_hi = QUAD_HI;
+    lanes_f t0 = __builtin_shuffle(res, xv, pair_lo), t1 = __builtin_shuffle(res, xv, pair_hi);
+    lanes_f t2 = __builtin_shuffle(dxv, dyv, pair_lo), t3 = __builtin_shuffle(dxv, dyv, pair_hi);
+    lanes_f r0 = __builtin_shuffle(t0, t2, quad_lo), r1 = __builtin_shuffle(t0, t2, quad_hi);
+    lanes_f r2 = __builtin_shuffle(t1, t3, quad_lo), r3 = __builtin_shuffle(t1, t3, quad_hi);
+#if LANES == 8 /* r0 holds records 0 and 4, r1 1 and 5, r2 2 and 6, r3 3 and 7 */
+    const lanes_i lo_halves = {0, 1, 2, 3, 8, 9, 10, 11}, hi_halves = {4, 5, 6, 7, 12, 13, 14, 15};
+    *(lanes_fu *)m->end[c0] = __builtin_shuffle(r0, r1, lo_halves);
+    *(lanes_fu *)m->end[c0 + 2] = __builtin_shuffle(r2, r3, lo_halves);
+    *(lanes_fu *)m->end[c0 + 4] = __builtin_shuffle(r0, r1, hi_halves);
+    *(lanes_fu *)m->end[c0 + 6] = __builtin_shuffle(r2, r3, hi_halves);
+#else
+    *(lanes_fu *)m->end[c0] = r0;
+    *(lanes_fu *)m->end[c0 + 1] = r1;
+    *(lanes_fu *)m->end[c0 + 2] = r2;
+    *(lanes_fu *)m->end[c0 + 3] = r3;
+#endif
 }
 
 /*
