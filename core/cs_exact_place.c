@@ -406,7 +406,7 @@ static CS__HOT_INLINE void poly_row_ends(const cs_piece *pc, const cs_segment *s
                                          cs_exact_end *bot)
 {
     uint32_t i = CS_EXACT_LEVELS; /* none: the bottom looks itself up */
-    if (ya == pc->y_top || ya == pc->y_bot) {
+    if (ya == pc->y_top) { /* an active piece (y_top < y + 1, y_bot > y) ends below ya */
         poly_own_end(pc, s, ya, top);
     } else {
         if (!memo_has(m, ya, &i)) {
@@ -416,7 +416,7 @@ static CS__HOT_INLINE void poly_row_ends(const cs_piece *pc, const cs_segment *s
         memo_get(m, i, top);
         i++;
     }
-    if (yb == pc->y_top || yb == pc->y_bot) {
+    if (yb == pc->y_bot) { /* and starts above yb */
         poly_own_end(pc, s, yb, bot);
         return;
     }
