@@ -223,7 +223,7 @@ static void set_bot(cs__exact_ctx *cx, cs_exact_piece *e, float ya, float yb, fl
 {
     cs_workspace *ws = cx->ws;
     const cs_piece *pc = &ws->pieces[e->piece];
-    const cs_segment *s = &ws->segments[pc->segment];
+    const cs_segment *s = e->segment;
     if (e->hidden)
         return; /* it stays where it was put */
     e->row_arc = false;
@@ -273,7 +273,7 @@ static uint32_t run_band(cs__exact_ctx *cx, uint32_t *cl, uint32_t nc, float ya,
         for (uint32_t k = 0; k < m; k++) {
             cs_exact_piece *e = &ex[cl[k]];
             if (!e->hidden) /* a stand-in keeps its place (hide) */
-                cs__exact_hull(&ws->segments[ws->pieces[e->piece].segment], e, ya, yb, true);
+                cs__exact_hull(e->segment, e, ya, yb, true);
         }
         sort_pieces(ex, cl, m, false);
         float cut = 0.0f;
@@ -493,6 +493,9 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     cx.x0 = r->vx;
     cx.width = r->vw;
     cx.wall = r->opts.width;
+    cx.left = (float)cx.x0;
+    cx.right = (float)(cx.x0 + cx.width);
+    cx.wall_x = (float)cx.wall;
     cx.lo = INT32_MAX;
     cx.hi = INT32_MIN;
     cx.bands_left = CS_CFG_EXACT_MAX_BANDS;

@@ -480,7 +480,7 @@ static CS__HOT_INLINE void place_arc(const cs__exact_ctx *cx, cs_exact_piece *e,
 {
     cs_workspace *ws = cx->ws;
     const cs_piece *pc = &ws->pieces[piece];
-    const cs_segment *s = &ws->segments[pc->segment];
+    const cs_segment *s = e->segment;
     float ya = cs__exact_row_top(cx, pc), yb = cs__exact_row_end(cx, pc);
     float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
     e->piece = piece;
@@ -553,6 +553,7 @@ static CS__HOT_INLINE void place_piece(const cs_renderer *r, const cs__exact_ctx
     const cs_piece *pc = &ws->pieces[piece];
     const cs_segment *s = &ws->segments[pc->segment];
     int32_t pa = s->px_lo, pb = s->px_hi;
+    e->segment = s;
     e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
     if (e->hidden) {
         hide(e, piece, pc, pa + r->vx); /* in device columns, as placed arcs */
