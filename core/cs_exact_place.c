@@ -554,7 +554,9 @@ static CS__HOT_INLINE void place_piece(const cs_renderer *r, const cs__exact_ctx
     const cs_segment *s = &ws->segments[pc->segment];
     int32_t pa = s->px_lo, pb = s->px_hi;
     e->segment = s;
-    e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
+    /* the hull's first pixel, one bit, rules most pieces out */
+    e->hidden = pa < pb && cs__run_opaque(r, (uint32_t)pa) &&
+                cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
     if (e->hidden) {
         hide(e, piece, pc, pa + r->vx); /* in device columns, as placed arcs */
         return;
