@@ -469,13 +469,12 @@ static inline bool two_apart(const cs__exact_ctx *cx, const cs_exact_piece *ex, 
     return true;
 }
 
-/* The row's accumulator range into [*lo, *hi), and its status. */
+/* The row's accumulator range, grown from [*lo, *hi), back into them, and
+ * its status. */
 static inline cs_status exact_done(const cs__exact_ctx *cx, int32_t *lo, int32_t *hi)
 {
-    if (cx->lo < *lo)
-        *lo = cx->lo;
-    if (cx->hi > *hi)
-        *hi = cx->hi;
+    *lo = cx->lo;
+    *hi = cx->hi;
     return cx->overflow ? CS_ERR_CAP_CROSSINGS : CS_OK;
 }
 
@@ -496,8 +495,8 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     cx.left = (float)cx.x0;
     cx.right = (float)(cx.x0 + cx.width);
     cx.wall_x = (float)cx.wall;
-    cx.lo = INT32_MAX;
-    cx.hi = INT32_MIN;
+    cx.lo = *lo; /* cs__exact_touch only widens it */
+    cx.hi = *hi;
     cx.bands_left = CS_CFG_EXACT_MAX_BANDS;
     cx.overflow = false;
     cs_exact_piece *ex = ws->exact;
