@@ -459,14 +459,14 @@ static CS__HOT_INLINE void rational_level_end(const cs_piece *pc, const cs_segme
 /*
  * x bounds of a polynomial arc from its control polygon (hull without the
  * strip): cheaper than cs__exact_hull(), which also serves rational arcs.
+ * The strip and the order key are left to the band sweep, which forms
+ * them for every arc it orders (a lone arc needs neither).
  */
 static void poly_bounds(int p, cs_exact_piece *e)
 {
     float xt = e->top.x, xb = e->bot.x;
     float t = (e->bot.u - e->top.u) / (float)p;
     float c1 = xt + t * e->top.dx, c2 = p == 3 ? xb - t * e->bot.dx : c1;
-    e->key = xt + xb;
-    e->dmin = e->dmax = 0.0f;
     e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
     e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
     bool up = c1 > xt || c2 > c1 || xb > c2, down = c1 < xt || c2 < c1 || xb < c2;
@@ -495,8 +495,6 @@ static CS__HOT_INLINE void place_arc(const cs__exact_ctx *cx, cs_exact_piece *e,
         line_end(s, ya, ya == pc->y_top ? ut : -1.0f, ut, ub, &e->top);
         line_end(s, yb, yb == pc->y_bot ? ub : -1.0f, ut, ub, &e->bot);
         e->u_row = e->bot.u;
-        e->key = e->top.x + e->bot.x;
-        e->dmin = e->dmax = 0.0f;
         e->xmin = cs__minf(e->top.x, e->bot.x);
         e->xmax = cs__maxf(e->top.x, e->bot.x);
         e->monotone = true;
