@@ -180,6 +180,7 @@ typedef struct cs_exact_piece {
     float dmin, dmax;     /* the arc lies within [dmin, dmax] of its chord, horizontally */
     float xmin, xmax;     /* x range of the arc's control polygon */
     float key;            /* x order within the band: x_top + x_bot */
+    const cs_segment *segment; /* the piece's, found once a row */
     uint32_t piece;
     bool monotone;        /* control polygon x-monotone, so the arc is */
     bool row_arc;         /* top, bot and the bounds are those of the whole row's arc */

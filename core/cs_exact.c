@@ -223,7 +223,7 @@ static void set_bot(cs__exact_ctx *cx, cs_exact_piece *e, float ya, float yb, fl
 {
     cs_workspace *ws = cx->ws;
     const cs_piece *pc = &ws->pieces[e->piece];
-    const cs_segment *s = &ws->segments[pc->segment];
+    const cs_segment *s = e->segment;
     if (e->hidden)
         return; /* it stays where it was put */
     e->row_arc = false;
@@ -273,7 +273,7 @@ static uint32_t run_band(cs__exact_ctx *cx, uint32_t *cl, uint32_t nc, float ya,
         for (uint32_t k = 0; k < m; k++) {
             cs_exact_piece *e = &ex[cl[k]];
             if (!e->hidden) /* a stand-in keeps its place (hide) */
-                cs__exact_hull(&ws->segments[ws->pieces[e->piece].segment], e, ya, yb, true);
+                cs__exact_hull(e->segment, e, ya, yb, true);
         }
         sort_pieces(ex, cl, m, false);
         float cut = 0.0f;
@@ -435,76 +435,6 @@ static bool winding_constant(const cs__exact_ctx *cx, const uint32_t *cl, uint32
     return true;
 }
 
-/*
- * A piece whose every possible pixel (its segment's hull) is already
- * opaque. Those pixels will show nothing of the region, so the arc need
- * not be placed: it becomes a vertical stand-in at the hull's left edge
- * pa, and as an effective edge it adds only its height, to the cover of
- * every pixel from pa on (cs__exact_add_edge). Pixels right of the opaque stretch
- * get the same total; the stand-in changes the x order only within the
- * stretch, and the fill rule's effective edges there sum to the same
- * change of "inside" across it whatever their order. A cluster holds
- * stand-ins and real arcs only where their hulls are apart, so their
- * order is right. The only difference right of the stretch is the order
- * in which the cover deltas are summed: a last-bit one at most.
- */
-static void hide(cs_exact_piece *e, cs_index piece, const cs_piece *pc, int32_t pa)
-{
-    float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
-    cs_exact_end at;
-    e->piece = piece;
-    e->row_arc = true;
-    at.u = ut;
-    at.x = (float)pa;
-    at.dx = at.dy = at.dwr = 0.0f;
-    at.w = 1.0f;
-    e->top = at;
-    at.u = ub;
-    e->bot = at;
-    e->u_row = ub;
-    e->dmin = e->dmax = 0.0f;
-    e->xmin = e->xmax = (float)pa;
-    e->key = 2.0f * (float)pa;
-    e->monotone = true;
-}
-
-/*
- * Piece `piece`'s arc across the row into e, or a stand-in (hide) where
- * every pixel it could touch is already opaque.
- */
-static void place_piece(const cs_renderer *r, const cs__exact_ctx *cx, cs_exact_piece *e,
-                        cs_index piece)
-{
-    const cs_workspace *ws = cx->ws;
-    const cs_piece *pc = &ws->pieces[piece];
-    const cs_segment *s = &ws->segments[pc->segment];
-    int32_t pa = s->px_lo, pb = s->px_hi;
-    e->hidden = pa < pb && cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
-    if (e->hidden) {
-        hide(e, piece, pc, pa + r->vx); /* in device columns, as placed arcs */
-        return;
-    }
-    cs__exact_place_arc(cx, e, piece);
-    /* Its pixels on this row (its hull, widened as the segment's is) may
-     * all be opaque though the segment's are not: then it is a stand-in
-     * too, spared its area (14% of Many-blobs' arcs). The pixel of its top
-     * end, one bit, rules most arcs out. */
-    float x0 = (float)r->vx; /* arcs are in device columns, the line's bits in its own */
-    float xt = e->top.x - x0;
-    if (r->opaque_px != 0u && xt >= 0.0f && xt < (float)cx->width &&
-        cs__run_opaque(r, (uint32_t)xt)) {
-        /* clamped as floats first: a hull that could not be formed is +-HUGE_X */
-        float xl = cs__maxf(e->xmin - 0.5f - x0, 0.0f);
-        float xr = cs__minf(e->xmax + 0.5f - x0, (float)cx->width);
-        int32_t qa = cs__floori(xl), qb = cs__floori(xr) + 1;
-        qb = qb > cx->width ? cx->width : qb;
-        if (qa < qb && cs__span_opaque(r, (uint32_t)qa, (uint32_t)qb)) {
-            e->hidden = true;
-            hide(e, piece, pc, qa + r->vx);
-        }
-    }
-}
-
 /* A cluster of one arc, e: one band, nothing to order. Its winding change
  * applies the fill rule to `w` (updated); returns whether the region is
  * inside right of it. */
@@ -539,13 +469,12 @@ static inline bool two_apart(const cs__exact_ctx *cx, const cs_exact_piece *ex, 
     return true;
 }
 
-/* The row's accumulator range into [*lo, *hi), and its status. */
+/* The row's accumulator range, grown from [*lo, *hi), back into them, and
+ * its status. */
 static inline cs_status exact_done(const cs__exact_ctx *cx, int32_t *lo, int32_t *hi)
 {
-    if (cx->lo < *lo)
-        *lo = cx->lo;
-    if (cx->hi > *hi)
-        *hi = cx->hi;
+    *lo = cx->lo;
+    *hi = cx->hi;
     return cx->overflow ? CS_ERR_CAP_CROSSINGS : CS_OK;
 }
 
@@ -563,17 +492,16 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     cx.x0 = r->vx;
     cx.width = r->vw;
     cx.wall = r->opts.width;
-    cx.lo = INT32_MAX;
-    cx.hi = INT32_MIN;
+    cx.left = (float)cx.x0;
+    cx.right = (float)(cx.x0 + cx.width);
+    cx.wall_x = (float)cx.wall;
+    cx.lo = *lo; /* cs__exact_touch only widens it */
+    cx.hi = *hi;
     cx.bands_left = CS_CFG_EXACT_MAX_BANDS;
     cx.overflow = false;
     cs_exact_piece *ex = ws->exact;
     uint32_t *ord = ws->exact_order;
-    /* Each piece's arc across the row, and its bounds. */
-    for (uint32_t i = 0; i < n; i++) {
-        place_piece(r, &cx, &ex[i], act[i]);
-        ord[i] = i;
-    }
+    cs__exact_place_row(r, &cx, act, n); /* each piece's arc across the row into ex */
     /*
      * Clusters: runs of pieces in xmin order whose x ranges overlap, so
      * that no curve passes between two of them. A horizontal segment has
@@ -591,6 +519,8 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
         (void)lone_edge(&cx, &ex[ord[1]], w, inside);
         return exact_done(&cx, lo, hi);
     }
+    for (uint32_t i = 0; i < n; i++)
+        ord[i] = i;
     sort_pieces(ex, ord, n, true);
     for (uint32_t i = 0; i < n;) {
         float reach = ex[ord[i]].xmax;

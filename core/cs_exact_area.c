@@ -269,7 +269,7 @@ static void add_monotone(cs__exact_ctx *cx, const cs_segment *s, float sign,
                          const cs_exact_end *top,
                          float y0, const cs_exact_end *bot, float y1)
 {
-    float width = (float)cx->wall;
+    float width = cx->wall_x;
     cs_exact_end a = *top, k_end;
     float x0 = a.x, x1 = bot->x;
     bool inc = x1 > x0;
@@ -290,7 +290,7 @@ static void add_monotone(cs__exact_ctx *cx, const cs_segment *s, float sign,
  * where y is linear in x; each cell's moment is its trapezoid. */
 static void add_line(cs__exact_ctx *cx, float sign, float x0, float y0, float x1, float y1)
 {
-    float width = (float)cx->wall, xa = x0, ya = y0;
+    float width = cx->wall_x, xa = x0, ya = y0;
     if (x1 > x0) {
         float dydx = (y1 - y0) / (x1 - x0);
         float k = cs__maxf((float)(cs__floori(x0) + 1), 0.0f);
@@ -370,7 +370,7 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
 static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p, const float *bx,
                                             const float *by, bool inc)
 {
-    float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = (float)cx->wall;
+    float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = cx->wall_x;
     float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
                   : cs__minf((float)(-cs__floori(-x0) - 1), width);
     if (inc ? !(k < x1 && k <= width) : !(k > x1 && k >= 0.0f)) { /* one column */
@@ -478,7 +478,7 @@ static CS__EXACT_NOINLINE void add_poly_parts(cs__exact_ctx *cx, const cs_segmen
     float span = cs__absf(bot->x - top->x);
     int32_t n = 1;
     if (span > POLY_ARC_COLUMNS)
-        n = (int32_t)(cs__minf(span, (float)cx->wall + 2.0f) * (2.0f / POLY_ARC_COLUMNS)) + 1;
+        n = (int32_t)(cs__minf(span, cx->wall_x + 2.0f) * (2.0f / POLY_ARC_COLUMNS)) + 1;
     cs_exact_end a = *top, b;
     float ya = y0;
     for (int32_t i = 1; i <= n; i++) {
@@ -570,16 +570,16 @@ void cs__exact_add_edge(cs__exact_ctx *cx, const cs_exact_piece *e, float sign, 
         cs__exact_touch(cx, c, c + 1);
         return;
     }
-    if (e->xmax <= (float)cx->x0) { /* its cells' heights sum to the band's exactly */
+    if (e->xmax <= cx->left) { /* its cells' heights sum to the band's exactly */
         cs__acc_cover(ws, 0, sign * (yb - ya));
         cs__exact_touch(cx, 0, 1);
         return;
     }
-    if (e->xmin >= (float)(cx->x0 + cx->width)) {
+    if (e->xmin >= cx->right) {
         cs__exact_touch(cx, cx->width, cx->width + 1);
         return;
     }
-    const cs_segment *s = &ws->segments[ws->pieces[e->piece].segment];
+    const cs_segment *s = e->segment;
     if (s->degree == 1) {
         add_line(cx, sign, e->top.x, 0.0f, e->bot.x, yb - ya); /* heights in the band */
         return;

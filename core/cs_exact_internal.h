@@ -32,6 +32,8 @@ typedef struct cs__exact_ctx {
     float row_top, row_bot;
     int32_t x0, width;   /* the window: device columns [x0, x0 + width) */
     int32_t wall;        /* the whole output's width, where cuts stop (see put_cell) */
+    float left, right;   /* x0 and x0 + width, as floats */
+    float wall_x;        /* wall, as a float */
     int32_t lo, hi;      /* accumulator entries written: [lo, hi) */
     uint32_t bands_left; /* CS_CFG_EXACT_MAX_BANDS countdown */
     bool overflow;
@@ -180,11 +182,14 @@ static inline void cs__exact_hull(const cs_segment *s, cs_exact_piece *e, float 
 }
 
 /* cs_exact_place.c: the end at u (x, x', y', W'/W); the end at height yv
- * searched in [lo, hi] from u; the arc of a piece across the row. */
+ * searched in [lo, hi] from u; the arcs of a region's active pieces
+ * act[0..n) across the row, into ws->exact[0..n) (stand-ins where the
+ * pixels they could touch are opaque). */
 void cs__exact_eval_end(const cs_segment *s, float u, float y, cs_exact_end *e);
 void cs__exact_place_end(const cs_segment *s, bool poly, float yv, float lo, float hi, float u,
                          bool rising, cs_exact_end *e);
-void cs__exact_place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index piece);
+void cs__exact_place_row(const cs_renderer *r, const cs__exact_ctx *cx, const cs_index *act,
+                         uint32_t n);
 
 /* cs_exact_area.c: adds effective edge e over the band [ya, yb], sign +1
  * where the region begins, to the area/cover accumulators. */

@@ -5,7 +5,8 @@
  * piece, plane coordinates for a polynomial one), with x, x', y' and W'/W
  * at both ends, and from those the arc's x range; a polynomial piece's
  * ends at its next row boundaries are solved side by side (fill_levels)
- * and kept for the rows below. The band proof
+ * and kept for the rows below; a piece whose pixels are all opaque becomes
+ * a stand-in instead (hide). The band proof
  * (cs_exact.c) moves ends to its cuts with the same solve, and the area
  * (cs_exact_area.c) evaluates ends at x-extrema.
  */
@@ -180,11 +181,23 @@ static void line_end(const cs_segment *s, float yv, float exact, float ua, float
  */
 #if defined(__AVX__)
 #define LANES 8
+#define LANE_INDEX {0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f}
+/* lanes interleaved in pairs, then pairs of pairs, within each half */
+#define PAIR_LO {0, 8, 1, 9, 4, 12, 5, 13}
+#define PAIR_HI {2, 10, 3, 11, 6, 14, 7, 15}
+#define QUAD_LO {0, 1, 8, 9, 4, 5, 12, 13}
+#define QUAD_HI {2, 3, 10, 11, 6, 7, 14, 15}
 #else
 #define LANES 4
+#define LANE_INDEX {0.0f, 1.0f, 2.0f, 3.0f}
+#define PAIR_LO {0, 4, 1, 5}
+#define PAIR_HI {2, 6, 3, 7}
+#define QUAD_LO {0, 1, 4, 5}
+#define QUAD_HI {2, 3, 6, 7}
 #endif
 typedef float lanes_f __attribute__((vector_size(4 * LANES)));
 typedef int32_t lanes_i __attribute__((vector_size(4 * LANES)));
+typedef float lanes_fu __attribute__((vector_size(4 * LANES), aligned(4))); /* stored anywhere */
 typedef char cs__exact_lanes_fit_[CS_EXACT_LEVELS % LANES == 0 ? 1 : -1];
 
 /* Lane by lane, m ? a : b (m all ones or zero per lane). A macro: a
@@ -214,12 +227,12 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
     float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
     float tol = (2.0f * LEVEL_TOL) * w0;
     float y1 = Y[1], y2 = Y[2], y3 = Y[3], y2x2 = 2.0f * y2, y3x3 = 3.0f * y3;
-    lanes_f yv, lo, hi; /* lanes past n repeat the first: the same steps */
-    for (uint32_t l = 0; l < LANES; l++) {
-        yv[l] = y0 + (float)(c0 + l < n ? c0 + l : c0);
-        lo[l] = cs__minf(ut, ub);
-        hi[l] = cs__maxf(ut, ub);
-    }
+    /* Scalars to every lane as x - 0, which keeps a -0 (x + 0 would not).
+     * Lanes past n repeat the first: the same steps. */
+    const lanes_f zero = {0.0f}, lane = LANE_INDEX;
+    lanes_f k = (float)c0 + lane, first = (float)c0 - zero;
+    lanes_f yv = y0 + PICK(k < (float)n, k, first);
+    lanes_f lo = cs__minf(ut, ub) - zero, hi = cs__maxf(ut, ub) - zero;
     lanes_f level = (yv - (float)s->oy) * w0;
     lanes_f g0 = Y[0] - level;
     lanes_f u = ut + (yv - pc->y_top) / (pc->y_bot - pc->y_top) * (ub - ut); /* the chord */
@@ -259,10 +272,10 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
         u = PICK(live, next, u);
     }
     fall |= live; /* out of steps */
-    uint32_t k = n - c0 < LANES ? n - c0 : LANES; /* lanes of levels */
+    uint32_t nl = n - c0 < LANES ? n - c0 : LANES; /* lanes of levels */
     bool fell;
     ANY_LANE(fall, fell);
-    for (uint32_t l = 0; fell && l < k; l++) {
+    for (uint32_t l = 0; fell && l < nl; l++) {
         if (fall[l] == 0)
             continue;
         /* a step left the bracket: the bounded solve of cs_poly.c */
@@ -274,12 +287,26 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
     lanes_f xv = (float)s->ox + (((X[3] * res + X[2]) * res + X[1]) * res + X[0]) * inv;
     lanes_f dxv = ((3.0f * X[3] * res + 2.0f * X[2]) * res + X[1]) * inv;
     lanes_f dyv = d1 * inv;
-    for (uint32_t l = 0; l < k; l++) {
-        m->end[c0 + l][0] = res[l];
-        m->end[c0 + l][1] = xv[l];
-        m->end[c0 + l][2] = dxv[l];
-        m->end[c0 + l][3] = dyv[l];
-    }
+    /* Into the memo's records (u, x, x', y'), which memo_get copies whole:
+     * the four vectors transposed by shuffles and stored whole, the lanes
+     * past n onto records the memo does not hold. */
+    const lanes_i pair_lo = PAIR_LO, pair_hi = PAIR_HI, quad_lo = QUAD_LO, quad_hi = QUAD_HI;
+    lanes_f t0 = __builtin_shuffle(res, xv, pair_lo), t1 = __builtin_shuffle(res, xv, pair_hi);
+    lanes_f t2 = __builtin_shuffle(dxv, dyv, pair_lo), t3 = __builtin_shuffle(dxv, dyv, pair_hi);
+    lanes_f r0 = __builtin_shuffle(t0, t2, quad_lo), r1 = __builtin_shuffle(t0, t2, quad_hi);
+    lanes_f r2 = __builtin_shuffle(t1, t3, quad_lo), r3 = __builtin_shuffle(t1, t3, quad_hi);
+#if LANES == 8 /* r0 holds records 0 and 4, r1 1 and 5, r2 2 and 6, r3 3 and 7 */
+    const lanes_i lo_halves = {0, 1, 2, 3, 8, 9, 10, 11}, hi_halves = {4, 5, 6, 7, 12, 13, 14, 15};
+    *(lanes_fu *)m->end[c0] = __builtin_shuffle(r0, r1, lo_halves);
+    *(lanes_fu *)m->end[c0 + 2] = __builtin_shuffle(r2, r3, lo_halves);
+    *(lanes_fu *)m->end[c0 + 4] = __builtin_shuffle(r0, r1, hi_halves);
+    *(lanes_fu *)m->end[c0 + 6] = __builtin_shuffle(r2, r3, hi_halves);
+#else
+    *(lanes_fu *)m->end[c0] = r0;
+    *(lanes_fu *)m->end[c0 + 1] = r1;
+    *(lanes_fu *)m->end[c0 + 2] = r2;
+    *(lanes_fu *)m->end[c0 + 3] = r3;
+#endif
 }
 
 /*
@@ -296,9 +323,15 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
 static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment *s, float y0,
                                            cs_exact_level *m)
 {
-    uint32_t n = 1;
-    while (n < CS_EXACT_LEVELS && y0 + (float)n < pc->y_bot)
-        n++;
+    /* n levels: those above the piece's bottom (y0 + n < y_bot), the
+     * first always. Below CS_EXACT_LEVELS, y_bot - y0 is exact (y0 a whole
+     * row, y_bot within 8 of it), so n is its ceiling. */
+    float left = pc->y_bot - y0;
+    uint32_t n = CS_EXACT_LEVELS;
+    if (left < (float)CS_EXACT_LEVELS) {
+        int32_t c = -cs__floori(-left);
+        n = c > 1 ? (uint32_t)c : 1u;
+    }
 #if LANES == CS_EXACT_LEVELS /* one vector (a loop of one step measured 0.5 % dearer) */
     solve_lanes(pc, s, y0, 0, n, m);
 #else
@@ -367,23 +400,37 @@ static inline void memo_get(const cs_exact_level *m, uint32_t i, cs_exact_end *e
 }
 
 /*
- * The end of polynomial piece pc at height yv, a row boundary or one of
- * its own ends: from the level memo m if it holds yv, else solved with
- * the levels below it into m (the piece's later rows take those).
+ * The ends of polynomial piece pc at ya and yb, the top and bottom of its
+ * arc across a row, each a row boundary or one of its own ends: from the
+ * level memo m if it holds them, else solved with the levels below into m
+ * (the piece's later rows take those). A top at a row boundary is level i
+ * of the memo, and a bottom at one is then the next boundary, level i + 1
+ * if m holds it: one look-up a row, not two.
  */
-static CS__HOT_INLINE void poly_level_end(const cs_piece *pc, const cs_segment *s, float yv,
-                                         cs_exact_level *m, cs_exact_end *e)
+static CS__HOT_INLINE void poly_row_ends(const cs_piece *pc, const cs_segment *s, float ya,
+                                         float yb, cs_exact_level *m, cs_exact_end *top,
+                                         cs_exact_end *bot)
 {
-    uint32_t i;
-    if (yv == pc->y_top || yv == pc->y_bot) {
-        poly_own_end(pc, s, yv, e);
+    uint32_t i = CS_EXACT_LEVELS; /* none: the bottom looks itself up */
+    if (ya == pc->y_top) { /* an active piece (y_top < y + 1, y_bot > y) ends below ya */
+        poly_own_end(pc, s, ya, top);
+    } else {
+        if (!memo_has(m, ya, &i)) {
+            fill_levels(pc, s, ya, m);
+            i = 0;
+        }
+        memo_get(m, i, top);
+        i++;
+    }
+    if (yb == pc->y_bot) { /* and starts above yb */
+        poly_own_end(pc, s, yb, bot);
         return;
     }
-    if (!memo_has(m, yv, &i)) {
-        fill_levels(pc, s, yv, m);
+    if (i >= m->n && !memo_has(m, yb, &i)) {
+        fill_levels(pc, s, yb, m);
         i = 0;
     }
-    memo_get(m, i, e);
+    memo_get(m, i, bot);
 }
 
 /* The same for a rational piece, whose memo keeps one level: the bottom
@@ -412,14 +459,14 @@ static CS__HOT_INLINE void rational_level_end(const cs_piece *pc, const cs_segme
 /*
  * x bounds of a polynomial arc from its control polygon (hull without the
  * strip): cheaper than cs__exact_hull(), which also serves rational arcs.
+ * The strip and the order key are left to the band sweep, which forms
+ * them for every arc it orders (a lone arc needs neither).
  */
 static void poly_bounds(int p, cs_exact_piece *e)
 {
     float xt = e->top.x, xb = e->bot.x;
     float t = (e->bot.u - e->top.u) / (float)p;
     float c1 = xt + t * e->top.dx, c2 = p == 3 ? xb - t * e->bot.dx : c1;
-    e->key = xt + xb;
-    e->dmin = e->dmax = 0.0f;
     e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
     e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
     bool up = c1 > xt || c2 > c1 || xb > c2, down = c1 < xt || c2 < c1 || xb < c2;
@@ -429,17 +476,17 @@ static void poly_bounds(int p, cs_exact_piece *e)
 /*
  * The arc of piece `piece` across the row: its ends and its x bounds. An
  * end inside the piece is a pure function of the piece and the height
- * (poly_level_end), so the ends of a polynomial piece at its next
+ * (poly_row_ends), so the ends of a polynomial piece at its next
  * CS_EXACT_LEVELS row boundaries are solved together and kept in the
  * level memo, where the rows below find their tops and bottoms: one solve
  * per row boundary, several side by side, and the same bits whichever
  * lines were rendered before.
  */
-void cs__exact_place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index piece)
+static CS__HOT_INLINE void place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index piece)
 {
     cs_workspace *ws = cx->ws;
     const cs_piece *pc = &ws->pieces[piece];
-    const cs_segment *s = &ws->segments[pc->segment];
+    const cs_segment *s = e->segment;
     float ya = cs__exact_row_top(cx, pc), yb = cs__exact_row_end(cx, pc);
     float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
     e->piece = piece;
@@ -448,8 +495,6 @@ void cs__exact_place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index pi
         line_end(s, ya, ya == pc->y_top ? ut : -1.0f, ut, ub, &e->top);
         line_end(s, yb, yb == pc->y_bot ? ub : -1.0f, ut, ub, &e->bot);
         e->u_row = e->bot.u;
-        e->key = e->top.x + e->bot.x;
-        e->dmin = e->dmax = 0.0f;
         e->xmin = cs__minf(e->top.x, e->bot.x);
         e->xmax = cs__maxf(e->top.x, e->bot.x);
         e->monotone = true;
@@ -457,8 +502,7 @@ void cs__exact_place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index pi
     }
     cs_exact_level *memo = &ws->level_memo[piece];
     if (cs__exact_polynomial(s)) {
-        poly_level_end(pc, s, ya, memo, &e->top);
-        poly_level_end(pc, s, yb, memo, &e->bot);
+        poly_row_ends(pc, s, ya, yb, memo, &e->top, &e->bot);
         e->u_row = e->bot.u;
         poly_bounds(s->degree, e);
         return;
@@ -467,6 +511,90 @@ void cs__exact_place_arc(const cs__exact_ctx *cx, cs_exact_piece *e, cs_index pi
     rational_level_end(pc, s, yb, memo, &e->bot);
     e->u_row = e->bot.u;
     cs__exact_hull(s, e, ya, yb, false);
+}
+
+/*
+ * A piece whose every possible pixel (its segment's hull) is already
+ * opaque. Those pixels will show nothing of the region, so the arc need
+ * not be placed: it becomes a vertical stand-in at the hull's left edge
+ * pa, and as an effective edge it adds only its height, to the cover of
+ * every pixel from pa on (cs__exact_add_edge). Pixels right of the opaque stretch
+ * get the same total; the stand-in changes the x order only within the
+ * stretch, and the fill rule's effective edges there sum to the same
+ * change of "inside" across it whatever their order. A cluster holds
+ * stand-ins and real arcs only where their hulls are apart, so their
+ * order is right. The only difference right of the stretch is the order
+ * in which the cover deltas are summed: a last-bit one at most.
+ */
+static void hide(cs_exact_piece *e, cs_index piece, const cs_piece *pc, int32_t pa)
+{
+    float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
+    cs_exact_end at;
+    e->piece = piece;
+    e->row_arc = true;
+    at.u = ut;
+    at.x = (float)pa;
+    at.dx = at.dy = at.dwr = 0.0f;
+    at.w = 1.0f;
+    e->top = at;
+    at.u = ub;
+    e->bot = at;
+    e->u_row = ub;
+    e->dmin = e->dmax = 0.0f;
+    e->xmin = e->xmax = (float)pa;
+    e->key = 2.0f * (float)pa;
+    e->monotone = true;
+}
+
+/*
+ * Piece `piece`'s arc across the row into e, or a stand-in (hide) where
+ * every pixel it could touch is already opaque.
+ */
+static CS__HOT_INLINE void place_piece(const cs_renderer *r, const cs__exact_ctx *cx,
+                                       cs_exact_piece *e, cs_index piece)
+{
+    const cs_workspace *ws = cx->ws;
+    const cs_piece *pc = &ws->pieces[piece];
+    const cs_segment *s = &ws->segments[pc->segment];
+    int32_t pa = s->px_lo, pb = s->px_hi;
+    e->segment = s;
+    /* the hull's first pixel, one bit, rules most pieces out */
+    e->hidden = pa < pb && cs__run_opaque(r, (uint32_t)pa) &&
+                cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
+    if (e->hidden) {
+        hide(e, piece, pc, pa + r->vx); /* in device columns, as placed arcs */
+        return;
+    }
+    place_arc(cx, e, piece);
+    /* Its pixels on this row (its hull, widened as the segment's is) may
+     * all be opaque though the segment's are not: then it is a stand-in
+     * too, spared its area (14% of Many-blobs' arcs). The pixel of its top
+     * end, one bit, rules most arcs out. */
+    float x0 = (float)r->vx; /* arcs are in device columns, the line's bits in its own */
+    float xt = e->top.x - x0;
+    if (r->opaque_px != 0u && xt >= 0.0f && xt < (float)cx->width &&
+        cs__run_opaque(r, (uint32_t)xt)) {
+        /* clamped as floats first: a hull that could not be formed is +-HUGE_X */
+        float xl = cs__maxf(e->xmin - 0.5f - x0, 0.0f);
+        float xr = cs__minf(e->xmax + 0.5f - x0, (float)cx->width);
+        int32_t qa = cs__floori(xl), qb = cs__floori(xr) + 1;
+        qb = qb > cx->width ? cx->width : qb;
+        if (qa < qb && cs__span_opaque(r, (uint32_t)qa, (uint32_t)qb)) {
+            e->hidden = true;
+            hide(e, piece, pc, qa + r->vx);
+        }
+    }
+}
+
+/* Every active piece's arc across the row, act[i] into ws->exact[i]: one
+ * call per region-row, with the placement written into its loop (a call
+ * per piece, and the registers it saved, measured dearer). */
+void cs__exact_place_row(const cs_renderer *r, const cs__exact_ctx *cx, const cs_index *act,
+                         uint32_t n)
+{
+    cs_exact_piece *ex = cx->ws->exact;
+    for (uint32_t i = 0; i < n; i++)
+        place_piece(r, cx, &ex[i], act[i]);
 }
 
 #endif /* CS_CFG_EXACT */
