@@ -121,6 +121,9 @@ static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, f
             ca[1] = c * A[1];
             ca[2] = c * A[2];
         }
+#if CS_CFG_CEL_LIST
+        ws->cel_runs[ws->cel_run_count++] = (uint16_t)s;
+#endif
     } else {
         for (int ch = 0; ch < 3; ch++)
             ce[ch] += c * E[ch];
@@ -374,26 +377,53 @@ static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, u
     cs__region_coverage(r, reg, act, n, y, lo, hi);
 }
 
+/* Composites the cel's map at the run starting at s behind the stack and
+ * clears the cel's share of it. If the cel may hide (`snap`), T is snapped
+ * to 0 below CS__T_ZERO. Snapping depends on the cel alone, never on the
+ * early-out, so turning the early-out off changes no bit. */
+static CS__SPECIALISE void composite_run(cs_renderer *r, uint32_t s, bool snap, bool grey)
+{
+    cs_workspace *ws = r->ws;
+    float t[3];
+    transmittance(t, &ws->cel_A[3 * s], 1.0f, snap, grey);
+    cs__run_join(r, grey, s, ws->run_end[s], &ws->cel_E[3 * s], t);
+    ws->used[s] = 0.0f;
+}
+
+#if CS_CFG_CEL_LIST
 /*
- * Composites the runs of [lo, hi) that the cel covers (used > 0) behind
- * the stack and clears the cel's share of them. Elsewhere the cel's map is
- * (0, 1), which leaves the stack as it is. If the cel may hide (`snap`), T
- * is snapped to 0 below CS__T_ZERO. Snapping depends on the cel alone,
- * never on the early-out, so turning the early-out off changes no bit.
+ * Composites the runs the cel covers (used > 0), which are listed; the
+ * cel's map is (0, 1) elsewhere, which leaves the stack as it is. Each
+ * run's join reads and writes that run alone, so the list's order (that
+ * of first coverage and splits) gives the bits of an x-order walk.
+ */
+static CS__SPECIALISE void composite_cel_as(cs_renderer *r, bool snap, bool grey)
+{
+    cs_workspace *ws = r->ws;
+    for (uint32_t k = 0; k < ws->cel_run_count; k++)
+        composite_run(r, ws->cel_runs[k], snap, grey);
+    ws->cel_run_count = 0;
+}
+
+static void composite_cel(cs_renderer *r, bool snap)
+{
+    if (CS_CFG_GREY && r->grey)
+        composite_cel_as(r, snap, true);
+    else
+        composite_cel_as(r, snap, false);
+}
+#else
+/*
+ * Composites the runs of [lo, hi) that the cel covers (used > 0); the
+ * cel's map is (0, 1) elsewhere, which leaves the stack as it is.
  */
 static CS__SPECIALISE void composite_cel_as(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap,
                                             bool grey)
 {
     cs_workspace *ws = r->ws;
-    for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s]) {
-        if (ws->used[s] == 0.0f)
-            continue;
-        float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
-        float t[3];
-        transmittance(t, ca, 1.0f, snap, grey);
-        cs__run_join(r, grey, s, ws->run_end[s], ce, t);
-        ws->used[s] = 0.0f;
-    }
+    for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s])
+        if (ws->used[s] != 0.0f)
+            composite_run(r, s, snap, grey);
 }
 
 static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
@@ -470,6 +500,7 @@ static void composite_ranges(cs_renderer *r, cel_ranges *s, bool snap)
         composite_cel(r, (uint32_t)s->lo[k], (uint32_t)s->hi[k], snap);
     s->n = 0;
 }
+#endif
 
 void cs__line_stack(cs_renderer *r, int y)
 {
@@ -492,8 +523,12 @@ void cs__line_stack(cs_renderer *r, int y)
     uint32_t cache_end = r->cache ? r->cache->cel_first + r->cache->cel_count : 0;
     bool cache_pending = CS_CFG_CACHE && r->cache != 0; /* else its code is left out */
     uint32_t i = 0;
+#if CS_CFG_CEL_LIST
+    ws->cel_run_count = 0;
+#else
     cel_ranges ranges;
     ranges.n = 0;
+#endif
     uint32_t current_cel = UINT32_MAX;
     bool cel_hides = false;
     bool cel_folded = false; /* a region of the current cel was folded on this line */
@@ -504,7 +539,11 @@ void cs__line_stack(cs_renderer *r, int y)
             j++;
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel) {
+#if CS_CFG_CEL_LIST
+            composite_cel(r, cel_hides);
+#else
             composite_ranges(r, &ranges, cel_hides);
+#endif
             cel_hides = false;
             cel_folded = false;
             if (cache_pending && cel >= cache_end) {
@@ -522,12 +561,14 @@ void cs__line_stack(cs_renderer *r, int y)
             if (lo < hi) {
                 /* A cel's only region on the line goes straight into the
                  * stack; otherwise the cel's regions are summed first. */
-                bool alone = ranges.n == 0 && !cel_folded &&
+                bool alone = !cel_folded &&
                              (j == r->active_count ||
                               ws->region_cel[ws->pieces[ws->active[j]].region] != cel);
                 fold_region(r, reg, y, lo, hi, alone);
                 if (!alone) {
+#if !CS_CFG_CEL_LIST
                     ranges_add(&ranges, lo, hi);
+#endif
                     cel_hides = cel_hides || region_may_hide(r, reg);
                 }
                 cel_folded = true;
@@ -535,7 +576,11 @@ void cs__line_stack(cs_renderer *r, int y)
         }
         i = j;
     }
+#if CS_CFG_CEL_LIST
+    composite_cel(r, cel_hides);
+#else
     composite_ranges(r, &ranges, cel_hides);
+#endif
     if (cache_pending)
         cs__cache_composite(r, y);
 }
