@@ -267,10 +267,13 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
     uint32_t width = (uint32_t)r->vw;
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
     float run = 0.0f;
+    /* Nothing waits, at coverage 0 from lo, the first entry (lo is at or
+     * left of every entry written), so that entry needs no test of its own:
+     * the gap before it has the running cover 0 and leaves nothing to fold. */
     pending p;
-    p.a = p.b = p.cursor = 0;
+    p.a = p.b = (uint32_t)lo;
+    p.cursor = cs__run_start(ws, (uint32_t)lo);
     p.c = 0.0f;
-    bool first = true;
     /* The last word to visit, found once: the loop's one bound test per
      * word is most of its cost where a wide region's interior words are 0. */
     uint32_t w_last = (end + 1u) >> 5 < width >> 5 ? (end + 1u) >> 5 : width >> 5;
@@ -284,19 +287,12 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
             ws->cover[x] = ws->area[x] = 0.0f;
             if (x >= end)
                 continue; /* deltas past the right end sum to zero */
-            if (first) {
-                p.cursor = cs__run_start(ws, x);
-                p.a = p.b = x;
-                first = false;
-            } else if (p.b < x) { /* the gap up to x has the running cover */
+            if (p.b < x) /* the gap up to x has the running cover */
                 pending_extend(ws, &fp, &p, x, cs__clampf(run, 0.0f, 1.0f), grey);
-            }
             run += cv;
             pending_extend(ws, &fp, &p, x + 1u, cs__clampf(ar + run, 0.0f, 1.0f), grey);
         }
     }
-    if (first)
-        return;
     /* Rounding may leave the running cover a hair from zero up to hi. */
     if (p.b < end)
         pending_extend(ws, &fp, &p, end, cs__clampf(run, 0.0f, 1.0f), grey);
