@@ -341,13 +341,23 @@ static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
     if (r->opaque_px == 0u) /* always so with the early-out off (cs__run_join) */
         return false;
     cs_workspace *ws = r->ws;
-    uint32_t a = (uint32_t)r->vw, b = 0u;
-    for (uint32_t i = 0; i < n; i++) {
-        const cs_segment *s = &ws->segments[ws->pieces[act[i]].segment];
-        a = s->px_lo < a ? s->px_lo : a;
-        b = s->px_hi > b ? s->px_hi : b;
+    /* Most regions show, and a pixel of their first piece's hull (within
+     * the region's) tells so without the hull of all their pieces: that
+     * hull is tested first, the whole one only if it shows nothing. One
+     * call of cs__span_opaque, so that a board inlines it once. */
+    const cs_segment *s = &ws->segments[ws->pieces[act[0]].segment];
+    uint32_t a = s->px_lo, b = s->px_hi, i = 1; /* px_lo < r->vw (cs_frame.c) */
+    for (;;) {
+        if (a < b && !cs__span_opaque(r, a, b))
+            return false;
+        if (i >= n)
+            return true;
+        for (; i < n; i++) {
+            s = &ws->segments[ws->pieces[act[i]].segment];
+            a = s->px_lo < a ? s->px_lo : a;
+            b = s->px_hi > b ? s->px_hi : b;
+        }
     }
-    return a >= b || cs__span_opaque(r, a, b);
 }
 
 /*
