@@ -107,19 +107,17 @@ typedef struct fold_paint {
     bool snap;        /* with direct: the cel may hide (see region_may_hide) */
 } fold_paint;
 
-/* Adds coverage c of paint (E, A) to the cel at the run starting at s,
- * within what the regions in front of it left (`used`). A grey frame keeps
- * A in channel 0 alone. */
+/* Adds coverage c (0 < c <= 1: the folds' clamp and test) of paint
+ * (E, A) to the cel at the run starting at s, within what the regions in
+ * front of it left (`used`). A grey frame keeps A in channel 0 alone. A
+ * run the cel has not reached (used 0) has room for all of c, and what it
+ * stores is stale: c E and c A are stored without the room's tests. */
 static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, float c,
                                       const float *E, const float *A)
 {
-    float room = 1.0f - ws->used[s];
-    if (c > room)
-        c = room;
-    if (!(c > 0.0f))
-        return;
+    float used = ws->used[s];
     float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
-    if (ws->used[s] == 0.0f) { /* the first region here: what is stored is stale */
+    if (used == 0.0f) {
         for (int ch = 0; ch < 3; ch++)
             ce[ch] = c * E[ch];
         ca[0] = c * A[0];
@@ -127,19 +125,25 @@ static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, f
             ca[1] = c * A[1];
             ca[2] = c * A[2];
         }
+        ws->used[s] = c; /* 0 + c */
 #if CS_CFG_CEL_LIST
         ws->cel_runs[ws->cel_run_count++] = (uint16_t)s;
 #endif
-    } else {
-        for (int ch = 0; ch < 3; ch++)
-            ce[ch] += c * E[ch];
-        ca[0] += c * A[0];
-        if (!grey) {
-            ca[1] += c * A[1];
-            ca[2] += c * A[2];
-        }
+        return;
     }
-    ws->used[s] += c;
+    float room = 1.0f - used;
+    if (c > room)
+        c = room;
+    if (!(c > 0.0f))
+        return;
+    for (int ch = 0; ch < 3; ch++)
+        ce[ch] += c * E[ch];
+    ca[0] += c * A[0];
+    if (!grey) {
+        ca[1] += c * A[1];
+        ca[2] += c * A[2];
+    }
+    ws->used[s] = used + c;
 }
 
 /* t = 1 - c A, snapped to 0 below CS__T_ZERO if the cel may hide; channel
