@@ -562,10 +562,14 @@ void cs__line_stack(cs_renderer *r, int y)
     uint32_t current_cel = UINT32_MAX;
     bool cel_hides = false;
     bool cel_folded = false; /* a region of the current cel was folded on this line */
-    while (i < r->active_count) {
-        uint32_t reg = ws->pieces[ws->active[i]].region;
+    /* The active pieces come grouped by region; the scan for a group's end
+     * reads the next group's region, which is kept (`next`), not read again. */
+    uint32_t n = r->active_count;
+    uint32_t next = n ? ws->pieces[ws->active[0]].region : 0u;
+    while (i < n) {
+        uint32_t reg = next;
         uint32_t j = i + 1;
-        while (j < r->active_count && ws->pieces[ws->active[j]].region == reg)
+        while (j < n && (next = ws->pieces[ws->active[j]].region) == reg)
             j++;
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel) {
@@ -591,9 +595,7 @@ void cs__line_stack(cs_renderer *r, int y)
             if (lo < hi) {
                 /* A cel's only region on the line goes straight into the
                  * stack; otherwise the cel's regions are summed first. */
-                bool alone = !cel_folded &&
-                             (j == r->active_count ||
-                              ws->region_cel[ws->pieces[ws->active[j]].region] != cel);
+                bool alone = !cel_folded && (j == n || ws->region_cel[next] != cel);
                 fold_region(r, reg, y, lo, hi, alone);
                 if (!alone) {
 #if !CS_CFG_CEL_LIST
