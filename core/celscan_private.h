@@ -249,6 +249,10 @@ typedef struct cs_workspace {
     uint32_t opaque_bits[(CS_CFG_MAX_WIDTH + 32) / 32]; /* pixels whose stack is opaque */
     uint16_t run_end[CS_CFG_MAX_WIDTH + 1]; /* x fits 16 bits: see below */
     float used[CS_CFG_MAX_WIDTH];         /* coverage claimed in the cel so far */
+#if CS_CFG_CEL_LIST
+    uint16_t cel_runs[CS_CFG_MAX_WIDTH];  /* the run starts where used != 0 (cs_runs.h) */
+    uint32_t cel_run_count;
+#endif
     float cel_E[CS_CFG_MAX_WIDTH * 3];
     float cel_A[CS_CFG_MAX_WIDTH * 3];    /* 1 - T of the cel */
     float stack_E[CS_CFG_MAX_WIDTH * 3];  /* the stack: emitted light, then the pixel */

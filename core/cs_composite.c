@@ -32,12 +32,16 @@
 /*
  * A region's paint at one pixel when any of its fields is a function:
  * the same E, T as the frame's region_map, with the fields evaluated at the
- * pixel centre.
+ * pixel centre. Its cel's lights are looked up here, not by fold_region_as
+ * for every region-row whether functional or not.
  */
-static void paint_at(const cs_renderer *r, const cs_region *region, const float *front,
-                     const float *back, float px, float py, float *E, float *A)
+static void paint_at(const cs_renderer *r, const cs_region *region, float px, float py, float *E,
+                     float *A)
 {
     const cs_scene *scene = r->scene;
+    uint32_t cel = r->ws->region_cel[region - scene->regions];
+    const float *front = scene->cels[cel].has_front ? scene->cels[cel].front : scene->stack_front;
+    const float *back = scene->cels[cel].back;
     bool srgb = r->opts.blend == CS_BLEND_SRGB;
     float pig[3], med[3], beta;
     const cs_paint *p = &region->paint;
@@ -63,7 +67,7 @@ static void paint_at(const cs_renderer *r, const cs_region *region, const float 
     } else {
         beta = p->beta;
     }
-    beta *= r->ws->cel_opacity[r->ws->region_cel[region - scene->regions]];
+    beta *= r->ws->cel_opacity[cel];
     for (int ch = 0; ch < 3; ch++) {
         float clear = (1.0f - beta) * med[ch];
         E[ch] = beta * pig[ch] * front[ch] + clear * back[ch];
@@ -86,32 +90,34 @@ static bool region_may_hide(const cs_renderer *r, uint32_t reg)
            region->func[CS_FIELD_MEDIUM] || region->func[CS_FIELD_BETA];
 }
 
+/* Whether any field of the region's paint is a function of the pixel. */
+static inline bool region_functional(const cs_region *region)
+{
+    return (region->func[0] | region->func[1] | region->func[2]) != 0;
+}
+
 /* What a region adds to the runs: its paint, or how to evaluate it. */
 typedef struct fold_paint {
     cs_renderer *r; /* the direct path counts opaque pixels in it */
     const cs_region *region;
-    const cs_cel *cel;
-    const float *front;
     float E[3], A[3]; /* the constant map (c = 1) when not functional */
-    float py;         /* pixel-centre y, for functional paints */
+    int y;            /* the line, for functional paints */
     bool functional;
     bool direct;      /* the cel's only region on this line: straight into the stack */
     bool snap;        /* with direct: the cel may hide (see region_may_hide) */
 } fold_paint;
 
-/* Adds coverage c of paint (E, A) to the cel at the run starting at s,
- * within what the regions in front of it left (`used`). A grey frame keeps
- * A in channel 0 alone. */
+/* Adds coverage c (0 < c <= 1: the folds' clamp and test) of paint
+ * (E, A) to the cel at the run starting at s, within what the regions in
+ * front of it left (`used`). A grey frame keeps A in channel 0 alone. A
+ * run the cel has not reached (used 0) has room for all of c, and what it
+ * stores is stale: c E and c A are stored without the room's tests. */
 static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, float c,
                                       const float *E, const float *A)
 {
-    float room = 1.0f - ws->used[s];
-    if (c > room)
-        c = room;
-    if (!(c > 0.0f))
-        return;
+    float used = ws->used[s];
     float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
-    if (ws->used[s] == 0.0f) { /* the first region here: what is stored is stale */
+    if (used == 0.0f) {
         for (int ch = 0; ch < 3; ch++)
             ce[ch] = c * E[ch];
         ca[0] = c * A[0];
@@ -119,16 +125,25 @@ static CS__SPECIALISE void accumulate(cs_workspace *ws, bool grey, uint32_t s, f
             ca[1] = c * A[1];
             ca[2] = c * A[2];
         }
-    } else {
-        for (int ch = 0; ch < 3; ch++)
-            ce[ch] += c * E[ch];
-        ca[0] += c * A[0];
-        if (!grey) {
-            ca[1] += c * A[1];
-            ca[2] += c * A[2];
-        }
+        ws->used[s] = c; /* 0 + c */
+#if CS_CFG_CEL_LIST
+        ws->cel_runs[ws->cel_run_count++] = (uint16_t)s;
+#endif
+        return;
     }
-    ws->used[s] += c;
+    float room = 1.0f - used;
+    if (c > room)
+        c = room;
+    if (!(c > 0.0f))
+        return;
+    for (int ch = 0; ch < 3; ch++)
+        ce[ch] += c * E[ch];
+    ca[0] += c * A[0];
+    if (!grey) {
+        ca[1] += c * A[1];
+        ca[2] += c * A[2];
+    }
+    ws->used[s] = used + c;
 }
 
 /* t = 1 - c A, snapped to 0 below CS__T_ZERO if the cel may hide; channel
@@ -189,8 +204,8 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
                     if (x + 1u < e)
                         cs__run_split(ws, grey, x, x + 1u);
                     float E[3], A[3];
-                    paint_at(fp->r, fp->region, fp->front, fp->cel->back,
-                             (float)((int32_t)x + fp->r->vx) + 0.5f, fp->py, E, A);
+                    paint_at(fp->r, fp->region, (float)((int32_t)x + fp->r->vx) + 0.5f,
+                             (float)fp->y + 0.5f, E, A);
                     if (fp->direct)
                         composite_direct(fp->r, grey, x, x + 1u, c, E, A, fp->snap);
                     else
@@ -240,30 +255,35 @@ static CS__SPECIALISE void pending_extend(cs_workspace *ws, const fold_paint *fp
  * those a pass over every pixel of [lo, hi) makes, in the same order.
  */
 static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, int32_t lo,
-                                           int32_t hi, bool direct, bool grey)
+                                           int32_t hi, bool direct, bool grey, bool functional)
 {
     cs_workspace *ws = r->ws;
     fold_paint fp;
     fp.r = r;
     fp.region = &r->scene->regions[reg];
-    fp.cel = &r->scene->cels[ws->region_cel[reg]];
-    fp.front = fp.cel->has_front ? fp.cel->front : r->scene->stack_front;
-    fp.functional = (fp.region->func[0] | fp.region->func[1] | fp.region->func[2]) != 0;
+    fp.functional = functional;
+    /* Written out: as a loop GCC vectorised the six floats behind a
+     * run-time test of the arrays' overlap, ~30 instructions a region-row. */
     const float *E = ws->region_E[reg], *T = ws->region_T[reg];
-    for (int ch = 0; ch < 3; ch++) {
-        fp.E[ch] = E[ch];
-        fp.A[ch] = 1.0f - T[ch];
-    }
-    fp.py = (float)y + 0.5f;
+    fp.E[0] = E[0];
+    fp.E[1] = E[1];
+    fp.E[2] = E[2];
+    fp.A[0] = 1.0f - T[0];
+    fp.A[1] = 1.0f - T[1];
+    fp.A[2] = 1.0f - T[2];
+    fp.y = y;
     fp.direct = direct;
     fp.snap = direct && region_may_hide(r, reg);
     uint32_t width = (uint32_t)r->vw;
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
     float run = 0.0f;
+    /* Nothing waits, at coverage 0 from lo, the first entry (lo is at or
+     * left of every entry written), so that entry needs no test of its own:
+     * the gap before it has the running cover 0 and leaves nothing to fold. */
     pending p;
-    p.a = p.b = p.cursor = 0;
+    p.a = p.b = (uint32_t)lo;
+    p.cursor = cs__run_start(ws, (uint32_t)lo);
     p.c = 0.0f;
-    bool first = true;
     /* The last word to visit, found once: the loop's one bound test per
      * word is most of its cost where a wide region's interior words are 0. */
     uint32_t w_last = (end + 1u) >> 5 < width >> 5 ? (end + 1u) >> 5 : width >> 5;
@@ -277,19 +297,12 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
             ws->cover[x] = ws->area[x] = 0.0f;
             if (x >= end)
                 continue; /* deltas past the right end sum to zero */
-            if (first) {
-                p.cursor = cs__run_start(ws, x);
-                p.a = p.b = x;
-                first = false;
-            } else if (p.b < x) { /* the gap up to x has the running cover */
+            if (p.b < x) /* the gap up to x has the running cover */
                 pending_extend(ws, &fp, &p, x, cs__clampf(run, 0.0f, 1.0f), grey);
-            }
             run += cv;
             pending_extend(ws, &fp, &p, x + 1u, cs__clampf(ar + run, 0.0f, 1.0f), grey);
         }
     }
-    if (first)
-        return;
     /* Rounding may leave the running cover a hair from zero up to hi. */
     if (p.b < end)
         pending_extend(ws, &fp, &p, end, cs__clampf(run, 0.0f, 1.0f), grey);
@@ -308,19 +321,33 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
  * mispredicted ~28 k times a Many-blobs exact frame (cachegrind
  * --branch-sim), as lone and summed regions alternate along a line
  * (another ~10 KB of Cortex-M4 code, again none with CS_CFG_GREY 0).
+ * The four copies are inlined into cs__line_stack, fold_region's one
+ * caller, too: its call saved and restored six registers and set up a
+ * 424-byte frame for every region-row (-0.5 M instructions a Many-blobs
+ * exact frame). A functional paint (a gradient: rare, and per pixel
+ * anyway) takes a fifth copy for all cases, so that the four test no
+ * run for it (-0.3 M).
  */
-static void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi, bool direct)
+static CS__SPECIALISE void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi,
+                                        bool direct)
 {
-    if (CS_CFG_GREY && r->grey) {
+    bool functional = region_functional(&r->scene->regions[reg]);
+#if CS_CFG_GREY
+    if (functional) {
+        fold_region_as(r, reg, y, lo, hi, direct, r->grey, true);
+    } else if (r->grey) {
         if (direct)
-            fold_region_as(r, reg, y, lo, hi, true, true);
+            fold_region_as(r, reg, y, lo, hi, true, true, false);
         else
-            fold_region_as(r, reg, y, lo, hi, false, true);
-    } else if (CS_CFG_GREY && direct) {
-        fold_region_as(r, reg, y, lo, hi, true, false);
+            fold_region_as(r, reg, y, lo, hi, false, true, false);
+    } else if (direct) {
+        fold_region_as(r, reg, y, lo, hi, true, false, false);
     } else {
-        fold_region_as(r, reg, y, lo, hi, direct, false);
+        fold_region_as(r, reg, y, lo, hi, false, false, false);
     }
+#else
+    fold_region_as(r, reg, y, lo, hi, direct, false, functional);
+#endif
 }
 
 /*
@@ -333,35 +360,100 @@ static bool region_hidden(cs_renderer *r, const cs_index *act, uint32_t n)
     if (r->opaque_px == 0u) /* always so with the early-out off (cs__run_join) */
         return false;
     cs_workspace *ws = r->ws;
-    uint32_t a = (uint32_t)r->vw, b = 0u;
-    for (uint32_t i = 0; i < n; i++) {
-        const cs_segment *s = &ws->segments[ws->pieces[act[i]].segment];
-        a = s->px_lo < a ? s->px_lo : a;
-        b = s->px_hi > b ? s->px_hi : b;
+    /* Most regions show, and a pixel of their first piece's hull (within
+     * the region's) tells so without the hull of all their pieces: that
+     * hull is tested first, the whole one only if it shows nothing. One
+     * call of cs__span_opaque, so that a board inlines it once. */
+    const cs_segment *s = &ws->segments[ws->pieces[act[0]].segment];
+    uint32_t a = s->px_lo, b = s->px_hi, i = 1; /* px_lo < r->vw (cs_frame.c) */
+    for (;;) {
+        if (a < b && !cs__span_opaque(r, a, b))
+            return false;
+        if (i >= n)
+            return true;
+        for (; i < n; i++) {
+            s = &ws->segments[ws->pieces[act[i]].segment];
+            a = s->px_lo < a ? s->px_lo : a;
+            b = s->px_hi > b ? s->px_hi : b;
+        }
     }
-    return a >= b || cs__span_opaque(r, a, b);
 }
 
 /*
- * Composites the runs of [lo, hi) that the cel covers (used > 0) behind
- * the stack and clears the cel's share of them. Elsewhere the cel's map is
- * (0, 1), which leaves the stack as it is. If the cel may hide (`snap`), T
- * is snapped to 0 below CS__T_ZERO. Snapping depends on the cel alone,
- * never on the early-out, so turning the early-out off changes no bit.
+ * The region's coverage on line y in the accumulators, over [*lo, *hi):
+ * exact area straight from cs_exact.c, the sampled modes through
+ * cs__region_coverage (one call instead of two: the sampled modes' body
+ * saved and restored its registers around the exact call too, ~60
+ * instructions of each of a Many-blobs exact frame's 26 k region-rows).
+ */
+static void region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, uint32_t n, int y,
+                            int32_t *lo, int32_t *hi)
+{
+#if CS_CFG_EXACT
+    if (r->opts.aa == CS_AA_EXACT) {
+        *lo = INT32_MAX;
+        *hi = INT32_MIN;
+        cs_status st = cs__exact_region(r, &r->scene->regions[reg], act, n, y, lo, hi);
+        if (CS__UNLIKELY(st != CS_OK) && r->sticky.status == CS_OK) {
+            uint32_t cel = r->ws->region_cel[reg];
+            cs__error(&r->sticky, st, cel, (int32_t)(reg - r->scene->cels[cel].first_region), -1,
+                      y);
+        }
+        if (*hi > r->vw)
+            *hi = r->vw;
+        return;
+    }
+#endif
+    cs__region_coverage(r, reg, act, n, y, lo, hi);
+}
+
+/* Composites the cel's map at the run starting at s behind the stack and
+ * clears the cel's share of it. If the cel may hide (`snap`), T is snapped
+ * to 0 below CS__T_ZERO. Snapping depends on the cel alone, never on the
+ * early-out, so turning the early-out off changes no bit. */
+static CS__SPECIALISE void composite_run(cs_renderer *r, uint32_t s, bool snap, bool grey)
+{
+    cs_workspace *ws = r->ws;
+    float t[3];
+    transmittance(t, &ws->cel_A[3 * s], 1.0f, snap, grey);
+    cs__run_join(r, grey, s, ws->run_end[s], &ws->cel_E[3 * s], t);
+    ws->used[s] = 0.0f;
+}
+
+#if CS_CFG_CEL_LIST
+/*
+ * Composites the runs the cel covers (used > 0), which are listed; the
+ * cel's map is (0, 1) elsewhere, which leaves the stack as it is. Each
+ * run's join reads and writes that run alone, so the list's order (that
+ * of first coverage and splits) gives the bits of an x-order walk.
+ */
+static CS__SPECIALISE void composite_cel_as(cs_renderer *r, bool snap, bool grey)
+{
+    cs_workspace *ws = r->ws;
+    for (uint32_t k = 0; k < ws->cel_run_count; k++)
+        composite_run(r, ws->cel_runs[k], snap, grey);
+    ws->cel_run_count = 0;
+}
+
+static void composite_cel(cs_renderer *r, bool snap)
+{
+    if (CS_CFG_GREY && r->grey)
+        composite_cel_as(r, snap, true);
+    else
+        composite_cel_as(r, snap, false);
+}
+#else
+/*
+ * Composites the runs of [lo, hi) that the cel covers (used > 0); the
+ * cel's map is (0, 1) elsewhere, which leaves the stack as it is.
  */
 static CS__SPECIALISE void composite_cel_as(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap,
                                             bool grey)
 {
     cs_workspace *ws = r->ws;
-    for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s]) {
-        if (ws->used[s] == 0.0f)
-            continue;
-        float *ce = &ws->cel_E[3 * s], *ca = &ws->cel_A[3 * s];
-        float t[3];
-        transmittance(t, ca, 1.0f, snap, grey);
-        cs__run_join(r, grey, s, ws->run_end[s], ce, t);
-        ws->used[s] = 0.0f;
-    }
+    for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s])
+        if (ws->used[s] != 0.0f)
+            composite_run(r, s, snap, grey);
 }
 
 static void composite_cel(cs_renderer *r, uint32_t lo, uint32_t hi, bool snap)
@@ -438,6 +530,7 @@ static void composite_ranges(cs_renderer *r, cel_ranges *s, bool snap)
         composite_cel(r, (uint32_t)s->lo[k], (uint32_t)s->hi[k], snap);
     s->n = 0;
 }
+#endif
 
 void cs__line_stack(cs_renderer *r, int y)
 {
@@ -460,19 +553,31 @@ void cs__line_stack(cs_renderer *r, int y)
     uint32_t cache_end = r->cache ? r->cache->cel_first + r->cache->cel_count : 0;
     bool cache_pending = CS_CFG_CACHE && r->cache != 0; /* else its code is left out */
     uint32_t i = 0;
+#if CS_CFG_CEL_LIST
+    ws->cel_run_count = 0;
+#else
     cel_ranges ranges;
     ranges.n = 0;
+#endif
     uint32_t current_cel = UINT32_MAX;
     bool cel_hides = false;
     bool cel_folded = false; /* a region of the current cel was folded on this line */
-    while (i < r->active_count) {
-        uint32_t reg = ws->pieces[ws->active[i]].region;
+    /* The active pieces come grouped by region; the scan for a group's end
+     * reads the next group's region, which is kept (`next`), not read again. */
+    uint32_t n = r->active_count;
+    uint32_t next = n ? ws->pieces[ws->active[0]].region : 0u;
+    while (i < n) {
+        uint32_t reg = next;
         uint32_t j = i + 1;
-        while (j < r->active_count && ws->pieces[ws->active[j]].region == reg)
+        while (j < n && (next = ws->pieces[ws->active[j]].region) == reg)
             j++;
         uint32_t cel = ws->region_cel[reg];
         if (cel != current_cel) {
+#if CS_CFG_CEL_LIST
+            composite_cel(r, cel_hides);
+#else
             composite_ranges(r, &ranges, cel_hides);
+#endif
             cel_hides = false;
             cel_folded = false;
             if (cache_pending && cel >= cache_end) {
@@ -486,16 +591,16 @@ void cs__line_stack(cs_renderer *r, int y)
         }
         if (!region_hidden(r, &ws->active[i], j - i)) {
             int32_t lo, hi;
-            cs__region_coverage(r, reg, &ws->active[i], j - i, y, &lo, &hi);
+            region_coverage(r, reg, &ws->active[i], j - i, y, &lo, &hi);
             if (lo < hi) {
                 /* A cel's only region on the line goes straight into the
                  * stack; otherwise the cel's regions are summed first. */
-                bool alone = ranges.n == 0 && !cel_folded &&
-                             (j == r->active_count ||
-                              ws->region_cel[ws->pieces[ws->active[j]].region] != cel);
+                bool alone = !cel_folded && (j == n || ws->region_cel[next] != cel);
                 fold_region(r, reg, y, lo, hi, alone);
                 if (!alone) {
+#if !CS_CFG_CEL_LIST
                     ranges_add(&ranges, lo, hi);
+#endif
                     cel_hides = cel_hides || region_may_hide(r, reg);
                 }
                 cel_folded = true;
@@ -503,7 +608,11 @@ void cs__line_stack(cs_renderer *r, int y)
         }
         i = j;
     }
+#if CS_CFG_CEL_LIST
+    composite_cel(r, cel_hides);
+#else
     composite_ranges(r, &ranges, cel_hides);
+#endif
     if (cache_pending)
         cs__cache_composite(r, y);
 }

@@ -1,9 +1,9 @@
 /*
  * cs_coverage.c - spans and coverage: one region's crossings become spans
  *
- * and the spans its per-pixel coverage. Stage 4 of a frame, for every AA
- * mode (exact area comes from cs_exact.c into the same accumulators);
- * compositing (cs_composite.c) folds what is left here.
+ * and the spans its per-pixel coverage. Stage 4 of a frame, for the
+ * sampled AA modes (exact area comes from cs_exact.c into the same
+ * accumulators); compositing (cs_composite.c) folds what is left here.
  *
  * Pieces are kept in scene order, which groups them by region and regions
  * by cel, front-most first. For one region the crossings of a scanline,
@@ -108,8 +108,11 @@ static void accumulate_spans(cs_renderer *r, uint32_t count, const cs_region *re
 
 /*
  * Coverage of region `reg` on line y from its active pieces, left in the
- * area/cover accumulators over [*lo, *hi). Every anti-aliasing mode fills
- * the same accumulators, so everything after this step is mode-blind.
+ * area/cover accumulators over [*lo, *hi), in the sampled modes (exact
+ * area is cs__exact_region's, which cs__line_stack calls itself; here,
+ * in a build without it, exact mode has no samples and covers nothing).
+ * Every anti-aliasing mode fills the same accumulators, so everything
+ * after this step is mode-blind.
  */
 void cs__region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, uint32_t n, int y,
                          int32_t *lo_out, int32_t *hi_out)
@@ -131,16 +134,6 @@ void cs__region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, uint
     }
     float weight = samples > 0 ? 1.0f / (float)samples : 0.0f;
     int32_t lo = INT32_MAX, hi = INT32_MIN;
-#if CS_CFG_EXACT
-    if (r->opts.aa == CS_AA_EXACT) {
-        cs_status st = cs__exact_region(r, region, act, n, y, &lo, &hi);
-        if (st != CS_OK && r->sticky.status == CS_OK) {
-            const cs_cel *cel = &r->scene->cels[ws->region_cel[reg]];
-            cs__error(&r->sticky, st, ws->region_cel[reg],
-                      (int32_t)(reg - cel->first_region), -1, y);
-        }
-    }
-#endif
     /* Every piece waits for its first crossing: no root carries over from
      * another line. ws->scratch is free once cs__line_active is done. */
     cs_index *ord = ws->scratch;

@@ -36,10 +36,15 @@ void cs__line_active(cs_renderer *r, int y)
         r->next_order = 0;
     }
     float top = (float)y, bottom = (float)(y + 1);
+    /* Written whether kept or not, counted if kept: whether a piece ends
+     * goes by the data, and as a branch it was mispredicted ~20 k times a
+     * Many-blobs frame. */
     uint32_t kept = 0;
-    for (uint32_t i = 0; i < r->active_count; i++)
-        if (ws->pieces[ws->active[i]].y_bot > top)
-            ws->active[kept++] = ws->active[i];
+    for (uint32_t i = 0; i < r->active_count; i++) {
+        cs_index p = ws->active[i];
+        ws->active[kept] = p;
+        kept += ws->pieces[p].y_bot > top;
+    }
     uint32_t first_new = r->next_order, added = 0;
     while (r->next_order < r->piece_count && ws->pieces[ws->order[r->next_order]].y_top < bottom)
         r->next_order++;

@@ -631,7 +631,8 @@ int32_t cs__crossings_at(cs_renderer *r, const cs_index *act, cs_index *ord, uin
                          uint32_t live, int y, int sub, int samples);
 
 /* Coverage of region `reg` on line y from its n active pieces act[], left
- * in the area/cover accumulators over [*lo, *hi) (cs_coverage.c). */
+ * in the area/cover accumulators over [*lo, *hi), in the sampled modes
+ * (cs_coverage.c; exact mode calls cs__exact_region). */
 void cs__region_coverage(cs_renderer *r, uint32_t reg, const cs_index *act, uint32_t n, int y,
                          int32_t *lo, int32_t *hi);
 

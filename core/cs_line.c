@@ -24,7 +24,10 @@ static CS__SPECIALISE void finish_line_as(cs_renderer *r, bool grey)
      * and GCC otherwise rebuilds each array's address from it per run. */
     float *stack_E = ws->stack_E;
     uint16_t *run_end = ws->run_end;
-    const float *P = NULL; /* the previous run's pixel */
+    /* The previous run's pixel; before the first run one that equals no
+     * pixel (NaN), so that the loop needs no test of whether there is one. */
+    const float none[3] = {CS__NAN, CS__NAN, CS__NAN};
+    const float *P = none;
     uint32_t prev = 0;
     for (uint32_t s = 0; s < width;) {
         float *E = &stack_E[3 * s], T[3];
@@ -37,7 +40,7 @@ static CS__SPECIALISE void finish_line_as(cs_renderer *r, bool grey)
             for (int ch = 0; ch < 3; ch++)
                 E[ch] = cs__srgb_decode(E[ch]);
         uint32_t e = run_end[s];
-        if (P && P[0] == E[0] && P[1] == E[1] && P[2] == E[2]) {
+        if (P[0] == E[0] && P[1] == E[1] && P[2] == E[2]) {
             run_end[prev] = (uint16_t)e; /* same pixels: one run */
             s = e;
             continue;

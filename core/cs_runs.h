@@ -9,7 +9,9 @@
  * the run's first pixel s, in the workspace's per-pixel arrays (entries at
  * other pixels are stale and never read). The cel's E and 1 - T of a run
  * mean something only where its claimed coverage `used` is not 0: a cel
- * starts every run at zero by setting `used` alone. A bit per pixel in run_starts
+ * starts every run at zero by setting `used` alone (with CS_CFG_CEL_LIST,
+ * the runs where it is not 0 are listed in ws->cel_runs, in no particular
+ * order, for the cel's compositing). A bit per pixel in run_starts
  * marks the starts, so the run holding any x is found by a backward bit
  * scan, and a run is split in O(1) by copying its values to the new start.
  *
@@ -121,9 +123,13 @@ static CS__SPECIALISE void cs__run_split(cs_workspace *ws, bool grey, uint32_t s
                  &ws->stack_T[3 * s], grey);
     float used = ws->used[s];
     ws->used[x] = used;
-    if (used != 0.0f) /* a run the cel has not reached holds no cel values */
+    if (used != 0.0f) { /* a run the cel has not reached holds no cel values */
         cs__copy_map(&ws->cel_E[3 * x], &ws->cel_A[3 * x], &ws->cel_E[3 * s], &ws->cel_A[3 * s],
                      grey);
+#if CS_CFG_CEL_LIST
+        ws->cel_runs[ws->cel_run_count++] = (uint16_t)x;
+#endif
+    }
 }
 
 /* Whether the stack of the run at s is opaque (and the early-out is on):

@@ -71,5 +71,7 @@
 #define CS_CFG_GREY 0
 /* No pre-combined cache: it needs more RAM than the whole board has. */
 #define CS_CFG_CACHE 0
+/* A cel composites by walking its runs: the list would take 960 B of RAM. */
+#define CS_CFG_CEL_LIST 0
 
 #endif /* CS_CONFIG_480X272_H */
