@@ -435,18 +435,23 @@ static bool winding_constant(const cs__exact_ctx *cx, const uint32_t *cl, uint32
     return true;
 }
 
-/* A cluster of one arc, e: one band, nothing to order. Its winding change
- * applies the fill rule to `w` (updated); returns whether the region is
- * inside right of it. */
-static inline bool lone_edge(cs__exact_ctx *cx, const cs_exact_piece *e, int32_t *w, bool inside)
+/* A cluster of one arc, e, whose winding change makes the region inside
+ * right of it (now) or not: one band, nothing to order. Returns now. */
+static inline bool lone_cross(cs__exact_ctx *cx, const cs_exact_piece *e, bool now, bool inside)
 {
     const cs_piece *pc = &cx->ws->pieces[e->piece];
-    w[pc->operand] += pc->dir;
-    bool now = cs__region_inside(cx->region, w);
     if (now != inside)
         cs__exact_add_edge(cx, e, now ? 1.0f : -1.0f, cs__exact_row_top(cx, pc),
                            cs__exact_row_end(cx, pc));
     return now;
+}
+
+/* lone_cross where the change applies the fill rule to `w` (updated). */
+static inline bool lone_edge(cs__exact_ctx *cx, const cs_exact_piece *e, int32_t *w, bool inside)
+{
+    const cs_piece *pc = &cx->ws->pieces[e->piece];
+    w[pc->operand] += pc->dir;
+    return lone_cross(cx, e, cs__region_inside(cx->region, w), inside);
 }
 
 /*
@@ -478,6 +483,51 @@ static inline cs_status exact_done(const cs__exact_ctx *cx, int32_t *lo, int32_t
     return cx->overflow ? CS_ERR_CAP_CROSSINGS : CS_OK;
 }
 
+/*
+ * The row's pieces cluster by cluster, for rows that two_apart does not
+ * take. Clusters: runs of pieces in xmin order whose x ranges overlap, so
+ * that no curve passes between two of them. A horizontal segment has no
+ * piece, yet joins the ends of two that may lie far apart; a cluster whose
+ * winding changes inside the row (found by its end tags, and confirmed
+ * band by band) therefore takes in the next one until the changes cancel.
+ * The whole row always qualifies. Out of line: its 32-byte windings (w
+ * here, run_cluster's and winding_constant's when inlined) made GCC
+ * realign the stack of cs__exact_region, which every region-row enters.
+ */
+static CS__EXACT_NOINLINE void clusters(cs__exact_ctx *cx, cs_exact_piece *ex, uint32_t *ord,
+                                        uint32_t n)
+{
+    const cs_workspace *ws = cx->ws;
+    int32_t w[CS_CFG_MAX_OPERANDS];
+    for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) /* a loop: `= {0}` may call memset */
+        w[k] = 0;
+    bool inside = false;
+    for (uint32_t i = 0; i < n; i++)
+        ord[i] = i;
+    sort_pieces(ex, ord, n, true);
+    for (uint32_t i = 0; i < n;) {
+        float reach = ex[ord[i]].xmax;
+        uint32_t j = i, tags = 0;
+        bool inner = false;
+        for (;;) {
+            reach = cs__maxf(reach, ex[ord[j]].xmax);
+            tags += end_tags(cx, &ws->pieces[ex[ord[j]].piece], &inner);
+            j++;
+            if (j == n)
+                break;
+            if (ex[ord[j]].xmin <= reach + CLUSTER_GAP)
+                continue;
+            if (!inner || (tags == 0 && winding_constant(cx, &ord[i], j - i)))
+                break;
+        }
+        if (j == i + 1) /* alone: one band, nothing to order */
+            inside = lone_edge(cx, &ex[ord[i]], w, inside);
+        else
+            inside = run_cluster(cx, &ord[i], j - i, w, inside);
+        i = j;
+    }
+}
+
 cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_index *act,
                            uint32_t n, int y, int32_t *lo, int32_t *hi)
 {
@@ -502,46 +552,16 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     cs_exact_piece *ex = ws->exact;
     uint32_t *ord = ws->exact_order;
     cs__exact_place_row(r, &cx, act, n); /* each piece's arc across the row into ex */
-    /*
-     * Clusters: runs of pieces in xmin order whose x ranges overlap, so
-     * that no curve passes between two of them. A horizontal segment has
-     * no piece, yet joins the ends of two that may lie far apart; a
-     * cluster whose winding changes inside the row (found by its end tags,
-     * and confirmed band by band) therefore takes in the next one until
-     * the changes cancel. The whole row always qualifies.
-     */
-    int32_t w[CS_CFG_MAX_OPERANDS];
-    for (int k = 0; k < CS_CFG_MAX_OPERANDS; k++) /* a loop: `= {0}` may call memset */
-        w[k] = 0;
-    bool inside = false;
-    if (n == 2u && two_apart(&cx, ex, ord)) {
-        inside = lone_edge(&cx, &ex[ord[0]], w, inside);
-        (void)lone_edge(&cx, &ex[ord[1]], w, inside);
-        return exact_done(&cx, lo, hi);
-    }
-    for (uint32_t i = 0; i < n; i++)
-        ord[i] = i;
-    sort_pieces(ex, ord, n, true);
-    for (uint32_t i = 0; i < n;) {
-        float reach = ex[ord[i]].xmax;
-        uint32_t j = i, tags = 0;
-        bool inner = false;
-        for (;;) {
-            reach = cs__maxf(reach, ex[ord[j]].xmax);
-            tags += end_tags(&cx, &ws->pieces[ex[ord[j]].piece], &inner);
-            j++;
-            if (j == n)
-                break;
-            if (ex[ord[j]].xmin <= reach + CLUSTER_GAP)
-                continue;
-            if (!inner || (tags == 0 && winding_constant(&cx, &ord[i], j - i)))
-                break;
-        }
-        if (j == i + 1) /* alone: one band, nothing to order */
-            inside = lone_edge(&cx, &ex[ord[i]], w, inside);
-        else
-            inside = run_cluster(&cx, &ord[i], j - i, w, inside);
-        i = j;
+    if (n == 2u && region->csg_len == 0 && two_apart(&cx, ex, ord)) {
+        /* one operand (pieces move counter 0 without CSG): its winding is
+         * a scalar, the fill rule the test. An array here, 32 bytes, made
+         * GCC realign this frame, for every region-row. */
+        int32_t w0 = ws->pieces[ex[ord[0]].piece].dir;
+        bool inside = lone_cross(&cx, &ex[ord[0]], cs__fill(region->fill_rule, w0), false);
+        w0 += ws->pieces[ex[ord[1]].piece].dir;
+        (void)lone_cross(&cx, &ex[ord[1]], cs__fill(region->fill_rule, w0), inside);
+    } else {
+        clusters(&cx, ex, ord, n);
     }
     return exact_done(&cx, lo, hi);
 }

@@ -139,10 +139,9 @@ static float rational_moment(const cs_segment *s, const cs_exact_end *e0, const 
  * degree p, or less than 2 if it has none (a straight segment, or a
  * weight that is not positive).
  */
-static inline int arc_polygon(const cs_segment *s, const cs_exact_end *a, float ya,
-                              const cs_exact_end *b, float yb, float *bx, float *by)
+static inline int polygon_ends(int k, const cs_exact_end *a, float ya, const cs_exact_end *b,
+                               float yb, float *bx, float *by)
 {
-    int k = cs__exact_control_points(s, a, ya, b, yb, &bx[1], &by[1]);
     if (k <= 0)
         return 0;
     bx[0] = a->x;
@@ -150,6 +149,12 @@ static inline int arc_polygon(const cs_segment *s, const cs_exact_end *a, float 
     bx[k + 1] = b->x;
     by[k + 1] = yb - ya;
     return k + 1;
+}
+static inline int arc_polygon(const cs_segment *s, const cs_exact_end *a, float ya,
+                              const cs_exact_end *b, float yb, float *bx, float *by)
+{
+    int k = cs__exact_control_points(s, a, ya, b, yb, &bx[1], &by[1]);
+    return polygon_ends(k, a, ya, b, yb, bx, by);
 }
 
 /*
@@ -455,10 +460,9 @@ static inline bool add_poly_part(cs__exact_ctx *cx, const cs_segment *s, float s
 {
     if (!(cs__exact_mag(b->x - a->x) <= POLY_ARC_COLUMNS))
         return false;
-    float bx[4], by[4];
-    int p = arc_polygon(s, a, ya, b, yb, bx, by);
-    if (p < 2)
-        return false;
+    float bx[4], by[4]; /* a polynomial segment of degree 2 or 3: its polygon always forms */
+    int p = polygon_ends(cs__exact_poly_points(s->degree, a, ya, b, yb, &bx[1], &by[1]), a, ya, b,
+                         yb, bx, by);
     add_poly_arc(cx, sign, p, bx, by);
     return true;
 }

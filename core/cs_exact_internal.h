@@ -99,23 +99,30 @@ static inline float cs__exact_chord_u(float ua, float ya, float ub, float yb, fl
  * its height by up to the arc's length in columns (add_poly_arc), which
  * made long, shallow arcs 0.5/255 off pixel by pixel. Heights within the
  * row keep 2^-24 of it.
- */
+ *
+ * cs__exact_control_points of a polynomial segment of degree p (2 or 3):
+ * q = 1, so nothing to test. */
+static inline int cs__exact_poly_points(int p, const cs_exact_end *a, float ya,
+                                        const cs_exact_end *b, float yb, float *px, float *py)
+{
+    float t = (b->u - a->u) / (float)p, h = yb - ya;
+    px[0] = a->x + t * a->dx;
+    py[0] = t * a->dy;
+    if (p == 3) {
+        px[1] = b->x - t * b->dx;
+        py[1] = h - t * b->dy;
+    }
+    return p - 1;
+}
 static inline int cs__exact_control_points(const cs_segment *s, const cs_exact_end *a, float ya,
                           const cs_exact_end *b, float yb, float *px, float *py)
 {
     int p = s->degree;
     if (p < 2)
         return 0;
+    if (a->dwr == 0.0f && b->dwr == 0.0f) /* polynomial: q = 1 */
+        return cs__exact_poly_points(p, a, ya, b, yb, px, py);
     float t = (b->u - a->u) / (float)p, h = yb - ya;
-    if (a->dwr == 0.0f && b->dwr == 0.0f) { /* polynomial: q = 1 */
-        px[0] = a->x + t * a->dx;
-        py[0] = t * a->dy;
-        if (p == 3) {
-            px[1] = b->x - t * b->dx;
-            py[1] = h - t * b->dy;
-        }
-        return p - 1;
-    }
     float q = 1.0f + t * a->dwr;
     if (!(q > 0.0f))
         return -1;

@@ -456,6 +456,9 @@ static CS__HOT_INLINE void rational_level_end(const cs_piece *pc, const cs_segme
     m->n = 1;
 }
 
+typedef float bounds_f __attribute__((vector_size(16)));
+typedef int64_t bounds_q __attribute__((vector_size(16)));
+
 /*
  * x bounds of a polynomial arc from its control polygon (hull without the
  * strip): cheaper than cs__exact_hull(), which also serves rational arcs.
@@ -469,8 +472,11 @@ static void poly_bounds(int p, cs_exact_piece *e)
     float c1 = xt + t * e->top.dx, c2 = p == 3 ? xb - t * e->bot.dx : c1;
     e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
     e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
-    bool up = c1 > xt || c2 > c1 || xb > c2, down = c1 < xt || c2 < c1 || xb < c2;
-    e->monotone = !(up && down);
+    /* the polygon's three steps compared lane by lane: the same compares
+     * as scalars, in a vector (the scalar ||s took ~20 instructions) */
+    bounds_f to = {c1, c2, xb, xb}, from = {xt, c1, c2, xb};
+    bounds_q up = (bounds_q)(to > from), down = (bounds_q)(to < from);
+    e->monotone = !((up[0] | up[1]) != 0 && (down[0] | down[1]) != 0);
 }
 
 /*
