@@ -13,6 +13,12 @@
  * state runs in parallel too. A caller that helps (bands_help) takes bands
  * from the same queue and renders them in the renderer that prepared the
  * frame, which needs no share: its workspace is the frame's.
+ *
+ * bands_prepare hands out the parts of a frame's preparation the same way:
+ * part 0 to the caller, in its own renderer, and part k >= 1 to whichever
+ * thread takes it first, in worker k - 1's renderer and workspace (free
+ * until the frame's bands start); the caller helps with the parts left and
+ * joins them (cs_frame_join) once the last one is in.
  */
 #define _GNU_SOURCE /* sched_getaffinity */
 #include <pthread.h>
@@ -51,6 +57,13 @@ struct bands {
     void *user;
     unsigned char *ready; /* per line: emitted */
     cs_error err;        /* the first capacity error in line order */
+    /* A frame prepared in parts (bands_prepare), under mu: part k is cels
+     * [cut[k], cut[k + 1]); parts [next_part, parts) are still to take. */
+    const cs_scene *scene;
+    const cs_render_opts *opts;
+    uint32_t cut[BANDS_MAX_THREADS + 2];
+    int parts, next_part, parts_busy;
+    cs_status part_st[BANDS_MAX_THREADS + 1];
 };
 
 int bands_cores(void)
@@ -98,16 +111,36 @@ static void end_band(bands *b, const cs_renderer *r, int y0, int y1)
     pthread_cond_broadcast(&b->done);
 }
 
+/* Under mu, with parts left: prepares the next part, in worker k - 1's
+ * renderer and workspace; mu is released meanwhile. */
+static void prepare_part(bands *b)
+{
+    int k = b->next_part++;
+    b->parts_busy++;
+    pthread_mutex_unlock(&b->mu);
+    worker *w = &b->w[k - 1];
+    cs_error e;
+    cs_status st = cs_frame_begin_part(&w->r, w->ws, b->scene, b->opts, b->cut[k], b->cut[k + 1], &e);
+    pthread_mutex_lock(&b->mu);
+    b->part_st[k] = st;
+    b->parts_busy--;
+    pthread_cond_broadcast(&b->done);
+}
+
 static void *worker_main(void *arg)
 {
     worker *w = arg;
     bands *b = w->pool;
     pthread_mutex_lock(&b->mu);
     for (;;) {
-        while (!b->stop && !band_open(b))
+        while (!b->stop && !band_open(b) && b->next_part >= b->parts)
             pthread_cond_wait(&b->work, &b->mu);
         if (b->stop)
             break;
+        if (b->next_part < b->parts) {
+            prepare_part(b);
+            continue;
+        }
         int y0, y1;
         take_band(b, &y0, &y1);
         bool fresh = w->gen != b->gen;
@@ -200,6 +233,74 @@ cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int wind
     pthread_cond_broadcast(&b->work);
     pthread_mutex_unlock(&b->mu);
     return CS_OK;
+}
+
+/*
+ * The cels' cuts into `parts` parts of about equal work: a cel weighs the
+ * control points of its contours (what cs__contour_next and the splitting
+ * go through) and a few more for itself and each region.
+ */
+static void cut_cels(bands *b, const cs_scene *scene, int parts)
+{
+    uint64_t total = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        uint64_t sum = 0;
+        int k = 1;
+        b->cut[0] = 0;
+        for (uint32_t ci = 0; ci < scene->cel_count; ci++) {
+            const cs_cel *cel = &scene->cels[ci];
+            uint64_t wgt = 4;
+            for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++) {
+                const cs_region *reg = &scene->regions[ri];
+                wgt += 4;
+                for (uint32_t c = 0; c < reg->contour_count; c++)
+                    wgt += scene->contours[reg->first_contour + c].point_count;
+            }
+            sum += wgt;
+            /* Part k - 1 ends after the cel that takes the sum to k / parts of the whole. */
+            while (pass == 1 && k < parts && sum * (uint64_t)parts >= total * (uint64_t)k)
+                b->cut[k++] = ci + 1;
+        }
+        total = sum;
+        while (k <= parts)
+            b->cut[k++] = scene->cel_count;
+    }
+}
+
+cs_status bands_prepare(bands *b, cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                        const cs_render_opts *opts, cs_error *err)
+{
+    int parts = b->threads + 1 < CS_FRAME_MAX_PARTS ? b->threads + 1 : CS_FRAME_MAX_PARTS;
+    if (!scene || scene->cel_count < 2)
+        return cs_frame_begin(r, ws, scene, opts, err);
+    (void)bands_finish(b); /* the last frame's bands read r's workspace */
+    pthread_mutex_lock(&b->mu);
+    b->scene = scene;
+    b->opts = opts;
+    cut_cels(b, scene, parts);
+    b->parts = parts;
+    b->next_part = 1;
+    pthread_cond_broadcast(&b->work);
+    pthread_mutex_unlock(&b->mu);
+
+    cs_status st = cs_frame_begin_part(r, ws, scene, opts, 0, b->cut[1], err);
+    const cs_renderer *done[BANDS_MAX_THREADS];
+    pthread_mutex_lock(&b->mu);
+    while (b->next_part < b->parts)
+        prepare_part(b);
+    while (b->parts_busy > 0)
+        pthread_cond_wait(&b->done, &b->mu);
+    for (int k = 1; k < parts; k++) {
+        if (b->part_st[k] != CS_OK)
+            st = b->part_st[k];
+        done[k - 1] = &b->w[k - 1].r;
+    }
+    b->parts = b->next_part = 0;
+    pthread_mutex_unlock(&b->mu);
+    if (st == CS_OK && cs_frame_join(r, done, parts - 1) == CS_OK)
+        return CS_OK;
+    /* A part failed or the whole overflows: one call says where, as without parts. */
+    return cs_frame_begin(r, ws, scene, opts, err);
 }
 
 void bands_wait(bands *b, int y)
