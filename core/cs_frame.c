@@ -37,6 +37,13 @@
  * sampled value in place of the stored one. An animated contour's points
  * are sampled into ws->anim_points, one contour at a time, so the workspace
  * grows by one contour, not by a copy of the scene.
+ *
+ * A host with threads prepares a frame in parts, ranges of cels, each in a
+ * workspace of its own (cs_frame_begin_part: the same preparation, limited
+ * to the range), and joins them (cs_frame_join): the parts' arrays follow
+ * one another in cel order, as one preparation fills them, and their
+ * sorted orders are merged stably, which gives the order one stable sort of
+ * the whole gives. The core knows nothing of threads: a part is a call.
  */
 #include "cs_internal.h"
 
