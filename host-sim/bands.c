@@ -9,11 +9,12 @@
  * (lines emitted, workers gone idle).
  *
  * For a frame in storage a thread takes a span of lines, not a band: the
- * first one all the lines, each later one the back half of the largest
- * span left, and each renders its span band after band, going on where its
- * renderer stopped; a restart (a band that does not follow its renderer's
- * last) comes only with a span taken, about once a thread a frame. For a
- * ring the bands go out from the top in turn (next_band).
+ * caller the back half of the frame, the first worker the rest, each later
+ * one the back half of the largest span left, and each renders its span
+ * band after band, going on where its renderer stopped; a restart (a band
+ * that does not follow its renderer's last) comes only with a span taken,
+ * about once a thread a frame. For a ring the bands go out from the top in
+ * turn (next_band).
  *
  * Each worker shares the frame into its own renderer the first time it
  * takes a band of it, on its own thread, so clearing a workspace's line
@@ -62,7 +63,7 @@ struct bands {
     bool helped;         /* the caller renders bands too (bands_help): one more thread */
     int height, chunk, window; /* lines of the window rendered (cs_renderer vh) */
     int top;             /* device row of window line 0 (vy) */
-    int next;            /* first line no thread has taken yet */
+    int next, last;      /* lines [next, last) no thread has taken yet */
     bool ring;           /* window < height: one band at a time from the top */
     span own[BANDS_MAX_THREADS + 1]; /* per worker, and the helping caller's last */
     int released;        /* lines before this the caller is done with */
@@ -92,8 +93,8 @@ int bands_cores(void)
  * Under mu: the next band thread t (a worker's index, or b->threads for the
  * caller) may start, [*y0, *y1): the next of its own span, which its
  * renderer goes on with at no cost; else, once its span is used up, the
- * lines no thread took yet (all of them for a frame in storage, one band
- * for a ring); else the back half of the largest span another thread still
+ * lines no thread took yet (for a frame in storage all of them, or their
+ * back half for the caller; one band for a ring); else the back half of the largest span another thread still
  * has, if that is more than two bands, at the cost of one restart (the
  * active list rebuilt, a first row of exact ends solved afresh: ~80 k
  * instructions on Many-blobs). So each thread restarts about once a
@@ -106,9 +107,15 @@ static bool next_band(bands *b, int t, const cs_renderer *r, bool take, int *y0,
     if (!b->running)
         return false;
     int lo = b->own[t].lo, hi = b->own[t].hi, from = t;
-    if (lo >= hi && b->next < b->height) {
+    if (lo >= hi && b->next < b->last) {
         lo = b->next;
-        hi = b->ring && lo + b->chunk < b->height ? lo + b->chunk : b->height;
+        hi = b->ring && lo + b->chunk < b->last ? lo + b->chunk : b->last;
+        /* The caller shows the lines in order as they are done: it takes
+         * the back half and leaves the front to a worker, so that it
+         * shows the worker's lines while it renders its own, not all of
+         * them after. */
+        if (!b->ring && t == b->threads && hi - lo > 2 * b->chunk)
+            lo = hi - (hi - lo) / 2;
         from = -1;
     } else if (lo >= hi) {
         /* A renderer keeps the first capacity error it meets: once it has
@@ -132,8 +139,10 @@ static bool next_band(bands *b, int t, const cs_renderer *r, bool take, int *y0,
     if (end > b->released + b->window)
         return false;
     if (take) {
-        if (from < 0)
+        if (from < 0 && lo == b->next)
             b->next = hi;
+        else if (from < 0)
+            b->last = lo;
         else
             b->own[from].hi = from == t ? hi : lo;
         b->own[t] = (span){end, hi};
@@ -288,6 +297,7 @@ cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int wind
     b->chunk = chunk;
     b->window = window;
     b->next = b->released = 0;
+    b->last = b->height;
     b->ring = window < b->height;
     for (int t = 0; t <= b->threads; t++)
         b->own[t] = (span){0, 0};
