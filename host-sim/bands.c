@@ -106,6 +106,12 @@ static bool next_band(bands *b, int t, const cs_renderer *r, bool take, int *y0,
 {
     if (!b->running)
         return false;
+    /* A renderer keeps the first capacity error it meets: once it has one,
+     * it takes no lines above its last, so that its error stays the first
+     * of its lines in line order (bands_finish). The lines it leaves are a
+     * worker's: the untaken ones go whole to the first worker that asks,
+     * and one that has met no error yet this frame has no such floor. */
+    int floor = r && cs_frame_error(r).status != CS_OK ? r->next_line : 0;
     int lo = b->own[t].lo, hi = b->own[t].hi, from = t;
     if (lo >= hi && b->next < b->last) {
         lo = b->next;
@@ -116,12 +122,10 @@ static bool next_band(bands *b, int t, const cs_renderer *r, bool take, int *y0,
          * them after. */
         if (!b->ring && t == b->threads && hi - lo > 2 * b->chunk)
             lo = hi - (hi - lo) / 2;
+        if (lo < floor)
+            return false;
         from = -1;
     } else if (lo >= hi) {
-        /* A renderer keeps the first capacity error it meets: once it has
-         * one, it takes no lines above its last, so that its error stays
-         * the first of its lines in line order (bands_finish). */
-        int floor = r && cs_frame_error(r).status != CS_OK ? r->next_line : 0;
         int most = 2 * b->chunk;
         for (int k = 0; k <= b->threads; k++) {
             int size = b->own[k].hi - b->own[k].lo;
