@@ -26,7 +26,11 @@
  * part 0 to the caller, in its own renderer, and part k >= 1 to whichever
  * thread takes it first, in worker k - 1's renderer and workspace (free
  * until the frame's bands start); the caller helps with the parts left and
- * joins them (cs_frame_join) once the last one is in.
+ * joins them (cs_frame_join) once the last one is in. On Many-blobs exact
+ * at 1920x1080 with 2 threads the serial 4.6 M instructions of preparation
+ * became two parts of 2.0 M and a 0.17 M join, and with the spans the
+ * frame took 3-7 % less wall time (medians of interleaved rounds, two
+ * cores free).
  */
 #define _GNU_SOURCE /* sched_getaffinity */
 #include <pthread.h>
