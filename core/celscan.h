@@ -322,6 +322,16 @@ cs_status cs_frame_begin_cached(cs_renderer *r, cs_workspace *ws, const cs_scene
 /* Makes `r` a renderer of the frame `prepared` holds, with its own workspace
  * for the lines: threads render bands of one frame with one renderer's bytes. */
 cs_status cs_frame_share(cs_renderer *r, cs_workspace *ws, const cs_renderer *prepared);
+/* A frame prepared in parts on several threads: cs_frame_begin_part prepares
+ * cels [cel_begin, cel_end) as cs_frame_begin would, each part in its own
+ * renderer and workspace; cs_frame_join appends parts[0 .. n) (cels following
+ * on to the last one) to r (cels from 0), which then holds cs_frame_begin's
+ * frame bit for bit. CS_ERR_CAP_*: the whole overflows; cs_frame_begin says where. */
+#define CS_FRAME_MAX_PARTS 128
+cs_status cs_frame_begin_part(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                              const cs_render_opts *opts, uint32_t cel_begin, uint32_t cel_end,
+                              cs_error *err);
+cs_status cs_frame_join(cs_renderer *r, const cs_renderer *const *parts, int n);
 /* Renders cels [cel_first, +cel_count) alone into runs in `buffer` (ws: scratch).
  * Too small: CS_ERR_CAP_CACHE, with cache->bytes_needed the size that fits. */
 cs_status cs_cache_build(cs_cache *cache, void *buffer, size_t size, cs_workspace *ws,

@@ -37,6 +37,13 @@
  * sampled value in place of the stored one. An animated contour's points
  * are sampled into ws->anim_points, one contour at a time, so the workspace
  * grows by one contour, not by a copy of the scene.
+ *
+ * A host with threads prepares a frame in parts, ranges of cels, each in a
+ * workspace of its own (cs_frame_begin_part: the same preparation, limited
+ * to the range), and joins them (cs_frame_join): the parts' arrays follow
+ * one another in cel order, as one preparation fills them, and their
+ * sorted orders are merged stably, which gives the order one stable sort of
+ * the whole gives. The core knows nothing of threads: a part is a call.
  */
 #include "cs_internal.h"
 
@@ -188,6 +195,20 @@ static cs_status contour_pieces(cs_renderer *r, cs__contour_iter *it, uint8_t op
     }
 }
 
+/* The sorted runs a[lo, mid) and a[mid, hi) of piece indices, merged into
+ * b[lo, hi) by y_top; on a tie the left run's piece first (stable). */
+static void merge_by_top(const cs_piece *pieces, const cs_index *a, cs_index *b, uint32_t lo,
+                         uint32_t mid, uint32_t hi)
+{
+    uint32_t i = lo, j = mid, k = lo;
+    while (i < mid && j < hi)
+        b[k++] = pieces[a[j]].y_top < pieces[a[i]].y_top ? a[j++] : a[i++];
+    while (i < mid)
+        b[k++] = a[i++];
+    while (j < hi)
+        b[k++] = a[j++];
+}
+
 /* Stable merge sort of piece indices by y_top, using ws->scratch. */
 static void sort_by_top(cs_workspace *ws, uint32_t n)
 {
@@ -199,13 +220,7 @@ static void sort_by_top(cs_workspace *ws, uint32_t n)
         for (uint32_t lo = 0; lo < n; lo += 2 * width) {
             uint32_t mid = lo + width < n ? lo + width : n;
             uint32_t hi = lo + 2 * width < n ? lo + 2 * width : n;
-            uint32_t i = lo, j = mid, k = lo;
-            while (i < mid && j < hi)
-                b[k++] = fd->pieces[a[j]].y_top < fd->pieces[a[i]].y_top ? a[j++] : a[i++];
-            while (i < mid)
-                b[k++] = a[i++];
-            while (j < hi)
-                b[k++] = a[j++];
+            merge_by_top(fd->pieces, a, b, lo, mid, hi);
         }
         cs_index *t = a;
         a = b;
@@ -685,6 +700,139 @@ cs_status cs_frame_share(cs_renderer *r, cs_workspace *ws, const cs_renderer *pr
     r->clip_lo = prepared->clip_lo;
     r->clip_hi = prepared->clip_hi;
     read_frame(ws, &src->frame);
+    clear_lines(r);
+    return CS_OK;
+}
+
+cs_status cs_frame_begin_part(cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                              const cs_render_opts *opts, uint32_t cel_begin, uint32_t cel_end,
+                              cs_error *err)
+{
+    return cs__frame_prepare(r, ws, scene, opts, cel_begin, cel_end, 0, err);
+}
+
+/* *d = *s field by field, as copy_segment does, with the segment index moved by `base`. */
+static void copy_piece(cs_piece *d, const cs_piece *s, uint32_t base)
+{
+    d->u0 = s->u0;
+    d->u1 = s->u1;
+    d->y_top = s->y_top;
+    d->y_bot = s->y_bot;
+    d->segment = (cs_index)(s->segment + base);
+    d->region = s->region;
+    d->operand = s->operand;
+    d->dir = s->dir;
+}
+
+/* Whether part p continues the frame r holds: the same scene and options,
+ * prepared in its own workspace, from the cel where r's part ends. */
+static bool part_follows(const cs_renderer *r, const cs_renderer *p)
+{
+    const cs_render_opts *a = &r->opts, *b = &p->opts;
+    return p->ws && p->ws != r->ws && p->ws->segments == p->ws->frame.segments &&
+           p->scene == r->scene && !p->cache && p->cel_begin == r->cel_end &&
+           a->width == b->width && a->height == b->height && a->aa == b->aa &&
+           a->subscanlines == b->subscanlines && a->time == b->time && a->blend == b->blend &&
+           a->no_early_out == b->no_early_out && a->no_grey == b->no_grey &&
+           a->view_x == b->view_x && a->view_y == b->view_y && a->view_w == b->view_w &&
+           a->view_h == b->view_h;
+}
+
+/* Part p's cels' paints, opacities and function maps into fd, region by
+ * region as cs__frame_prepare writes them (a function two regions share
+ * keeps the later one's map, as there). */
+static void join_paints(cs_frame_data *fd, const cs_renderer *p)
+{
+    const cs_scene *scene = p->scene;
+    const cs_frame_data *src = &p->ws->frame;
+    for (uint32_t ci = p->cel_begin; ci < p->cel_end; ci++) {
+        const cs_cel *cel = &scene->cels[ci];
+        fd->cel_opacity[ci] = src->cel_opacity[ci];
+        for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++) {
+            const cs_region *reg = &scene->regions[ri];
+            fd->region_cel[ri] = src->region_cel[ri];
+            cs__copy3(fd->region_E[ri], src->region_E[ri]);
+            cs__copy3(fd->region_T[ri], src->region_T[ri]);
+            for (int f = 0; f < 3; f++)
+                if (reg->func[f])
+                    for (int k = 0; k < 6; k++)
+                        fd->func_xf[reg->func[f] - 1u][k] = src->func_xf[reg->func[f] - 1u][k];
+        }
+    }
+}
+
+/*
+ * The parts' pieces were each sorted by y_top on their own: the order is
+ * runs[0] sorted runs, run k from bound[k] to bound[k + 1]. Adjacent runs
+ * are merged pairwise until one is left, the left run first on a tie, so
+ * the order is the one sort_by_top gives the whole (a stable sort: ties
+ * in piece order, and a part's pieces follow the earlier parts').
+ */
+static void merge_runs(cs_workspace *ws, uint32_t *bound, int runs)
+{
+    cs_frame_data *fd = &ws->frame;
+    cs_index *a = fd->order, *b = ws->scratch;
+    while (runs > 1) {
+        int out = 0;
+        for (int k = 0; k < runs; k += 2) {
+            uint32_t lo = bound[k], mid = bound[k + 1];
+            uint32_t hi = k + 1 < runs ? bound[k + 2] : mid;
+            merge_by_top(fd->pieces, a, b, lo, mid, hi);
+            bound[out++] = lo;
+        }
+        bound[out] = bound[runs];
+        runs = out;
+        cs_index *t = a;
+        a = b;
+        b = t;
+    }
+    if (a != fd->order)
+        for (uint32_t i = 0; i < bound[1]; i++)
+            fd->order[i] = a[i];
+}
+
+cs_status cs_frame_join(cs_renderer *r, const cs_renderer *const *parts, int n)
+{
+    if (!r || !r->ws || r->ws->segments != r->ws->frame.segments || r->cel_begin != 0 ||
+        r->cache || n < 0 || n > CS_FRAME_MAX_PARTS - 1 || (n > 0 && !parts))
+        return CS_ERR_ARG;
+    uint32_t segments = r->segment_count, pieces = r->piece_count;
+    for (int k = 0; k < n; k++) {
+        const cs_renderer *p = parts[k];
+        if (!p || !part_follows(k ? parts[k - 1] : r, p))
+            return CS_ERR_ARG;
+        segments += p->segment_count;
+        pieces += p->piece_count;
+    }
+    if ((n ? parts[n - 1] : r)->cel_end != r->scene->cel_count)
+        return CS_ERR_ARG;
+    if (segments > CS_CFG_MAX_SEGMENTS)
+        return CS_ERR_CAP_SEGMENTS;
+    if (pieces > CS_CFG_MAX_PIECES)
+        return CS_ERR_CAP_PIECES;
+
+    cs_frame_data *fd = &r->ws->frame;
+    uint32_t bound[CS_FRAME_MAX_PARTS + 1];
+    bound[0] = 0;
+    bound[1] = r->piece_count;
+    for (int k = 0; k < n; k++) {
+        const cs_renderer *p = parts[k];
+        const cs_frame_data *src = &p->ws->frame;
+        uint32_t s0 = r->segment_count, p0 = r->piece_count;
+        for (uint32_t i = 0; i < p->segment_count; i++)
+            copy_segment(&fd->segments[s0 + i], &src->segments[i]);
+        for (uint32_t i = 0; i < p->piece_count; i++) {
+            copy_piece(&fd->pieces[p0 + i], &src->pieces[i], s0);
+            fd->order[p0 + i] = (cs_index)(src->order[i] + p0);
+        }
+        join_paints(fd, p);
+        r->segment_count += p->segment_count;
+        r->piece_count += p->piece_count;
+        r->grey = r->grey && p->grey;
+        r->cel_end = p->cel_end;
+        bound[k + 2] = r->piece_count;
+    }
+    merge_runs(r->ws, bound, n + 1);
     clear_lines(r);
     return CS_OK;
 }

@@ -123,6 +123,14 @@ bool cs__contour_more(const cs__contour_iter *it)
 bool cs__contour_next(cs__contour_iter *it, cs_segment *s)
 {
     const int count = it->count, degree = it->degree;
+#if defined(__GNUC__)
+    /* Degrees are 1..3 (cs__check_contour). Told so, GCC unrolls the loops
+     * over k <= degree for what they are; otherwise it vectorises them for
+     * four or more terms and sends every real contour down the remainder
+     * path, which the x86-64-v3 build's profile then lays out as cold. */
+    if (degree < 1 || degree > 3)
+        __builtin_unreachable();
+#endif
     const float *intervals = it->intervals;
     const cs_affine *to_device = it->to_device;
     int j = it->j;

@@ -153,12 +153,16 @@ float cs__solve_level(const float *num, const float *den, int degree, float leve
 
 int cs__turns(const float *c, const float *w, int degree, float lo, float hi, float *roots)
 {
+#if defined(__GNUC__)
+    /* A segment's degree is 1..3 (cs__check_contour): bounded so, the
+     * loops below are peeled whole where the build peels (-O3). */
+    if (degree < 1 || degree > 3)
+        __builtin_unreachable();
+#endif
     float n[5] = {0, 0, 0, 0, 0};
     for (int i = 0; i <= degree; i++)
-        for (int j = 0; j <= degree; j++) {
-            int k = i + j - 1;
-            if (i != j && k >= 0 && k <= 2 * degree - 2)
-                n[k] += (float)(i - j) * c[i] * w[j];
-        }
+        for (int j = 0; j <= degree; j++)
+            if (i != j) /* then i + j - 1 lies in 0 .. 2 degree - 2 */
+                n[i + j - 1] += (float)(i - j) * c[i] * w[j];
     return cs__poly_roots(n, 2 * degree - 2, lo, hi, roots);
 }

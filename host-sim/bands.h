@@ -1,17 +1,19 @@
 /*
  * bands.h - the lines of one frame rendered on several threads (Linux hosts).
  *
- * The frame is prepared once, by the caller, in its own renderer and
- * workspace (cs_frame_begin). Each worker thread then renders lines of that
- * frame in a renderer of its own over a workspace of its own
- * (cs_frame_share): the segments, pieces and paints are only read, so the
- * preparation is not repeated per thread, and every line comes out with the
- * bytes one thread would give it (the core's lines are pure functions of the
- * frame and y).
+ * The frame is prepared once, in the caller's renderer and workspace
+ * (cs_frame_begin, or bands_prepare: in parts on the pool's threads). Each
+ * worker thread then renders lines of that frame in a renderer of its own
+ * over a workspace of its own (cs_frame_share): the segments, pieces and
+ * paints are only read, so the preparation is not repeated per thread, and
+ * every line comes out with the bytes one thread would give it (the core's
+ * lines are pure functions of the frame and y).
  *
- * Workers take bands of `chunk` lines from the top in turn, so a thread
- * that the machine slows down takes fewer bands instead of holding up the
- * frame. A line is handed to the caller's `emit` on the worker that
+ * Threads render bands of `chunk` lines; for a frame in storage each goes
+ * on through a span of its own and, when done, takes the back half of the
+ * largest span left; for a ring they take bands from the top in turn. Either
+ * way a thread that the machine slows down renders fewer lines instead of
+ * holding up the frame. A line is handed to the caller's `emit` on the worker that
  * rendered it, straight after rendering, to be converted out of that
  * worker's runs into the caller's storage for that line; the caller waits
  * for lines in order (bands_wait), so a display still gets them top to
@@ -45,8 +47,19 @@ bands *bands_new(int threads);
 int bands_cores(void);
 
 /*
+ * cs_frame_begin on the pool: the frame's cels prepared in one part a thread
+ * (the workers' and this one's, cs_frame_begin_part) and joined in r and ws
+ * (cs_frame_join), which then hold what cs_frame_begin gives, bit for bit;
+ * an error is cs_frame_begin's, with its location. Ends the frame before,
+ * if one runs.
+ */
+cs_status bands_prepare(bands *b, cs_renderer *r, cs_workspace *ws, const cs_scene *scene,
+                        const cs_render_opts *opts, cs_error *err);
+
+/*
  * Starts rendering the frame `prepared` holds on the workers, in bands of
- * `chunk` lines (0: sixteen bands a thread), at most `window` lines ahead of
+ * `chunk` lines (0: four lines for a frame, window >= its height; sixteen
+ * bands a thread for a ring), at most `window` lines ahead of
  * the caller's releases. Returns CS_ERR_ARG for a negative chunk, or a
  * window smaller than a band. Ends the frame before, if one runs.
  */

@@ -84,7 +84,8 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
         return FRAME_DRIVE_HAL;
     }
 
-    cs_status st = cs_frame_begin(r, ws, scene, opts, &d->err);
+    cs_status st = d->pool ? bands_prepare(d->pool, r, ws, scene, opts, &d->err)
+                           : cs_frame_begin(r, ws, scene, opts, &d->err);
     if (st != CS_OK) {
         d->err.status = st;
         return FRAME_DRIVE_CORE;

@@ -14,7 +14,8 @@
 
 CORE_HOST_LIB := $(HOST)/libcelscan_host.a
 # The functions tools/core_variant.c forwards (its CORE_VARIANT_FUNCS).
-CORE_VARIANT_FORWARDED := cs_frame_begin cs_frame_begin_cached cs_cache_build cs_render_line \
+CORE_VARIANT_FORWARDED := cs_frame_begin cs_frame_begin_cached cs_frame_begin_part cs_frame_join \
+        cs_cache_build cs_render_line \
         cs_render_line_runs cs_render_line_px cs_render_frame cs_line_pixels \
         cs_line_pixels_scratch cs_line_run
 CORE_VARIANT_V3 := $(if $(filter x86_64-%,$(shell $(CC) -dumpmachine)),1,0)

@@ -17,7 +17,15 @@
  * also after a frame abandoned half way. A scene that
  * overflows the crossings on some lines must report the capacity error one
  * renderer reports (the first in line order), whichever thread met it.
- * cs_frame_share's refusals are checked too. The last line is
+ * cs_frame_share's refusals are checked too.
+ *
+ * A frame prepared in parts (cs_frame_begin_part, cs_frame_join) must be the
+ * one cs_frame_begin prepares, field by field: every scene, cut into two
+ * parts at every cel (every fourth, and the last, of a scene of many), into
+ * three and four at several, with and without a
+ * viewport, in every AA mode and both blends; so must bands_prepare's on 1..4
+ * threads (its frames then rendered as above), and its errors must be
+ * cs_frame_begin's, location included. The last line is
  * `test_bands: N passed, M failed`.
  */
 #include <stdint.h>
@@ -26,13 +34,14 @@
 #include <string.h>
 
 #include "bands.h"
-#include "celscan.h"
+#include "celscan_private.h"
 #include "lx_scene_source.h"
 #include "scene_json.h"
 #include "testlib.h"
 
 static cs_scene *scene;
 static cs_workspace *ws_ref, *ws_prep;
+static cs_workspace *ws_part[3]; /* parts 1..3 of a frame prepared in parts */
 static float *want, *got; /* whole frames of linear floats */
 static const char *dir;
 
@@ -73,8 +82,10 @@ static int render_pool(bands *pool, const cs_render_opts *o, const cs_cache *cac
 {
     cs_renderer prep;
     cs_error e;
-    cs_status st = cache ? cs_frame_begin_cached(&prep, ws_prep, scene, o, cache, &e)
-                         : cs_frame_begin(&prep, ws_prep, scene, o, &e);
+    /* A helping caller prepares the frame on the pool too, as celsim does. */
+    cs_status st = cache  ? cs_frame_begin_cached(&prep, ws_prep, scene, o, cache, &e)
+                   : help ? bands_prepare(pool, &prep, ws_prep, scene, o, &e)
+                          : cs_frame_begin(&prep, ws_prep, scene, o, &e);
     if (st != CS_OK)
         return o->height;
     int slots = window > 0 ? window : o->height;
@@ -304,6 +315,204 @@ static void test_celfw_source(void)
     }
 }
 
+static bool same_segment(const cs_segment *s, const cs_segment *t)
+{
+    bool same = s->ox == t->ox && s->oy == t->oy && s->px_lo == t->px_lo && s->px_hi == t->px_hi &&
+                s->region == t->region && s->degree == t->degree && s->rational == t->rational;
+    for (int k = 0; k < 4; k++)
+        same = same && tl_bits_of(s->x[k]) == tl_bits_of(t->x[k]) &&
+               tl_bits_of(s->y[k]) == tl_bits_of(t->y[k]) && tl_bits_of(s->w[k]) == tl_bits_of(t->w[k]);
+    return same;
+}
+
+static bool same_piece(const cs_piece *p, const cs_piece *q)
+{
+    return tl_bits_of(p->u0) == tl_bits_of(q->u0) && tl_bits_of(p->u1) == tl_bits_of(q->u1) &&
+           tl_bits_of(p->y_top) == tl_bits_of(q->y_top) &&
+           tl_bits_of(p->y_bot) == tl_bits_of(q->y_bot) && p->segment == q->segment &&
+           p->region == q->region && p->operand == q->operand && p->dir == q->dir;
+}
+
+/* Cel ci's opacity, its regions' paints and their functions' maps alike in fa and fb. */
+static bool same_cel(const cs_frame_data *fa, const cs_frame_data *fb, uint32_t ci)
+{
+    const cs_cel *cel = &scene->cels[ci];
+    bool same = tl_bits_of(fa->cel_opacity[ci]) == tl_bits_of(fb->cel_opacity[ci]);
+    for (uint32_t ri = cel->first_region; ri < cel->first_region + cel->region_count; ri++) {
+        same = same && fa->region_cel[ri] == fb->region_cel[ri];
+        for (int k = 0; k < 3; k++)
+            same = same && tl_bits_of(fa->region_E[ri][k]) == tl_bits_of(fb->region_E[ri][k]) &&
+                   tl_bits_of(fa->region_T[ri][k]) == tl_bits_of(fb->region_T[ri][k]);
+        for (int f = 0; f < 3; f++)
+            for (int k = 0; k < 6 && scene->regions[ri].func[f]; k++) {
+                uint32_t fi = scene->regions[ri].func[f] - 1u;
+                same = same && tl_bits_of(fa->func_xf[fi][k]) == tl_bits_of(fb->func_xf[fi][k]);
+            }
+    }
+    return same;
+}
+
+/* Whether the frames a and b hold are the same, field by field: one check, saying where not. */
+static void same_frame(const cs_renderer *a, const cs_renderer *b, const char *what)
+{
+    const cs_frame_data *fa = &a->ws->frame, *fb = &b->ws->frame;
+    if (!CHECK(a->segment_count == b->segment_count && a->piece_count == b->piece_count &&
+                   a->grey == b->grey && a->cel_begin == b->cel_begin && a->cel_end == b->cel_end,
+               "%s: %u/%u segments, %u/%u pieces, grey %d/%d, cels to %u/%u", what,
+               a->segment_count, b->segment_count, a->piece_count, b->piece_count, a->grey,
+               b->grey, a->cel_end, b->cel_end))
+        return;
+    uint32_t seg = 0, piece = 0, cel = 0;
+    while (seg < a->segment_count && same_segment(&fa->segments[seg], &fb->segments[seg]))
+        seg++;
+    while (piece < a->piece_count && same_piece(&fa->pieces[piece], &fb->pieces[piece]) &&
+           fa->order[piece] == fb->order[piece])
+        piece++;
+    while (cel < scene->cel_count && same_cel(fa, fb, cel))
+        cel++;
+    CHECK(seg == a->segment_count && piece == a->piece_count && cel == scene->cel_count,
+          "%s: first differing segment %u, piece or place in the order %u, cel's paints %u "
+          "(of %u, %u, %u)",
+          what, seg, piece, cel, a->segment_count, a->piece_count, scene->cel_count);
+}
+
+/*
+ * The frame prepared in n parts cut at cels cut[1 .. n) (cut[0] = 0, the
+ * last part to the scene's end) is cs_frame_begin's (in ws_ref).
+ */
+static void check_parts(const cs_render_opts *o, const cs_renderer *whole, const uint32_t *cut,
+                        int n, const char *what)
+{
+    cs_renderer r, part[3];
+    const cs_renderer *rest[3];
+    cs_error e;
+    char name[256];
+    snprintf(name, sizeof name, "%s, %d parts from cels %u %u %u", what, n, cut[1],
+             n > 2 ? cut[2] : 0u, n > 3 ? cut[3] : 0u);
+    CHECK_STATUS(cs_frame_begin_part(&r, ws_prep, scene, o, 0, n > 1 ? cut[1] : UINT32_MAX, &e),
+                 CS_OK, "part 0");
+    for (int k = 1; k < n; k++) {
+        uint32_t end = k + 1 < n ? cut[k + 1] : scene->cel_count;
+        CHECK_STATUS(cs_frame_begin_part(&part[k - 1], ws_part[k - 1], scene, o, cut[k], end, &e),
+                     CS_OK, "part k");
+        rest[k - 1] = &part[k - 1];
+    }
+    cs_status st = cs_frame_join(&r, rest, n - 1);
+    if (CHECK(st == CS_OK, "%s: join: %s", name, cs_status_str(st)))
+        same_frame(whole, &r, name);
+}
+
+/* Every scene, options and cuts: the parts joined are the whole. */
+static void test_parts_are_the_whole(void)
+{
+    static const struct {
+        cs_aa_mode aa;
+        int blend;
+        bool view;
+    } modes[] = {{CS_AA_EXACT, CS_BLEND_LINEAR, false}, {CS_AA_SUBSCAN, CS_BLEND_SRGB, false},
+                 {CS_AA_NONE, CS_BLEND_LINEAR, true}, {CS_AA_EXACT, CS_BLEND_SRGB, true}};
+    for (size_t s = 0; s < sizeof scenes / sizeof scenes[0]; s++) {
+        load(scenes[s].file);
+        for (size_t m = 0; m < sizeof modes / sizeof modes[0]; m++) {
+            cs_render_opts o = cs_render_defaults(scenes[s].width, scenes[s].height);
+            o.aa = modes[m].aa;
+            o.subscanlines = 5;
+            o.time = scenes[s].time;
+            o.blend = (cs_blend)modes[m].blend;
+            if (modes[m].view) { /* a band of rows in the middle, as a board or a wall tile */
+                o.view_x = o.width / 4;
+                o.view_y = o.height / 3;
+                o.view_w = o.width / 2;
+                o.view_h = o.height / 4;
+            }
+            char what[128];
+            snprintf(what, sizeof what, "%s aa %d blend %d%s", scenes[s].file, (int)o.aa,
+                     modes[m].blend, modes[m].view ? " viewport" : "");
+            cs_renderer whole;
+            cs_error e;
+            CHECK_STATUS(cs_frame_begin(&whole, ws_ref, scene, &o, &e), CS_OK, what);
+            /* Two parts cut at every cel (every fourth of Many-blobs' 56, for the sanitizers' time). */
+            uint32_t n = scene->cel_count, step = n > 16 ? 4 : 1;
+            for (uint32_t c = 0; c <= n; c += c + step > n && c < n ? n - c : step)
+                check_parts(&o, &whole, (uint32_t[]){0, c}, 2, what);
+            check_parts(&o, &whole, (uint32_t[]){0, n / 3, 2 * n / 3}, 3, what);
+            check_parts(&o, &whole, (uint32_t[]){0, 1, 1, n - 1}, 4, what);
+            check_parts(&o, &whole, (uint32_t[]){0, n / 4, n / 2, 3 * n / 4}, 4, what);
+            /* The pool's own cuts, on 1..4 threads and a caller. */
+            for (int t = 1; t <= 4; t++) {
+                bands *pool = bands_new(t);
+                cs_renderer r;
+                cs_status st = pool ? bands_prepare(pool, &r, ws_prep, scene, &o, &e) : CS_ERR_ARG;
+                if (CHECK(st == CS_OK, "%s: bands_prepare on %d threads: %s", what, t + 1,
+                          cs_status_str(st)))
+                    same_frame(&whole, &r, what);
+                bands_free(pool);
+            }
+        }
+    }
+}
+
+/* Joins that cannot make a frame, and a part's error reported as one call reports it. */
+static void test_parts_refused(void)
+{
+    load("demo.json");
+    cs_render_opts o = cs_render_defaults(64, 36);
+    uint32_t n = scene->cel_count;
+    cs_renderer r, a, b;
+    const cs_renderer *parts[2] = {&a, &b};
+    cs_error e;
+    CHECK_STATUS(cs_frame_begin_part(&r, ws_prep, scene, &o, 0, 2, &e), CS_OK, "part 0");
+    CHECK_STATUS(cs_frame_begin_part(&a, ws_part[0], scene, &o, 3, n, &e), CS_OK, "part 1");
+    CHECK_STATUS(cs_frame_join(&r, parts, 1), CS_ERR_ARG, "a cel left out");
+    CHECK_STATUS(cs_frame_begin_part(&a, ws_part[0], scene, &o, 2, n - 1, &e), CS_OK, "part 1");
+    CHECK_STATUS(cs_frame_join(&r, parts, 1), CS_ERR_ARG, "the last cel left out");
+    CHECK_STATUS(cs_frame_join(&r, parts, -1), CS_ERR_ARG, "a negative count");
+    CHECK_STATUS(cs_frame_join(NULL, parts, 1), CS_ERR_ARG, "no renderer");
+    cs_render_opts other = o;
+    other.time = 0.5f;
+    CHECK_STATUS(cs_frame_begin_part(&a, ws_part[0], scene, &other, 2, n, &e), CS_OK, "part 1");
+    CHECK_STATUS(cs_frame_join(&r, parts, 1), CS_ERR_ARG, "another time");
+    CHECK_STATUS(cs_frame_begin_part(&a, ws_prep, scene, &o, 2, n, &e), CS_OK, "part 1");
+    CHECK_STATUS(cs_frame_join(&a, parts, 1), CS_ERR_ARG, "the first part does not start at cel 0");
+    CHECK_STATUS(cs_frame_begin_part(&r, ws_prep, scene, &o, 0, 2, &e), CS_OK, "part 0");
+    CHECK_STATUS(cs_frame_begin_part(&a, ws_prep, scene, &o, 2, n, &e), CS_OK, "part 1");
+    CHECK_STATUS(cs_frame_join(&r, parts, 1), CS_ERR_ARG, "both parts in one workspace");
+    CHECK_STATUS(cs_frame_begin_part(&r, ws_prep, scene, &o, 0, 2, &e), CS_OK, "part 0");
+    CHECK_STATUS(cs_frame_begin_part(&a, ws_part[0], scene, &o, 2, 3, &e), CS_OK, "part 1");
+    CHECK_STATUS(cs_frame_begin_part(&b, ws_part[1], scene, &o, 3, n, &e), CS_OK, "part 2");
+    CHECK_STATUS(cs_frame_join(&r, parts, 2), CS_OK, "three parts");
+
+    /* Four cels; the third's points land beyond CS_CFG_COORD_LIMIT. */
+    const cs_affine id = {1, 0, 0, 1, 0, 0}, huge = {1.0e5f, 0, 0, 1.0e5f, 0, 0};
+    const cs_paint paint = {{0.8f, 0.2f, 0.1f}, {0.0f, 0.0f, 0.0f}, 1.0f};
+    const cs_point sq[4] = {{20, 5, 1}, {60, 5, 1}, {60, 30, 1}, {20, 30, 1}};
+    cs_scene_init(scene, 64.0f, 36.0f);
+    for (int c = 0; c < 4; c++) {
+        CHECK_STATUS(cs_scene_add_cel(scene, c == 2 ? &huge : &id, NULL, NULL, &e), CS_OK, "cel");
+        CHECK_STATUS(cs_scene_add_region(scene, CS_FILL_NONZERO, &paint, &e), CS_OK, "region");
+        CHECK_STATUS(cs_scene_add_contour(scene, 1, 4, sq, NULL, &e), CS_OK, "contour");
+    }
+    cs_error want_e, got_e;
+    cs_renderer whole;
+    cs_status st1 = cs_frame_begin(&whole, ws_ref, scene, &o, &want_e);
+    CHECK_STATUS(st1, CS_ERR_RANGE, "one call: the third cel is out of range");
+    for (int t = 1; t <= 3; t++) {
+        bands *pool = bands_new(t);
+        if (!CHECK(pool != NULL, "bands_new(%d)", t))
+            continue;
+        cs_status st = bands_prepare(pool, &r, ws_prep, scene, &o, &got_e);
+        CHECK(st == st1 && got_e.status == want_e.status && got_e.cel == want_e.cel &&
+                  got_e.region == want_e.region && got_e.contour == want_e.contour &&
+                  got_e.item == want_e.item,
+              "%d threads: %s at cel %d region %d contour %d point %d; one call %s at cel %d "
+              "region %d contour %d point %d",
+              t + 1, cs_status_str(got_e.status), got_e.cel, got_e.region, got_e.contour,
+              got_e.item, cs_status_str(want_e.status), want_e.cel, want_e.region,
+              want_e.contour, want_e.item);
+        bands_free(pool);
+    }
+}
+
 static void test_share_refusals(void)
 {
     load("demo.json");
@@ -330,6 +539,8 @@ int main(int argc, char **argv)
     scene = tl_calloc(1, sizeof *scene);
     ws_ref = tl_calloc(1, sizeof *ws_ref);
     ws_prep = tl_calloc(1, sizeof *ws_prep);
+    for (int k = 0; k < 3; k++)
+        ws_part[k] = tl_calloc(1, sizeof *ws_part[k]);
     want = tl_calloc(3u * 384u * 216u, sizeof(float));
     got = tl_calloc(3u * 384u * 216u, sizeof(float));
     TL_RUN(test_threads_match_one);
@@ -337,6 +548,10 @@ int main(int argc, char **argv)
     TL_RUN(test_capacity_error_in_line_order);
     TL_RUN(test_celfw_source);
     TL_RUN(test_share_refusals);
+    TL_RUN(test_parts_are_the_whole);
+    TL_RUN(test_parts_refused);
+    for (int k = 0; k < 3; k++)
+        free(ws_part[k]);
     free(scene);
     free(ws_ref);
     free(ws_prep);

@@ -36,6 +36,12 @@
       (cs_renderer *r, cs_workspace *ws, const cs_scene *scene, const cs_render_opts *opts,        \
        const cs_cache *cache, cs_error *err),                                                      \
       (r, ws, scene, opts, cache, err))                                                            \
+    X(cs_status, cs_frame_begin_part,                                                              \
+      (cs_renderer *r, cs_workspace *ws, const cs_scene *scene, const cs_render_opts *opts,        \
+       uint32_t cel_begin, uint32_t cel_end, cs_error *err),                                       \
+      (r, ws, scene, opts, cel_begin, cel_end, err))                                               \
+    X(cs_status, cs_frame_join, (cs_renderer *r, const cs_renderer *const *parts, int n),          \
+      (r, parts, n))                                                                               \
     X(cs_status, cs_cache_build,                                                                   \
       (cs_cache *cache, void *buffer, size_t size, cs_workspace *ws, const cs_scene *scene,        \
        const cs_render_opts *opts, uint32_t cel_first, uint32_t cel_count, cs_error *err),         \
