@@ -4,7 +4,7 @@
  *   bench [--sections speed,accuracy,beam,scaling] [--scenes blobs,signage,...]
  *         [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]
  *   bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]
- *   bench --profile SCENE [--aa ...] [--size WxH] --band K/N
+ *   bench --profile SCENE [--aa ...] [--size WxH] --band K/N | --part K/N
  *   bench --profile SCENE --peer cairo|cairo-fine|freetype|agg [--size WxH] [--frames N]
  *   bench --selftest
  *
@@ -39,6 +39,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bands.h"
 #include "bench.h"
 #include "cli_num.h"
 #include "ref/ref.h"
@@ -279,6 +280,59 @@ static void profile_band(cs_target *t, const cs_render_opts *o, long k, long n)
     celscan_prepare(&prepared, o);
     celscan_band(t, &prepared, ws, (int)(t->h * k / n), (int)(t->h * (k + 1) / n));
     free(ws);
+}
+
+/*
+ * --part K/N, the frame prepared as celsim --threads N prepares it
+ * (host-sim/bands.c, bands_prepare): the cels cut into N parts (bands_cut),
+ * each prepared in a renderer and workspace of its own, part K by
+ * celscan_part, then the parts joined into part 0's renderer by
+ * celscan_join. On N idle cores the preparation takes the largest part and
+ * the join.
+ */
+PROFILED static void celscan_part(cs_renderer *r, cs_workspace *ws, const cs_render_opts *o,
+                                  uint32_t lo, uint32_t hi)
+{
+    cs_error e;
+    if (cs_frame_begin_part(r, ws, g_scene, o, lo, hi, &e) != CS_OK)
+        die("cs_frame_begin_part failed");
+}
+
+PROFILED static void celscan_join(cs_renderer *r, const cs_renderer *const *parts, int n)
+{
+    if (cs_frame_join(r, parts, n) != CS_OK)
+        die("cs_frame_join failed");
+}
+
+static void profile_part(const cs_render_opts *o, long k, long n)
+{
+    uint32_t cut[BANDS_MAX_THREADS + 1];
+    bands_cut(g_scene, (int)n, cut);
+    cs_renderer *r = calloc((size_t)n, sizeof *r);
+    cs_workspace **ws = calloc((size_t)n, sizeof *ws);
+    const cs_renderer **rest = calloc((size_t)n, sizeof *rest);
+    if (!r || !ws || !rest)
+        die("out of memory");
+    for (long i = 0; i < n; i++) {
+        ws[i] = i == 0 ? g_ws : calloc(1, sizeof *ws[i]);
+        if (!ws[i])
+            die("out of memory");
+        if (i == k) {
+            celscan_part(&r[i], ws[i], o, cut[i], cut[i + 1]);
+        } else {
+            cs_error e;
+            if (cs_frame_begin_part(&r[i], ws[i], g_scene, o, cut[i], cut[i + 1], &e) != CS_OK)
+                die("cs_frame_begin_part failed");
+        }
+        if (i > 0)
+            rest[i - 1] = &r[i];
+    }
+    celscan_join(&r[0], rest, (int)n - 1);
+    for (long i = 1; i < n; i++)
+        free(ws[i]);
+    free(rest);
+    free(ws);
+    free(r);
 }
 
 /* Pre-combines cels [from, cel_count) into t's cache; returns the build time. */
@@ -1220,7 +1274,7 @@ static void usage(void)
           "rational,anim]\n"
           "             [--size WxH] [--repeat N] [--frames N] [--shapes N] [--out DIR] [--quick]\n"
           "       bench --profile SCENE [--aa none|N|exact] [--size WxH] [--frames N] [--cache]\n"
-          "       bench --profile SCENE [--aa none|N|exact] [--size WxH] --band K/N\n"
+          "       bench --profile SCENE [--aa none|N|exact] [--size WxH] --band K/N | --part K/N\n"
           "       bench --profile SCENE --peer cairo|cairo-fine|freetype|agg [--size WxH] [--frames N]\n"
           "       bench --selftest\n",
           stderr);
@@ -1265,6 +1319,7 @@ int main(int argc, char **argv)
     int prof_sub = 16;
     bool self = false, prof_cache = false;
     long band_k = -1, band_n = 0;
+    bool part = false; /* --part K/N, not --band */
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -1302,7 +1357,7 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "--peer") == 0 && v) {
             prof_peer = v;
             i++;
-        } else if (strcmp(a, "--band") == 0 && v) {
+        } else if ((strcmp(a, "--band") == 0 || strcmp(a, "--part") == 0) && v) {
             const char *slash = strchr(v, '/');
             char kbuf[16];
             if (!slash || (size_t)(slash - v) >= sizeof kbuf)
@@ -1312,6 +1367,7 @@ int main(int argc, char **argv)
             if (!cli_int(slash + 1, 10, '\0', 1, 64, &band_n) ||
                 !cli_int(kbuf, 10, '\0', 0, band_n - 1, &band_k))
                 usage();
+            part = a[2] == 'p';
             i++;
         } else if (strcmp(a, "--cache") == 0) {
             prof_cache = true;
@@ -1358,7 +1414,10 @@ int main(int argc, char **argv)
         if (a)
             anim_free(a);
         if (band_n > 0) {
-            profile_band(&t, &o, band_k, band_n);
+            if (part)
+                profile_part(&o, band_k, band_n);
+            else
+                profile_band(&t, &o, band_k, band_n);
             target_free(&t);
             return 0;
         }

@@ -321,17 +321,16 @@ cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int wind
 }
 
 /*
- * The cels' cuts into `parts` parts of about equal work: a cel weighs the
- * control points of its contours (what cs__contour_next and the splitting
- * go through) and a few more for itself and each region.
+ * A cel weighs the control points of its contours (what cs__contour_next
+ * and the splitting go through) and a few more for itself and each region.
  */
-static void cut_cels(bands *b, const cs_scene *scene, int parts)
+void bands_cut(const cs_scene *scene, int parts, uint32_t *cut)
 {
     uint64_t total = 0;
     for (int pass = 0; pass < 2; pass++) {
         uint64_t sum = 0;
         int k = 1;
-        b->cut[0] = 0;
+        cut[0] = 0;
         for (uint32_t ci = 0; ci < scene->cel_count; ci++) {
             const cs_cel *cel = &scene->cels[ci];
             uint64_t wgt = 4;
@@ -344,11 +343,11 @@ static void cut_cels(bands *b, const cs_scene *scene, int parts)
             sum += wgt;
             /* Part k - 1 ends after the cel that takes the sum to k / parts of the whole. */
             while (pass == 1 && k < parts && sum * (uint64_t)parts >= total * (uint64_t)k)
-                b->cut[k++] = ci + 1;
+                cut[k++] = ci + 1;
         }
         total = sum;
         while (k <= parts)
-            b->cut[k++] = scene->cel_count;
+            cut[k++] = scene->cel_count;
     }
 }
 
@@ -362,7 +361,7 @@ cs_status bands_prepare(bands *b, cs_renderer *r, cs_workspace *ws, const cs_sce
     pthread_mutex_lock(&b->mu);
     b->scene = scene;
     b->opts = opts;
-    cut_cels(b, scene, parts);
+    bands_cut(scene, parts, b->cut);
     b->parts = parts;
     b->next_part = 1;
     pthread_cond_broadcast(&b->work);

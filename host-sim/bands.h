@@ -47,6 +47,13 @@ bands *bands_new(int threads);
 int bands_cores(void);
 
 /*
+ * The cuts of a frame's cels into `parts` parts of about equal preparation
+ * work, as bands_prepare cuts them: part k is cels [cut[k], cut[k + 1]), so
+ * `cut` holds parts + 1 entries (for bench's critical path too).
+ */
+void bands_cut(const cs_scene *scene, int parts, uint32_t *cut);
+
+/*
  * cs_frame_begin on the pool: the frame's cels prepared in one part a thread
  * (the workers' and this one's, cs_frame_begin_part) and joined in r and ws
  * (cs_frame_join), which then hold what cs_frame_begin gives, bit for bit;

@@ -11,7 +11,8 @@
 
 BENCH_PKGS := cairo freetype2 libcjson libagg
 BENCH_SRC := bench/bench.c bench/outline.c bench/peer_cairo.c bench/peer_ft.c bench/anim.c \
-        bench/accuracy.c host-sim/scene_json.c host-sim/paint_json.c tests/ref/ref.c tools/cli_num.c
+        bench/accuracy.c host-sim/scene_json.c host-sim/paint_json.c host-sim/bands.c tests/ref/ref.c \
+        tools/cli_num.c
 # AGG is C++: its peer alone is compiled as C++ (the program links with $(CXX)).
 BENCH_CXX_SRC := bench/peer_agg.cpp
 BENCH_OBJ := $(patsubst %.c,$(HOST)/bench-obj/%.o,$(BENCH_SRC)) \
@@ -35,7 +36,7 @@ $(HOST)/bench-obj/%.o: %.cpp $(FLAGS_DIR)/bench-cxx
 	$(Q)$(CXX) $(BENCH_CXXFLAGS) -c $< -o $@
 
 $(BENCH_BIN): $(BENCH_OBJ) $(HOST)/libcelscan_host.a
-	$(Q)$(CXX) -o $@ $(BENCH_OBJ) $(HOST)/libcelscan_host.a $(shell pkg-config --libs $(BENCH_PKGS)) -lm
+	$(Q)$(CXX) -o $@ $(BENCH_OBJ) $(HOST)/libcelscan_host.a $(shell pkg-config --libs $(BENCH_PKGS)) -lm -pthread
 
 # The scenes are committed, so that every checkout measures the same bytes
 # (a Python with another random module could draw them differently);

@@ -9,10 +9,11 @@
 # celsim with 2 threads and cairo once (each a median of 5 frames; the two
 # celsim runs swap places every other round), so a slow spell of the
 # shared machine falls on all three; the medians and their ratios. Critical path: callgrind counts the frame's preparation
-# (bench --profile blobs --band K/N, function celscan_prepare) and each of
-# N equal bands of lines rendered as a worker renders them (celscan_band:
-# cs_frame_share, the lines, their pixels); N threads on N idle cores take
-# at least prepare + the largest band.
+# (one thread: bench --band 0/1, function celscan_prepare; N threads: the
+# largest of the N parts celsim cuts, bench --part K/N, celscan_part, and
+# the join, celscan_join) and each of N equal bands of lines rendered as a
+# worker renders them (celscan_band: cs_frame_share, the lines, their
+# pixels); N threads on N idle cores take at least prepare + the largest band.
 set -eu
 bench=$1
 celsim=$2
@@ -95,18 +96,30 @@ core=${CELSCAN_CORE:-$("$celsim" render scenes/demo.json --crc --core x86-64-v3 
     echo
     echo "| --aa | prepare | N | bands (instructions each) | prepare + largest band | 1 thread / critical path |"
     echo "|---|---:|---:|---|---:|---:|"
-    count() { # instructions in function $1 of bench --profile blobs --aa $2 --band $3
+    count() { # instructions in function $1 of bench --profile blobs --aa $2 $3 (--band or --part K/N)
         valgrind --tool=callgrind --callgrind-out-file="$tmp/cg-band.out" --toggle-collect="$1" \
-            "$bench" --profile blobs --aa "$2" --band "$3" 2>&1 | sed -n 's/.*Collected : *//p'
+            "$bench" --profile blobs --aa "$2" $3 2>&1 | sed -n 's/.*Collected : *//p'
     }
     for aa in exact 16; do
-        prep=$(count celscan_prepare "$aa" 0/1)
         one=
         for n in 1 2 4; do
+            # one thread: cs_frame_begin; N: the largest of the N parts, then the join
+            if [ "$n" -eq 1 ]; then
+                prep=$(count celscan_prepare "$aa" "--band 0/1")
+            else
+                prep=0
+                k=0
+                while [ "$k" -lt "$n" ]; do
+                    c=$(count celscan_part "$aa" "--part $k/$n")
+                    prep=$(awk -v a="$prep" -v b="$c" 'BEGIN { print (b > a) ? b : a }')
+                    k=$((k + 1))
+                done
+                prep=$(awk -v a="$prep" -v b="$(count celscan_join "$aa" "--part 0/$n")" 'BEGIN { print a + b }')
+            fi
             list= max=0
             k=0
             while [ "$k" -lt "$n" ]; do
-                c=$(count celscan_band "$aa" "$k/$n")
+                c=$(count celscan_band "$aa" "--band $k/$n")
                 list="$list${list:+ }$(awk -v c="$c" 'BEGIN { printf "%.1f M", c / 1e6 }')"
                 max=$(awk -v a="$max" -v b="$c" 'BEGIN { print (b > a) ? b : a }')
                 k=$((k + 1))
@@ -114,44 +127,18 @@ core=${CELSCAN_CORE:-$("$celsim" render scenes/demo.json --crc --core x86-64-v3 
             path=$(awk -v p="$prep" -v m="$max" 'BEGIN { print p + m }')
             [ -n "$one" ] || one=$path
             awk -v aa="$aa" -v p="$prep" -v n="$n" -v l="$list" -v path="$path" -v one="$one" 'BEGIN {
-                printf "| %s | %.1f M | %d | %s | %.1f M | %.2f |\n", aa, p / 1e6, n, l, path / 1e6, one / path }'
+                printf "| %s | %.2f M | %d | %s | %.1f M | %.2f |\n", aa, p / 1e6, n, l, path / 1e6, one / path }'
         done
     done
     echo
-    echo "The bands here are equal and fixed, one a thread. celsim --threads hands out sixteen bands a"
-    echo "thread in turn to its workers and the calling thread (a thread slowed by the machine takes"
-    echo "fewer); on idle cores that schedule, from the instructions of each of its bands, gives the"
-    echo "figures below. Each band is counted as a fresh start: its cs_frame_share (~24 k instructions),"
-    echo "which celsim's threads pay once a frame, and a restart (the active list rebuilt, a first row"
-    echo "of exact ends solved afresh; ~80 k in all), which they pay for every band that does not"
-    echo "follow their last, so the path errs a little long:"
-    echo
-    echo "| --aa | threads | bands | prepare + the busiest thread's bands | 1 thread / critical path |"
-    echo "|---|---:|---:|---:|---:|"
-    aa=exact
-    prep=$(count celscan_prepare "$aa" 0/1)
-    one=$(count celscan_band "$aa" 0/1)
-    one=$(awk -v p="$prep" -v o="$one" 'BEGIN { print p + o }')
-    for t in 2 4; do
-        nb=$((16 * t))
-        counts=
-        k=0
-        while [ "$k" -lt "$nb" ]; do
-            counts="$counts $(count celscan_band "$aa" "$k/$nb")"
-            k=$((k + 1))
-        done
-        # each band goes to the thread that is free first (the lowest-numbered on a tie)
-        echo "$counts" | awk -v t="$t" -v p="$prep" -v one="$one" -v aa="$aa" -v nb="$nb" '{
-            for (i = 0; i < t; i++) free[i] = 0
-            for (b = 1; b <= NF; b++) {
-                j = 0
-                for (i = 1; i < t; i++) if (free[i] < free[j]) j = i
-                free[j] += $b
-            }
-            m = 0
-            for (i = 0; i < t; i++) if (free[i] > m) m = free[i]
-            printf "| %s | %d | %d | %.1f M | %.2f |\n", aa, t, nb, (p + m) / 1e6, one / (p + m) }'
-    done
+    echo "One thread prepares the frame in one call (cs_frame_begin); N threads prepare it as celsim"
+    echo "--threads N does (bands_prepare): the cels cut into N parts of about equal work, each prepared"
+    echo "on a thread of its own (cs_frame_begin_part), then joined (cs_frame_join), so the prepare"
+    echo "column is the largest part and the join (bench --part K/N). The bands are equal, one a"
+    echo "thread, each counted from a fresh start: its cs_frame_share and a restart (the active list"
+    echo "rebuilt, a first row of exact ends solved afresh; ~80 k instructions in all). celsim's"
+    echo "threads each render a span of lines of their own, four lines at a time, and take the back"
+    echo "half of the largest span left when theirs is done, so each restarts about once a frame too."
     echo
     echo "The 4-thread lines are the estimate for a 4-core board: they assume the cores are idle and"
     echo "share nothing slower than their caches."
