@@ -182,18 +182,22 @@ static void line_end(const cs_segment *s, float yv, float exact, float ua, float
 #if defined(__AVX__)
 #define LANES 8
 #define LANE_INDEX {0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f}
-/* lanes interleaved in pairs, then pairs of pairs, within each half */
-#define PAIR_LO {0, 8, 1, 9, 4, 12, 5, 13}
-#define PAIR_HI {2, 10, 3, 11, 6, 14, 7, 15}
-#define QUAD_LO {0, 1, 8, 9, 4, 5, 12, 13}
-#define QUAD_HI {2, 3, 10, 11, 6, 7, 14, 15}
+/* Shuffle indices (__builtin_shufflevector: GCC 12 and clang alike, where
+ * GCC's __builtin_shuffle stopped the clang builds, TSan and the fuzzers):
+ * lanes interleaved in pairs, then pairs of pairs, within each half. */
+#define PAIR_LO 0, 8, 1, 9, 4, 12, 5, 13
+#define PAIR_HI 2, 10, 3, 11, 6, 14, 7, 15
+#define QUAD_LO 0, 1, 8, 9, 4, 5, 12, 13
+#define QUAD_HI 2, 3, 10, 11, 6, 7, 14, 15
+#define LO_HALVES 0, 1, 2, 3, 8, 9, 10, 11
+#define HI_HALVES 4, 5, 6, 7, 12, 13, 14, 15
 #else
 #define LANES 4
 #define LANE_INDEX {0.0f, 1.0f, 2.0f, 3.0f}
-#define PAIR_LO {0, 4, 1, 5}
-#define PAIR_HI {2, 6, 3, 7}
-#define QUAD_LO {0, 1, 4, 5}
-#define QUAD_HI {2, 3, 6, 7}
+#define PAIR_LO 0, 4, 1, 5
+#define PAIR_HI 2, 6, 3, 7
+#define QUAD_LO 0, 1, 4, 5
+#define QUAD_HI 2, 3, 6, 7
 #endif
 typedef float lanes_f __attribute__((vector_size(4 * LANES)));
 typedef int32_t lanes_i __attribute__((vector_size(4 * LANES)));
@@ -290,17 +294,19 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
     /* Into the memo's records (u, x, x', y'), which memo_get copies whole:
      * the four vectors transposed by shuffles and stored whole, the lanes
      * past n onto records the memo does not hold. */
-    const lanes_i pair_lo = PAIR_LO, pair_hi = PAIR_HI, quad_lo = QUAD_LO, quad_hi = QUAD_HI;
-    lanes_f t0 = __builtin_shuffle(res, xv, pair_lo), t1 = __builtin_shuffle(res, xv, pair_hi);
-    lanes_f t2 = __builtin_shuffle(dxv, dyv, pair_lo), t3 = __builtin_shuffle(dxv, dyv, pair_hi);
-    lanes_f r0 = __builtin_shuffle(t0, t2, quad_lo), r1 = __builtin_shuffle(t0, t2, quad_hi);
-    lanes_f r2 = __builtin_shuffle(t1, t3, quad_lo), r3 = __builtin_shuffle(t1, t3, quad_hi);
+    lanes_f t0 = __builtin_shufflevector(res, xv, PAIR_LO);
+    lanes_f t1 = __builtin_shufflevector(res, xv, PAIR_HI);
+    lanes_f t2 = __builtin_shufflevector(dxv, dyv, PAIR_LO);
+    lanes_f t3 = __builtin_shufflevector(dxv, dyv, PAIR_HI);
+    lanes_f r0 = __builtin_shufflevector(t0, t2, QUAD_LO);
+    lanes_f r1 = __builtin_shufflevector(t0, t2, QUAD_HI);
+    lanes_f r2 = __builtin_shufflevector(t1, t3, QUAD_LO);
+    lanes_f r3 = __builtin_shufflevector(t1, t3, QUAD_HI);
 #if LANES == 8 /* r0 holds records 0 and 4, r1 1 and 5, r2 2 and 6, r3 3 and 7 */
-    const lanes_i lo_halves = {0, 1, 2, 3, 8, 9, 10, 11}, hi_halves = {4, 5, 6, 7, 12, 13, 14, 15};
-    *(lanes_fu *)m->end[c0] = __builtin_shuffle(r0, r1, lo_halves);
-    *(lanes_fu *)m->end[c0 + 2] = __builtin_shuffle(r2, r3, lo_halves);
-    *(lanes_fu *)m->end[c0 + 4] = __builtin_shuffle(r0, r1, hi_halves);
-    *(lanes_fu *)m->end[c0 + 6] = __builtin_shuffle(r2, r3, hi_halves);
+    *(lanes_fu *)m->end[c0] = __builtin_shufflevector(r0, r1, LO_HALVES);
+    *(lanes_fu *)m->end[c0 + 2] = __builtin_shufflevector(r2, r3, LO_HALVES);
+    *(lanes_fu *)m->end[c0 + 4] = __builtin_shufflevector(r0, r1, HI_HALVES);
+    *(lanes_fu *)m->end[c0 + 6] = __builtin_shufflevector(r2, r3, HI_HALVES);
 #else
     *(lanes_fu *)m->end[c0] = r0;
     *(lanes_fu *)m->end[c0 + 1] = r1;
