@@ -33,7 +33,8 @@ static hal_status begin(void *user, int lanes)
     s->lanes = lanes;
     memset(&s->err, 0, sizeof s->err);
     if (s->pool && lanes == 1) {
-        cs_status st = cs_frame_begin(&s->r[0], s->ws[0], s->scene, &s->opts, &s->err);
+        /* Prepared in parts on the pool's threads, as celsim --threads does. */
+        cs_status st = bands_prepare(s->pool, &s->r[0], s->ws[0], s->scene, &s->opts, &s->err);
         if (st == CS_OK)
             st = bands_start(s->pool, &s->r[0], LX_BAND_LINES, s->ring_lines, ring_line, s);
         if (st != CS_OK) {
