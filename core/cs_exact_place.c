@@ -409,15 +409,16 @@ static inline void memo_get(const cs_exact_level *m, uint32_t i, cs_exact_end *e
  * The ends of polynomial piece pc at ya and yb, the top and bottom of its
  * arc across a row, each a row boundary or one of its own ends: from the
  * level memo m if it holds them, else solved with the levels below into m
- * (the piece's later rows take those). A top at a row boundary is level i
- * of the memo, and a bottom at one is then the next boundary, level i + 1
- * if m holds it: one look-up a row, not two.
+ * (the piece's later rows take those). The bottom is looked up on its
+ * own: taking level i + 1 after a top at level i without one gave wrong
+ * ends where the next row boundary was not the next level (test_svg's
+ * bevelled strokes and glyphs).
  */
 static CS__HOT_INLINE void poly_row_ends(const cs_piece *pc, const cs_segment *s, float ya,
                                          float yb, cs_exact_level *m, cs_exact_end *top,
                                          cs_exact_end *bot)
 {
-    uint32_t i = CS_EXACT_LEVELS; /* none: the bottom looks itself up */
+    uint32_t i;
     if (ya == pc->y_top) { /* an active piece (y_top < y + 1, y_bot > y) ends below ya */
         poly_own_end(pc, s, ya, top);
     } else {
@@ -426,13 +427,12 @@ static CS__HOT_INLINE void poly_row_ends(const cs_piece *pc, const cs_segment *s
             i = 0;
         }
         memo_get(m, i, top);
-        i++;
     }
     if (yb == pc->y_bot) { /* and starts above yb */
         poly_own_end(pc, s, yb, bot);
         return;
     }
-    if (i >= m->n && !memo_has(m, yb, &i)) {
+    if (!memo_has(m, yb, &i)) {
         fill_levels(pc, s, yb, m);
         i = 0;
     }
