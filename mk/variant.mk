@@ -70,7 +70,9 @@ $(V3_GEN)/pgo_train: $(HOST)/obj/tools/pgo_train.o $(HOST)/obj/host-sim/scene_js
         $(patsubst core/%.c,$(V3_GEN)/core/%.o,$(CORE_SRC))
 	$(Q)$(CC) -fprofile-generate -o $@ $^ $(PKG_LIBS) -lm
 
-$(V3_GEN)/profile.stamp: $(V3_GEN)/pgo_train $(V3_PGO_SCENES)
+# The list of training scenes is recorded too, so that changing it trains again.
+$(eval $(call flags_record,host-v3-train,$(V3_PGO_SCENES)))
+$(V3_GEN)/profile.stamp: $(V3_GEN)/pgo_train $(V3_PGO_SCENES) $(FLAGS_DIR)/host-v3-train
 	$(Q)rm -rf $(V3_PROFILE) && $(V3_GEN)/pgo_train $(V3_PGO_SCENES) && touch $@
 
 V3_CORE_CFLAGS += -fprofile-use -fprofile-partial-training -fprofile-dir=$(V3_PROFILE) \
