@@ -405,38 +405,39 @@ static inline void memo_get(const cs_exact_level *m, uint32_t i, cs_exact_end *e
     e->dwr = m->dwr;
 }
 
+/* The end of polynomial piece pc at row boundary yv: from the level memo m
+ * if it holds yv, else solved with the levels below it into m (the piece's
+ * later rows take those). */
+static CS__HOT_INLINE void poly_memo_end(const cs_piece *pc, const cs_segment *s, float yv,
+                                         cs_exact_level *m, cs_exact_end *e)
+{
+    uint32_t i;
+    if (!memo_has(m, yv, &i)) {
+        fill_levels(pc, s, yv, m);
+        i = 0;
+    }
+    memo_get(m, i, e);
+}
+
 /*
  * The ends of polynomial piece pc at ya and yb, the top and bottom of its
- * arc across a row, each a row boundary or one of its own ends: from the
- * level memo m if it holds them, else solved with the levels below into m
- * (the piece's later rows take those). The bottom is looked up on its
- * own: taking level i + 1 after a top at level i without one gave wrong
- * ends where the next row boundary was not the next level (test_svg's
- * bevelled strokes and glyphs).
+ * arc across a row, each a row boundary (poly_memo_end) or one of its own
+ * ends. Each is looked up on its own: taking level i + 1 after a top at
+ * level i gave wrong ends where the next row boundary was not the next
+ * level (test_svg's bevelled strokes and glyphs).
  */
 static CS__HOT_INLINE void poly_row_ends(const cs_piece *pc, const cs_segment *s, float ya,
                                          float yb, cs_exact_level *m, cs_exact_end *top,
                                          cs_exact_end *bot)
 {
-    uint32_t i;
-    if (ya == pc->y_top) { /* an active piece (y_top < y + 1, y_bot > y) ends below ya */
+    if (ya == pc->y_top) /* an active piece (y_top < y + 1, y_bot > y) ends below ya */
         poly_own_end(pc, s, ya, top);
-    } else {
-        if (!memo_has(m, ya, &i)) {
-            fill_levels(pc, s, ya, m);
-            i = 0;
-        }
-        memo_get(m, i, top);
-    }
-    if (yb == pc->y_bot) { /* and starts above yb */
+    else
+        poly_memo_end(pc, s, ya, m, top);
+    if (yb == pc->y_bot) /* and starts above yb */
         poly_own_end(pc, s, yb, bot);
-        return;
-    }
-    if (!memo_has(m, yb, &i)) {
-        fill_levels(pc, s, yb, m);
-        i = 0;
-    }
-    memo_get(m, i, bot);
+    else
+        poly_memo_end(pc, s, yb, m, bot);
 }
 
 /* The same for a rational piece, whose memo keeps one level: the bottom
