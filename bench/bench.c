@@ -290,12 +290,18 @@ static void profile_band(cs_target *t, const cs_render_opts *o, long k, long n)
  * celscan_join. On N idle cores the preparation takes the largest part and
  * the join.
  */
-PROFILED static void celscan_part(cs_renderer *r, cs_workspace *ws, const cs_render_opts *o,
-                                  uint32_t lo, uint32_t hi)
+static void begin_part(cs_renderer *r, cs_workspace *ws, const cs_render_opts *o, uint32_t lo,
+                       uint32_t hi)
 {
     cs_error e;
     if (cs_frame_begin_part(r, ws, g_scene, o, lo, hi, &e) != CS_OK)
         die("cs_frame_begin_part failed");
+}
+
+PROFILED static void celscan_part(cs_renderer *r, cs_workspace *ws, const cs_render_opts *o,
+                                  uint32_t lo, uint32_t hi)
+{
+    begin_part(r, ws, o, lo, hi);
 }
 
 PROFILED static void celscan_join(cs_renderer *r, const cs_renderer *const *parts, int n)
@@ -317,13 +323,10 @@ static void profile_part(const cs_render_opts *o, long k, long n)
         ws[i] = i == 0 ? g_ws : calloc(1, sizeof *ws[i]);
         if (!ws[i])
             die("out of memory");
-        if (i == k) {
+        if (i == k)
             celscan_part(&r[i], ws[i], o, cut[i], cut[i + 1]);
-        } else {
-            cs_error e;
-            if (cs_frame_begin_part(&r[i], ws[i], g_scene, o, cut[i], cut[i + 1], &e) != CS_OK)
-                die("cs_frame_begin_part failed");
-        }
+        else
+            begin_part(&r[i], ws[i], o, cut[i], cut[i + 1]);
         if (i > 0)
             rest[i - 1] = &r[i];
     }
