@@ -51,14 +51,21 @@ FUZZ_GUIDED := core/cs_stream.c core/cs_stream_apply.c core/cs_scene.c core/cs_e
 FUZZ_PLAIN := $(filter-out $(FUZZ_GUIDED),$(CORE_SRC))
 # Every fuzz build (the JSON loader's below and the SVG importer's in mk/svg.mk too).
 FUZZ_BASE_CFLAGS := -std=c11 -g -O1 $(FP_FLAGS) -fno-sanitize-recover=all
+# clang 14 at -O1 with ASan and UBSan together took 330-360 s on cs_composite.c
+# alone (its folds are always_inline copies of one large loop; UBSan's
+# pointer-overflow checks on them are most of it), most of `make test`'s
+# wall time; at -O0, with every check still in, 3 s. The fuzzers render only
+# tiny scenes, so the slower code costs them few executions.
+FUZZ_O0_SRC := core/cs_composite.c
+FUZZ_O0_FLAGS = $(if $(filter $(FUZZ_O0_SRC),$<),-O0)
 FUZZ_CFLAGS := $(FUZZ_BASE_CFLAGS) $(FUZZ_CAPS) -Icore -Itools
-$(eval $(call flags_record,fuzz,$(FUZZ_CC) $(FUZZ_CFLAGS)))
+$(eval $(call flags_record,fuzz,$(FUZZ_CC) $(FUZZ_CFLAGS) -O0:$(FUZZ_O0_SRC)))
 $(FUZZ)/guided/%.o: %.c $(CORE_HDR) tools/cels_write.h tests/fuzz_check.h $(FLAGS_DIR)/fuzz
 	@mkdir -p $(dir $@)
 	$(Q)$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
 $(FUZZ)/plain/%.o: %.c $(CORE_HDR) $(FLAGS_DIR)/fuzz
 	@mkdir -p $(dir $@)
-	$(Q)$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=address,undefined -c $< -o $@
+	$(Q)$(FUZZ_CC) $(FUZZ_CFLAGS) $(FUZZ_O0_FLAGS) -fsanitize=address,undefined -c $< -o $@
 $(FUZZ)/fuzz_stream: $(patsubst %.c,$(FUZZ)/guided/%.o,$(FUZZ_GUIDED)) \
         $(patsubst %.c,$(FUZZ)/plain/%.o,$(FUZZ_PLAIN))
 	$(Q)$(FUZZ_CC) -fsanitize=fuzzer,address,undefined $^ -o $@
@@ -67,10 +74,11 @@ $(FUZZ)/fuzz_stream: $(patsubst %.c,$(FUZZ)/guided/%.o,$(FUZZ_GUIDED)) \
 # one build shared by the JSON loader's, the SVG importer's (mk/svg.mk) and
 # the Lottie importer's (mk/zlottie.mk) fuzzers, which had each compiled it.
 FUZZ_CORE_CFLAGS := $(FUZZ_BASE_CFLAGS) -Icore
-$(eval $(call flags_record,fuzz-core,$(FUZZ_CC) $(FUZZ_CORE_CFLAGS)))
+$(eval $(call flags_record,fuzz-core,$(FUZZ_CC) $(FUZZ_CORE_CFLAGS) -O0:$(FUZZ_O0_SRC)))
 $(FUZZ)/core/%.o: core/%.c $(CORE_HDR) $(FLAGS_DIR)/fuzz-core
 	@mkdir -p $(dir $@)
-	$(Q)$(FUZZ_CC) $(FUZZ_CORE_CFLAGS) -fsanitize=fuzzer-no-link,address,undefined -c $< -o $@
+	$(Q)$(FUZZ_CC) $(FUZZ_CORE_CFLAGS) $(FUZZ_O0_FLAGS) -fsanitize=fuzzer-no-link,address,undefined \
+		-c $< -o $@
 FUZZ_CORE_OBJ := $(patsubst core/%.c,$(FUZZ)/core/%.o,$(CORE_SRC))
 
 # Runs fuzzer $(1) (a program in $(FUZZ)) for $(2) seconds in a scratch corpus,
