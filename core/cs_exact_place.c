@@ -550,25 +550,23 @@ static CS__HOT_INLINE void place_arc(const cs__exact_ctx *cx, cs_exact_piece *e,
  * stand-ins and real arcs only where their hulls are apart, so their
  * order is right. The only difference right of the stretch is the order
  * in which the cover deltas are summed: a last-bit one at most.
+ *
+ * Only what a stand-in is read for is written: its x (xmin, for the area
+ * and the clusters), its ends' x, strip and key (the band sweep's order
+ * and proof, which neither moves nor re-hulls a hidden arc: set_bot and
+ * run_band test `hidden` first). Its ends' u and derivatives, u_row and
+ * `monotone` keep what the slot held: nothing reads them (the area takes
+ * a hidden arc's height alone, cs__exact_add_edge).
  */
-static void hide(cs_exact_piece *e, cs_index piece, const cs_piece *pc, int32_t pa)
+static void hide(cs_exact_piece *e, cs_index piece, int32_t pa)
 {
-    float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
-    cs_exact_end at;
+    float x = (float)pa;
     e->piece = piece;
     e->row_arc = true;
-    at.u = ut;
-    at.x = (float)pa;
-    at.dx = at.dy = at.dwr = 0.0f;
-    at.w = 1.0f;
-    e->top = at;
-    at.u = ub;
-    e->bot = at;
-    e->u_row = ub;
+    e->top.x = e->bot.x = x;
     e->dmin = e->dmax = 0.0f;
-    e->xmin = e->xmax = (float)pa;
-    e->key = 2.0f * (float)pa;
-    e->monotone = true;
+    e->xmin = e->xmax = x;
+    e->key = 2.0f * x;
 }
 
 /*
@@ -587,7 +585,7 @@ static CS__HOT_INLINE void place_piece(const cs_renderer *r, const cs__exact_ctx
     e->hidden = pa < pb && cs__run_opaque(r, (uint32_t)pa) &&
                 cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
     if (e->hidden) {
-        hide(e, piece, pc, pa + r->vx); /* in device columns, as placed arcs */
+        hide(e, piece, pa + r->vx); /* in device columns, as placed arcs */
         return;
     }
     place_arc(cx, e, piece);
@@ -606,7 +604,7 @@ static CS__HOT_INLINE void place_piece(const cs_renderer *r, const cs__exact_ctx
         qb = qb > cx->width ? cx->width : qb;
         if (qa < qb && cs__span_opaque(r, (uint32_t)qa, (uint32_t)qb)) {
             e->hidden = true;
-            hide(e, piece, pc, qa + r->vx);
+            hide(e, piece, qa + r->vx);
         }
     }
 }
