@@ -105,7 +105,7 @@ static inline float cs__exact_chord_u(float ua, float ya, float ub, float yb, fl
 static inline int cs__exact_poly_points(int p, const cs_exact_end *a, float ya,
                                         const cs_exact_end *b, float yb, float *px, float *py)
 {
-    float t = (b->u - a->u) / (float)p, h = yb - ya;
+    float t = (b->u - a->u) / (p == 3 ? 3.0f : 2.0f), h = yb - ya; /* = / (float)p */
     px[0] = a->x + t * a->dx;
     py[0] = t * a->dy;
     if (p == 3) {

@@ -497,7 +497,7 @@ typedef int64_t bounds_q __attribute__((vector_size(16)));
 static void poly_bounds(int p, cs_exact_piece *e)
 {
     float xt = e->top.x, xb = e->bot.x;
-    float t = (e->bot.u - e->top.u) / (float)p;
+    float t = (e->bot.u - e->top.u) / (p == 3 ? 3.0f : 2.0f); /* the same quotient, no conversion */
     float c1 = xt + t * e->top.dx, c2 = p == 3 ? xb - t * e->bot.dx : c1;
     e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
     e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
