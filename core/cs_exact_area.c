@@ -435,6 +435,11 @@ static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p
     float m5 = (3.0f * a[2] * b[3] + 2.0f * a[3] * b[2]) * 0.2f;
     float m6 = 0.5f * a[3] * b[3];
     float t = 0.0f, xa = x0, ya = y0, Ma = 0.0f, rd = 0.0f;
+    /* The cell's column as a float: a whole number, so its int is the
+     * column and it is the column's float (floori and the conversion back
+     * per cell before). Rising, the first is x0's column and then each
+     * cut's; falling, the cut's. */
+    float fa = (float)cs__floori(x0);
     for (; inc ? (k < x1 && k <= width) : (k > x1 && k >= 0.0f); k += inc ? 1.0f : -1.0f) {
         /* Newton's step from the last cut (1/x' there, a column away),
          * or the chord of what is left of the arc */
@@ -444,10 +449,11 @@ static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p
         float tk = cut_t(a, k - x0, t, 1.0f, guess, inc, &rd);
         float yk = cs__clampf(on_grid(y0 + tk * (b[1] + tk * (b[2] + tk * b[3]))), ya, y1);
         float Mk = tk * tk * (m2 + tk * (m3 + tk * (m4 + tk * (m5 + tk * m6))));
-        int32_t c = cs__floori(inc ? xa : k);
-        put_cell(cx, sign, c, yk - ya, (Mk - Ma) + (x0 - (float)c) * (yk - ya));
+        float fc = inc ? fa : k;
+        put_cell(cx, sign, (int32_t)fc, yk - ya, (Mk - Ma) + (x0 - fc) * (yk - ya));
         t = tk;
         xa = k;
+        fa = k;
         ya = yk;
         Ma = Mk;
     }
