@@ -543,10 +543,9 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     cx.row_bot = (float)(y + 1);
     cx.x0 = r->vx;
     cx.width = r->vw;
-    cx.wall = r->opts.width;
     cx.left = (float)cx.x0;
     cx.right = (float)(cx.x0 + cx.width);
-    cx.wall_x = (float)cx.wall;
+    cx.wall_x = (float)r->opts.width;
     cx.lo = *lo; /* cs__exact_touch only widens it */
     cx.hi = *hi;
     cx.bands_left = CS_CFG_EXACT_MAX_BANDS;

@@ -31,9 +31,8 @@ typedef struct cs__exact_ctx {
     const cs_region *region;
     float row_top, row_bot;
     int32_t x0, width;   /* the window: device columns [x0, x0 + width) */
-    int32_t wall;        /* the whole output's width, where cuts stop (see put_cell) */
     float left, right;   /* x0 and x0 + width, as floats */
-    float wall_x;        /* wall, as a float */
+    float wall_x;        /* the whole output's width, where cuts stop (see put_cell) */
     int32_t lo, hi;      /* accumulator entries written: [lo, hi) */
     uint32_t bands_left; /* CS_CFG_EXACT_MAX_BANDS countdown */
     bool overflow;
