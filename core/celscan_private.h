@@ -157,17 +157,18 @@ typedef struct cs_exact_end {
 } cs_exact_end;
 
 /*
- * A piece's ends at consecutive row boundaries y, y + 1, ..., y + n - 1,
- * kept for the rows that reach them (cs_exact_place.c); y is -1 before
- * any. A polynomial piece's are solved CS_EXACT_LEVELS at a time; a
- * rational piece keeps one. end[i] holds u, x, x', y' of level y + i
- * (the first four fields of a cs_exact_end); w and W'/W are the same for
- * all of them.
+ * A piece's ends at consecutive row boundaries from the first, kept for
+ * the rows that reach them (cs_exact_place.c); y is the first plus
+ * CS_EXACT_LEVELS (memo_key), or -1 before any. A polynomial piece's are
+ * solved CS_EXACT_LEVELS at a time, up to its bottom; a rational piece
+ * keeps one, with its w and W'/W (a polynomial end's W'/W is 0, its w
+ * unread). end[i] holds u, x, x', y' of level i (the first four fields of
+ * a cs_exact_end).
  */
 #define CS_EXACT_LEVELS 8
 typedef struct cs_exact_level {
     float y;
-    uint32_t n;
+    uint32_t spare;  /* keeps end[] on 16 bytes */
     float w, dwr;
     float end[CS_EXACT_LEVELS][4];
 } cs_exact_level;

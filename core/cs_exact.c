@@ -435,11 +435,12 @@ static bool winding_constant(const cs__exact_ctx *cx, const uint32_t *cl, uint32
     return true;
 }
 
-/* A cluster of one arc, e, whose winding change makes the region inside
- * right of it (now) or not: one band, nothing to order. Returns now. */
-static inline bool lone_cross(cs__exact_ctx *cx, const cs_exact_piece *e, bool now, bool inside)
+/* A cluster of one arc, e (of piece pc), whose winding change makes the
+ * region inside right of it (now) or not: one band, nothing to order.
+ * Returns now. */
+static inline bool lone_cross(cs__exact_ctx *cx, const cs_exact_piece *e, const cs_piece *pc,
+                              bool now, bool inside)
 {
-    const cs_piece *pc = &cx->ws->pieces[e->piece];
     if (now != inside)
         cs__exact_add_edge(cx, e, now ? 1.0f : -1.0f, cs__exact_row_top(cx, pc),
                            cs__exact_row_end(cx, pc));
@@ -451,7 +452,7 @@ static inline bool lone_edge(cs__exact_ctx *cx, const cs_exact_piece *e, int32_t
 {
     const cs_piece *pc = &cx->ws->pieces[e->piece];
     w[pc->operand] += pc->dir;
-    return lone_cross(cx, e, cs__region_inside(cx->region, w), inside);
+    return lone_cross(cx, e, pc, cs__region_inside(cx->region, w), inside);
 }
 
 /*
@@ -459,19 +460,20 @@ static inline bool lone_edge(cs__exact_ctx *cx, const cs_exact_piece *e, int32_t
  * two arcs, apart by more than CLUSTER_GAP, the left one across the whole
  * row. The cluster loop would make each a cluster of its own, since the
  * left one has no inner end to change the winding within the row; this
- * says so with two comparisons and puts them in x order in ord, without
- * the sort, the reach and the end tags.
+ * says so with two comparisons, without the sort, the reach and the end
+ * tags. Returns the left arc's index in ex (0 or 1), its piece in *left,
+ * or 2 for a row that is not this one.
  */
-static inline bool two_apart(const cs__exact_ctx *cx, const cs_exact_piece *ex, uint32_t *ord)
+static inline uint32_t two_apart(const cs__exact_ctx *cx, const cs_exact_piece *ex,
+                                 const cs_piece **left)
 {
     uint32_t a = ex[1].xmin < ex[0].xmin ? 1u : 0u; /* sort_pieces' order of two */
     const cs_piece *pc = &cx->ws->pieces[ex[a].piece];
     if (ex[1u - a].xmin <= ex[a].xmax + CLUSTER_GAP || pc->y_top > cx->row_top ||
         pc->y_bot < cx->row_bot)
-        return false;
-    ord[0] = a;
-    ord[1] = 1u - a;
-    return true;
+        return 2u;
+    *left = pc;
+    return a;
 }
 
 /* The row's accumulator range, grown from [*lo, *hi), back into them, and
@@ -541,27 +543,32 @@ cs_status cs__exact_region(cs_renderer *r, const cs_region *region, const cs_ind
     cx.row_bot = (float)(y + 1);
     cx.x0 = r->vx;
     cx.width = r->vw;
-    cx.wall = r->opts.width;
     cx.left = (float)cx.x0;
     cx.right = (float)(cx.x0 + cx.width);
-    cx.wall_x = (float)cx.wall;
+    cx.wall_x = (float)r->opts.width;
     cx.lo = *lo; /* cs__exact_touch only widens it */
     cx.hi = *hi;
     cx.bands_left = CS_CFG_EXACT_MAX_BANDS;
     cx.overflow = false;
     cs_exact_piece *ex = ws->exact;
-    uint32_t *ord = ws->exact_order;
     cs__exact_place_row(r, &cx, act, n); /* each piece's arc across the row into ex */
-    if (n == 2u && region->csg_len == 0 && two_apart(&cx, ex, ord)) {
+    const cs_piece *pl = NULL;
+    uint32_t a = n == 2u && region->csg_len == 0 ? two_apart(&cx, ex, &pl) : 2u;
+    if (a < 2u) {
         /* one operand (pieces move counter 0 without CSG): its winding is
          * a scalar, the fill rule the test. An array here, 32 bytes, made
-         * GCC realign this frame, for every region-row. */
-        int32_t w0 = ws->pieces[ex[ord[0]].piece].dir;
-        bool inside = lone_cross(&cx, &ex[ord[0]], cs__fill(region->fill_rule, w0), false);
-        w0 += ws->pieces[ex[ord[1]].piece].dir;
-        (void)lone_cross(&cx, &ex[ord[1]], cs__fill(region->fill_rule, w0), inside);
+         * GCC realign this frame, for every region-row. The left arc
+         * spans the row, so its band is the row. */
+        const cs_exact_piece *er = &ex[1u - a];
+        int32_t w0 = pl->dir;
+        bool inside = cs__fill(region->fill_rule, w0);
+        if (inside)
+            cs__exact_add_edge(&cx, &ex[a], 1.0f, cx.row_top, cx.row_bot);
+        const cs_piece *pr = &ws->pieces[er->piece];
+        w0 += pr->dir;
+        (void)lone_cross(&cx, er, pr, cs__fill(region->fill_rule, w0), inside);
     } else {
-        clusters(&cx, ex, ord, n);
+        clusters(&cx, ex, ws->exact_order, n);
     }
     return exact_done(&cx, lo, hi);
 }

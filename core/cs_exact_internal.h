@@ -31,9 +31,8 @@ typedef struct cs__exact_ctx {
     const cs_region *region;
     float row_top, row_bot;
     int32_t x0, width;   /* the window: device columns [x0, x0 + width) */
-    int32_t wall;        /* the whole output's width, where cuts stop (see put_cell) */
     float left, right;   /* x0 and x0 + width, as floats */
-    float wall_x;        /* wall, as a float */
+    float wall_x;        /* the whole output's width, where cuts stop (see put_cell) */
     int32_t lo, hi;      /* accumulator entries written: [lo, hi) */
     uint32_t bands_left; /* CS_CFG_EXACT_MAX_BANDS countdown */
     bool overflow;
@@ -105,7 +104,7 @@ static inline float cs__exact_chord_u(float ua, float ya, float ub, float yb, fl
 static inline int cs__exact_poly_points(int p, const cs_exact_end *a, float ya,
                                         const cs_exact_end *b, float yb, float *px, float *py)
 {
-    float t = (b->u - a->u) / (float)p, h = yb - ya;
+    float t = (b->u - a->u) / (p == 3 ? 3.0f : 2.0f), h = yb - ya; /* = / (float)p */
     px[0] = a->x + t * a->dx;
     py[0] = t * a->dy;
     if (p == 3) {

@@ -208,7 +208,16 @@ typedef char cs__exact_lanes_fit_[CS_EXACT_LEVELS % LANES == 0 ? 1 : -1];
  * function taking vectors is an ABI question on baseline x86-64. */
 #define PICK(m, a, b) ((lanes_f)(((m) & (lanes_i)(a)) | (~(m) & (lanes_i)(b))))
 
-/* Whether any lane of a mask is set: its bits as 64-bit lanes, ORed. */
+/* Whether any lane of a mask is set: one vptest with AVX, one movmskps
+ * with SSE (GCC and clang both know these builtins; the 64-bit lanes ORed
+ * one by one took nine instructions a test on the v3 build), else its
+ * bits as 64-bit lanes, ORed. */
+#if defined(__AVX__)
+typedef long long lanes_ll __attribute__((vector_size(32))); /* the builtin's type */
+#define ANY_LANE(m, out) ((out) = !__builtin_ia32_ptestz256((lanes_ll)(m), (lanes_ll)(m)))
+#elif defined(__SSE__) && LANES == 4
+#define ANY_LANE(m, out) ((out) = __builtin_ia32_movmskps((lanes_f)(m)) != 0)
+#else
 typedef int64_t lanes_q __attribute__((vector_size(4 * LANES)));
 #define ANY_LANE(m, out)                                                                  \
     do {                                                                                  \
@@ -218,6 +227,7 @@ typedef int64_t lanes_q __attribute__((vector_size(4 * LANES)));
             any_ |= q_[l_];                                                               \
         (out) = any_ != 0;                                                                \
     } while (0)
+#endif
 
 /*
  * Levels y0 + c0 .. y0 + n - 1 of polynomial piece pc, at most LANES of
@@ -315,6 +325,18 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
 #endif
 }
 
+/* The level memo's key: m->y keeps its first level plus MEMO_KEY, so
+ * that the frame's reset to -1 ("none yet", cs_frame.c, which writes
+ * nothing else) puts every row yv >= 0 at index yv + MEMO_KEY + 1, past
+ * the levels: one unsigned compare then tests both bounds and "none"
+ * (memo_has). Row boundaries are whole numbers far below 2^24, so the
+ * difference is exact, and a negative one wraps past the levels. */
+#define MEMO_KEY ((float)CS_EXACT_LEVELS)
+static inline float memo_key(float y0)
+{
+    return y0 + MEMO_KEY;
+}
+
 /*
  * The ends of polynomial piece pc (constant weight w0, degree 2 or 3) at
  * the levels y0, y0 + 1, ... above its bottom, at most CS_EXACT_LEVELS of
@@ -331,7 +353,8 @@ static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment 
 {
     /* n levels: those above the piece's bottom (y0 + n < y_bot), the
      * first always. Below CS_EXACT_LEVELS, y_bot - y0 is exact (y0 a whole
-     * row, y_bot within 8 of it), so n is its ceiling. */
+     * row, y_bot within 8 of it), so n is its ceiling. The lanes past n
+     * hold the first level again; no row asks for them (memo_has). */
     float left = pc->y_bot - y0;
     uint32_t n = CS_EXACT_LEVELS;
     if (left < (float)CS_EXACT_LEVELS) {
@@ -344,10 +367,7 @@ static CS__EXACT_NOINLINE void fill_levels(const cs_piece *pc, const cs_segment 
     for (uint32_t c0 = 0; c0 < n; c0 += LANES)
         solve_lanes(pc, s, y0, c0, n, m);
 #endif
-    m->w = s->w[0];
-    m->dwr = 0.0f;
-    m->y = y0;
-    m->n = n;
+    m->y = memo_key(y0);
 }
 
 /* The end of polynomial piece pc at its own top or bottom (yv is y_top or
@@ -363,8 +383,7 @@ static CS__EXACT_NOINLINE void poly_own_end(const cs_piece *pc, const cs_segment
     e->x = (float)s->ox + (((X[3] * u + X[2]) * u + X[1]) * u + X[0]) * inv;
     e->dx = ((3.0f * X[3] * u + 2.0f * X[2]) * u + X[1]) * inv;
     e->dy = d1 * inv;
-    e->w = w0;
-    e->dwr = 0.0f;
+    e->dwr = 0.0f; /* w unset: only rational arcs read it */
 }
 
 /* The end of a rational piece at height yv: cs__exact_place_end, exactly
@@ -382,27 +401,28 @@ static CS__EXACT_NOINLINE void rational_end(const cs_piece *pc, const cs_segment
     }
 }
 
-/* Whether m holds level yv (a row boundary), and which. Row boundaries
- * are whole numbers far below 2^24, so yv - m->y is exact: the one
- * difference serves both bounds and the index. */
+/*
+ * Whether polynomial memo m holds level yv (a row boundary), and which
+ * (see memo_key). Only its first n levels were solved (fill_levels), yet
+ * no test of n is needed: a row boundary asked for lies above the piece's
+ * bottom (poly_row_ends: at a piece's own end it asks nothing), so
+ * yv - y0 < y_bot - y0, whose ceiling is n (or n is CS_EXACT_LEVELS).
+ */
 static inline bool memo_has(const cs_exact_level *m, float yv, uint32_t *i)
 {
-    float d = yv - m->y;
-    if (!(m->y >= 0.0f && d >= 0.0f && d < (float)m->n))
-        return false; /* -1: none yet, and no row is above 0 */
-    *i = (uint32_t)d;
-    return true;
+    *i = (uint32_t)(int32_t)(memo_key(yv) - m->y);
+    return *i < CS_EXACT_LEVELS;
 }
 
-/* Level i of m, as an end. */
+/* Level i of m, as an end: u, x, x' and y'. A polynomial end takes W'/W =
+ * 0 and leaves w unset, which only rational arcs read (rational_moment);
+ * a rational one takes both from the memo (rational_level_end). */
 static inline void memo_get(const cs_exact_level *m, uint32_t i, cs_exact_end *e)
 {
     e->u = m->end[i][0];
     e->x = m->end[i][1];
     e->dx = m->end[i][2];
     e->dy = m->end[i][3];
-    e->w = m->w;
-    e->dwr = m->dwr;
 }
 
 /* The end of polynomial piece pc at row boundary yv: from the level memo m
@@ -417,6 +437,7 @@ static CS__HOT_INLINE void poly_memo_end(const cs_piece *pc, const cs_segment *s
         i = 0;
     }
     memo_get(m, i, e);
+    e->dwr = 0.0f;
 }
 
 /*
@@ -446,8 +467,10 @@ static CS__HOT_INLINE void rational_level_end(const cs_piece *pc, const cs_segme
                                              cs_exact_level *m, cs_exact_end *e)
 {
     bool own = yv == pc->y_top || yv == pc->y_bot;
-    if (!own && m->y == yv) { /* never -1, the memo's "none": no row is above 0 */
+    if (!own && m->y == memo_key(yv)) { /* never -1, the reset: no row is above 0 */
         memo_get(m, 0, e);
+        e->w = m->w;
+        e->dwr = m->dwr;
         return;
     }
     rational_end(pc, s, yv, e);
@@ -459,8 +482,7 @@ static CS__HOT_INLINE void rational_level_end(const cs_piece *pc, const cs_segme
     m->end[0][3] = e->dy;
     m->w = e->w;
     m->dwr = e->dwr;
-    m->y = yv;
-    m->n = 1;
+    m->y = memo_key(yv);
 }
 
 typedef float bounds_f __attribute__((vector_size(16)));
@@ -475,7 +497,7 @@ typedef int64_t bounds_q __attribute__((vector_size(16)));
 static void poly_bounds(int p, cs_exact_piece *e)
 {
     float xt = e->top.x, xb = e->bot.x;
-    float t = (e->bot.u - e->top.u) / (float)p;
+    float t = (e->bot.u - e->top.u) / (p == 3 ? 3.0f : 2.0f); /* the same quotient, no conversion */
     float c1 = xt + t * e->top.dx, c2 = p == 3 ? xb - t * e->bot.dx : c1;
     e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
     e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
@@ -538,25 +560,23 @@ static CS__HOT_INLINE void place_arc(const cs__exact_ctx *cx, cs_exact_piece *e,
  * stand-ins and real arcs only where their hulls are apart, so their
  * order is right. The only difference right of the stretch is the order
  * in which the cover deltas are summed: a last-bit one at most.
+ *
+ * Only what a stand-in is read for is written: its x (xmin, for the area
+ * and the clusters), its ends' x, strip and key (the band sweep's order
+ * and proof, which neither moves nor re-hulls a hidden arc: set_bot and
+ * run_band test `hidden` first). Its ends' u and derivatives, u_row and
+ * `monotone` keep what the slot held: nothing reads them (the area takes
+ * a hidden arc's height alone, cs__exact_add_edge).
  */
-static void hide(cs_exact_piece *e, cs_index piece, const cs_piece *pc, int32_t pa)
+static void hide(cs_exact_piece *e, cs_index piece, int32_t pa)
 {
-    float ut = cs__exact_top_u(pc), ub = cs__exact_bot_u(pc);
-    cs_exact_end at;
+    float x = (float)pa;
     e->piece = piece;
     e->row_arc = true;
-    at.u = ut;
-    at.x = (float)pa;
-    at.dx = at.dy = at.dwr = 0.0f;
-    at.w = 1.0f;
-    e->top = at;
-    at.u = ub;
-    e->bot = at;
-    e->u_row = ub;
+    e->top.x = e->bot.x = x;
     e->dmin = e->dmax = 0.0f;
-    e->xmin = e->xmax = (float)pa;
-    e->key = 2.0f * (float)pa;
-    e->monotone = true;
+    e->xmin = e->xmax = x;
+    e->key = 2.0f * x;
 }
 
 /*
@@ -575,7 +595,7 @@ static CS__HOT_INLINE void place_piece(const cs_renderer *r, const cs__exact_ctx
     e->hidden = pa < pb && cs__run_opaque(r, (uint32_t)pa) &&
                 cs__span_opaque(r, (uint32_t)pa, (uint32_t)pb);
     if (e->hidden) {
-        hide(e, piece, pc, pa + r->vx); /* in device columns, as placed arcs */
+        hide(e, piece, pa + r->vx); /* in device columns, as placed arcs */
         return;
     }
     place_arc(cx, e, piece);
@@ -594,7 +614,7 @@ static CS__HOT_INLINE void place_piece(const cs_renderer *r, const cs__exact_ctx
         qb = qb > cx->width ? cx->width : qb;
         if (qa < qb && cs__span_opaque(r, (uint32_t)qa, (uint32_t)qb)) {
             e->hidden = true;
-            hide(e, piece, pc, qa + r->vx);
+            hide(e, piece, qa + r->vx);
         }
     }
 }

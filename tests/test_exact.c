@@ -758,6 +758,41 @@ static void test_motion(void)
     free(out);
 }
 
+/* ---------------------------------------------------------- workspace */
+
+/* The frame's start marks every piece's level memo empty and nothing
+ * else: whatever an earlier frame or the allocator left in the workspace
+ * (a memo's other fields, its ends) must not reach a pixel. Polynomial
+ * and rational blobs, rows 0..7 included (where an empty memo's key lies
+ * nearest the rows asked), rendered into a zeroed workspace and into one
+ * filled with each byte pattern: the same bits. */
+static void test_stale_workspace(void)
+{
+    const int n = 48;
+    const unsigned char fill[3] = {0x40, 0x7F, 0xFF}; /* 3.0f / huge counts, 3.4e38f, NaN */
+    double *want = malloc(sizeof(double) * (size_t)(n * n));
+    double *got = malloc(sizeof(double) * (size_t)(n * n));
+    tscene *t = new_scene("stale workspace", n, n, n, n);
+    rng_state = 31u;
+    blob(&t->reg[0], 3, 9, 15.3, 14.6, 13.0, 1.0, 1.0, -1); /* polynomial */
+    blob(&t->reg[0], 2, 7, 34.2, 13.9, 12.0, 1.0, 1.0, -1);
+    blob(&t->reg[0], 3, 8, 24.7, 33.1, 12.0, 0.5, 2.0, -1); /* rational */
+    memset(g_ws, 0, sizeof *g_ws);
+    cs_status st = render_core(t, CS_AA_EXACT, 0, want);
+    CHECK(st == CS_OK, "stale workspace, zeroed: %s", cs_status_str(st));
+    for (int f = 0; f < 3; f++) {
+        memset(g_ws, fill[f], sizeof *g_ws);
+        st = render_core(t, CS_AA_EXACT, 0, got);
+        int diff = 0;
+        for (int i = 0; i < n * n; i++)
+            diff += memcmp(&want[i], &got[i], sizeof want[i]) != 0;
+        CHECK(st == CS_OK && diff == 0, "stale workspace 0x%02X: %s, %d of %d pixels differ",
+              fill[f], cs_status_str(st), diff, n * n);
+    }
+    free(want);
+    free(got);
+}
+
 /* ---------------------------------------------------------- limits */
 
 /* More pieces of one region on a row than CS_CFG_MAX_CROSSINGS: reported,
@@ -835,6 +870,7 @@ int main(void)
     test_seam(1.0, "seam S cubic");
     test_seam(2.5, "seam S rational");
     test_motion();
+    test_stale_workspace();
     test_capacity();
     free(g_scene);
     free(g_ws);
