@@ -7,6 +7,7 @@
  * (cs_render_frame). Nothing is carried from line to line but the active
  * list, so a line comes out the same whichever lines were rendered before it.
  */
+#include "cs_rgb888.h"
 #include "cs_runs.h"
 
 /*
@@ -59,9 +60,65 @@ static void finish_line(cs_renderer *r)
         finish_line_as(r, false);
 }
 
+#if CS__RGB888_VEC
+/*
+ * finish_line_as and the 8-bit sRGB conversion of its runs in one pass, for
+ * the display path (cs_render_line_px): a second walk over ~100 k runs a
+ * Many-blobs frame, reloading each run's floats, and the codes channel by
+ * channel cost more than the arithmetic. Each run's pixel is finished as
+ * one vector of its three channels (lane 3 is 0 throughout), by the same
+ * operations as finish_line_as lane by lane (E + T L unfused, then maxps
+ * with 0 and minps with 1, the instructions of cs__clampf), so the same
+ * bits; it is stored back and joined as there, so the line is left as
+ * cs_render_line_runs leaves it. A run of the finished line is written once
+ * the next different pixel begins, with the codes found once per joined
+ * run (cs__srgb8_px), as cs_line_pixels does.
+ */
+static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *out)
+{
+    cs_workspace *ws = r->ws;
+    uint32_t width = (uint32_t)r->vw;
+    const cs__v4f L = {r->behind[0], r->behind[1], r->behind[2], 0.0f};
+    const cs__v4f zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
+    const cs__v4i three = {-1, -1, -1, 0}; /* the lanes of a pixel's channels */
+    float *stack_E = ws->stack_E;
+    const float *stack_T = ws->stack_T;
+    uint16_t *run_end = ws->run_end;
+    /* The previous run's pixel: NaN before the first, so equal to none. */
+    cs__v4f P = {CS__NAN, CS__NAN, CS__NAN, CS__NAN};
+    uint32_t prev = 0, px = 0; /* the run being joined, its codes */
+    for (uint32_t s = 0; s < width;) {
+        const float *t = &stack_T[3 * s];
+        cs__v4f E = __builtin_ia32_maskloadps((const cs__v4f *)&stack_E[3 * s], three);
+        cs__v4f T = grey ? (cs__v4f){t[0], t[0], t[0], t[0]}
+                         : __builtin_ia32_maskloadps((const cs__v4f *)t, three);
+        E = __builtin_ia32_minps(__builtin_ia32_maxps(E + T * L, zero), one);
+        __builtin_ia32_maskstoreps((cs__v4f *)&stack_E[3 * s], three, E);
+        uint32_t e = run_end[s];
+        if (__builtin_ia32_movmskps((cs__v4f)(P == E)) == 15) {
+            run_end[prev] = (uint16_t)e; /* same pixels: one run */
+            s = e;
+            continue;
+        }
+        /* The first time, an empty run at 0 (written ahead, then over). */
+        cs__rgb888_run(out, prev, s, width, px);
+        px = cs__srgb8_px(E);
+        P = E;
+        prev = s;
+        s = e;
+    }
+    cs__rgb888_run(out, prev, width, width, px);
+}
+#endif
+
+static bool line_ok(const cs_renderer *r, int y)
+{
+    return r && r->ws && y >= r->vy && y - r->vy < r->vh;
+}
+
 cs_status cs_render_line_runs(cs_renderer *r, int y)
 {
-    if (!r || !r->ws || y < r->vy || y - r->vy >= r->vh)
+    if (!line_ok(r, y))
         return CS_ERR_ARG;
     cs__line_stack(r, y);
     finish_line(r);
@@ -118,6 +175,16 @@ cs_status cs_render_line_px(cs_renderer *r, int y, cs_pixfmt fmt, uint8_t *out)
 {
     if (!out)
         return CS_ERR_ARG;
+#if CS__RGB888_VEC
+    if (fmt == CS_PIX_RGB888_SRGB && line_ok(r, y) && r->opts.blend != CS_BLEND_SRGB) {
+        cs__line_stack(r, y);
+        if (CS_CFG_GREY && r->grey)
+            finish_rgb888_as(r, true, out);
+        else
+            finish_rgb888_as(r, false, out);
+        return CS_OK;
+    }
+#endif
     cs_status st = cs_render_line_runs(r, y);
     if (st == CS_OK)
         cs_line_pixels(r, fmt, out);
