@@ -72,7 +72,7 @@ static void finish_line(cs_renderer *r)
  * bits; it is stored back and joined as there, so the line is left as
  * cs_render_line_runs leaves it. A run of the finished line is written once
  * the next different pixel begins, with the codes found once per joined
- * run (cs__srgb8_px), as cs_line_pixels does.
+ * run (cs__srgb8_lanes), as cs_line_pixels does.
  */
 static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *out)
 {
@@ -86,7 +86,8 @@ static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *
     uint16_t *run_end = ws->run_end;
     /* The previous run's pixel: NaN before the first, so equal to none. */
     cs__v4f P = {CS__NAN, CS__NAN, CS__NAN, CS__NAN};
-    uint32_t prev = 0, px = 0; /* the run being joined, its codes */
+    uint32_t prev = 0; /* the run being joined */
+    px16_u8 codes = {0}; /* its 8-bit codes (cs__srgb8_lanes) */
     for (uint32_t s = 0; s < width;) {
         const float *t = &stack_T[3 * s];
         cs__v4f E = __builtin_ia32_maskloadps((const cs__v4f *)&stack_E[3 * s], three);
@@ -101,13 +102,13 @@ static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *
             continue;
         }
         /* The first time, an empty run at 0 (written ahead, then over). */
-        cs__rgb888_run(out, prev, s, width, px);
-        px = cs__srgb8_px(E);
+        cs__rgb888_run_lanes(out, prev, s, width, codes);
+        codes = cs__srgb8_lanes(E);
         P = E;
         prev = s;
         s = e;
     }
-    cs__rgb888_run(out, prev, width, width, px);
+    cs__rgb888_run_lanes(out, prev, width, width, codes);
 }
 #endif
 

@@ -234,13 +234,8 @@ static void runs_rgb888(const float *rgb, const uint16_t *run_end, uint32_t widt
     for (uint32_t s = 0; s < width;) {
         uint32_t e = run_end[s];
         const float *v = &rgb[3 * s];
-        uint32_t c0 = cs__srgb8(v[0]), c1 = cs__srgb8(v[1]), c2 = cs__srgb8(v[2]);
-#if defined(__SSSE3__)
-        if (e + 15u <= width)
-            cs__rgb888_ahead(out + 3u * s, e - s, c0 | c1 << 8 | c2 << 16);
-        else
-#endif
-            cs__rgb888_fill(out + 3u * s, e - s, c0, c1, c2);
+        cs__rgb888_run(out, s, e, width,
+                       cs__srgb8(v[0]) | cs__srgb8(v[1]) << 8 | cs__srgb8(v[2]) << 16);
         s = e;
     }
 }

@@ -7,8 +7,8 @@
  * argument shuffling cost as much as a short run's stores.
  *
  * With AVX2 (CS__RGB888_VEC) a run's three channel codes also come from
- * one pass of vector instructions (cs__srgb8_px): the cells of the three
- * floats by their bits, the two tables read by gathers, one compare. It
+ * one pass of vector instructions (cs__srgb8_lanes): the cells of the
+ * three floats by their bits, the two tables read by gathers, one compare. It
  * computes cs__srgb8 of each lane, for values in [0, 1], which is what a
  * finished pixel is.
  */
@@ -70,22 +70,26 @@ static inline void cs__rgb888_wide(uint8_t *p, uint32_t n, uint32_t w0, uint32_t
  */
 typedef uint8_t px16_u8 __attribute__((vector_size(16)));
 
+/* n >= 0 pixels at p, 16 a step from p while the run lasts (at least one
+ * step), as the three phases a b c of the 12-byte pattern. */
+static inline void cs__rgb888_steps(uint8_t *p, uint32_t n, px16_u8 a, px16_u8 b, px16_u8 c)
+{
+    const uint8_t *end = p + 3u * n;
+    do {
+        *(px16_rgb888 *)p = (px16_rgb888)a;
+        *(px16_rgb888 *)(p + 16) = (px16_rgb888)b;
+        *(px16_rgb888 *)(p + 32) = (px16_rgb888)c;
+        p += 48;
+    } while (p < end);
+}
+
 static inline void cs__rgb888_ahead(uint8_t *p, uint32_t n, uint32_t px)
 {
     px16_u8 v = (px16_u8)(px16_rgb888){px, 0u, 0u, 0u};
-    px16_rgb888 a = (px16_rgb888)__builtin_shufflevector(
-        v, v, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0);
-    px16_rgb888 b = (px16_rgb888)__builtin_shufflevector(
-        v, v, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1);
-    px16_rgb888 c = (px16_rgb888)__builtin_shufflevector(
-        v, v, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2);
-    const uint8_t *end = p + 3u * n;
-    do {
-        *(px16_rgb888 *)p = a;
-        *(px16_rgb888 *)(p + 16) = b;
-        *(px16_rgb888 *)(p + 32) = c;
-        p += 48;
-    } while (p < end);
+    cs__rgb888_steps(
+        p, n, __builtin_shufflevector(v, v, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0),
+        __builtin_shufflevector(v, v, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1),
+        __builtin_shufflevector(v, v, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2));
 }
 #endif
 
@@ -134,11 +138,12 @@ static inline void cs__rgb888_run(uint8_t *out, uint32_t s, uint32_t e, uint32_t
     cs__rgb888_fill(out + 3u * s, e - s, px & 0xFFu, px >> 8 & 0xFFu, px >> 16);
 }
 
-#if defined(__AVX2__) && defined(__GNUC__) && CS_CFG_SRGB8_BITS
+#if defined(__AVX2__) && defined(__GNUC__) && CS_CFG_SRGB8_BITS && defined(__x86_64__)
 #define CS__RGB888_VEC 1
 
 typedef float cs__v4f __attribute__((vector_size(16)));
 typedef int32_t cs__v4i __attribute__((vector_size(16)));
+typedef uint32_t cs__v4u __attribute__((vector_size(16)));
 
 /* Four dwords from base + scale * idx, by one gather. Inline asm because
  * GCC and clang name the builtin differently and <immintrin.h> brings
@@ -152,29 +157,37 @@ typedef int32_t cs__v4i __attribute__((vector_size(16)));
                 : "r"(base), "x"(idx));                                               \
     } while (0)
 
-/* The 8-bit codes of lanes 0..2 of v, each in [0, 1] (not NaN), as
- * c0 | c1 << 8 | c2 << 16 (byte 3 is lane 3's): cs__srgb8 of each. A value
- * below the first cell takes cell 0, where it lies below the step (so code
- * 0), and 1.0 takes the last cell, whose base is 255 and step 2; the base table is padded, so a dword
- * gather at the last cells stays within it. */
-static inline uint32_t cs__srgb8_px(cs__v4f v)
+/* The 8-bit codes of lanes 0..2 of v, each in [0, 1] (not NaN), in byte 0
+ * of lanes 0..2 (the bytes above are the table's next cells): cs__srgb8 of
+ * each. A value below the first cell is taken to its start, where it lies
+ * below the cell's step (so code 0); 1.0 has a cell of its own, past the
+ * others. The cell's offset goes into the tables' addresses, and the base
+ * table is padded, so a dword gather at the last cells stays within it. */
+static inline px16_u8 cs__srgb8_lanes(cs__v4f v)
 {
-    /* The cell of v clamped to the cells' floats, [first, 1.0 - ulp]. */
     const cs__v4f lo = (cs__v4f)(cs__v4i){CS__SRGB8_BITS_FIRST << 16, CS__SRGB8_BITS_FIRST << 16,
                                           CS__SRGB8_BITS_FIRST << 16, CS__SRGB8_BITS_FIRST << 16};
-    const cs__v4f hi = (cs__v4f)(cs__v4i){0x3F7FFFFF, 0x3F7FFFFF, 0x3F7FFFFF, 0x3F7FFFFF};
-    cs__v4f cell = __builtin_ia32_minps(__builtin_ia32_maxps(v, lo), hi);
-    cs__v4i i = ((cs__v4i)cell >> 16) - (int32_t)CS__SRGB8_BITS_FIRST;
+    cs__v4i i = (cs__v4i)((cs__v4u)__builtin_ia32_maxps(v, lo) >> 16);
     cs__v4i base, step;
-    CS__GATHER4(base, cs__srgb8_bits_base, i, 1);
-    CS__GATHER4(step, cs__srgb8_bits_step, i, 4);
-    /* base + 1 where v >= step: byte 0 of each lane (the bytes above it are
-     * the table's next cells; a code is at most 255, so no carry) */
-    cs__v4i c = base - (v >= (cs__v4f)step);
-    typedef uint8_t v16u8 __attribute__((vector_size(16)));
-    v16u8 b = __builtin_shufflevector((v16u8)c, (v16u8)c, 0, 4, 8, 12, 0, 0, 0, 0, 0, 0, 0, 0, 0,
-                                      0, 0, 0);
-    return (uint32_t)((cs__v4i)b)[0];
+    CS__GATHER4(base, (uintptr_t)cs__srgb8_bits_base - CS__SRGB8_BITS_FIRST, i, 1);
+    CS__GATHER4(step, (uintptr_t)cs__srgb8_bits_step - 4u * CS__SRGB8_BITS_FIRST, i, 4);
+    /* base + 1 where v >= step (a code is at most 255: no carry) */
+    return (px16_u8)(base - (v >= (cs__v4f)step));
+}
+
+/* As cs__rgb888_run, from codes in bytes 0, 4 and 8 (cs__srgb8_lanes). */
+static inline void cs__rgb888_run_lanes(uint8_t *out, uint32_t s, uint32_t e, uint32_t width,
+                                        px16_u8 c)
+{
+    if (e + 15u <= width) {
+        cs__rgb888_steps(
+            out + 3u * s, e - s,
+            __builtin_shufflevector(c, c, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0),
+            __builtin_shufflevector(c, c, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4),
+            __builtin_shufflevector(c, c, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8));
+        return;
+    }
+    cs__rgb888_fill(out + 3u * s, e - s, c[0], c[4], c[8]);
 }
 #else
 #define CS__RGB888_VEC 0
