@@ -234,8 +234,7 @@ static void runs_rgb888(const float *rgb, const uint16_t *run_end, uint32_t widt
     for (uint32_t s = 0; s < width;) {
         uint32_t e = run_end[s];
         const float *v = &rgb[3 * s];
-        cs__rgb888_run(out, s, e, width,
-                       cs__srgb8(v[0]) | cs__srgb8(v[1]) << 8 | cs__srgb8(v[2]) << 16);
+        cs__rgb888_run(out, s, e, width, cs__srgb8(v[0]), cs__srgb8(v[1]), cs__srgb8(v[2]));
         s = e;
     }
 }

@@ -121,21 +121,21 @@ static inline void cs__rgb888_fill(uint8_t *p, uint32_t n, uint32_t c0, uint32_t
     }
 }
 
-/* The run [s, e) of a line `width` pixels wide in the 8-bit codes of px
- * (c0 | c1 << 8 | c2 << 16), where the run's pixels are written left to
- * right: ahead of the run where the line leaves room (with SSSE3), else
- * exactly. */
-static inline void cs__rgb888_run(uint8_t *out, uint32_t s, uint32_t e, uint32_t width, uint32_t px)
+/* The run [s, e) of a line `width` pixels wide in the 8-bit codes c0 c1
+ * c2, where the line's runs are written left to right: ahead of the run
+ * where the line leaves room (with SSSE3), else exactly. */
+static inline void cs__rgb888_run(uint8_t *out, uint32_t s, uint32_t e, uint32_t width,
+                                  uint32_t c0, uint32_t c1, uint32_t c2)
 {
 #if defined(__SSSE3__)
     if (e + 15u <= width) {
-        cs__rgb888_ahead(out + 3u * s, e - s, px);
+        cs__rgb888_ahead(out + 3u * s, e - s, c0 | c1 << 8 | c2 << 16);
         return;
     }
 #else
     (void)width;
 #endif
-    cs__rgb888_fill(out + 3u * s, e - s, px & 0xFFu, px >> 8 & 0xFFu, px >> 16);
+    cs__rgb888_fill(out + 3u * s, e - s, c0, c1, c2);
 }
 
 #if defined(__AVX2__) && defined(__GNUC__) && CS_CFG_SRGB8_BITS && defined(__x86_64__)
