@@ -74,41 +74,64 @@ static void finish_line(cs_renderer *r)
  * the next different pixel begins, with the codes found once per joined
  * run (cs__srgb8_lanes), as cs_line_pixels does.
  */
-static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *out)
+typedef struct fused_line {
+    float *stack_E;
+    const float *stack_T;
+    uint16_t *run_end;
+    uint8_t *out;
+    cs__v4f L;
+    cs__v4f P;       /* the previous run's pixel: NaN before the first, so equal to none */
+    px16_u8 codes;   /* its 8-bit codes (cs__srgb8_lanes) */
+    uint32_t prev;   /* the run being joined */
+} fused_line;
+
+/* The runs from s on while s < limit; a run is written ahead of its end
+ * (`ahead`: limit leaves 15 pixels of room) or exactly. Returns the next s. */
+static CS__SPECIALISE uint32_t fused_runs(fused_line *f, bool grey, uint32_t s, uint32_t limit,
+                                          bool ahead)
 {
-    cs_workspace *ws = r->ws;
-    uint32_t width = (uint32_t)r->vw;
-    const cs__v4f L = {r->behind[0], r->behind[1], r->behind[2], 0.0f};
     const cs__v4f zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
     const cs__v4i three = {-1, -1, -1, 0}; /* the lanes of a pixel's channels */
-    float *stack_E = ws->stack_E;
-    const float *stack_T = ws->stack_T;
-    uint16_t *run_end = ws->run_end;
-    /* The previous run's pixel: NaN before the first, so equal to none. */
-    cs__v4f P = {CS__NAN, CS__NAN, CS__NAN, CS__NAN};
-    uint32_t prev = 0; /* the run being joined */
-    px16_u8 codes = {0}; /* its 8-bit codes (cs__srgb8_lanes) */
-    for (uint32_t s = 0; s < width;) {
-        const float *t = &stack_T[3 * s];
-        cs__v4f E = __builtin_ia32_maskloadps((const cs__v4f *)&stack_E[3 * s], three);
+    while (s < limit) {
+        const float *t = &f->stack_T[3 * s];
+        float *e3 = &f->stack_E[3 * s];
+        cs__v4f E = __builtin_ia32_maskloadps((const cs__v4f *)e3, three);
         cs__v4f T = grey ? (cs__v4f){t[0], t[0], t[0], t[0]}
                          : __builtin_ia32_maskloadps((const cs__v4f *)t, three);
-        E = __builtin_ia32_minps(__builtin_ia32_maxps(E + T * L, zero), one);
-        __builtin_ia32_maskstoreps((cs__v4f *)&stack_E[3 * s], three, E);
-        uint32_t e = run_end[s];
-        if (__builtin_ia32_movmskps((cs__v4f)(P == E)) == 15) {
-            run_end[prev] = (uint16_t)e; /* same pixels: one run */
+        E = __builtin_ia32_minps(__builtin_ia32_maxps(E + T * f->L, zero), one);
+        __builtin_ia32_maskstoreps((cs__v4f *)e3, three, E);
+        uint32_t e = f->run_end[s];
+        if (__builtin_ia32_movmskps((cs__v4f)(f->P == E)) == 15) {
+            f->run_end[f->prev] = (uint16_t)e; /* same pixels: one run */
             s = e;
             continue;
         }
         /* The first time, an empty run at 0 (written ahead, then over). */
-        cs__rgb888_run_lanes(out, prev, s, width, codes);
-        codes = cs__srgb8_lanes(E);
-        P = E;
-        prev = s;
+        uint8_t *p = f->out + 3u * f->prev;
+        if (ahead)
+            cs__rgb888_ahead_lanes(p, s - f->prev, f->codes);
+        else
+            cs__rgb888_fill(p, s - f->prev, f->codes[0], f->codes[4], f->codes[8]);
+        f->codes = cs__srgb8_lanes(E);
+        f->P = E;
+        f->prev = s;
         s = e;
     }
-    cs__rgb888_run_lanes(out, prev, width, width, codes);
+    return s;
+}
+
+static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *out)
+{
+    cs_workspace *ws = r->ws;
+    uint32_t width = (uint32_t)r->vw;
+    fused_line f = {ws->stack_E, ws->stack_T, ws->run_end, out,
+                    (cs__v4f){r->behind[0], r->behind[1], r->behind[2], 0.0f},
+                    (cs__v4f){CS__NAN, CS__NAN, CS__NAN, CS__NAN}, (px16_u8){0}, 0};
+    /* A run found at s >= width - 14 ends the one before within 15 pixels
+     * of the line's end: that one and those after are written exactly. */
+    uint32_t s = fused_runs(&f, grey, 0, width > 14u ? width - 14u : 0u, true);
+    fused_runs(&f, grey, s, width, false);
+    cs__rgb888_fill(out + 3u * f.prev, width - f.prev, f.codes[0], f.codes[4], f.codes[8]);
 }
 #endif
 

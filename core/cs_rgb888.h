@@ -175,19 +175,13 @@ static inline px16_u8 cs__srgb8_lanes(cs__v4f v)
     return (px16_u8)(base - (v >= (cs__v4f)step));
 }
 
-/* As cs__rgb888_run, from codes in bytes 0, 4 and 8 (cs__srgb8_lanes). */
-static inline void cs__rgb888_run_lanes(uint8_t *out, uint32_t s, uint32_t e, uint32_t width,
-                                        px16_u8 c)
+/* As cs__rgb888_ahead, from codes in bytes 0, 4 and 8 (cs__srgb8_lanes). */
+static inline void cs__rgb888_ahead_lanes(uint8_t *p, uint32_t n, px16_u8 c)
 {
-    if (e + 15u <= width) {
-        cs__rgb888_steps(
-            out + 3u * s, e - s,
-            __builtin_shufflevector(c, c, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0),
-            __builtin_shufflevector(c, c, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4),
-            __builtin_shufflevector(c, c, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8));
-        return;
-    }
-    cs__rgb888_fill(out + 3u * s, e - s, c[0], c[4], c[8]);
+    cs__rgb888_steps(p, n,
+                     __builtin_shufflevector(c, c, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0),
+                     __builtin_shufflevector(c, c, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4),
+                     __builtin_shufflevector(c, c, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8));
 }
 #else
 #define CS__RGB888_VEC 0
