@@ -41,11 +41,12 @@ static cs_status drive_line(frame_drive *d, cs_renderer *r, int y, int row)
     return show_line(d, y, d->bytes, d->panel);
 }
 
-/* Line y on a worker: its display bytes and panel pixels into the frame's storage. */
-static void band_line(void *user, const cs_renderer *r, int y)
+/* Line y (device row `row`) on a worker: rendered, its display bytes and
+ * panel pixels into the frame's storage. */
+static void band_line(void *user, cs_renderer *r, int row, int y)
 {
     frame_drive *d = user;
-    cs_line_pixels(r, d->pixfmt, d->frame_bytes + (size_t)y * d->line_bytes);
+    (void)cs_render_line_px(r, row, d->pixfmt, d->frame_bytes + (size_t)y * d->line_bytes);
     if (d->panel != NULL)
         cs_line_pixels(r, CS_PANEL_PIXFMT, d->frame_panel + (size_t)y * panel_bytes(d));
 }
@@ -54,7 +55,7 @@ static void band_line(void *user, const cs_renderer *r, int y)
  * (in r itself, while it waits for a line), and shown in order. */
 static cs_status drive_bands(frame_drive *d, cs_renderer *r, cs_error *sticky)
 {
-    cs_status st = bands_start(d->pool, r, 0, d->dev->height, band_line, d);
+    cs_status st = bands_start_render(d->pool, r, 0, d->dev->height, band_line, d);
     for (int y = 0; y < d->dev->height && st == CS_OK; y++) {
         bands_help(d->pool, r, y);
         st = show_line(d, y, d->frame_bytes + (size_t)y * d->line_bytes,
