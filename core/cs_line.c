@@ -69,10 +69,11 @@ static void finish_line(cs_renderer *r)
  * one vector of its three channels (lane 3 is 0 throughout), by the same
  * operations as finish_line_as lane by lane (E + T L unfused, then maxps
  * with 0 and minps with 1, the instructions of cs__clampf), so the same
- * bits; it is stored back and joined as there, so the line is left as
- * cs_render_line_runs leaves it. A run of the finished line is written once
- * the next different pixel begins, with the codes found once per joined
- * run (cs__srgb8_lanes), as cs_line_pixels does.
+ * bits, stored back, so the runs hold the line's pixels as after
+ * cs_render_line_runs. Equal neighbours are not joined: on Many-blobs 3 k
+ * of 94 k runs would be, and their test cost more than their codes and
+ * stores. A run is written once the next one's start is known, with its
+ * codes from cs__srgb8_lanes.
  */
 typedef struct fused_line {
     float *stack_E;
@@ -80,9 +81,8 @@ typedef struct fused_line {
     uint16_t *run_end;
     uint8_t *out;
     cs__v4f L;
-    cs__v4f P;       /* the previous run's pixel: NaN before the first, so equal to none */
-    px16_u8 codes;   /* its 8-bit codes (cs__srgb8_lanes) */
-    uint32_t prev;   /* the run being joined */
+    px16_u8 codes;   /* the previous run's 8-bit codes (cs__srgb8_lanes) */
+    uint32_t prev;   /* and its start */
 } fused_line;
 
 /* The runs from s on while s < limit; a run is written ahead of its end
@@ -100,22 +100,16 @@ static CS__SPECIALISE uint32_t fused_runs(fused_line *f, bool grey, uint32_t s, 
                          : __builtin_ia32_maskloadps((const cs__v4f *)t, three);
         E = __builtin_ia32_minps(__builtin_ia32_maxps(E + T * f->L, zero), one);
         __builtin_ia32_maskstoreps((cs__v4f *)e3, three, E);
-        uint32_t e = f->run_end[s];
-        if (__builtin_ia32_movmskps((cs__v4f)(f->P == E)) == 15) {
-            f->run_end[f->prev] = (uint16_t)e; /* same pixels: one run */
-            s = e;
-            continue;
-        }
-        /* The first time, an empty run at 0 (written ahead, then over). */
+        /* The run before, written now that its end is known; the first
+         * time, an empty run at 0 (written ahead, then over). */
         uint8_t *p = f->out + 3u * f->prev;
         if (ahead)
             cs__rgb888_ahead_lanes(p, s - f->prev, f->codes);
         else
             cs__rgb888_fill(p, s - f->prev, f->codes[0], f->codes[4], f->codes[8]);
         f->codes = cs__srgb8_lanes(E);
-        f->P = E;
         f->prev = s;
-        s = e;
+        s = f->run_end[s];
     }
     return s;
 }
@@ -125,8 +119,7 @@ static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *
     cs_workspace *ws = r->ws;
     uint32_t width = (uint32_t)r->vw;
     fused_line f = {ws->stack_E, ws->stack_T, ws->run_end, out,
-                    (cs__v4f){r->behind[0], r->behind[1], r->behind[2], 0.0f},
-                    (cs__v4f){CS__NAN, CS__NAN, CS__NAN, CS__NAN}, (px16_u8){0}, 0};
+                    (cs__v4f){r->behind[0], r->behind[1], r->behind[2], 0.0f}, (px16_u8){0}, 0};
     /* A run found at s >= width - 14 ends the one before within 15 pixels
      * of the line's end: that one and those after are written exactly. */
     uint32_t s = fused_runs(&f, grey, 0, width > 14u ? width - 14u : 0u, true);
