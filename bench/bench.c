@@ -10,8 +10,9 @@
  *
  * For each reference scene (BENCHMARKS.md) the same geometry is rendered by
  *
- *   celscan   cs_frame_begin, then cs_render_line_runs and cs_line_pixels
- *             (8-bit sRGB) for every line: what celsim and a board do;
+ *   celscan   cs_frame_begin, then cs_render_line_px (8-bit sRGB) for
+ *             every line: what celsim does (a board: cs_render_line_runs
+ *             and cs_line_pixels);
  *   cairo     an ARGB32 image surface, default antialias and tolerance;
  *   FreeType  FT_Outline_Render (smooth, direct spans) with a span compositor;
  *   AGG       Anti-Grain Geometry's scanline rasterizer with its defaults;
@@ -233,8 +234,7 @@ PROFILED static double celscan_frame(cs_target *t, const cs_render_opts *o)
     if (st != CS_OK)
         die("cs_frame_begin: %s", cs_status_str(st));
     for (int y = 0; y < t->h; y++) {
-        cs_render_line_runs(&r, y);
-        cs_line_pixels(&r, CS_PIX_RGB888_SRGB, t->image + (size_t)y * t->w * 3);
+        cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, t->image + (size_t)y * t->w * 3);
     }
     double dt = bench_now() - t0;
     if (cs_frame_error(&r).status != CS_OK)
@@ -247,7 +247,7 @@ PROFILED static double celscan_frame(cs_target *t, const cs_render_opts *o)
  * the frame is prepared once (celscan_prepare), and band K of N equal
  * bands of lines is rendered as a thread of celsim --threads renders its
  * lines, in a workspace of its own sharing the prepared frame
- * (celscan_band: cs_frame_share, then each line and its pixels). Callgrind
+ * (celscan_band: cs_frame_share, then each line's pixels). Callgrind
  * counts each function by name.
  */
 PROFILED static void celscan_prepare(cs_renderer *r, const cs_render_opts *o)
@@ -264,8 +264,7 @@ PROFILED static void celscan_band(cs_target *t, const cs_renderer *prepared, cs_
     if (cs_frame_share(&r, ws, prepared) != CS_OK)
         die("cs_frame_share failed");
     for (int y = y0; y < y1; y++) {
-        cs_render_line_runs(&r, y);
-        cs_line_pixels(&r, CS_PIX_RGB888_SRGB, t->image + (size_t)y * t->w * 3);
+        cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, t->image + (size_t)y * t->w * 3);
     }
     if (cs_frame_error(&r).status != CS_OK)
         die("band degraded: %s", cs_status_str(cs_frame_error(&r).status));
@@ -697,8 +696,7 @@ static void beam_sweep(int w, int h, cs_aa_mode aa, int n, int runs, int k, doub
         prep[k - 1] = t1 - t0;
     for (int y = 0; y < h; y++) {
         double a = bench_now();
-        cs_render_line_runs(&r, y);
-        cs_line_pixels(&r, CS_PIX_RGB888_SRGB, px);
+        cs_render_line_px(&r, y, CS_PIX_RGB888_SRGB, px);
         double b = bench_now();
         if (k)
             s[(size_t)y * runs + k - 1] = b - a;

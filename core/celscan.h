@@ -376,7 +376,8 @@ cs_status cs_render_line_runs(cs_renderer *r, int y);
 void cs_line_pixels(const cs_renderer *r, cs_pixfmt fmt, uint8_t *out);
 /* As cs_line_pixels, into workspace memory idle between lines; valid until the next. */
 const uint8_t *cs_line_pixels_scratch(cs_renderer *r, cs_pixfmt fmt);
-/* cs_render_line_runs, then cs_line_pixels. */
+/* cs_render_line_runs, then cs_line_pixels (the runs it leaves hold the
+ * same pixels; equal neighbours may stay apart). */
 cs_status cs_render_line_px(cs_renderer *r, int y, cs_pixfmt fmt, uint8_t *out);
 /* The run starting at pixel x: its linear colour, and the pixel after it
  * returned (for (x = 0; x < w; x = next) ...). */

@@ -209,7 +209,7 @@ typedef struct cs__contour_iter {
 typedef struct cs_frame_data {
     cs_segment segments[CS_CFG_MAX_SEGMENTS];
     cs_piece pieces[CS_CFG_MAX_PIECES];
-    cs_index order[CS_CFG_MAX_PIECES];   /* pieces sorted by y_top */
+    cs_index order[CS_CFG_MAX_PIECES];   /* pieces by where they start (cs_frame.c) */
     uint16_t region_cel[CS_CFG_MAX_REGIONS];
     float region_E[CS_CFG_MAX_REGIONS][3];
     float region_T[CS_CFG_MAX_REGIONS][3];

@@ -26,6 +26,51 @@
  */
 #include "cs_runs.h"
 
+#if defined(__AVX2__) && defined(__BMI2__) && defined(__GNUC__) && defined(__x86_64__)
+typedef int32_t v8i __attribute__((vector_size(32)));
+typedef float v8f __attribute__((vector_size(32)));
+typedef int32_t v8i_u __attribute__((vector_size(32), aligned(4), may_alias));
+
+/*
+ * The active pieces that still reach below `top`, kept in order at the
+ * list's start, eight at a time (the x86-64-v3 build, 4-byte indices):
+ * the eight pieces' y_bot by one gather, the compare as a mask, and the
+ * kept indices packed left by one permute whose lane order pdep and pext
+ * make from the mask. Each store of eight lanes lies at or before the
+ * entries not yet read. ~2.5 instructions a piece where the scalar loop
+ * (below) takes ~9, ~90 k pieces a Many-blobs frame. Returns how many of
+ * the first n8 (a multiple of 8) are kept.
+ */
+static uint32_t keep_active8(cs_workspace *ws, float top, uint32_t n8)
+{
+    cs_index *a = ws->active;
+    const float *y_bot = &ws->pieces[0].y_bot;
+    const v8i stride = {6, 6, 6, 6, 6, 6, 6, 6}; /* sizeof (cs_piece) / 4, checked below */
+    const v8f tops = {top, top, top, top, top, top, top, top};
+    uint32_t kept = 0;
+    for (uint32_t i = 0; i < n8; i += 8) {
+        v8i p = *(const v8i_u *)&a[i];
+        v8i at = p * stride;
+        v8f yb, m;
+        __asm__("vpcmpeqd %1, %1, %1\n\tvgatherdps %1, (%2, %3, 4), %0"
+                : "=&x"(yb), "=&x"(m)
+                : "r"(y_bot), "x"(at));
+        uint32_t mask = (uint32_t)__builtin_ia32_movmskps256((v8f)(yb > tops));
+        uint64_t bytes = __builtin_ia32_pdep_di(mask, 0x0101010101010101ull) * 0xFFu;
+        uint64_t lanes = __builtin_ia32_pext_di(0x0706050403020100ull, bytes);
+        v8i order; /* the bytes of `lanes` widened to lanes (GCC builds it byte by byte) */
+        __asm__("vmovq %1, %x0\n\tvpmovzxbd %x0, %0" : "=x"(order) : "r"(lanes));
+        *(v8i_u *)&a[kept] = __builtin_ia32_permvarsi256(p, order);
+        kept += (uint32_t)__builtin_popcount(mask);
+    }
+    return kept;
+}
+#define KEEP8 (sizeof(cs_index) == 4 && sizeof(cs_piece) == 24)
+#else
+#define KEEP8 0
+#define keep_active8(ws, top, n8) 0u
+#endif
+
 /* Moves the active list to line y: adds pieces starting above y+1, drops
  * those ending at or above y. The list stays in piece (scene) order. */
 void cs__line_active(cs_renderer *r, int y)
@@ -39,8 +84,9 @@ void cs__line_active(cs_renderer *r, int y)
     /* Written whether kept or not, counted if kept: whether a piece ends
      * goes by the data, and as a branch it was mispredicted ~20 k times a
      * Many-blobs frame. */
-    uint32_t kept = 0;
-    for (uint32_t i = 0; i < r->active_count; i++) {
+    uint32_t n8 = KEEP8 ? r->active_count & ~7u : 0u;
+    uint32_t kept = n8 ? keep_active8(ws, top, n8) : 0u;
+    for (uint32_t i = n8; i < r->active_count; i++) {
         cs_index p = ws->active[i];
         ws->active[kept] = p;
         kept += ws->pieces[p].y_bot > top;

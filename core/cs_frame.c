@@ -23,8 +23,9 @@
  * expect (a horizontal edge is a segment without pieces). A board renders a scene larger than its
  * arena in bands of rows, each prepared as a viewport (firmware/fw_render.c).
  *
- * Pieces are then ordered by y_top so that each line can pick up the newly
- * active ones with a moving index instead of scanning them all.
+ * Pieces are then ordered by where they start (y_top, or its line: see
+ * goes_before) so that each line can pick up the newly active ones with a
+ * moving index instead of scanning them all.
  *
  * The frame also fixes what the lines need besides geometry: each region's
  * (E, T) map under its cel's lights (or, for functional paints, each
@@ -195,24 +196,78 @@ static cs_status contour_pieces(cs_renderer *r, cs__contour_iter *it, uint8_t op
     }
 }
 
+/*
+ * The pieces are ordered so that the ones a line takes come first:
+ * cs__line_active takes a piece at line y once y_top < y + 1, and keeps the
+ * newly active pieces of a line in piece order whatever their order here.
+ * So the key can be y_top, or the line of the window on which a piece is
+ * first taken, floor(y_top) counted from the window's top (vh: none of
+ * its lines), with ties in piece order. Lines are few, so where the
+ * workspace has room for a count a line (LINE_COUNTS, the hosts) the
+ * pieces are sorted by that line, by counting, in time linear in the
+ * pieces (a merge sort by y_top was ~0.8 M instructions of a Many-blobs
+ * frame); the boards, with a few dozen pieces and no such room, keep a
+ * stable merge sort by y_top.
+ */
+#define LINE_COUNTS (CS_CFG_MAX_HEIGHT + 1 <= CS_CFG_MAX_PIECES)
+
+#if LINE_COUNTS
+static uint32_t due_line(const cs_renderer *r, float y_top)
+{
+    float y = cs__clampf(y_top, (float)r->vy, (float)(r->vy + r->vh));
+    return (uint32_t)(int32_t)y - (uint32_t)r->vy; /* y >= vy >= 0: the cast is floor */
+}
+#endif
+
+/* Whether piece a goes before piece b in the order. */
+static bool goes_before(const cs_renderer *r, const cs_piece *a, const cs_piece *b)
+{
+#if LINE_COUNTS
+    return due_line(r, a->y_top) < due_line(r, b->y_top);
+#else
+    (void)r;
+    return a->y_top < b->y_top;
+#endif
+}
+
 /* The sorted runs a[lo, mid) and a[mid, hi) of piece indices, merged into
- * b[lo, hi) by y_top; on a tie the left run's piece first (stable). */
-static void merge_by_top(const cs_piece *pieces, const cs_index *a, cs_index *b, uint32_t lo,
+ * b[lo, hi); on a tie the left run's piece first (stable). */
+static void merge_by_top(const cs_renderer *r, const cs_index *a, cs_index *b, uint32_t lo,
                          uint32_t mid, uint32_t hi)
 {
+    const cs_piece *pieces = r->ws->frame.pieces;
     uint32_t i = lo, j = mid, k = lo;
     while (i < mid && j < hi)
-        b[k++] = pieces[a[j]].y_top < pieces[a[i]].y_top ? a[j++] : a[i++];
+        b[k++] = goes_before(r, &pieces[a[j]], &pieces[a[i]]) ? a[j++] : a[i++];
     while (i < mid)
         b[k++] = a[i++];
     while (j < hi)
         b[k++] = a[j++];
 }
 
-/* Stable merge sort of piece indices by y_top, using ws->scratch. */
-static void sort_by_top(cs_workspace *ws, uint32_t n)
+/* The frame's pieces in order (above): by counting, with a count a line
+ * in ws->active (idle until the first line), or by a stable merge sort
+ * using ws->scratch. */
+static void sort_by_top(cs_renderer *r)
 {
+    cs_workspace *ws = r->ws;
     cs_frame_data *fd = &ws->frame;
+    uint32_t n = r->piece_count;
+#if LINE_COUNTS
+    cs_index *at = ws->active; /* per line: its count, then where its next piece goes */
+    uint32_t lines = (uint32_t)r->vh + 1u;
+    for (uint32_t b = 0; b < lines; b++)
+        at[b] = 0;
+    for (uint32_t p = 0; p < n; p++)
+        at[due_line(r, fd->pieces[p].y_top)]++;
+    for (uint32_t b = 0, sum = 0; b < lines; b++) {
+        uint32_t c = at[b];
+        at[b] = (cs_index)sum;
+        sum += c;
+    }
+    for (uint32_t p = 0; p < n; p++)
+        fd->order[at[due_line(r, fd->pieces[p].y_top)]++] = (cs_index)p;
+#else
     cs_index *a = fd->order, *b = ws->scratch;
     for (uint32_t i = 0; i < n; i++)
         a[i] = (cs_index)i;
@@ -220,7 +275,7 @@ static void sort_by_top(cs_workspace *ws, uint32_t n)
         for (uint32_t lo = 0; lo < n; lo += 2 * width) {
             uint32_t mid = lo + width < n ? lo + width : n;
             uint32_t hi = lo + 2 * width < n ? lo + 2 * width : n;
-            merge_by_top(fd->pieces, a, b, lo, mid, hi);
+            merge_by_top(r, a, b, lo, mid, hi);
         }
         cs_index *t = a;
         a = b;
@@ -229,6 +284,7 @@ static void sort_by_top(cs_workspace *ws, uint32_t n)
     if (a != fd->order)
         for (uint32_t i = 0; i < n; i++)
             fd->order[i] = a[i];
+#endif
 }
 
 cs_render_opts cs_render_defaults(int width, int height)
@@ -441,9 +497,11 @@ static void clear_lines(cs_renderer *r)
     for (uint32_t w = 0; w < sizeof ws->touched / sizeof ws->touched[0]; w++)
         ws->touched[w] = 0u;
 #if CS_CFG_EXACT
-    if (r->opts.aa == CS_AA_EXACT) /* no row placed yet (cs_exact.c) */
-        for (uint32_t i = 0; i < r->piece_count; i++)
+    if (r->opts.aa == CS_AA_EXACT) /* no row placed yet (cs_exact.c), no level held */
+        for (uint32_t i = 0; i < r->piece_count; i++) {
             ws->level_memo[i].y = -1.0f;
+            ws->level_memo[i].n = 0;
+        }
 #endif
 }
 
@@ -666,7 +724,7 @@ cs_status cs__frame_prepare(cs_renderer *r, cs_workspace *ws, const cs_scene *sc
         }
     }
     r->grey = CS_CFG_GREY && grey;
-    sort_by_top(ws, r->piece_count);
+    sort_by_top(r);
     clear_lines(r);
     return CS_OK;
 }
@@ -762,14 +820,15 @@ static void join_paints(cs_frame_data *fd, const cs_renderer *p)
 }
 
 /*
- * The parts' pieces were each sorted by y_top on their own: the order is
+ * The parts' pieces were each sorted (goes_before) on their own: the order is
  * runs[0] sorted runs, run k from bound[k] to bound[k + 1]. Adjacent runs
  * are merged pairwise until one is left, the left run first on a tie, so
  * the order is the one sort_by_top gives the whole (a stable sort: ties
  * in piece order, and a part's pieces follow the earlier parts').
  */
-static void merge_runs(cs_workspace *ws, uint32_t *bound, int runs)
+static void merge_runs(const cs_renderer *r, uint32_t *bound, int runs)
 {
+    cs_workspace *ws = r->ws;
     cs_frame_data *fd = &ws->frame;
     cs_index *a = fd->order, *b = ws->scratch;
     while (runs > 1) {
@@ -777,7 +836,7 @@ static void merge_runs(cs_workspace *ws, uint32_t *bound, int runs)
         for (int k = 0; k < runs; k += 2) {
             uint32_t lo = bound[k], mid = bound[k + 1];
             uint32_t hi = k + 1 < runs ? bound[k + 2] : mid;
-            merge_by_top(fd->pieces, a, b, lo, mid, hi);
+            merge_by_top(r, a, b, lo, mid, hi);
             bound[out++] = lo;
         }
         bound[out] = bound[runs];
@@ -832,7 +891,7 @@ cs_status cs_frame_join(cs_renderer *r, const cs_renderer *const *parts, int n)
         r->cel_end = p->cel_end;
         bound[k + 2] = r->piece_count;
     }
-    merge_runs(r->ws, bound, n + 1);
+    merge_runs(r, bound, n + 1);
     clear_lines(r);
     return CS_OK;
 }

@@ -512,8 +512,11 @@ static inline float cs__srgb_encode(float linear)
  * code is not 0), which needs no square root, multiply or conversion. */
 #define CS__SRGB8_BITS_FIRST 0x391Eu /* bits >> 16 of the first cell */
 #define CS__SRGB8_BITS_CELLS 1634u   /* up to 1.0 */
-extern const uint8_t cs__srgb8_base[1024], cs__srgb8_bits_base[CS__SRGB8_BITS_CELLS];
-extern const float cs__srgb8_step[1024], cs__srgb8_bits_step[CS__SRGB8_BITS_CELLS];
+#define CS__SRGB8_BITS_PAD 3u        /* zero bytes after the base table, for dword gathers */
+/* The bits tables have one cell more, 1.0's (cs__srgb8_px). */
+extern const uint8_t cs__srgb8_base[1024],
+    cs__srgb8_bits_base[CS__SRGB8_BITS_CELLS + 1 + CS__SRGB8_BITS_PAD];
+extern const float cs__srgb8_step[1024], cs__srgb8_bits_step[CS__SRGB8_BITS_CELLS + 1];
 static inline uint32_t cs__srgb8(float linear)
 {
 #if CS_CFG_SRGB8_BITS

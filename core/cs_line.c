@@ -7,6 +7,7 @@
  * (cs_render_frame). Nothing is carried from line to line but the active
  * list, so a line comes out the same whichever lines were rendered before it.
  */
+#include "cs_rgb888.h"
 #include "cs_runs.h"
 
 /*
@@ -59,9 +60,82 @@ static void finish_line(cs_renderer *r)
         finish_line_as(r, false);
 }
 
+#if CS__RGB888_VEC
+/*
+ * finish_line_as and the 8-bit sRGB conversion of its runs in one pass, for
+ * the display path (cs_render_line_px): a second walk over ~100 k runs a
+ * Many-blobs frame, reloading each run's floats, and the codes channel by
+ * channel cost more than the arithmetic. Each run's pixel is finished as
+ * one vector of its three channels (lane 3 is 0 throughout), by the same
+ * operations as finish_line_as lane by lane (E + T L unfused, then maxps
+ * with 0 and minps with 1, the instructions of cs__clampf), so the same
+ * bits, stored back, so the runs hold the line's pixels as after
+ * cs_render_line_runs. Equal neighbours are not joined: on Many-blobs 3 k
+ * of 94 k runs would be, and their test cost more than their codes and
+ * stores. A run is written once the next one's start is known, with its
+ * codes from cs__srgb8_lanes.
+ */
+typedef struct fused_line {
+    float *stack_E;
+    const float *stack_T;
+    uint16_t *run_end;
+    uint8_t *out;
+    cs__v4f L;
+    px16_u8 codes;   /* the previous run's 8-bit codes (cs__srgb8_lanes) */
+    uint32_t prev;   /* and its start */
+} fused_line;
+
+/* The runs from s on while s < limit; a run is written ahead of its end
+ * (`ahead`: limit leaves 15 pixels of room) or exactly. Returns the next s. */
+static CS__SPECIALISE uint32_t fused_runs(fused_line *f, bool grey, uint32_t s, uint32_t limit,
+                                          bool ahead)
+{
+    const cs__v4f zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
+    const cs__v4i three = {-1, -1, -1, 0}; /* the lanes of a pixel's channels */
+    while (s < limit) {
+        const float *t = &f->stack_T[3 * s];
+        float *e3 = &f->stack_E[3 * s];
+        cs__v4f E = __builtin_ia32_maskloadps((const cs__v4f *)e3, three);
+        cs__v4f T = grey ? (cs__v4f){t[0], t[0], t[0], t[0]}
+                         : __builtin_ia32_maskloadps((const cs__v4f *)t, three);
+        E = __builtin_ia32_minps(__builtin_ia32_maxps(E + T * f->L, zero), one);
+        __builtin_ia32_maskstoreps((cs__v4f *)e3, three, E);
+        /* The run before, written now that its end is known; the first
+         * time, an empty run at 0 (written ahead, then over). */
+        uint8_t *p = f->out + 3u * f->prev;
+        if (ahead)
+            cs__rgb888_ahead_lanes(p, s - f->prev, f->codes);
+        else
+            cs__rgb888_fill(p, s - f->prev, f->codes[0], f->codes[4], f->codes[8]);
+        f->codes = cs__srgb8_lanes(E);
+        f->prev = s;
+        s = f->run_end[s];
+    }
+    return s;
+}
+
+static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *out)
+{
+    cs_workspace *ws = r->ws;
+    uint32_t width = (uint32_t)r->vw;
+    fused_line f = {ws->stack_E, ws->stack_T, ws->run_end, out,
+                    (cs__v4f){r->behind[0], r->behind[1], r->behind[2], 0.0f}, (px16_u8){0}, 0};
+    /* A run found at s >= width - 14 ends the one before within 15 pixels
+     * of the line's end: that one and those after are written exactly. */
+    uint32_t s = fused_runs(&f, grey, 0, width > 14u ? width - 14u : 0u, true);
+    fused_runs(&f, grey, s, width, false);
+    cs__rgb888_fill(out + 3u * f.prev, width - f.prev, f.codes[0], f.codes[4], f.codes[8]);
+}
+#endif
+
+static bool line_ok(const cs_renderer *r, int y)
+{
+    return r && r->ws && y >= r->vy && y - r->vy < r->vh;
+}
+
 cs_status cs_render_line_runs(cs_renderer *r, int y)
 {
-    if (!r || !r->ws || y < r->vy || y - r->vy >= r->vh)
+    if (!line_ok(r, y))
         return CS_ERR_ARG;
     cs__line_stack(r, y);
     finish_line(r);
@@ -118,6 +192,16 @@ cs_status cs_render_line_px(cs_renderer *r, int y, cs_pixfmt fmt, uint8_t *out)
 {
     if (!out)
         return CS_ERR_ARG;
+#if CS__RGB888_VEC
+    if (fmt == CS_PIX_RGB888_SRGB && line_ok(r, y) && r->opts.blend != CS_BLEND_SRGB) {
+        cs__line_stack(r, y);
+        if (CS_CFG_GREY && r->grey)
+            finish_rgb888_as(r, true, out);
+        else
+            finish_rgb888_as(r, false, out);
+        return CS_OK;
+    }
+#endif
     cs_status st = cs_render_line_runs(r, y);
     if (st == CS_OK)
         cs_line_pixels(r, fmt, out);

@@ -32,7 +32,7 @@
  * (equal floats encode equally; NaN never compares equal), a fraction of
  * the work.
  */
-#include "cs_internal.h"
+#include "cs_rgb888.h"
 
 /* 8x8 Bayer matrix: thresholds (2 b + 1) / 128 in (0, 1), never 0 or 1. */
 static const uint8_t bayer8[8][8] = {
@@ -200,113 +200,13 @@ void cs_pixfmt_convert_dither(cs_pixfmt fmt, const float *rgb, int width, int y,
     convert(fmt, rgb, width, y < 0 ? 0 : y, out);
 }
 
-/* Four bytes at p, least significant first: byte stores the compiler may
- * merge into one word store where the target allows unaligned words. */
-static inline void put32(uint8_t *p, uint32_t w)
-{
-    p[0] = (uint8_t)w;
-    p[1] = (uint8_t)(w >> 8);
-    p[2] = (uint8_t)(w >> 16);
-    p[3] = (uint8_t)(w >> 24);
-}
-
-#if defined(__SSE2__)
-/*
- * Sixteen pixels of 8-bit codes are 48 bytes, three 16-byte stores of the
- * three phases of the 12-byte pattern w0 w1 w2 (x86 is little-endian, and
- * SSE2 stores need no alignment). A run of n >= 16 pixels is such blocks
- * from its start, and a last block that ends at its end: it overlaps the
- * one before by a whole number of pixels, so it writes the same bytes
- * there, and no tail loop is needed. Written out because GCC, left to
- * vectorise the word loop below, built the pattern byte by byte (~100
- * instructions a run, more than the stores of a 100-pixel run).
- */
-typedef uint32_t px16_rgb888 __attribute__((vector_size(16), aligned(1), may_alias));
-
-static inline void fill_rgb888_wide(uint8_t *p, uint32_t n, uint32_t w0, uint32_t w1, uint32_t w2)
-{
-    px16_rgb888 a = {w0, w1, w2, w0}, b = {w1, w2, w0, w1}, c = {w2, w0, w1, w2};
-    uint8_t *last = p + 3u * (n - 16u);
-    for (; p < last; p += 48) {
-        *(px16_rgb888 *)p = a;
-        *(px16_rgb888 *)(p + 16) = b;
-        *(px16_rgb888 *)(p + 32) = c;
-    }
-    *(px16_rgb888 *)last = a;
-    *(px16_rgb888 *)(last + 16) = b;
-    *(px16_rgb888 *)(last + 32) = c;
-}
-#endif
-
-#if defined(__SSSE3__)
-/*
- * With SSSE3 (the x86-64-v3 build) a run's pixel, c0 | c1 << 8 | c2 << 16,
- * becomes the three 16-byte phases by one byte shuffle each, and a line's
- * runs, converted left to right, are written 16 pixels a step from each
- * run's start while the run lasts, past its end by up to 15 pixels, which
- * the runs after it then overwrite. Every run, a 1-pixel edge or a
- * 300-pixel interior, takes one loop with no test of its length: the
- * length tests of fill_rgb888 were mispredicted ~60 k times a Many-blobs
- * exact frame (cachegrind --branch-sim), where edge pixels and interiors
- * alternate. The caller leaves it the runs within 15 pixels of the line's
- * end, where there is no room to write ahead.
- */
-typedef uint8_t px16_u8 __attribute__((vector_size(16)));
-
-static inline void fill_rgb888_ahead(uint8_t *p, uint32_t n, uint32_t px)
-{
-    px16_u8 v = (px16_u8)(px16_rgb888){px, 0u, 0u, 0u};
-    px16_rgb888 a = (px16_rgb888)__builtin_shuffle(
-        v, (px16_u8){0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0});
-    px16_rgb888 b = (px16_rgb888)__builtin_shuffle(
-        v, (px16_u8){1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1});
-    px16_rgb888 c = (px16_rgb888)__builtin_shuffle(
-        v, (px16_u8){2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2});
-    const uint8_t *end = p + 3u * n;
-    do {
-        *(px16_rgb888 *)p = a;
-        *(px16_rgb888 *)(p + 16) = b;
-        *(px16_rgb888 *)(p + 32) = c;
-        p += 48;
-    } while (p < end);
-}
-#endif
-
-/* n pixels of the 8-bit codes c0 c1 c2 at p: most runs are a pixel or two
- * of an edge, written byte by byte; long ones four pixels (three words) a
- * step, or on x86 sixteen (fill_rgb888_wide). */
-static inline void fill_rgb888(uint8_t *p, uint32_t n, uint32_t c0, uint32_t c1, uint32_t c2)
-{
-    if (n >= 8u) {
-        uint32_t w0 = c0 | c1 << 8 | c2 << 16 | c0 << 24;
-        uint32_t w1 = c1 | c2 << 8 | c0 << 16 | c1 << 24;
-        uint32_t w2 = c2 | c0 << 8 | c1 << 16 | c2 << 24;
-#if defined(__SSE2__)
-        if (n >= 16u) {
-            fill_rgb888_wide(p, n, w0, w1, w2);
-            return;
-        }
-#endif
-        for (; n >= 4u; n -= 4u, p += 12) {
-            put32(p, w0);
-            put32(p + 4, w1);
-            put32(p + 8, w2);
-        }
-    }
-    for (; n > 0u; n--, p += 3) {
-        p[0] = (uint8_t)c0;
-        p[1] = (uint8_t)c1;
-        p[2] = (uint8_t)c2;
-    }
-}
-
 /* n pixels of the RGB565 value v at p, little-endian: short runs pixel by
  * pixel, long ones two pixels (a word) a step. */
 static inline void fill_rgb565(uint8_t *p, uint32_t n, uint32_t v)
 {
     for (uint32_t w = v | v << 16; n >= 4u; n -= 4u, p += 8) {
-        put32(p, w);
-        put32(p + 4, w);
+        cs__put32(p, w);
+        cs__put32(p + 4, w);
     }
     for (; n > 0u; n--, p += 2) {
         p[0] = (uint8_t)v;
@@ -334,13 +234,7 @@ static void runs_rgb888(const float *rgb, const uint16_t *run_end, uint32_t widt
     for (uint32_t s = 0; s < width;) {
         uint32_t e = run_end[s];
         const float *v = &rgb[3 * s];
-        uint32_t c0 = cs__srgb8(v[0]), c1 = cs__srgb8(v[1]), c2 = cs__srgb8(v[2]);
-#if defined(__SSSE3__)
-        if (e + 15u <= width)
-            fill_rgb888_ahead(out + 3u * s, e - s, c0 | c1 << 8 | c2 << 16);
-        else
-#endif
-            fill_rgb888(out + 3u * s, e - s, c0, c1, c2);
+        cs__rgb888_run(out, s, e, width, cs__srgb8(v[0]), cs__srgb8(v[1]), cs__srgb8(v[2]));
         s = e;
     }
 }
@@ -350,7 +244,7 @@ static void runs_rgb888(const float *rgb, const uint16_t *run_end, uint32_t widt
 void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1, uint8_t *out)
 {
     if (fmt == CS_PIX_RGB888_SRGB) { /* convert() on one pixel, without its loop */
-        fill_rgb888(out + 3u * x0, x1 - x0, cs__srgb8(rgb[0]), cs__srgb8(rgb[1]),
+        cs__rgb888_fill(out + 3u * x0, x1 - x0, cs__srgb8(rgb[0]), cs__srgb8(rgb[1]),
                     cs__srgb8(rgb[2]));
         return;
     }
@@ -378,9 +272,9 @@ void cs__pixfmt_fill(cs_pixfmt fmt, const float rgb[3], uint32_t x0, uint32_t x1
         w[k] = (uint32_t)pat[4 * k] | (uint32_t)pat[4 * k + 1] << 8 |
                (uint32_t)pat[4 * k + 2] << 16 | (uint32_t)pat[4 * k + 3] << 24;
     for (; bytes >= 12u; bytes -= 12u, p += 12) {
-        put32(p, w[0]);
-        put32(p + 4, w[1]);
-        put32(p + 8, w[2]);
+        cs__put32(p, w[0]);
+        cs__put32(p + 4, w[1]);
+        cs__put32(p + 8, w[2]);
     }
     for (size_t k = 0; k < bytes; k++)
         p[k] = pat[k];

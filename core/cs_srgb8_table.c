@@ -5,13 +5,14 @@
  * For linear v in (0, 1) with i = (int)(sqrt(v) * 1024) < 1024, the code
  * round(255 * cs__srgb_encode(v)) is cs__srgb8_base[i] + (v >= cs__srgb8_step[i]).
  * With CS_CFG_SRGB8_BITS, i = (bits of v >> 16) - CS__SRGB8_BITS_FIRST in the
- * cs__srgb8_bits tables instead (below the first cell the code is 0).
+ * cs__srgb8_bits tables instead (below the first cell the code is 0; one
+ * cell more holds 1.0, and 3 zero bytes follow the base table).
  */
 #include "cs_internal.h"
 
 #if CS_CFG_SRGB8_BITS
 
-const uint8_t cs__srgb8_bits_base[1634] = {
+const uint8_t cs__srgb8_bits_base[1638] = {
     0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
     1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
     1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
@@ -114,10 +115,10 @@ const uint8_t cs__srgb8_bits_base[1634] = {
     232, 232, 233, 233, 234, 234, 235, 235, 236, 236, 237, 237, 238, 238, 239, 239,
     239, 240, 240, 241, 241, 242, 242, 243, 243, 244, 244, 245, 245, 246, 246, 246,
     247, 247, 248, 248, 249, 249, 250, 250, 251, 251, 251, 252, 252, 253, 253, 254,
-    254, 255,
+    254, 255, 255, 0, 0, 0,
 };
 
-const float cs__srgb8_bits_step[1634] = {
+const float cs__srgb8_bits_step[1635] = {
     0x1.3dcb18p-13f, 0x1p+1f, 0x1p+1f, 0x1p+1f,
     0x1p+1f, 0x1p+1f, 0x1p+1f, 0x1p+1f,
     0x1p+1f, 0x1p+1f, 0x1p+1f, 0x1p+1f,
@@ -526,7 +527,7 @@ const float cs__srgb8_bits_step[1634] = {
     0x1p+1f, 0x1.e73c94p-1f, 0x1p+1f, 0x1.ebaf94p-1f,
     0x1p+1f, 0x1p+1f, 0x1.f0289cp-1f, 0x1p+1f,
     0x1.f4a7b8p-1f, 0x1p+1f, 0x1.f92cdcp-1f, 0x1p+1f,
-    0x1.fdb816p-1f, 0x1p+1f,
+    0x1.fdb816p-1f, 0x1p+1f, 0x1p+1f,
 };
 
 #elif CS_CFG_SRGB8_TABLE

@@ -72,7 +72,8 @@ struct bands {
     span own[BANDS_MAX_THREADS + 1]; /* per worker, and the helping caller's last */
     int released;        /* lines before this the caller is done with */
     int busy;            /* workers inside a band */
-    bands_emit emit;
+    bands_emit emit;     /* after cs_render_line_runs, or */
+    bands_render render; /* instead of it */
     void *user;
     unsigned char *ready; /* per line: emitted */
     cs_error err;        /* the first capacity error in line order */
@@ -165,6 +166,10 @@ static bool next_band(bands *b, int t, const cs_renderer *r, bool take, int *y0,
 static void render_band(const bands *b, cs_renderer *r, int y0, int y1)
 {
     for (int y = y0; y < y1; y++) {
+        if (b->render) {
+            b->render(b->user, r, b->top + y, y);
+            continue;
+        }
         (void)cs_render_line_runs(r, b->top + y); /* y is within the window */
         b->emit(b->user, r, y);
     }
@@ -266,10 +271,11 @@ bands *bands_new(int threads)
     return b;
 }
 
-cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int window,
-                      bands_emit emit, void *user)
+/* bands_start or bands_start_render: one of emit and render is set. */
+static cs_status start(bands *b, const cs_renderer *prepared, int chunk, int window,
+                       bands_emit emit, bands_render render, void *user)
 {
-    if (!b || !prepared || !emit || chunk < 0 || prepared->vh > CS_CFG_MAX_HEIGHT)
+    if (!b || !prepared || (!emit && !render) || chunk < 0 || prepared->vh > CS_CFG_MAX_HEIGHT)
         return CS_ERR_ARG;
     if (chunk == 0 && window >= prepared->vh) {
         /* A frame in storage: bands of four lines. A thread goes on with
@@ -310,6 +316,7 @@ cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int wind
     for (int t = 0; t <= b->threads; t++)
         b->own[t] = (span){0, 0};
     b->emit = emit;
+    b->render = render;
     b->user = user;
     for (int y = 0; y < b->height; y++)
         b->ready[y] = 0;
@@ -318,6 +325,18 @@ cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int wind
     pthread_cond_broadcast(&b->work);
     pthread_mutex_unlock(&b->mu);
     return CS_OK;
+}
+
+cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int window,
+                      bands_emit emit, void *user)
+{
+    return start(b, prepared, chunk, window, emit, NULL, user);
+}
+
+cs_status bands_start_render(bands *b, const cs_renderer *prepared, int chunk, int window,
+                             bands_render render, void *user)
+{
+    return start(b, prepared, chunk, window, NULL, render, user);
 }
 
 /*

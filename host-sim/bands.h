@@ -73,6 +73,18 @@ cs_status bands_prepare(bands *b, cs_renderer *r, cs_workspace *ws, const cs_sce
 cs_status bands_start(bands *b, const cs_renderer *prepared, int chunk, int window,
                       bands_emit emit, void *user);
 
+/*
+ * Line y (device row `row`) to be rendered in r and converted out by the
+ * callback itself, on a worker thread: where one call does both in one
+ * pass (cs_render_line_px). Lines count as for bands_emit.
+ */
+typedef void (*bands_render)(void *user, cs_renderer *r, int row, int y);
+
+/* bands_start with the frame's lines rendered by `render` instead of
+ * cs_render_line_runs and then emitted. */
+cs_status bands_start_render(bands *b, const cs_renderer *prepared, int chunk, int window,
+                             bands_render render, void *user);
+
 /* Blocks until line y of the frame (of its window) has been emitted. */
 void bands_wait(bands *b, int y);
 

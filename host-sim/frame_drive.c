@@ -28,20 +28,25 @@ static cs_status show_line(frame_drive *d, int y, const uint8_t *bytes, const ui
     return CS_OK;
 }
 
-/* Line y, already rendered into the renderer's runs, to the display. */
-static cs_status drive_line(frame_drive *d, const cs_renderer *r, int y)
+/* Line y of the display, row `row` of the frame, rendered and shown: its
+ * display bytes straight from the line's finish (cs_render_line_px, one
+ * pass over the runs in 8-bit sRGB), the panel's pixels from the runs. */
+static cs_status drive_line(frame_drive *d, cs_renderer *r, int y, int row)
 {
-    cs_line_pixels(r, d->pixfmt, d->bytes);
+    cs_status st = cs_render_line_px(r, row, d->pixfmt, d->bytes);
+    if (st != CS_OK)
+        return st;
     if (d->panel != NULL)
         cs_line_pixels(r, CS_PANEL_PIXFMT, d->panel);
     return show_line(d, y, d->bytes, d->panel);
 }
 
-/* Line y on a worker: its display bytes and panel pixels into the frame's storage. */
-static void band_line(void *user, const cs_renderer *r, int y)
+/* Line y (device row `row`) on a worker: rendered, its display bytes and
+ * panel pixels into the frame's storage. */
+static void band_line(void *user, cs_renderer *r, int row, int y)
 {
     frame_drive *d = user;
-    cs_line_pixels(r, d->pixfmt, d->frame_bytes + (size_t)y * d->line_bytes);
+    (void)cs_render_line_px(r, row, d->pixfmt, d->frame_bytes + (size_t)y * d->line_bytes);
     if (d->panel != NULL)
         cs_line_pixels(r, CS_PANEL_PIXFMT, d->frame_panel + (size_t)y * panel_bytes(d));
 }
@@ -50,7 +55,7 @@ static void band_line(void *user, const cs_renderer *r, int y)
  * (in r itself, while it waits for a line), and shown in order. */
 static cs_status drive_bands(frame_drive *d, cs_renderer *r, cs_error *sticky)
 {
-    cs_status st = bands_start(d->pool, r, 0, d->dev->height, band_line, d);
+    cs_status st = bands_start_render(d->pool, r, 0, d->dev->height, band_line, d);
     for (int y = 0; y < d->dev->height && st == CS_OK; y++) {
         bands_help(d->pool, r, y);
         st = show_line(d, y, d->frame_bytes + (size_t)y * d->line_bytes,
@@ -93,16 +98,13 @@ int frame_drive_render(frame_drive *d, cs_renderer *r, cs_workspace *ws, const c
     if ((d->hal_st = hal_display_begin_frame(dev, NULL)) != HAL_OK)
         return FRAME_DRIVE_HAL;
     /* Lines go from the core's runs straight to display bytes: each run of
-     * equal pixels is converted once (cs_line_pixels). */
+     * equal pixels is converted once (cs_render_line_px, cs_line_pixels). */
     cs_error sticky;
     if (d->pool != NULL) {
         st = drive_bands(d, r, &sticky); /* window lines, as the display's rows */
     } else {
-        for (int y = 0; y < rows && st == CS_OK; y++) {
-            st = cs_render_line_runs(r, y0 + y);
-            if (st == CS_OK)
-                st = drive_line(d, r, y);
-        }
+        for (int y = 0; y < rows && st == CS_OK; y++)
+            st = drive_line(d, r, y, y0 + y);
         sticky = cs_frame_error(r);
     }
     if (st == CS_OK)

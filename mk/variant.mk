@@ -5,7 +5,8 @@
 # (or CELSCAN_CORE, or celsim --core) chooses.
 #
 #   make test-core-variant   the two builds render every scene alike (make test)
-#   make test-runs-v3        tests/test_runs on the x86-64-v3 build's objects (make test)
+#   make test-runs-v3        tests/test_runs on the x86-64-v3 build's objects, and
+#                            tests/test_pixfmt built for it (make test)
 #
 # Each build is merged into one relocatable object and its symbols renamed with
 # objcopy, so the two sit side by side: in the baseline build only the forwarded
@@ -100,10 +101,20 @@ $(V3_TEST_RUNS): $(HOST)/tests/test_runs.o $(HOST_TEST_REF_OBJ) \
         $(patsubst core/%.c,$(V3)/core/%.o,$(CORE_SRC))
 	$(Q)$(CC) $(TEST_CFLAGS) $^ -lm -o $@
 
+# test_pixfmt built for x86-64-v3 itself checks the display path's vector
+# lookup of 8-bit codes (cs__srgb8_lanes, cs_rgb888.h) against the scalar one.
+V3_TEST_PIXFMT := $(HOST)/tests/test_pixfmt_v3
+$(HOST)/tests/test_pixfmt_v3.o: tests/test_pixfmt.c Makefile $(FLAGS_DIR)/host-test
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(TEST_CFLAGS) -march=x86-64-v3 -c $< -o $@
+$(V3_TEST_PIXFMT): $(HOST)/tests/test_pixfmt_v3.o $(HOST_TEST_REF_OBJ) \
+        $(patsubst core/%.c,$(V3)/core/%.o,$(CORE_SRC))
+	$(Q)$(CC) $(TEST_CFLAGS) $^ -lm -o $@
+
 .PHONY: test-runs-v3
-test-runs-v3: $(V3_TEST_RUNS) $(HOST)/celsim
+test-runs-v3: $(V3_TEST_RUNS) $(V3_TEST_PIXFMT) $(HOST)/celsim
 	$(Q)if $(HOST)/celsim render scenes/demo.json --crc --core x86-64-v3 >/dev/null 2>&1; then \
-		$(V3_TEST_RUNS); \
+		$(V3_TEST_RUNS) && $(V3_TEST_PIXFMT); \
 	else \
 		echo "test-runs-v3: this CPU has no x86-64-v3, skipped"; \
 		echo "test-runs-v3: 0 passed, 0 failed"; \

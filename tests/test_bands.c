@@ -58,6 +58,16 @@ static void emit_floats(void *user, const cs_renderer *r, int y)
     bands_floats(r, k->frame + (size_t)(y % k->slots) * 3u * (size_t)k->width);
 }
 
+/* The pool's render (bands_start_render): line y rendered as floats into its slot. */
+static void render_floats(void *user, cs_renderer *r, int row, int y)
+{
+    const sink *k = user;
+    (void)cs_render_line(r, row, k->frame + (size_t)(y % k->slots) * 3u * (size_t)k->width);
+}
+
+/* Whether render_pool starts the pool with bands_start_render. */
+static bool g_render_lines;
+
 /* One renderer, every line: the truth. Returns its sticky error. */
 static cs_error render_one(const cs_render_opts *o, const cs_cache *cache)
 {
@@ -91,7 +101,8 @@ static int render_pool(bands *pool, const cs_render_opts *o, const cs_cache *cac
     int slots = window > 0 ? window : o->height;
     sink k = {got, o->width, slots};
     size_t line_floats = 3u * (size_t)o->width;
-    if (bands_start(pool, &prep, chunk, slots, emit_floats, &k) != CS_OK)
+    if ((g_render_lines ? bands_start_render(pool, &prep, chunk, slots, render_floats, &k)
+                        : bands_start(pool, &prep, chunk, slots, emit_floats, &k)) != CS_OK)
         return o->height;
     int bad = 0;
     for (int y = 0; y < o->height; y++) {
@@ -174,7 +185,9 @@ static void test_threads_match_one(void)
         bands_free(pool[t]);
 }
 
-/* Bands of one line, odd bands, a ring of a few lines, and a cached frame. */
+/* Bands of one line, odd bands, a ring of a few lines, and a cached frame;
+ * lines emitted after the pool rendered them, or rendered by the callback
+ * (bands_start_render). */
 static void test_band_shapes(void)
 {
     load("bench/blobs.json");
@@ -189,11 +202,15 @@ static void test_band_shapes(void)
         render_one(&o, NULL);
         for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++) {
             cs_error e;
-            for (int help = 0; help < 2; help++) {
+            for (int mode = 0; mode < 4; mode++) { /* helped or not, emit or render */
+                bool help = mode & 1;
+                g_render_lines = mode >> 1;
                 int bad = render_pool(pool, &o, NULL, shapes[k][0], shapes[k][1], help, &e);
-                CHECK(bad == 0, "aa %d, bands of %d lines, window %d, help %d: %d lines differ",
-                      (int)o.aa, shapes[k][0], shapes[k][1], help, bad);
+                CHECK(bad == 0,
+                      "aa %d, bands of %d lines, window %d, help %d, render %d: %d lines differ",
+                      (int)o.aa, shapes[k][0], shapes[k][1], help, (int)g_render_lines, bad);
             }
+            g_render_lines = false;
         }
     }
     /* A window smaller than a band could never start one. */

@@ -16,11 +16,15 @@
  * every step and cell boundary of the tables, and on a sweep of floats.
  * The RGB565 channel codes come from threshold tables (cs__rgb5, cs__rgb6),
  * compared with the interpolating encoder on every float in [0, 1].
+ * Built for x86-64-v3 (make test-runs-v3), the display path's lookup of a
+ * pixel's three codes at once (cs__srgb8_lanes) is compared with cs__srgb8
+ * likewise, in every lane.
  */
 #include <string.h>
 
 #include "common.h"
 #include "cs_internal.h"
+#include "cs_rgb888.h"
 
 static double srgb_exact(double v)
 {
@@ -313,12 +317,13 @@ static uint32_t packed_interpolated(float v, uint32_t max)
 /*
  * The RGB565 threshold tables against the interpolating encoder on every
  * float in [0, 1], both depths: a proof, not a sample (about 10 s). Under
- * the sanitizers, which make it minutes, every 61st float and the floats
- * around every threshold and cell boundary.
+ * the sanitizers, which make it minutes, and in the x86-64-v3 build (the
+ * same tables, proved by the baseline's run) every 61st float and the
+ * floats around every threshold and cell boundary.
  */
 static void test_rgb565_table(void)
 {
-#ifdef __SANITIZE_ADDRESS__
+#if defined(__SANITIZE_ADDRESS__) || CS__RGB888_VEC
     const uint32_t stride = 61u;
 #else
     const uint32_t stride = 1u;
@@ -358,11 +363,57 @@ static void test_rgb565_table(void)
               cs__rgb6(odd[k]), packed_interpolated(odd[k], 31u), packed_interpolated(odd[k], 63u));
 }
 
+#if CS__RGB888_VEC
+/* cs__srgb8_lanes of v in each lane (the others w) against cs__srgb8,
+ * counted into bad; its domain is [0, 1], a finished pixel's. */
+static void lanes_at(float v, float w, int *bad, int *checked, float *first_bad)
+{
+    if (!(v >= 0.0f && v <= 1.0f))
+        return;
+    for (int lane = 0; lane < 3; lane++) {
+        cs__v4f x = {w, w, w, 0.0f};
+        x[lane] = v;
+        px16_u8 c = cs__srgb8_lanes(x);
+        (*checked)++;
+        bool ok = c[12] == 0;
+        for (int k = 0; k < 3; k++)
+            ok = ok && c[4 * k] == cs__srgb8(x[k]);
+        if (!ok && (*bad)++ == 0)
+            *first_bad = v;
+    }
+}
+
+static void test_srgb8_lanes(void)
+{
+    int bad = 0, checked = 0;
+    float first_bad = 0.0f;
+    for (uint32_t i = 0; i <= CS__SRGB8_BITS_CELLS; i++) /* around each cell's start and step */
+        for (uint32_t d = 0; d <= 8u; d++) {
+            float w = (float)i / (float)CS__SRGB8_BITS_CELLS;
+            lanes_at(tl_float_of(((CS__SRGB8_BITS_FIRST + i) << 16) + d - 4u), w, &bad, &checked,
+                     &first_bad);
+            if (i < CS__SRGB8_BITS_CELLS)
+                lanes_at(tl_float_of(tl_bits_of(cs__srgb8_bits_step[i]) + d - 4u), w, &bad,
+                         &checked, &first_bad);
+        }
+    for (uint32_t b = 0u; b <= 0x3F800000u; b += 97u) /* a sweep of [0, 1] */
+        lanes_at(tl_float_of(b), tl_float_of(0x3F800000u - b), &bad, &checked, &first_bad);
+    const float ends[] = {0.0f, 1e-40f, 1e-10f, 0.5f, 0x1.fffffep-1f, 1.0f};
+    for (size_t k = 0; k < sizeof ends / sizeof ends[0]; k++)
+        lanes_at(ends[k], ends[(k + 1) % 6], &bad, &checked, &first_bad);
+    CHECK(bad == 0, "cs__srgb8_lanes differs from cs__srgb8 at %d of %d floats (first %a)", bad,
+          checked, (double)first_bad);
+}
+#endif
+
 int main(int argc, char **argv)
 {
     (void)argc;
     TL_RUN(test_srgb_encode16);
     TL_RUN(test_srgb8_table);
+#if CS__RGB888_VEC
+    TL_RUN(test_srgb8_lanes);
+#endif
     TL_RUN(test_rgb565_table);
     TL_RUN(test_packed_formats);
     TL_RUN(test_in_place);

@@ -101,12 +101,13 @@ static int make_table(bool by_bits, int cells, int *base, float *step)
     return 0;
 }
 
-static void print_table(const char *name, int cells, const int *base, const float *step)
+/* `pad` zero bytes follow the base table (for dword gathers: cs__srgb8_px). */
+static void print_table(const char *name, int cells, int pad, const int *base, const float *step)
 {
-    printf("const uint8_t cs__%s_base[%d] = {\n", name, cells);
-    for (int i = 0; i < cells; i++)
-        printf("%s%d,%s", i % 16 == 0 ? "    " : "", base[i],
-               i % 16 == 15 || i + 1 == cells ? "\n" : " ");
+    printf("const uint8_t cs__%s_base[%d] = {\n", name, cells + pad);
+    for (int i = 0; i < cells + pad; i++)
+        printf("%s%d,%s", i % 16 == 0 ? "    " : "", i < cells ? base[i] : 0,
+               i % 16 == 15 || i + 1 == cells + pad ? "\n" : " ");
     printf("};\n\nconst float cs__%s_step[%d] = {\n", name, cells);
     for (int i = 0; i < cells; i++)
         printf("%s%af,%s", i % 4 == 0 ? "    " : "", (double)step[i],
@@ -116,11 +117,15 @@ static void print_table(const char *name, int cells, const int *base, const floa
 
 int main(void)
 {
-    static int base[CELLS], bbase[CS__SRGB8_BITS_CELLS];
-    static float step[CELLS], bstep[CS__SRGB8_BITS_CELLS];
+    static int base[CELLS], bbase[CS__SRGB8_BITS_CELLS + 1];
+    static float step[CELLS], bstep[CS__SRGB8_BITS_CELLS + 1];
     if (make_table(false, CELLS, base, step) != 0 ||
         make_table(true, CS__SRGB8_BITS_CELLS, bbase, bstep) != 0)
         return 1;
+    /* One cell more, 1.0's (code 255, no step), for lookups of [0, 1]
+     * without an upper bound test (cs__srgb8_px). */
+    bbase[CS__SRGB8_BITS_CELLS] = 255;
+    bstep[CS__SRGB8_BITS_CELLS] = 2.0f;
     /* The last cell reaches 1.0: every float in (0, 1) has a cell. */
     if ((0x3F800000u >> BITS_SHIFT) - CS__SRGB8_BITS_FIRST != CS__SRGB8_BITS_CELLS) {
         fprintf(stderr, "CS__SRGB8_BITS_CELLS: the cells end before 1.0\n");
@@ -131,11 +136,12 @@ int main(void)
            " *\n * For linear v in (0, 1) with i = (int)(sqrt(v) * 1024) < 1024, the code\n"
            " * round(255 * cs__srgb_encode(v)) is cs__srgb8_base[i] + (v >= cs__srgb8_step[i]).\n"
            " * With CS_CFG_SRGB8_BITS, i = (bits of v >> 16) - CS__SRGB8_BITS_FIRST in the\n"
-           " * cs__srgb8_bits tables instead (below the first cell the code is 0).\n"
+           " * cs__srgb8_bits tables instead (below the first cell the code is 0; one\n"
+           " * cell more holds 1.0, and 3 zero bytes follow the base table).\n"
            " */\n#include \"cs_internal.h\"\n\n#if CS_CFG_SRGB8_BITS\n\n");
-    print_table("srgb8_bits", CS__SRGB8_BITS_CELLS, bbase, bstep);
+    print_table("srgb8_bits", CS__SRGB8_BITS_CELLS + 1, CS__SRGB8_BITS_PAD, bbase, bstep);
     printf("\n#elif CS_CFG_SRGB8_TABLE\n\n");
-    print_table("srgb8", CELLS, base, step);
+    print_table("srgb8", CELLS, 0, base, step);
     printf("\n#endif /* CS_CFG_SRGB8_BITS, CS_CFG_SRGB8_TABLE */\n");
     return 0;
 }
