@@ -497,11 +497,9 @@ static void clear_lines(cs_renderer *r)
     for (uint32_t w = 0; w < sizeof ws->touched / sizeof ws->touched[0]; w++)
         ws->touched[w] = 0u;
 #if CS_CFG_EXACT
-    if (r->opts.aa == CS_AA_EXACT) /* no row placed yet (cs_exact.c), no level held */
-        for (uint32_t i = 0; i < r->piece_count; i++) {
+    if (r->opts.aa == CS_AA_EXACT) /* no row placed yet: -1 lies below every key (cs_exact_place.c) */
+        for (uint32_t i = 0; i < r->piece_count; i++)
             ws->level_memo[i].y = -1.0f;
-            ws->level_memo[i].n = 0;
-        }
 #endif
 }
 
