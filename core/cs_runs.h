@@ -75,11 +75,29 @@ static inline uint32_t cs__low_bit(uint32_t v)
 #endif
 }
 
-/* The start of the run holding pixel x. Pixel 0 always starts a run. */
+#if defined(__GNUC__) && defined(__x86_64__)
+/* Two words of a bitmap read as one (x86-64 loads it unaligned). */
+typedef uint64_t cs__bits64 __attribute__((may_alias, aligned(4)));
+#define CS__BITS64 1
+#else
+#define CS__BITS64 0
+#endif
+
+/* The start of the run holding pixel x. Pixel 0 always starts a run. The
+ * scan back goes over long runs (a blob's interior, the clear line), ~8
+ * words a call on Many-blobs: x86-64 reads two words a step. */
 static inline uint32_t cs__run_start(const cs_workspace *ws, uint32_t x)
 {
     uint32_t w = x >> 5;
     uint32_t bits = ws->run_starts[w] & (0xFFFFFFFFu >> (31u - (x & 31u)));
+#if CS__BITS64
+    while (bits == 0u && w >= 2u) {
+        w -= 2u;
+        uint64_t b = *(const cs__bits64 *)&ws->run_starts[w];
+        if (b != 0u)
+            return (w << 5) + 63u - (uint32_t)__builtin_clzll(b);
+    }
+#endif
     while (bits == 0u)
         bits = ws->run_starts[--w];
     return (w << 5) + cs__high_bit(bits);
