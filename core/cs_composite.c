@@ -100,7 +100,7 @@ static inline bool region_functional(const cs_region *region)
 typedef struct fold_paint {
     cs_renderer *r; /* the direct path counts opaque pixels in it */
     const cs_region *region;
-    float E[3], A[3]; /* the constant map (c = 1) when not functional */
+    float E[4], A[3]; /* the constant map (c = 1) when not functional; E[3] 0 */
     int y;            /* the line, for functional paints */
     bool functional;
     bool direct;      /* the cel's only region on this line: straight into the stack */
@@ -172,9 +172,17 @@ static CS__SPECIALISE void transmittance(float t[3], const float *A, float c, bo
 static CS__SPECIALISE void composite_direct(cs_renderer *r, bool grey, uint32_t s, uint32_t e,
                                             float c, const float *E, const float *A, bool snap)
 {
-    float cE[3], t[3];
+    float t[3];
+#if CS__VEC3
+    /* cE's lanes as cs__add_scaled3 reads them (E[3] is read too, and
+     * its lane discarded there). */
+    cs__v4 v = c * *(const cs__v4 *)E;
+    const float *cE = (const float *)&v;
+#else
+    float cE[3];
     for (int ch = 0; ch < 3; ch++)
         cE[ch] = c * E[ch];
+#endif
     transmittance(t, A, c, snap, grey);
     cs__run_join(r, grey, s, e, cE, t);
 }
@@ -203,7 +211,8 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
                 for (uint32_t x = s;; x++) {
                     if (x + 1u < e)
                         cs__run_split(ws, grey, x, x + 1u);
-                    float E[3], A[3];
+                    float E[4], A[3]; /* E[3]: see composite_direct */
+                    E[3] = 0.0f;
                     paint_at(fp->r, fp->region, (float)((int32_t)x + fp->r->vx) + 0.5f,
                              (float)fp->y + 0.5f, E, A);
                     if (fp->direct)
@@ -268,6 +277,7 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
     fp.E[0] = E[0];
     fp.E[1] = E[1];
     fp.E[2] = E[2];
+    fp.E[3] = 0.0f;
     fp.A[0] = 1.0f - T[0];
     fp.A[1] = 1.0f - T[1];
     fp.A[2] = 1.0f - T[2];

@@ -211,6 +211,34 @@ static inline uint32_t cs__run_seek(const cs_workspace *ws, uint32_t s, uint32_t
     return s;
 }
 
+#if defined(__GNUC__) && defined(__AVX__)
+/* Three floats and the one after them as a vector (loads and stores of any
+ * alignment; AVX's vblendps keeps the fourth). */
+typedef float cs__v4 __attribute__((vector_size(16), aligned(4), may_alias));
+#define CS__VEC3 1
+#else
+#define CS__VEC3 0
+#endif
+
+/* d[0..2] += T * E[0..2]: the products and sums of the channels, each the
+ * same bits as alone. The AVX build takes one vector for the three (6
+ * instructions instead of 9, on each of ~133 k joins a Many-blobs exact
+ * frame) and writes the fourth float back as it read it: it is the next
+ * pixel's E[0], whose run may start there. E[3] is read (a float of the
+ * same object or struct: cel_E and stack_E are followed by more floats,
+ * a cache run's E by its T) and its lane discarded. */
+static inline void cs__add_scaled3(float *d, float T, const float *E)
+{
+#if CS__VEC3
+    cs__v4 v = *(const cs__v4 *)d;
+    cs__v4 sum = v + T * *(const cs__v4 *)E;
+    *(cs__v4 *)d = __builtin_shufflevector(sum, v, 0, 1, 2, 7);
+#else
+    for (int ch = 0; ch < 3; ch++)
+        d[ch] += T * E[ch];
+#endif
+}
+
 /* Puts a map (E, t) behind the stack of the run [s, e): E_s += T_s E,
  * T_s *= t; the run is counted opaque once T_s is 0 on every channel, if
  * the early-out is on (r->record): with it off, no bit of opaque_bits is
@@ -225,8 +253,7 @@ static CS__SPECIALISE void cs__run_join(cs_renderer *r, bool grey, uint32_t s, u
     bool opaque;
     if (grey) {
         float T = st[0];
-        for (int ch = 0; ch < 3; ch++)
-            se[ch] += T * E[ch];
+        cs__add_scaled3(se, T, E);
         st[0] = T * t[0];
         opaque = st[0] == 0.0f;
     } else {
