@@ -200,7 +200,9 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
     for (;;) {
         uint32_t e = ws->run_end[s];
         if (!cs__run_opaque(fp->r, s)) {
-            e = cs__run_clip(ws, grey, &s, a, b);
+            /* A direct region's cel holds nothing (cs__run_split_as); the
+             * boards' one copy for both cases keeps the test. */
+            e = cs__run_clip_as(ws, grey, CS_CFG_GREY && fp->direct, &s, a, b);
             if (!fp->functional) {
                 if (fp->direct)
                     composite_direct(fp->r, grey, s, e, c, fp->E, fp->A, fp->snap);
@@ -210,7 +212,7 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
                 /* The paint varies along x: a run per pixel. */
                 for (uint32_t x = s;; x++) {
                     if (x + 1u < e)
-                        cs__run_split(ws, grey, x, x + 1u);
+                        cs__run_split_as(ws, grey, CS_CFG_GREY && fp->direct, x, x + 1u);
                     float E[4], A[3]; /* E[3]: see composite_direct */
                     E[3] = 0.0f;
                     paint_at(fp->r, fp->region, (float)((int32_t)x + fp->r->vx) + 0.5f,

@@ -131,14 +131,22 @@ static CS__SPECIALISE void cs__run_T(const cs_workspace *ws, bool grey, uint32_t
 }
 
 /* Splits the run starting at s at pixel x (s < x < run_end[s]). In a grey
- * frame only channel 0 of T and of the cel's A is kept (cs_renderer.grey). */
-static CS__SPECIALISE void cs__run_split(cs_workspace *ws, bool grey, uint32_t s, uint32_t x)
+ * frame only channel 0 of T and of the cel's A is kept (cs_renderer.grey).
+ * `bare`: the cel has reached no run of the line (used is 0 on all, as
+ * while a cel's only region on the line folds straight into the stack),
+ * so the new run's `used` is 0 without a read and a test. */
+static CS__SPECIALISE void cs__run_split_as(cs_workspace *ws, bool grey, bool bare, uint32_t s,
+                                            uint32_t x)
 {
     ws->run_end[x] = ws->run_end[s];
     ws->run_end[s] = (uint16_t)x;
     ws->run_starts[x >> 5] |= 1u << (x & 31u);
     cs__copy_map(&ws->stack_E[3 * x], &ws->stack_T[3 * x], &ws->stack_E[3 * s],
                  &ws->stack_T[3 * s], grey);
+    if (bare) {
+        ws->used[x] = 0.0f;
+        return;
+    }
     float used = ws->used[s];
     ws->used[x] = used;
     if (used != 0.0f) { /* a run the cel has not reached holds no cel values */
@@ -272,20 +280,27 @@ static CS__SPECIALISE void cs__run_join(cs_renderer *r, bool grey, uint32_t s, u
 }
 
 /* Splits the run at *s, which meets [a, b), so that it lies within [a, b);
- * *s becomes its start and the return value its end. */
-static CS__SPECIALISE uint32_t cs__run_clip(cs_workspace *ws, bool grey, uint32_t *s, uint32_t a,
-                                    uint32_t b)
+ * *s becomes its start and the return value its end. `bare` as for
+ * cs__run_split_as. */
+static CS__SPECIALISE uint32_t cs__run_clip_as(cs_workspace *ws, bool grey, bool bare,
+                                               uint32_t *s, uint32_t a, uint32_t b)
 {
     uint32_t e = ws->run_end[*s];
     if (*s < a) {
-        cs__run_split(ws, grey, *s, a);
+        cs__run_split_as(ws, grey, bare, *s, a);
         *s = a;
     }
     if (e > b) {
-        cs__run_split(ws, grey, *s, b);
+        cs__run_split_as(ws, grey, bare, *s, b);
         e = b;
     }
     return e;
+}
+
+static CS__SPECIALISE uint32_t cs__run_clip(cs_workspace *ws, bool grey, uint32_t *s, uint32_t a,
+                                            uint32_t b)
+{
+    return cs__run_clip_as(ws, grey, false, s, a, b);
 }
 
 #endif /* CS_RUNS_H */
