@@ -200,8 +200,8 @@ static inline bool cs__span_opaque(const cs_renderer *r, uint32_t a, uint32_t b)
 static inline void cs__mark_opaque(cs_workspace *ws, uint32_t a, uint32_t b)
 {
     uint32_t wa = a >> 5, wb = (b - 1u) >> 5;
-    if (wa == wb) {
-        ws->opaque_bits[wa] |= cs__bit_range(a & 31u, ((b - 1u) & 31u) + 1u);
+    if (wa == wb) { /* b - a bits from bit a & 31 */
+        ws->opaque_bits[wa] |= (0xFFFFFFFFu >> (32u - (b - a))) << (a & 31u);
         return;
     }
     ws->opaque_bits[wa] |= cs__bit_range(a & 31u, 32u);

@@ -329,8 +329,9 @@ static void random_bits(uint32_t *bits, size_t nw, double p)
 
 /* cs_runs.h's bitmap tests against a bit at a time: cs__span_opaque (the
  * clear bits shifted past the span's ends) on spans of every length from
- * 1 to the width, and cs__run_start (a backward scan, two words a step on
- * x86-64) on sparse and dense run starts. */
+ * 1 to the width, cs__mark_opaque (the same spans set on a clear bitmap)
+ * and cs__run_start (a backward scan, two words a step on x86-64) on
+ * sparse and dense run starts. */
 static void check_bitmaps(void)
 {
     tl_current = "bitmaps";
@@ -365,7 +366,18 @@ static void check_bitmaps(void)
             bad_start += cs__run_start(ws, x) != want;
         }
     }
+    int bad_mark = 0;
+    for (int q = 0; q < 4000; q++) { /* cs__mark_opaque sets [a, b) alone */
+        uint32_t a = (uint32_t)(tc_rand() * W);
+        uint32_t b = a + 1u + (uint32_t)(tc_rand() * (q & 1 ? 70u : W - a));
+        b = b > W ? W : b;
+        memset(ws->opaque_bits, 0, sizeof ws->opaque_bits);
+        cs__mark_opaque(ws, a, b);
+        for (uint32_t x = 0; x < nw * 32u; x++)
+            bad_mark += ((ws->opaque_bits[x >> 5] >> (x & 31u)) & 1u) != (x >= a && x < b);
+    }
     CHECK(bad_span == 0, "cs__span_opaque: %d of 40000 spans wrong", bad_span);
+    CHECK(bad_mark == 0, "cs__mark_opaque: %d wrong bits in 4000 spans", bad_mark);
     CHECK(bad_start == 0, "cs__run_start: %d of 40000 pixels wrong", bad_start);
     free(ws);
     tl_current = "";
