@@ -27,6 +27,7 @@
 
 #include "testlib.h"
 #include "common.h"
+#include "cs_runs.h"
 
 #define MAX_CELS 24
 
@@ -329,8 +330,83 @@ static void check_outputs(int W, int H, cs_aa_mode aa, int nsub, const char *mod
     free(px);
 }
 
+/* A random bitmap of `nw` words: bits set with probability p, and a few
+ * stretches of whole set words, so that long spans can be all set. */
+static void random_bits(uint32_t *bits, size_t nw, double p)
+{
+    for (size_t w = 0; w < nw; w++) {
+        uint32_t v = 0;
+        for (int k = 0; k < 32; k++)
+            if (tc_rand() < p)
+                v |= 1u << k;
+        bits[w] = v;
+    }
+    for (int k = 0; k < 3; k++) {
+        size_t w0 = (size_t)(tc_rand() * (double)nw), n = (size_t)(tc_rand() * 8.0);
+        for (size_t w = w0; w < w0 + n && w < nw; w++)
+            bits[w] = 0xFFFFFFFFu;
+    }
+}
+
+/* cs_runs.h's bitmap tests against a bit at a time: cs__span_opaque (the
+ * clear bits shifted past the span's ends) on spans of every length from
+ * 1 to the width, cs__mark_opaque (the same spans set on a clear bitmap)
+ * and cs__run_start (a backward scan, two words a step on x86-64) on
+ * sparse and dense run starts. */
+static void check_bitmaps(void)
+{
+    tl_current = "bitmaps";
+    cs_workspace *ws = calloc(1, sizeof *ws);
+    cs_renderer r;
+    memset(&r, 0, sizeof r);
+    r.ws = ws;
+    r.opaque_px = 1; /* anything but 0: the bits decide */
+    const uint32_t W = CS_CFG_MAX_WIDTH;
+    const size_t nw = (W + 31u) / 32u;
+    static const double density[] = {0.002, 0.05, 0.5, 0.97, 0.999};
+    int bad_span = 0, bad_start = 0;
+    for (int rep = 0; rep < 100; rep++) {
+        double p = density[rep % 5];
+        random_bits(ws->opaque_bits, nw, p);
+        for (int q = 0; q < 400; q++) {
+            uint32_t a = (uint32_t)(tc_rand() * W);
+            uint32_t most = q & 1 ? 70u : W - a;
+            uint32_t b = a + 1u + (uint32_t)(tc_rand() * most);
+            b = b > W ? W : b;
+            bool want = true;
+            for (uint32_t x = a; x < b && want; x++)
+                want = (ws->opaque_bits[x >> 5] >> (x & 31u)) & 1u;
+            bad_span += cs__span_opaque(&r, a, b) != want;
+        }
+        random_bits(ws->run_starts, nw, p < 0.5 ? p / 10.0 : 0.0);
+        ws->run_starts[0] |= 1u; /* pixel 0 starts a run */
+        for (int q = 0; q < 400; q++) {
+            uint32_t x = (uint32_t)(tc_rand() * W), want = x;
+            while (!((ws->run_starts[want >> 5] >> (want & 31u)) & 1u))
+                want--;
+            bad_start += cs__run_start(ws, x) != want;
+        }
+    }
+    int bad_mark = 0;
+    for (int q = 0; q < 4000; q++) { /* cs__mark_opaque sets [a, b) alone */
+        uint32_t a = (uint32_t)(tc_rand() * W);
+        uint32_t b = a + 1u + (uint32_t)(tc_rand() * (q & 1 ? 70u : W - a));
+        b = b > W ? W : b;
+        memset(ws->opaque_bits, 0, sizeof ws->opaque_bits);
+        cs__mark_opaque(ws, a, b);
+        for (uint32_t x = 0; x < nw * 32u; x++)
+            bad_mark += ((ws->opaque_bits[x >> 5] >> (x & 31u)) & 1u) != (x >= a && x < b);
+    }
+    CHECK(bad_span == 0, "cs__span_opaque: %d of 40000 spans wrong", bad_span);
+    CHECK(bad_mark == 0, "cs__mark_opaque: %d wrong bits in 4000 spans", bad_mark);
+    CHECK(bad_start == 0, "cs__run_start: %d of 40000 pixels wrong", bad_start);
+    free(ws);
+    tl_current = "";
+}
+
 int main(void)
 {
+    check_bitmaps();
     static const int sizes[][2] = {{1, 9}, {7, 5}, {33, 20}, {64, 48}, {97, 61}, {700, 40}};
     tc_seed(20261121);
     for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
