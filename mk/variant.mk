@@ -114,7 +114,12 @@ $(V3_TEST_PIXFMT): $(HOST)/tests/test_pixfmt_v3.o $(HOST_TEST_REF_OBJ) \
 .PHONY: test-runs-v3
 test-runs-v3: $(V3_TEST_RUNS) $(V3_TEST_PIXFMT) $(HOST)/celsim
 	$(Q)if $(HOST)/celsim render scenes/demo.json --crc --core x86-64-v3 >/dev/null 2>&1; then \
-		$(V3_TEST_RUNS) && $(V3_TEST_PIXFMT); \
+		{ $(V3_TEST_RUNS) && $(V3_TEST_PIXFMT); } >$(HOST)/test-runs-v3.log 2>&1; rc=$$?; \
+		cat $(HOST)/test-runs-v3.log; \
+		awk -v rc=$$rc '/: [0-9]+ passed, [0-9]+ failed$$/ { p += $$(NF - 3); f += $$(NF - 1) } \
+			END { if (rc != 0 && f == 0) f = 1; \
+			      printf "test-runs-v3: %d passed, %d failed\n", p, f }' $(HOST)/test-runs-v3.log; \
+		exit $$rc; \
 	else \
 		echo "test-runs-v3: this CPU has no x86-64-v3, skipped"; \
 		echo "test-runs-v3: 0 passed, 0 failed"; \
