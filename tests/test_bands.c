@@ -65,9 +65,6 @@ static void render_floats(void *user, cs_renderer *r, int row, int y)
     (void)cs_render_line(r, row, k->frame + (size_t)(y % k->slots) * 3u * (size_t)k->width);
 }
 
-/* Whether render_pool starts the pool with bands_start_render. */
-static bool g_render_lines;
-
 /* One renderer, every line: the truth. Returns its sticky error. */
 static cs_error render_one(const cs_render_opts *o, const cs_cache *cache)
 {
@@ -84,11 +81,13 @@ static cs_error render_one(const cs_render_opts *o, const cs_cache *cache)
 /*
  * The frame on `pool` in bands of `chunk` (0: the default) with a window of
  * `window` lines (0: the whole frame), the caller rendering bands too when
- * `help` (bands_help); compares each line with `want` as the consumer
- * receives it. Returns the number of lines that differ.
+ * `help` (bands_help), the lines rendered by the pool's callback when
+ * `render` (bands_start_render) or else emitted after it rendered them;
+ * compares each line with `want` as the consumer receives it. Returns the
+ * number of lines that differ.
  */
 static int render_pool(bands *pool, const cs_render_opts *o, const cs_cache *cache, int chunk,
-                       int window, bool help, cs_error *err)
+                       int window, bool help, bool render, cs_error *err)
 {
     cs_renderer prep;
     cs_error e;
@@ -101,7 +100,7 @@ static int render_pool(bands *pool, const cs_render_opts *o, const cs_cache *cac
     int slots = window > 0 ? window : o->height;
     sink k = {got, o->width, slots};
     size_t line_floats = 3u * (size_t)o->width;
-    if ((g_render_lines ? bands_start_render(pool, &prep, chunk, slots, render_floats, &k)
+    if ((render ? bands_start_render(pool, &prep, chunk, slots, render_floats, &k)
                         : bands_start(pool, &prep, chunk, slots, emit_floats, &k)) != CS_OK)
         return o->height;
     int bad = 0;
@@ -171,7 +170,7 @@ static void test_threads_match_one(void)
                     if (!pool[t % 4])
                         continue;
                     cs_error et;
-                    int bad = render_pool(pool[t % 4], &o, NULL, 0, 0, help, &et);
+                    int bad = render_pool(pool[t % 4], &o, NULL, 0, 0, help, false, &et);
                     CHECK(bad == 0 && et.status == e1.status,
                           "%s aa %d/%d blend %d, %d threads%s: %d lines differ from one thread "
                           "(errors %d, %d)",
@@ -203,14 +202,13 @@ static void test_band_shapes(void)
         for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++) {
             cs_error e;
             for (int mode = 0; mode < 4; mode++) { /* helped or not, emit or render */
-                bool help = mode & 1;
-                g_render_lines = mode >> 1;
-                int bad = render_pool(pool, &o, NULL, shapes[k][0], shapes[k][1], help, &e);
+                bool help = mode & 1, render = mode >> 1;
+                int bad =
+                    render_pool(pool, &o, NULL, shapes[k][0], shapes[k][1], help, render, &e);
                 CHECK(bad == 0,
                       "aa %d, bands of %d lines, window %d, help %d, render %d: %d lines differ",
-                      (int)o.aa, shapes[k][0], shapes[k][1], help, (int)g_render_lines, bad);
+                      (int)o.aa, shapes[k][0], shapes[k][1], help, render, bad);
             }
-            g_render_lines = false;
         }
     }
     /* A window smaller than a band could never start one. */
@@ -232,7 +230,7 @@ static void test_band_shapes(void)
     if (CHECK(st == CS_OK, "cs_cache_build: %s (%zu bytes needed)", cs_status_str(st),
               cache.bytes_needed)) {
         render_one(&o, &cache);
-        int bad = render_pool(pool, &o, &cache, 0, 0, true, &e);
+        int bad = render_pool(pool, &o, &cache, 0, 0, true, false, &e);
         CHECK(bad == 0, "cached frame on 3 threads: %d lines differ", bad);
     }
     bands_free(pool);
@@ -281,7 +279,7 @@ static void test_capacity_error_in_line_order(void)
         /* Bands of 3 lines: several threads meet the overflow, the lowest line wins. */
         for (int help = 0; help < 2; help++) {
             cs_error e4;
-            int bad = render_pool(pool, &o, NULL, 3, 0, help, &e4);
+            int bad = render_pool(pool, &o, NULL, 3, 0, help, false, &e4);
             CHECK(bad == 0, "aa %d, help %d: %d lines differ", aa, help, bad);
             CHECK(e4.status == e1.status && e4.cel == e1.cel && e4.region == e1.region &&
                       e4.item == e1.item,
