@@ -15,7 +15,9 @@
  * Three shapes of panel fit it:
  *  - A panel that latches every line (a frame buffer in a USB bridge, a
  *    controller's GRAM, a DRM dumb buffer) implements line_out, and
- *    begin_frame/end_frame where it has work to do around a frame.
+ *    begin_frame/end_frame where it has work to do around a frame. One whose
+ *    picture is memory the program writes may also lend its rows
+ *    (line_buffer), so a line is rendered where it is shown, not copied.
  *  - A panel that keeps its picture may take a frame limited to a window
  *    (rows y0..y1-1, columns x0..x1-1): only what changed travels. A backend
  *    that cannot narrow its writes refuses a window with HAL_ERR_CONFIG. An
@@ -129,6 +131,15 @@ typedef hal_status (*hal_begin_frame_fn)(hal_display *d, const hal_window *win);
 /* Row y of the frame in d->pixfmt: the window's columns, len bytes
  * (hal_line_bytes of the window's width). Rows increase within a frame. */
 typedef hal_status (*hal_line_out_fn)(hal_display *d, int y, const uint8_t *px, size_t len);
+/* Optional, for a display whose picture is memory the program can write (a
+ * frame buffer in RAM: the simulator's image, a memory-mapped panel): where
+ * row y of the frame goes, len bytes, so that a driver renders the row in
+ * place and hands line_out that same pointer, which then copies nothing.
+ * NULL where the display lends nothing now (outside a frame, a row outside
+ * the window or behind the last one sent, another length): the driver uses
+ * a buffer of its own. What is written there before line_out is on the
+ * glass already, as a half-sent row would be if the frame is abandoned. */
+typedef uint8_t *(*hal_line_buffer_fn)(hal_display *d, int y, size_t len);
 typedef hal_status (*hal_end_frame_fn)(hal_display *d);
 /* The pull lane: shows one frame, pulling its lines from src as the panel
  * needs them. Deadlines: line y (a row pair for HUB75) is due at
@@ -147,6 +158,7 @@ typedef struct hal_display_api {
                                      * screen"); NULL: "the display" */
     hal_begin_frame_fn begin_frame; /* optional */
     hal_line_out_fn line_out;       /* required, unless present is given */
+    hal_line_buffer_fn line_buffer; /* optional: rows written in place */
     hal_end_frame_fn end_frame;     /* optional */
     hal_present_fn present;         /* optional: the pull lane */
     int lanes;                      /* lanes present pulls with (1 or 2) */
@@ -182,6 +194,12 @@ static inline hal_status hal_display_begin_frame(hal_display *d, const hal_windo
 static inline hal_status hal_display_line_out(hal_display *d, int y, const uint8_t *px, size_t len)
 {
     return d->api->line_out(d, y, px, len);
+}
+
+/* Row y's bytes in the display's own memory, or NULL (a buffer of the caller's then). */
+static inline uint8_t *hal_display_line_buffer(hal_display *d, int y, size_t len)
+{
+    return d->api->line_buffer ? d->api->line_buffer(d, y, len) : NULL;
 }
 
 static inline hal_status hal_display_end_frame(hal_display *d)

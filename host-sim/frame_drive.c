@@ -30,15 +30,20 @@ static cs_status show_line(frame_drive *d, int y, const uint8_t *bytes, const ui
 
 /* Line y of the display, row `row` of the frame, rendered and shown: its
  * display bytes straight from the line's finish (cs_render_line_px, one
- * pass over the runs in 8-bit sRGB), the panel's pixels from the runs. */
+ * pass over the runs in 8-bit sRGB), into the display's own row where it
+ * lends one (the simulator's image: no copy), the panel's pixels from the
+ * runs. */
 static cs_status drive_line(frame_drive *d, cs_renderer *r, int y, int row)
 {
-    cs_status st = cs_render_line_px(r, row, d->pixfmt, d->bytes);
+    uint8_t *bytes = hal_display_line_buffer(d->dev, y, d->line_bytes);
+    if (bytes == NULL)
+        bytes = d->bytes;
+    cs_status st = cs_render_line_px(r, row, d->pixfmt, bytes);
     if (st != CS_OK)
         return st;
     if (d->panel != NULL)
         cs_line_pixels(r, CS_PANEL_PIXFMT, d->panel);
-    return show_line(d, y, d->bytes, d->panel);
+    return show_line(d, y, bytes, d->panel);
 }
 
 /* Line y (device row `row`) on a worker: rendered, its display bytes and

@@ -4,7 +4,8 @@
  * This is the seam DESIGN.md draws between the core and the display: the
  * core renders each line into its runs of equal pixels, which become the
  * display's pixel format (cs_line_pixels) and go out with
- * hal_display_line_out. It knows nothing of any backend, so the same driver
+ * hal_display_line_out, rendered in the display's own row where it lends
+ * one (hal_display_line_buffer). It knows nothing of any backend, so the same driver
  * serves the simulator and a Linux board with a real panel.
  *
  * The caller owns every buffer; nothing here allocates, so a render can be
@@ -22,7 +23,8 @@
 typedef struct frame_drive {
     /* Set by the caller. */
     hal_display *dev;
-    uint8_t *bytes;   /* hal_line_bytes of the display: one line in its format */
+    uint8_t *bytes;   /* hal_line_bytes of the display: one line in its format, for a
+                       * display that lends no row of its own (hal_display_line_buffer) */
     uint8_t *panel;   /* NULL, or width * bytes-per-pixel of CS_PANEL_PIXFMT to hash the frame */
     /* Optional: lines rendered on the pool's threads and on the calling one,
      * which renders bands in the renderer it prepared while it waits for the

@@ -12,6 +12,8 @@
  * line out of order, a bad window, a failed flush) come back as the same
  * hal_status with a "name: ..." message. Windows (frames that touch only
  * rows y0..y1 and columns x0..x1) change what is inside and nothing else.
+ * The simulator lends its rows for rendering in place only where line_out
+ * would take them next.
  * The GUD, DRM and HUB75 backends run the same case inside their emulated
  * device rigs (tests/linuxhal/test_gud.c, test_drm.c, test_hub75.c).
  */
@@ -272,6 +274,53 @@ static void test_abandon_and_empty(void)
     push_pair_close(&p);
 }
 
+/*
+ * The simulator lends its image's rows (display.h's line_buffer) only where
+ * line_out would take them next: inside a frame and its window, not behind a
+ * row sent, at the window's length. A row written in place and handed back
+ * to line_out is shown as written, and nothing outside the window moves.
+ */
+static void test_sim_line_buffer(void)
+{
+    size_t n = sim_display_image_bytes(W, H, CS_PIX_RGB888_SRGB);
+    uint8_t *img = malloc(n);
+    sim_display s;
+    if (!CHECK(sim_display_init(&s, W, H, CS_PIX_RGB888_SRGB, img, n) == HAL_OK, "sim init: %s", s.d.err)) {
+        free(img);
+        return;
+    }
+    hal_display *d = &s.d;
+    const hal_window win = {10, 20, 50, 30};
+    size_t lw = hal_line_bytes(d->pixfmt, win.x1 - win.x0);
+    CHECK(hal_display_line_buffer(d, 20, lw) == NULL, "a row lent outside a frame");
+    CHECK(hal_display_begin_frame(d, &win) == HAL_OK, "begin a window: %s", d->err);
+    CHECK(hal_display_line_buffer(d, 19, lw) == NULL, "row 19, above the window, lent");
+    CHECK(hal_display_line_buffer(d, 30, lw) == NULL, "row 30, below the window, lent");
+    CHECK(hal_display_line_buffer(d, 20, lw + 3) == NULL, "a row of another length lent");
+    for (int y = win.y0; y < win.y1; y++) {
+        uint8_t *row = hal_display_line_buffer(d, y, lw);
+        if (!CHECK(row == img + (size_t)y * s.line_bytes + 3u * (size_t)win.x0, "row %d lent elsewhere", y))
+            break;
+        memset(row, 0x40 + y, lw);
+        CHECK(hal_display_line_out(d, y, row, lw) == HAL_OK, "row %d handed back: %s", y, d->err);
+        CHECK(hal_display_line_buffer(d, y, lw) == NULL, "row %d lent again after it was sent", y);
+    }
+    CHECK(hal_display_end_frame(d) == HAL_OK, "end of the window: %s", d->err);
+    CHECK(hal_display_line_buffer(d, 25, lw) == NULL, "a row lent after the frame");
+    long bad = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < 3 * W; x++) {
+            bool in = y >= win.y0 && y < win.y1 && x / 3 >= win.x0 && x / 3 < win.x1;
+            bad += img[(size_t)y * s.line_bytes + (size_t)x] != (in ? 0x40 + y : 0);
+        }
+    CHECK(bad == 0, "%ld bytes of the picture are not what was written in place", bad);
+    const hal_window empty = {3, 4, 3, 9};
+    CHECK(hal_display_begin_frame(d, &empty) == HAL_OK && hal_display_line_buffer(d, 4, 0) == NULL,
+          "a row lent in an empty window");
+    hal_display_end_frame(d);
+    free(img);
+}
+
 /* A windowed frame changes its window and nothing else, and is flushed as that window. */
 static void test_window(void)
 {
@@ -370,6 +419,7 @@ int main(void)
     TL_RUN(test_sequence_errors);
     TL_RUN(test_abandon_and_empty);
     TL_RUN(test_window);
+    TL_RUN(test_sim_line_buffer);
     TL_RUN(test_no_allocation_per_frame);
     return tl_summary("test_display_conformance");
 }

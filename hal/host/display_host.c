@@ -145,8 +145,11 @@ static hal_status push_frame(hal_display *d, const hal_source *src, hal_frame_st
             return hal_display_fail(d, s, "the renderer failed on line %d", y);
         st->lines_rendered++;
         st->pixels_rendered += (uint64_t)cols;
-        hal_pixfmt_convert(d->pixfmt, rgb, cols, px);
-        if ((s = d->api->line_out(d, y, px, len)) != HAL_OK)
+        uint8_t *out = hal_display_line_buffer(d, y, len); /* in place, where lent */
+        if (out == NULL)
+            out = px;
+        hal_pixfmt_convert(d->pixfmt, rgb, cols, out);
+        if ((s = d->api->line_out(d, y, out, len)) != HAL_OK)
             return s;
         if (d->frame_period_ns && d->clock) {
             uint64_t due = d->frame_start_ns + (uint64_t)(y + 1) * d->frame_period_ns / (uint64_t)d->height;

@@ -28,6 +28,23 @@ static hal_status sim_begin_frame(hal_display *d, const hal_window *win)
     return HAL_OK;
 }
 
+/* Where row y of the current frame lies in the image: its window's columns. */
+static uint8_t *sim_row_at(sim_display *s, int y)
+{
+    return s->image + (size_t)y * s->line_bytes + hal_line_bytes(s->d.pixfmt, s->win.x0);
+}
+
+/* Lends row y of the image only where line_out would take it next: inside a
+ * frame, inside the window, not behind a row sent, at the window's length. */
+static uint8_t *sim_line_buffer(hal_display *d, int y, size_t len)
+{
+    sim_display *s = (sim_display *)d;
+    if (!s->in_frame || y < s->next_y || y >= s->win.y1 ||
+        len != hal_line_bytes(d->pixfmt, s->win.x1 - s->win.x0))
+        return NULL;
+    return sim_row_at(s, y);
+}
+
 static hal_status sim_line_out(hal_display *d, int y, const uint8_t *px, size_t len)
 {
     sim_display *s = (sim_display *)d;
@@ -40,7 +57,10 @@ static hal_status sim_line_out(hal_display *d, int y, const uint8_t *px, size_t 
     /* Rows may be skipped (the core allows it) but never revisited. */
     if (y < s->next_y)
         return hal_display_fail(d, HAL_ERR_SEQUENCE, "line %d after line %d", y, s->next_y - 1);
-    memcpy(s->image + (size_t)y * s->line_bytes + hal_line_bytes(d->pixfmt, s->win.x0), px, len);
+    /* A row rendered in place (sim_line_buffer) is there already. */
+    uint8_t *row = sim_row_at(s, y);
+    if (px != row)
+        memcpy(row, px, len);
     s->next_y = y + 1;
     s->rows_written++;
     return HAL_OK;
@@ -64,6 +84,7 @@ static const hal_display_api sim_display_api = {
     .name = "sim",
     .begin_frame = sim_begin_frame,
     .line_out = sim_line_out,
+    .line_buffer = sim_line_buffer,
     .end_frame = sim_end_frame,
 };
 

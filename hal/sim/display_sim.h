@@ -3,7 +3,8 @@
  *
  * A panel that lives in memory: every line it is sent is copied into an image
  * buffer that the caller owns, so the simulator can write the frame to a PNG
- * or hash it. It also checks the protocol a real panel would rely on (lines
+ * or hash it; a driver may instead render a row straight into the image
+ * (display.h's line_buffer), and line_out then copies nothing. It also checks the protocol a real panel would rely on (lines
  * only inside a frame, each row at most once, rows in increasing order, the
  * right length, inside the frame's window) and end_frame reports a whole
  * frame with missing rows, so a driver that works against the simulator works
