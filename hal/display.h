@@ -137,8 +137,11 @@ typedef hal_status (*hal_line_out_fn)(hal_display *d, int y, const uint8_t *px, 
  * place and hands line_out that same pointer, which then copies nothing.
  * NULL where the display lends nothing now (outside a frame, a row outside
  * the window or behind the last one sent, another length): the driver uses
- * a buffer of its own. What is written there before line_out is on the
- * glass already, as a half-sent row would be if the frame is abandoned. */
+ * a buffer of its own. A row lent stays lent until the frame ends: a
+ * driver may take several rows ahead and fill them in any order (threads),
+ * then hand each to line_out in order. What is written there before
+ * line_out is on the glass already, as a half-sent row would be if the
+ * frame is abandoned. */
 typedef uint8_t *(*hal_line_buffer_fn)(hal_display *d, int y, size_t len);
 typedef hal_status (*hal_end_frame_fn)(hal_display *d);
 /* The pull lane: shows one frame, pulling its lines from src as the panel

@@ -51,19 +51,34 @@ static cs_status drive_line(frame_drive *d, cs_renderer *r, int y, int row)
 static void band_line(void *user, cs_renderer *r, int row, int y)
 {
     frame_drive *d = user;
-    (void)cs_render_line_px(r, row, d->pixfmt, d->frame_bytes + (size_t)y * d->line_bytes);
+    (void)cs_render_line_px(r, row, d->pixfmt, d->band_bytes + (size_t)y * d->line_bytes);
     if (d->panel != NULL)
         cs_line_pixels(r, CS_PANEL_PIXFMT, d->frame_panel + (size_t)y * panel_bytes(d));
+}
+
+/* Where the pool renders the frame's lines: the display's own rows if it
+ * lends every row of the frame, one line_bytes after another (the
+ * simulator's image), so that no line is copied; else frame_bytes. */
+static uint8_t *band_storage(frame_drive *d)
+{
+    uint8_t *first = hal_display_line_buffer(d->dev, 0, d->line_bytes);
+    if (first == NULL)
+        return d->frame_bytes;
+    for (int y = 1; y < d->dev->height; y++)
+        if (hal_display_line_buffer(d->dev, y, d->line_bytes) != first + (size_t)y * d->line_bytes)
+            return d->frame_bytes;
+    return first;
 }
 
 /* The lines of the frame r prepared, rendered by the pool and by this thread
  * (in r itself, while it waits for a line), and shown in order. */
 static cs_status drive_bands(frame_drive *d, cs_renderer *r, cs_error *sticky)
 {
+    d->band_bytes = band_storage(d);
     cs_status st = bands_start_render(d->pool, r, 0, d->dev->height, band_line, d);
     for (int y = 0; y < d->dev->height && st == CS_OK; y++) {
         bands_help(d->pool, r, y);
-        st = show_line(d, y, d->frame_bytes + (size_t)y * d->line_bytes,
+        st = show_line(d, y, d->band_bytes + (size_t)y * d->line_bytes,
                        d->panel ? d->frame_panel + (size_t)y * panel_bytes(d) : NULL);
     }
     *sticky = bands_finish(d->pool);

@@ -29,9 +29,10 @@ typedef struct frame_drive {
     /* Optional: lines rendered on the pool's threads and on the calling one,
      * which renders bands in the renderer it prepared while it waits for the
      * next line to show (bands_help). Each line is converted on the thread
-     * that rendered it into frame_bytes (height lines of line_bytes)
-     * and, when panel is set, frame_panel (height lines of panel pixels),
-     * then shown and hashed in order, as one thread would. */
+     * that rendered it into frame_bytes (height lines of line_bytes), or
+     * into the display's own rows where it lends them all, and, when panel
+     * is set, frame_panel (height lines of panel pixels), then shown and
+     * hashed in order, as one thread would. */
     bands *pool;
     uint8_t *frame_bytes;
     uint8_t *frame_panel;
@@ -45,6 +46,7 @@ typedef struct frame_drive {
     /* Private: the display's format and line length for this frame. */
     cs_pixfmt pixfmt;
     size_t line_bytes;
+    uint8_t *band_bytes; /* where the pool's lines go: frame_bytes or the display's rows */
 } frame_drive;
 
 enum {

@@ -277,7 +277,8 @@ static void test_abandon_and_empty(void)
 /*
  * The simulator lends its image's rows (display.h's line_buffer) only where
  * line_out would take them next: inside a frame and its window, not behind a
- * row sent, at the window's length. A row written in place and handed back
+ * row sent (rows ahead too: threads fill them out of order), at the window's
+ * length. A row written in place and handed back
  * to line_out is shown as written, and nothing outside the window moves.
  */
 static void test_sim_line_buffer(void)
@@ -297,6 +298,8 @@ static void test_sim_line_buffer(void)
     CHECK(hal_display_line_buffer(d, 19, lw) == NULL, "row 19, above the window, lent");
     CHECK(hal_display_line_buffer(d, 30, lw) == NULL, "row 30, below the window, lent");
     CHECK(hal_display_line_buffer(d, 20, lw + 3) == NULL, "a row of another length lent");
+    CHECK(hal_display_line_buffer(d, 29, lw) == img + 29 * s.line_bytes + 3u * (size_t)win.x0,
+          "the window's last row not lent ahead of the others (threads fill rows out of order)");
     for (int y = win.y0; y < win.y1; y++) {
         uint8_t *row = hal_display_line_buffer(d, y, lw);
         if (!CHECK(row == img + (size_t)y * s.line_bytes + 3u * (size_t)win.x0, "row %d lent elsewhere", y))
