@@ -202,7 +202,7 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
     s = cs__run_seek(ws, s, a);
     for (;;) {
         uint32_t e = ws->run_end[s];
-        if (!cs__run_opaque(fp->r, s)) {
+        if (!cs__run_start_opaque(ws, s)) {
             /* A bare cel holds nothing (cs__run_split_as); the boards' one
              * copy for all cases keeps the test. */
             e = cs__run_clip_as(ws, grey, CS_CFG_GREY && fp->bare, &s, a, b);
@@ -438,9 +438,9 @@ static CS__SPECIALISE void composite_run(cs_renderer *r, uint32_t s, bool snap, 
 {
     cs_workspace *ws = r->ws;
     float t[3];
+    ws->used[s] = 0.0f; /* before the join, which may mark the run opaque there */
     transmittance(t, &ws->cel_A[3 * s], 1.0f, snap, grey);
     cs__run_join(r, grey, s, ws->run_end[s], &ws->cel_E[3 * s], t);
-    ws->used[s] = 0.0f;
 }
 
 #if CS_CFG_CEL_LIST
@@ -475,7 +475,7 @@ static CS__SPECIALISE void composite_cel_as(cs_renderer *r, uint32_t lo, uint32_
 {
     cs_workspace *ws = r->ws;
     for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s])
-        if (ws->used[s] != 0.0f)
+        if (ws->used[s] > 0.0f) /* not 0, nor an opaque run's CS__USED_OPAQUE */
             composite_run(r, s, snap, grey);
 }
 

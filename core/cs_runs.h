@@ -174,6 +174,23 @@ static inline bool cs__run_opaque(const cs_renderer *r, uint32_t s)
     return ((r->ws->opaque_bits[s >> 5] >> (s & 31u)) & 1u) != 0u;
 }
 
+/* The same at a run start s, from the run's `used`: cs__run_join sets it
+ * to CS__USED_OPAQUE where it marks the run opaque (no cel folds into an
+ * opaque run, so it is never read as coverage), and coverage is never
+ * negative, so the sign bit alone tells. One load and a test of the sign,
+ * against opaque_bits' load, shift and bit test, on each run a fold visits
+ * (fold_run_as). */
+#define CS__USED_OPAQUE (-1.0f)
+
+static inline bool cs__run_start_opaque(const cs_workspace *ws, uint32_t s)
+{
+    union {
+        float f;
+        int32_t i;
+    } u = {ws->used[s]};
+    return u.i < 0;
+}
+
 /* Bits a..b-1 of a word, 0 <= a < b <= 32. */
 static inline uint32_t cs__bit_range(uint32_t a, uint32_t b)
 {
@@ -297,6 +314,7 @@ static CS__SPECIALISE void cs__run_join(cs_renderer *r, bool grey, uint32_t s, u
     if (opaque && r->record) {
         r->opaque_px += e - s;
         cs__mark_opaque(r->ws, s, e);
+        r->ws->used[s] = CS__USED_OPAQUE; /* cs__run_start_opaque */
     }
 }
 
