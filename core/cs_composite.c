@@ -202,7 +202,7 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
     s = cs__run_seek(ws, s, a);
     for (;;) {
         uint32_t e = ws->run_end[s];
-        if (!cs__run_start_opaque(ws, s)) {
+        if (!cs__run_start_opaque(fp->r, s)) {
             /* A bare cel holds nothing (cs__run_split_as); the boards' one
              * copy for all cases keeps the test. */
             e = cs__run_clip_as(ws, grey, CS_CFG_GREY && fp->bare, &s, a, b);
