@@ -104,8 +104,7 @@ typedef struct fold_paint {
     int y;            /* the line, for functional paints */
     bool functional;
     bool direct;      /* the cel's only region on this line: straight into the stack */
-    bool bare;        /* the first of its cel to fold on this line: no run holds the cel
-                       * (only where CS_CFG_GREY copies the folds: see fold_region) */
+    bool bare;        /* the first of its cel to fold on this line: no run holds the cel */
     bool snap;        /* with direct: the cel may hide (see region_may_hide) */
 } fold_paint;
 
@@ -204,18 +203,19 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
     for (;;) {
         uint32_t e = ws->run_end[s];
         if (!cs__run_start_opaque(fp->r, s)) {
-            /* A bare cel holds nothing (cs__run_split_as). */
-            e = cs__run_clip_as(ws, grey, fp->bare, &s, a, b);
+            /* A bare cel holds nothing (cs__run_split_as); the boards' one
+             * copy for all cases keeps the test. */
+            e = cs__run_clip_as(ws, grey, CS_CFG_GREY && fp->bare, &s, a, b);
             if (!fp->functional) {
                 if (fp->direct)
                     composite_direct(fp->r, grey, s, e, c, fp->E, fp->A, fp->snap);
                 else
-                    accumulate(ws, grey, fp->bare, s, c, fp->E, fp->A);
+                    accumulate(ws, grey, CS_CFG_GREY && fp->bare, s, c, fp->E, fp->A);
             } else {
                 /* The paint varies along x: a run per pixel. */
                 for (uint32_t x = s;; x++) {
                     if (x + 1u < e)
-                        cs__run_split_as(ws, grey, fp->bare, x, x + 1u);
+                        cs__run_split_as(ws, grey, CS_CFG_GREY && fp->bare, x, x + 1u);
                     float E[4], A[3]; /* E[3]: see composite_direct */
                     E[3] = 0.0f;
                     paint_at(fp->r, fp->region, (float)((int32_t)x + fp->r->vx) + 0.5f,
@@ -223,7 +223,7 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
                     if (fp->direct)
                         composite_direct(fp->r, grey, x, x + 1u, c, E, A, fp->snap);
                     else
-                        accumulate(ws, grey, fp->bare, x, c, E, A);
+                        accumulate(ws, grey, CS_CFG_GREY && fp->bare, x, c, E, A);
                     if (x + 1u >= e)
                         break;
                 }
@@ -292,7 +292,7 @@ static CS__SPECIALISE bool fold_region_as(cs_renderer *r, uint32_t reg, int y, i
     fp.A[2] = 1.0f - T[2];
     fp.y = y;
     fp.direct = direct;
-    fp.bare = CS_CFG_GREY && bare; /* the boards' one copy for all cases keeps the tests */
+    fp.bare = bare;
     /* region_may_hide, where a region with no function has its T alone to
      * test, and a grey frame's T is one number on every channel. */
     bool hides = functional ? region_may_hide(r, reg)
