@@ -83,11 +83,6 @@ typedef uint64_t cs__bits64 __attribute__((may_alias, aligned(4)));
 #define CS__BITS64 0
 #endif
 
-/* opaque_bits read two words at a time (cs__span_opaque): the word after
- * the one holding a pixel of the line, the last pixel's too, is within the
- * array when the widest line is a whole number of words. */
-#define CS__BITS64_OPAQUE (CS__BITS64 && CS_CFG_MAX_WIDTH % 32 == 0)
-
 /* The start of the run holding pixel x. Pixel 0 always starts a run. The
  * scan back goes over long runs (a blob's interior, the clear line), ~8
  * words a call on Many-blobs: x86-64 reads two words a step. */
@@ -209,9 +204,7 @@ static inline uint32_t cs__bit_range(uint32_t a, uint32_t b)
 }
 
 /* Whether every pixel of [a, b) is opaque (a < b): a test of the bits
- * cs__run_join set, a word (32 pixels) at a time; on x86-64 two words at
- * a time, from the word holding a: spans of up to 33 pixels are one read
- * and one test whatever their alignment, longer ones take half the steps. */
+ * cs__run_join set, a word (32 pixels) at a time. */
 static inline bool cs__span_opaque(const cs_renderer *r, uint32_t a, uint32_t b)
 {
     if (r->opaque_px == 0u) /* always so with the early-out off */
@@ -221,19 +214,6 @@ static inline bool cs__span_opaque(const cs_renderer *r, uint32_t a, uint32_t b)
      * word: no mask to build (-0.2 M instructions a Many-blobs exact
      * frame, most from the exact area's hull tests). */
     uint32_t wa = a >> 5, wb = (b - 1u) >> 5;
-#if CS__BITS64_OPAQUE
-    /* Bit i of `clear`: pixel a + i, for i < 64 - (a & 31), at least 33. */
-    uint64_t clear = ~*(const cs__bits64 *)&bits[wa] >> (a & 31u);
-    if (b - a <= 64u - (a & 31u))
-        return clear << (64u - (b - a)) == 0u;
-    if (clear != 0u) /* [a, b) reaches past word wa + 1: wb >= wa + 2 */
-        return false;
-    for (uint32_t w = wa + 2u; w + 1u < wb; w += 2u)
-        if (*(const cs__bits64 *)&bits[w] != ~(uint64_t)0u)
-            return false;
-    /* Words wb - 1 (whole) and wb (up to b - 1). */
-    return ~*(const cs__bits64 *)&bits[wb - 1u] << (31u - ((b - 1u) & 31u)) == 0u;
-#else
     if (wa == wb) /* b - a bits from bit a & 31 */
         return ((~bits[wa] >> (a & 31u)) << (32u - (b - a))) == 0u;
     if ((~bits[wa] >> (a & 31u)) != 0u)
@@ -242,7 +222,6 @@ static inline bool cs__span_opaque(const cs_renderer *r, uint32_t a, uint32_t b)
         if (bits[w] != 0xFFFFFFFFu)
             return false;
     return (~bits[wb] << (31u - ((b - 1u) & 31u))) == 0u;
-#endif
 }
 
 /* Marks pixels [a, b) opaque (a < b). */
