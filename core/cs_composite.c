@@ -202,7 +202,7 @@ static CS__SPECIALISE uint32_t fold_run_as(cs_workspace *ws, const fold_paint *f
     s = cs__run_seek(ws, s, a);
     for (;;) {
         uint32_t e = ws->run_end[s];
-        if (!cs__run_opaque(fp->r, s)) {
+        if (!cs__run_start_opaque(fp->r, s)) {
             /* A bare cel holds nothing (cs__run_split_as); the boards' one
              * copy for all cases keeps the test. */
             e = cs__run_clip_as(ws, grey, CS_CFG_GREY && fp->bare, &s, a, b);
@@ -267,8 +267,11 @@ static CS__SPECIALISE void pending_extend(cs_workspace *ws, const fold_paint *fp
  * clamp(area[x] + running cover), and the pixels up to the next entry
  * share clamp(running cover), so they are folded as one run. The sums are
  * those a pass over every pixel of [lo, hi) makes, in the same order.
+ * Returns whether the region may hide (region_may_hide), which each copy
+ * tests in its own case: the caller's test of every field per region-row
+ * was ~0.2 M instructions of a Many-blobs exact frame.
  */
-static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, int32_t lo,
+static CS__SPECIALISE bool fold_region_as(cs_renderer *r, uint32_t reg, int y, int32_t lo,
                                            int32_t hi, bool direct, bool bare, bool grey,
                                            bool functional)
 {
@@ -290,7 +293,12 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
     fp.y = y;
     fp.direct = direct;
     fp.bare = bare;
-    fp.snap = direct && region_may_hide(r, reg);
+    /* region_may_hide, where a region with no function has its T alone to
+     * test, and a grey frame's T is one number on every channel. */
+    bool hides = functional ? region_may_hide(r, reg)
+                 : grey     ? T[0] < CS__T_ZERO
+                            : T[0] < CS__T_ZERO && T[1] < CS__T_ZERO && T[2] < CS__T_ZERO;
+    fp.snap = direct && hides;
     uint32_t width = (uint32_t)r->vw;
     uint32_t end = (uint32_t)hi; /* hi <= width: coverage ends there */
     float run = 0.0f;
@@ -325,6 +333,7 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
         pending_extend(ws, &fp, &p, end, cs__clampf(run, 0.0f, 1.0f), grey);
     if (p.c > 0.0f)
         fold_run_as(ws, &fp, p.cursor, p.a, p.b, p.c, grey);
+    return hides;
 }
 
 /*
@@ -348,28 +357,28 @@ static CS__SPECIALISE void fold_region_as(cs_renderer *r, uint32_t reg, int y, i
  * sixth, whose splits and accumulation read and test no run's `used`
  * (-0.3 M, -0.56 M without the v3 build's profile).
  */
-static CS__SPECIALISE void fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi,
+static CS__SPECIALISE bool fold_region(cs_renderer *r, uint32_t reg, int y, int32_t lo, int32_t hi,
                                         bool direct, bool bare)
 {
     bool functional = region_functional(&r->scene->regions[reg]);
 #if CS_CFG_GREY
     if (functional) {
-        fold_region_as(r, reg, y, lo, hi, direct, direct, r->grey, true);
+        return fold_region_as(r, reg, y, lo, hi, direct, direct, r->grey, true);
     } else if (r->grey) {
         if (direct)
-            fold_region_as(r, reg, y, lo, hi, true, true, true, false);
+            return fold_region_as(r, reg, y, lo, hi, true, true, true, false);
         else if (bare)
-            fold_region_as(r, reg, y, lo, hi, false, true, true, false);
+            return fold_region_as(r, reg, y, lo, hi, false, true, true, false);
         else
-            fold_region_as(r, reg, y, lo, hi, false, false, true, false);
+            return fold_region_as(r, reg, y, lo, hi, false, false, true, false);
     } else if (direct) {
-        fold_region_as(r, reg, y, lo, hi, true, true, false, false);
+        return fold_region_as(r, reg, y, lo, hi, true, true, false, false);
     } else {
-        fold_region_as(r, reg, y, lo, hi, false, false, false, false);
+        return fold_region_as(r, reg, y, lo, hi, false, false, false, false);
     }
 #else
     (void)bare;
-    fold_region_as(r, reg, y, lo, hi, direct, false, false, functional);
+    return fold_region_as(r, reg, y, lo, hi, direct, false, false, functional);
 #endif
 }
 
@@ -438,9 +447,9 @@ static CS__SPECIALISE void composite_run(cs_renderer *r, uint32_t s, bool snap, 
 {
     cs_workspace *ws = r->ws;
     float t[3];
+    ws->used[s] = 0.0f; /* before the join, which may mark the run opaque there */
     transmittance(t, &ws->cel_A[3 * s], 1.0f, snap, grey);
     cs__run_join(r, grey, s, ws->run_end[s], &ws->cel_E[3 * s], t);
-    ws->used[s] = 0.0f;
 }
 
 #if CS_CFG_CEL_LIST
@@ -475,7 +484,7 @@ static CS__SPECIALISE void composite_cel_as(cs_renderer *r, uint32_t lo, uint32_
 {
     cs_workspace *ws = r->ws;
     for (uint32_t s = cs__run_start(ws, lo); s < hi; s = ws->run_end[s])
-        if (ws->used[s] != 0.0f)
+        if (ws->used[s] > 0.0f) /* not 0, nor an opaque run's CS__USED_OPAQUE */
             composite_run(r, s, snap, grey);
 }
 
@@ -619,12 +628,12 @@ void cs__line_stack(cs_renderer *r, int y)
                 /* A cel's only region on the line goes straight into the
                  * stack; otherwise the cel's regions are summed first. */
                 bool alone = !cel_folded && (j == n || ws->region_cel[next] != cel);
-                fold_region(r, reg, y, lo, hi, alone, !cel_folded);
+                bool hides = fold_region(r, reg, y, lo, hi, alone, !cel_folded);
                 if (!alone) {
 #if !CS_CFG_CEL_LIST
                     ranges_add(&ranges, lo, hi);
 #endif
-                    cel_hides = cel_hides || region_may_hide(r, reg);
+                    cel_hides = cel_hides || hides;
                 }
                 cel_folded = true;
             }
