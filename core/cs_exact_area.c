@@ -437,8 +437,11 @@ static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p
     float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = cx->wall_x;
     float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
                   : cs__minf((float)(-cs__floori(-x0) - 1), width);
+    /* One column: that of the lesser x, x0 rising (inc is x1 > x0, see
+     * add_poly_arc) and else x1. As cs__minf(x0, x1), asm the compiler
+     * cannot see through, it was a min and a second floor. */
     if (inc ? !(k < x1 && k <= width) : !(k > x1 && k >= 0.0f)) { /* one column */
-        int32_t c = cs__floori(cs__minf(x0, x1));
+        int32_t c = cs__floori(inc ? x0 : x1);
         put_cell(cx, sign, c, y1 - y0, bezier_moment(p, bx, by, (float)c));
         return;
     }
@@ -497,10 +500,23 @@ static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p
  * tests the direction in its loop. */
 static void add_poly_arc(cs__exact_ctx *cx, float sign, int p, const float *bx, const float *by)
 {
+    /* The fields put_cell reads and writes, in a local: acc_cell's store
+     * of the touched bits (may_alias) could be to *cx as far as the
+     * compiler knows, so it reloaded them all, and stored lo and hi, cell
+     * by cell. The rest of lc is never read. */
+    cs__exact_ctx lc;
+    lc.ws = cx->ws;
+    lc.x0 = cx->x0;
+    lc.width = cx->width;
+    lc.wall_x = cx->wall_x;
+    lc.lo = cx->lo;
+    lc.hi = cx->hi;
     if (bx[p] > bx[0])
-        add_poly_arc_dir(cx, sign, p, bx, by, true);
+        add_poly_arc_dir(&lc, sign, p, bx, by, true);
     else
-        add_poly_arc_dir(cx, sign, p, bx, by, false);
+        add_poly_arc_dir(&lc, sign, p, bx, by, false);
+    cx->lo = lc.lo;
+    cx->hi = lc.hi;
 }
 
 /*
