@@ -205,8 +205,15 @@ typedef float lanes_fu __attribute__((vector_size(4 * LANES), aligned(4))); /* s
 typedef char cs__exact_lanes_fit_[CS_EXACT_LEVELS % LANES == 0 ? 1 : -1];
 
 /* Lane by lane, m ? a : b (m all ones or zero per lane). A macro: a
- * function taking vectors is an ABI question on baseline x86-64. */
+ * function taking vectors is an ABI question on baseline x86-64. With AVX
+ * one vblendvps, which takes a lane's sign bit (set exactly where m is):
+ * as the masks ANDed, GCC made it three operations (xor, and, xor). */
+#if defined(__AVX__) && LANES == 8
+#define PICK(m, a, b) \
+    ((lanes_f)__builtin_ia32_blendvps256((lanes_f)(b), (lanes_f)(a), (lanes_f)(m)))
+#else
 #define PICK(m, a, b) ((lanes_f)(((m) & (lanes_i)(a)) | (~(m) & (lanes_i)(b))))
+#endif
 
 /* Whether any lane of a mask is set: one vptest with AVX, one movmskps
  * with SSE (GCC and clang both know these builtins; the 64-bit lanes ORed
