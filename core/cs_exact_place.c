@@ -259,6 +259,9 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
     lanes_f u = ut + (yv - pc->y_top) / (pc->y_bot - pc->y_top) * (ub - ut); /* the chord */
     lanes_f res = u, d1 = u; /* every lane below n sets both: a root, accepted or solved */
     lanes_i live = (u > lo) & (u < hi), fall = ~live;
+    /* y falling with u flips the side of the root: a mask, as one select
+     * of the piece rather than a copy of the loop for each direction */
+    const lanes_i flip = pc->dir > 0 ? (lanes_i){0} : ~(lanes_i){0};
     for (int it = 0; it < LEVEL_MAX_ITER; it++) {
         bool going;
         ANY_LANE(live, going);
@@ -271,7 +274,7 @@ static CS__HOT_INLINE void solve_lanes(const cs_piece *pc, const cs_segment *s, 
         res = PICK(root, u, res);
         d1 = PICK(root, d, d1);
         live &= ~root;
-        lanes_i neg = f < 0.0f, below = pc->dir > 0 ? neg : ~neg;
+        lanes_i below = (f < 0.0f) ^ flip; /* f < 0, or not, where y falls */
         lo = PICK(live & below, u, lo);
         hi = PICK(live & ~below, u, hi);
         lanes_f rd = 1.0f / d, st = -f * rd, next = u + st;
