@@ -348,6 +348,37 @@ static void add_line(cs__exact_ctx *cx, float sign, float x0, float y0, float x1
     put_cell(cx, sign, c, y1 - ya, (0.5f * (xa + x1) - (float)c) * (y1 - ya));
 }
 
+/*
+ * A select by the sign of h, written as one: neg_mask(h) is h < 0 as a
+ * lane mask, pick(m, a, b) is m ? a : b. With AVX they are vcmpltss and
+ * vblendvps in asm, which the compiler keeps as selects; as C, the
+ * profile-guided v3 build turned even the selects of bools into a branch
+ * on the data. Elsewhere the plain C (the same values: a select is exact).
+ */
+#if defined(__GNUC__) && defined(__AVX__)
+static inline float neg_mask(float h)
+{
+    float m;
+    __asm__("vcmpltss %2, %1, %0" : "=x"(m) : "x"(h), "x"(0.0f));
+    return m;
+}
+static inline float pick(float m, float a, float b)
+{
+    float r;
+    __asm__("vblendvps %1, %2, %3, %0" : "=x"(r) : "x"(m), "x"(a), "x"(b));
+    return r;
+}
+#else
+static inline float neg_mask(float h)
+{
+    return h < 0.0f ? 1.0f : 0.0f;
+}
+static inline float pick(float m, float a, float b)
+{
+    return m != 0.0f ? a : b;
+}
+#endif
+
 /* The cut of an arc at x = x0 + r: h(t) = t (a1 + t (a2 + t a3)) - r,
  * monotone on [lo, hi] (growing if `inc`), by Newton's method from t.
  * A step s leaves (h''/2 + a3 s) s^2 of x; accepted once that is below
@@ -371,10 +402,10 @@ static float cut_t(const float *a, float r, float lo, float hi, float t, bool in
             return t;
         /* t's side of the root narrows the bracket: by the data, so as
          * selects rather than a branch (13 k mispredicts a Many-blobs
-         * exact frame) */
-        bool below = (h < 0.0f) == inc;
-        lo = below ? t : lo;
-        hi = below ? hi : t;
+         * exact frame as one) */
+        float neg = neg_mask(h);
+        lo = pick(neg, inc ? t : lo, inc ? lo : t);
+        hi = pick(neg, inc ? hi : t, inc ? t : hi);
         float dd = 2.0f * (a[2] + 3.0f * a3t);
         float d = a[1] + t * (2.0f * a[2] + 3.0f * a3t);
         float rd = 1.0f / d, st = -h * rd, next = t + st;
@@ -406,8 +437,11 @@ static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p
     float x0 = bx[0], x1 = bx[p], y0 = by[0], y1 = by[p], width = cx->wall_x;
     float k = inc ? cs__maxf((float)(cs__floori(x0) + 1), 0.0f)
                   : cs__minf((float)(-cs__floori(-x0) - 1), width);
+    /* One column: that of the lesser x, x0 rising (inc is x1 > x0, see
+     * add_poly_arc) and else x1. As cs__minf(x0, x1), asm the compiler
+     * cannot see through, it was a min and a second floor. */
     if (inc ? !(k < x1 && k <= width) : !(k > x1 && k >= 0.0f)) { /* one column */
-        int32_t c = cs__floori(cs__minf(x0, x1));
+        int32_t c = cs__floori(inc ? x0 : x1);
         put_cell(cx, sign, c, y1 - y0, bezier_moment(p, bx, by, (float)c));
         return;
     }
@@ -466,10 +500,23 @@ static CS__HOT_INLINE void add_poly_arc_dir(cs__exact_ctx *cx, float sign, int p
  * tests the direction in its loop. */
 static void add_poly_arc(cs__exact_ctx *cx, float sign, int p, const float *bx, const float *by)
 {
+    /* The fields put_cell reads and writes, in a local: acc_cell's store
+     * of the touched bits (may_alias) could be to *cx as far as the
+     * compiler knows, so it reloaded them all, and stored lo and hi, cell
+     * by cell. The rest of lc is never read. */
+    cs__exact_ctx lc;
+    lc.ws = cx->ws;
+    lc.x0 = cx->x0;
+    lc.width = cx->width;
+    lc.wall_x = cx->wall_x;
+    lc.lo = cx->lo;
+    lc.hi = cx->hi;
     if (bx[p] > bx[0])
-        add_poly_arc_dir(cx, sign, p, bx, by, true);
+        add_poly_arc_dir(&lc, sign, p, bx, by, true);
     else
-        add_poly_arc_dir(cx, sign, p, bx, by, false);
+        add_poly_arc_dir(&lc, sign, p, bx, by, false);
+    cx->lo = lc.lo;
+    cx->hi = lc.hi;
 }
 
 /*
