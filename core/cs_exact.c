@@ -140,6 +140,19 @@
         }                                                                                 \
     } while (0)
 
+/* Orders (a, b) as insertion sort does, keys with them: swapped if ka > kb.
+ * Selects, not a branch: which way goes by the data. */
+static inline void order_pair(uint32_t *a, uint32_t *b, float *ka, float *kb)
+{
+    bool swap = *ka > *kb;
+    uint32_t ia = *a, ib = *b;
+    float fa = *ka, fb = *kb;
+    *a = swap ? ib : ia;
+    *b = swap ? ia : ib;
+    *ka = swap ? fb : fa;
+    *kb = swap ? fa : fb;
+}
+
 static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, bool by_xmin)
 {
     if (m == 2u) { /* the usual row of a region: two arcs */
@@ -148,6 +161,21 @@ static void sort_pieces(const cs_exact_piece *ex, uint32_t *ord, uint32_t m, boo
             ord[0] = b;
             ord[1] = a;
         }
+        return;
+    }
+    if (m == 3u) {
+        /* The most common cluster row (a chain beside a lone arc): the
+         * insertion sort below as three compare-exchanges, each of the
+         * same test on the same pair, so the same order, ties and all. */
+        uint32_t a = ord[0], b = ord[1], c = ord[2];
+        float ka = by_xmin ? ex[a].xmin : ex[a].key, kb = by_xmin ? ex[b].xmin : ex[b].key,
+              kc = by_xmin ? ex[c].xmin : ex[c].key;
+        order_pair(&a, &b, &ka, &kb);
+        order_pair(&b, &c, &kb, &kc);
+        order_pair(&a, &b, &ka, &kb);
+        ord[0] = a;
+        ord[1] = b;
+        ord[2] = c;
         return;
     }
     if (by_xmin)
