@@ -104,11 +104,20 @@ static CS__SPECIALISE uint32_t fused_runs(fused_line *f, bool grey, uint32_t s, 
     while (s < limit) {
         const float *t = &f->stack_T[3 * s];
         float *e3 = &f->stack_E[3 * s];
-        cs__v4f E = __builtin_ia32_maskloadps((const cs__v4f *)e3, three);
+        /* Ahead, pixel s + 1 is on the line: its first channel comes in as
+         * lane 3 and goes back as it was, by a plain load and store, since
+         * masked stores are slow on some x86 cores (AMD's). Lane 3 is
+         * clamped to [0, 1] like the others, so its gathers stay within
+         * the tables; its codes are not used. */
+        cs__v4f E0 = ahead ? (cs__v4f)*(const cs__v4f_u *)e3
+                           : __builtin_ia32_maskloadps((const cs__v4f *)e3, three);
         cs__v4f T = grey ? (cs__v4f){t[0], t[0], t[0], t[0]}
                          : __builtin_ia32_maskloadps((const cs__v4f *)t, three);
-        E = __builtin_ia32_minps(__builtin_ia32_maxps(E + T * f->L, zero), one);
-        __builtin_ia32_maskstoreps((cs__v4f *)e3, three, E);
+        cs__v4f E = __builtin_ia32_minps(__builtin_ia32_maxps(E0 + T * f->L, zero), one);
+        if (ahead)
+            *(cs__v4f_u *)e3 = (cs__v4f_u)__builtin_ia32_blendps(E, E0, 8);
+        else
+            __builtin_ia32_maskstoreps((cs__v4f *)e3, three, E);
         /* The run before, written now that its end is known; the first
          * time, an empty run at 0 (written ahead, then over). */
         uint8_t *p = f->out + 3u * f->prev;

@@ -144,6 +144,8 @@ static inline void cs__rgb888_run(uint8_t *out, uint32_t s, uint32_t e, uint32_t
 typedef float cs__v4f __attribute__((vector_size(16)));
 typedef int32_t cs__v4i __attribute__((vector_size(16)));
 typedef uint32_t cs__v4u __attribute__((vector_size(16)));
+/* Four floats at any float's address, in memory of any type. */
+typedef float cs__v4f_u __attribute__((vector_size(16), aligned(4), may_alias));
 
 /* Four dwords from base + scale * idx, by one gather. Inline asm because
  * GCC and clang name the builtin differently and <immintrin.h> brings
