@@ -83,10 +83,19 @@ typedef struct fused_line {
     cs__v4f L;
     px16_u8 codes;   /* the previous run's 8-bit codes (cs__srgb8_lanes) */
     uint32_t prev;   /* and its start */
+    cs__u16_alias *longs; /* the starts of runs written ahead, longer than 16 pixels */
+    uint32_t n_longs;
 } fused_line;
 
 /* The runs from s on while s < limit; a run is written ahead of its end
- * (`ahead`: limit leaves 15 pixels of room) or exactly. Returns the next s. */
+ * (`ahead`: limit leaves 15 pixels of room) or exactly. Returns the next s.
+ * Ahead, a run gets its first 16 pixels only, with no test of its length,
+ * and its start goes to f->longs if it has more: a store per run and a
+ * count that grows by a comparison, so that the loop over long runs'
+ * pixels (cs__rgb888_rest) runs apart from the runs of one or two pixels
+ * between them. In one loop, its exit was mispredicted ~56 k times a
+ * Many-blobs exact frame (callgrind --branch-sim), an edge pixel's run
+ * and an interior's alternating. */
 static CS__SPECIALISE uint32_t fused_runs(fused_line *f, bool grey, uint32_t s, uint32_t limit,
                                           bool ahead)
 {
@@ -95,17 +104,28 @@ static CS__SPECIALISE uint32_t fused_runs(fused_line *f, bool grey, uint32_t s, 
     while (s < limit) {
         const float *t = &f->stack_T[3 * s];
         float *e3 = &f->stack_E[3 * s];
-        cs__v4f E = __builtin_ia32_maskloadps((const cs__v4f *)e3, three);
+        /* Ahead, pixel s + 1 is on the line: its first channel comes in as
+         * lane 3 and goes back as it was, by a plain load and store, since
+         * masked stores are slow on some x86 cores (AMD's). Lane 3 is
+         * clamped to [0, 1] like the others, so its gathers stay within
+         * the tables; its codes are not used. */
+        cs__v4f E0 = ahead ? (cs__v4f)*(const cs__v4f_u *)e3
+                           : __builtin_ia32_maskloadps((const cs__v4f *)e3, three);
         cs__v4f T = grey ? (cs__v4f){t[0], t[0], t[0], t[0]}
                          : __builtin_ia32_maskloadps((const cs__v4f *)t, three);
-        E = __builtin_ia32_minps(__builtin_ia32_maxps(E + T * f->L, zero), one);
-        __builtin_ia32_maskstoreps((cs__v4f *)e3, three, E);
+        cs__v4f E = __builtin_ia32_minps(__builtin_ia32_maxps(E0 + T * f->L, zero), one);
+        if (ahead)
+            *(cs__v4f_u *)e3 = (cs__v4f_u)__builtin_ia32_blendps(E, E0, 8);
+        else
+            __builtin_ia32_maskstoreps((cs__v4f *)e3, three, E);
         /* The run before, written now that its end is known; the first
          * time, an empty run at 0 (written ahead, then over). */
         uint8_t *p = f->out + 3u * f->prev;
-        if (ahead)
-            cs__rgb888_ahead_lanes(p, s - f->prev, f->codes);
-        else
+        if (ahead) {
+            cs__rgb888_first_lanes(p, f->codes);
+            f->longs[f->n_longs] = (uint16_t)f->prev;
+            f->n_longs += (f->prev + 16u - s) >> 31; /* s - prev > 16, in four instructions */
+        } else
             cs__rgb888_fill(p, s - f->prev, f->codes[0], f->codes[4], f->codes[8]);
         f->codes = cs__srgb8_lanes(E);
         f->prev = s;
@@ -118,13 +138,23 @@ static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *
 {
     cs_workspace *ws = r->ws;
     uint32_t width = (uint32_t)r->vw;
+    /* Like cel_E, cel_A is read only where the line has set `used` (see
+     * cs_line_pixels_scratch), so free now: 2 bytes of it per long run, of
+     * more than 16 pixels. */
     fused_line f = {ws->stack_E, ws->stack_T, ws->run_end, out,
-                    (cs__v4f){r->behind[0], r->behind[1], r->behind[2], 0.0f}, (px16_u8){0}, 0};
+                    (cs__v4f){r->behind[0], r->behind[1], r->behind[2], 0.0f}, (px16_u8){0}, 0,
+                    (cs__u16_alias *)(void *)ws->cel_A, 0};
     /* A run found at s >= width - 14 ends the one before within 15 pixels
      * of the line's end: that one and those after are written exactly. */
     uint32_t s = fused_runs(&f, grey, 0, width > 14u ? width - 14u : 0u, true);
     fused_runs(&f, grey, s, width, false);
     cs__rgb888_fill(out + 3u * f.prev, width - f.prev, f.codes[0], f.codes[4], f.codes[8]);
+    /* The long runs' pixels after their first 16, within each run (the
+     * runs written after one start at or beyond its end). */
+    for (uint32_t k = 0; k < f.n_longs; k++) {
+        uint32_t a = f.longs[k];
+        cs__rgb888_rest(out + 3u * a, f.run_end[a] - a);
+    }
 }
 #endif
 

@@ -120,6 +120,11 @@ bool cs__contour_more(const cs__contour_iter *it)
     return false;
 }
 
+#if defined(__AVX__) && defined(__GNUC__)
+/* A segment's four coefficients of x, y or w (float[4], 4-byte aligned). */
+typedef float cs__seg4 __attribute__((vector_size(16), aligned(4), may_alias));
+#endif
+
 bool cs__contour_next(cs__contour_iter *it, cs_segment *s)
 {
     const int count = it->count, degree = it->degree;
@@ -191,6 +196,22 @@ bool cs__contour_next(cs__contour_iter *it, cs_segment *s)
     s->ox = origin(ax);
     s->oy = origin(ay);
     float ox = (float)s->ox, oy = (float)s->oy;
+#if defined(__AVX__) && defined(__GNUC__)
+    /* The four coefficients of each as one vector: per lane the loop below,
+     * the same products and sums in the same order. Lanes past the degree
+     * add basis 0 (or -0) times a finite value to +0, which stays +0. */
+    cs__seg4 cx = {0.0f, 0.0f, 0.0f, 0.0f}, cy = cx, cw = cx;
+    for (int k = 0; k <= degree; k++) {
+        float hx = pw[k] * (px[k] - ox), hy = pw[k] * (py[k] - oy);
+        cs__seg4 b = *(const cs__seg4 *)basis[k];
+        cx += b * hx;
+        cy += b * hy;
+        cw += b * pw[k];
+    }
+    *(cs__seg4 *)s->x = cx;
+    *(cs__seg4 *)s->y = cy;
+    *(cs__seg4 *)s->w = cw;
+#else
     for (int k = 0; k <= degree; k++) {
         float hx = pw[k] * (px[k] - ox), hy = pw[k] * (py[k] - oy);
         for (int i = 0; i <= degree; i++) {
@@ -199,6 +220,7 @@ bool cs__contour_next(cs__contour_iter *it, cs_segment *s)
             s->w[i] += basis[k][i] * pw[k];
         }
     }
+#endif
     s->degree = (uint8_t)degree;
     s->rational = !(s->w[1] == 0.0f && s->w[2] == 0.0f && s->w[3] == 0.0f);
     s->region = it->region;

@@ -144,6 +144,8 @@ static inline void cs__rgb888_run(uint8_t *out, uint32_t s, uint32_t e, uint32_t
 typedef float cs__v4f __attribute__((vector_size(16)));
 typedef int32_t cs__v4i __attribute__((vector_size(16)));
 typedef uint32_t cs__v4u __attribute__((vector_size(16)));
+/* Four floats at any float's address, in memory of any type. */
+typedef float cs__v4f_u __attribute__((vector_size(16), aligned(4), may_alias));
 
 /* Four dwords from base + scale * idx, by one gather. Inline asm because
  * GCC and clang name the builtin differently and <immintrin.h> brings
@@ -175,14 +177,39 @@ static inline px16_u8 cs__srgb8_lanes(cs__v4f v)
     return (px16_u8)(base - (v >= (cs__v4f)step));
 }
 
-/* As cs__rgb888_ahead, from codes in bytes 0, 4 and 8 (cs__srgb8_lanes). */
-static inline void cs__rgb888_ahead_lanes(uint8_t *p, uint32_t n, px16_u8 c)
+/* The first 16 pixels of a run at p, from codes in bytes 0, 4 and 8
+ * (cs__srgb8_lanes), whatever the run's length: the fused pass writes the
+ * rest of the runs longer than 16 pixels apart (cs__rgb888_rest). */
+static inline void cs__rgb888_first_lanes(uint8_t *p, px16_u8 c)
 {
-    cs__rgb888_steps(p, n,
-                     __builtin_shufflevector(c, c, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0),
-                     __builtin_shufflevector(c, c, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4),
-                     __builtin_shufflevector(c, c, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0, 4, 8));
+    *(px16_rgb888 *)p = (px16_rgb888)__builtin_shufflevector(c, c, 0, 4, 8, 0, 4, 8, 0, 4, 8, 0,
+                                                              4, 8, 0, 4, 8, 0);
+    *(px16_rgb888 *)(p + 16) = (px16_rgb888)__builtin_shufflevector(c, c, 4, 8, 0, 4, 8, 0, 4, 8,
+                                                                     0, 4, 8, 0, 4, 8, 0, 4);
+    *(px16_rgb888 *)(p + 32) = (px16_rgb888)__builtin_shufflevector(c, c, 8, 0, 4, 8, 0, 4, 8, 0,
+                                                                     4, 8, 0, 4, 8, 0, 4, 8);
 }
+
+/* Pixels 16..n-1 (n > 16) of a run at p whose first 16 are written, as
+ * they are: 16 a step, the last step ending at the run's end. */
+static inline void cs__rgb888_rest(uint8_t *p, uint32_t n)
+{
+    px16_rgb888 a = *(const px16_rgb888 *)p, b = *(const px16_rgb888 *)(p + 16),
+                c = *(const px16_rgb888 *)(p + 32);
+    uint8_t *last = p + 3u * (n - 16u);
+    for (p += 48; p < last; p += 48) {
+        *(px16_rgb888 *)p = a;
+        *(px16_rgb888 *)(p + 16) = b;
+        *(px16_rgb888 *)(p + 32) = c;
+    }
+    *(px16_rgb888 *)last = a;
+    *(px16_rgb888 *)(last + 16) = b;
+    *(px16_rgb888 *)(last + 32) = c;
+}
+
+/* A uint16_t that may lie in memory of another type (a float array that
+ * is free between lines). */
+typedef uint16_t cs__u16_alias __attribute__((may_alias));
 #else
 #define CS__RGB888_VEC 0
 #endif
