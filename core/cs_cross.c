@@ -71,15 +71,28 @@ static uint32_t keep_active8(cs_workspace *ws, float top, uint32_t n8)
  * entries above the next new one up by `gap` places; here eight at a time
  * while all eight lie above it (the list is in order, so the lowest of
  * them tells), one load and one store of eight lanes, which read the
- * eight before writing any. The kept list's tail above the first new
- * piece moves, ~150 entries a line of a Many-blobs frame that adds any.
- * Returns where the entries still to move end.
+ * eight before writing any, then the rest by one blend. The kept list's
+ * tail above the first new piece moves, ~150 entries a line of a
+ * Many-blobs frame that adds any. Returns where the entries still to move
+ * end: with eight or more below, at the last entry not above f.
  */
 static uint32_t shift_active8(cs_index *a, uint32_t i, uint32_t gap, cs_index f)
 {
     while (i >= 8u && a[i - 8u] > f) {
         *(v8i_u *)&a[i - 8u + gap] = *(const v8i_u *)&a[i - 8u];
         i -= 8u;
+    }
+    /* Then those of the eight below i that lie above f, blended into what
+     * their places hold (the places of the others keep it), with no branch
+     * per entry: their number went by the data. Indices are below 2^31, so
+     * a signed compare orders them. */
+    if (i >= 8u) {
+        v8i v = *(const v8i_u *)&a[i - 8u], d = *(const v8i_u *)&a[i - 8u + gap];
+        v8i fs = {(int32_t)f, (int32_t)f, (int32_t)f, (int32_t)f,
+                  (int32_t)f, (int32_t)f, (int32_t)f, (int32_t)f};
+        v8i m = v > fs;
+        *(v8i_u *)&a[i - 8u + gap] = (v & m) | (d & ~m);
+        i -= (uint32_t)__builtin_popcount((uint32_t)__builtin_ia32_movmskps256((v8f)m));
     }
     return i;
 }
