@@ -65,10 +65,42 @@ static uint32_t keep_active8(cs_workspace *ws, float top, uint32_t n8)
     }
     return kept;
 }
+
+/*
+ * The merge of newly active pieces (cs__line_active) moves the kept
+ * entries above the next new one up by `gap` places; here eight at a time
+ * while all eight lie above it (the list is in order, so the lowest of
+ * them tells), one load and one store of eight lanes, which read the
+ * eight before writing any, then the rest by one blend. The kept list's
+ * tail above the first new piece moves, ~150 entries a line of a
+ * Many-blobs frame that adds any. Returns where the entries still to move
+ * end: with eight or more below, at the last entry not above f.
+ */
+static uint32_t shift_active8(cs_index *a, uint32_t i, uint32_t gap, cs_index f)
+{
+    while (i >= 8u && a[i - 8u] > f) {
+        *(v8i_u *)&a[i - 8u + gap] = *(const v8i_u *)&a[i - 8u];
+        i -= 8u;
+    }
+    /* Then those of the eight below i that lie above f, blended into what
+     * their places hold (the places of the others keep it), with no branch
+     * per entry: their number went by the data. Indices are below 2^31, so
+     * a signed compare orders them. */
+    if (i >= 8u) {
+        v8i v = *(const v8i_u *)&a[i - 8u], d = *(const v8i_u *)&a[i - 8u + gap];
+        v8i fs = {(int32_t)f, (int32_t)f, (int32_t)f, (int32_t)f,
+                  (int32_t)f, (int32_t)f, (int32_t)f, (int32_t)f};
+        v8i m = v > fs;
+        *(v8i_u *)&a[i - 8u + gap] = (v & m) | (d & ~m);
+        i -= (uint32_t)__builtin_popcount((uint32_t)__builtin_ia32_movmskps256((v8f)m));
+    }
+    return i;
+}
 #define KEEP8 (sizeof(cs_index) == 4 && sizeof(cs_piece) == 24)
 #else
 #define KEEP8 0
 #define keep_active8(ws, top, n8) 0u
+#define shift_active8(a, i, gap, f) (i)
 #endif
 
 /* Moves the active list to line y: adds pieces starting above y+1, drops
@@ -110,6 +142,10 @@ void cs__line_active(cs_renderer *r, int y)
     if (added) {
         uint32_t i = kept, j = added, k = kept + added;
         while (j > 0) {
+            if (KEEP8) {
+                i = shift_active8(ws->active, i, j, fresh[j - 1]);
+                k = i + j;
+            }
             if (i > 0 && ws->active[i - 1] > fresh[j - 1])
                 ws->active[--k] = ws->active[--i];
             else

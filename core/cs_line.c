@@ -83,13 +83,14 @@ typedef struct fused_line {
     cs__v4f L;
     px16_u8 codes;   /* the previous run's 8-bit codes (cs__srgb8_lanes) */
     uint32_t prev;   /* and its start */
-    cs__u16_alias *longs; /* the starts of runs written ahead, longer than 16 pixels */
+    cs__u16_alias *longs; /* the starts of runs written ahead, longer than 32 pixels */
     uint32_t n_longs;
 } fused_line;
 
 /* The runs from s on while s < limit; a run is written ahead of its end
- * (`ahead`: limit leaves 15 pixels of room) or exactly. Returns the next s.
- * Ahead, a run gets its first 16 pixels only, with no test of its length,
+ * (`ahead`: limit leaves 31 pixels of room) or exactly. Returns the next s.
+ * Ahead, a run gets its first 32 pixels only (three 32-byte stores, as
+ * many as 16 pixels take in 16-byte ones), with no test of its length,
  * and its start goes to f->longs if it has more: a store per run and a
  * count that grows by a comparison, so that the loop over long runs'
  * pixels (cs__rgb888_rest) runs apart from the runs of one or two pixels
@@ -124,7 +125,7 @@ static CS__SPECIALISE uint32_t fused_runs(fused_line *f, bool grey, uint32_t s, 
         if (ahead) {
             cs__rgb888_first_lanes(p, f->codes);
             f->longs[f->n_longs] = (uint16_t)f->prev;
-            f->n_longs += (f->prev + 16u - s) >> 31; /* s - prev > 16, in four instructions */
+            f->n_longs += (f->prev + 32u - s) >> 31; /* s - prev > 32, in four instructions */
         } else
             cs__rgb888_fill(p, s - f->prev, f->codes[0], f->codes[4], f->codes[8]);
         f->codes = cs__srgb8_lanes(E);
@@ -140,16 +141,16 @@ static CS__SPECIALISE void finish_rgb888_as(cs_renderer *r, bool grey, uint8_t *
     uint32_t width = (uint32_t)r->vw;
     /* Like cel_E, cel_A is read only where the line has set `used` (see
      * cs_line_pixels_scratch), so free now: 2 bytes of it per long run, of
-     * more than 16 pixels. */
+     * more than 32 pixels. */
     fused_line f = {ws->stack_E, ws->stack_T, ws->run_end, out,
                     (cs__v4f){r->behind[0], r->behind[1], r->behind[2], 0.0f}, (px16_u8){0}, 0,
                     (cs__u16_alias *)(void *)ws->cel_A, 0};
-    /* A run found at s >= width - 14 ends the one before within 15 pixels
+    /* A run found at s >= width - 30 ends the one before within 31 pixels
      * of the line's end: that one and those after are written exactly. */
-    uint32_t s = fused_runs(&f, grey, 0, width > 14u ? width - 14u : 0u, true);
+    uint32_t s = fused_runs(&f, grey, 0, width > 30u ? width - 30u : 0u, true);
     fused_runs(&f, grey, s, width, false);
     cs__rgb888_fill(out + 3u * f.prev, width - f.prev, f.codes[0], f.codes[4], f.codes[8]);
-    /* The long runs' pixels after their first 16, within each run (the
+    /* The long runs' pixels after their first 32, within each run (the
      * runs written after one start at or beyond its end). */
     for (uint32_t k = 0; k < f.n_longs; k++) {
         uint32_t a = f.longs[k];
