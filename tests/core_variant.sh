@@ -4,7 +4,7 @@
 # scenes/ and scenes/bench/ at its canvas size in four AA modes, as the panel's
 # CRC, a 16-bit linear PNG and an 8-bit sRGB PNG (the x86-64-v3 build writes
 # 8-bit runs with SSSE3 shuffles of its own: cs_pixfmt.c), with --core baseline
-# and --core x86-64-v3;
+# and --core x86-64-v3, and four scenes at five odd sizes as 8-bit PNGs;
 # and the choice is refused or overridden as documented. The baseline build is
 # the one the other tests hold to their references. On a CPU without
 # x86-64-v3 (or a host that is not x86-64) the comparisons are skipped, and
@@ -39,6 +39,22 @@ if "$celsim" render scenes/demo.json --crc --core x86-64-v3 >/dev/null 2>"$tmp/v
                 bad "$s --aa $aa: x86-64-v3 $(cat "$tmp/x86-64-v3.crc")," \
                     "baseline $(cat "$tmp/baseline.crc")"
             fi
+        done
+    done
+    # The display pass of the v3 build writes runs ahead in blocks of 32
+    # pixels and clamps its last blocks to the line (cs_line.c): odd widths,
+    # narrower and wider than a block, put every run end and line end
+    # against those blocks; the 8-bit PNGs hold the bytes it wrote.
+    for size in 17x9 45x13 97x41 333x19 1021x7; do
+        for s in scenes/demo.json scenes/sign.json scenes/bench/blobs.json scenes/bench/thin.json; do
+            for aa in 5 exact; do
+                for b in baseline x86-64-v3; do
+                    "$celsim" render "$s" --size "$size" --aa "$aa" --core "$b" --threads 1 \
+                        -o "$tmp/$b-w.png" 2>"$tmp/$b.err"
+                done
+                check "$s $size --aa $aa: the same 8-bit bytes from both builds" \
+                    cmp -s "$tmp/baseline-w.png" "$tmp/x86-64-v3-w.png"
+            done
         done
     done
     # Bands on threads of the v3 build give the baseline's single-thread bytes.
