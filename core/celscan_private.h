@@ -181,10 +181,6 @@ typedef struct cs_exact_piece {
     float dmin, dmax;     /* the arc lies within [dmin, dmax] of its chord, horizontally */
     float xmin, xmax;     /* x range of the arc's control polygon */
     float key;            /* x order within the band: x_top + x_bot */
-    /* A polynomial row arc's inner control points (poly_bounds,
-     * cs_exact_place.c): their x, and t = (u_bot - u_top) / p, which gives
-     * their heights; read by the area while row_arc holds. */
-    float ctl_t, ctl_x1, ctl_x2;
     const cs_segment *segment; /* the piece's, found once a row */
     uint32_t piece;
     bool monotone;        /* control polygon x-monotone, so the arc is */

@@ -548,27 +548,6 @@ static inline bool add_poly_part(cs__exact_ctx *cx, const cs_segment *s, float s
     return true;
 }
 
-/* add_poly_part for a whole row arc e (row_arc), whose inner control
- * points poly_bounds formed: the same values as cs__exact_poly_points,
- * without its division. */
-static inline bool add_row_poly(cs__exact_ctx *cx, const cs_segment *s, const cs_exact_piece *e,
-                                float sign, float ya, float yb)
-{
-    const cs_exact_end *a = &e->top, *b = &e->bot;
-    if (!(cs__exact_mag(b->x - a->x) <= POLY_ARC_COLUMNS))
-        return false;
-    float bx[4], by[4], t = e->ctl_t, h = yb - ya;
-    int p = s->degree;
-    bx[1] = e->ctl_x1;
-    by[1] = t * a->dy;
-    if (p == 3) {
-        bx[2] = e->ctl_x2;
-        by[2] = h - t * b->dy;
-    }
-    p = polygon_ends(p - 1, a, ya, b, yb, bx, by);
-    add_poly_arc(cx, sign, p, bx, by);
-    return true;
-}
 /*
  * An x-monotone polynomial sub-arc too long for add_poly_part, top (y0) to
  * bottom (y1): in parts of equal u; a part still too long (x far from
@@ -691,8 +670,7 @@ void cs__exact_add_edge(cs__exact_ctx *cx, const cs_exact_piece *e, float sign, 
         return;
     }
     if (e->monotone && cs__exact_polynomial(s)) { /* most arcs */
-        if (!(e->row_arc && add_row_poly(cx, s, e, sign, ya, yb)))
-            add_poly_monotone(cx, s, sign, &e->top, ya, &e->bot, yb);
+        add_poly_monotone(cx, s, sign, &e->top, ya, &e->bot, yb);
         return;
     }
     add_curved_edge(cx, s, e, sign, ya, yb);

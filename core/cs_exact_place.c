@@ -511,10 +511,6 @@ static CS__HOT_INLINE void poly_bounds(int p, cs_exact_piece *e)
     float c1 = xt + t * e->top.dx, c2 = p == 3 ? xb - t * e->bot.dx : c1;
     e->xmin = cs__minf(cs__minf(xt, xb), cs__minf(c1, c2));
     e->xmax = cs__maxf(cs__maxf(xt, xb), cs__maxf(c1, c2));
-    /* kept for the area, which forms the same points (cs__exact_poly_points) */
-    e->ctl_t = t;
-    e->ctl_x1 = c1;
-    e->ctl_x2 = c2;
     /* the polygon's three steps compared lane by lane: the same compares
      * as scalars, in a vector (the scalar ||s took ~20 instructions) */
     bounds_f to = {c1, c2, xb, xb}, from = {xt, c1, c2, xb};
